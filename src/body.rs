@@ -1,0 +1,71 @@
+//! A body taking part in an impact: mass, size, material and initial motion.
+//!
+//! Walls and immovable bodies are the infinite limits (`mass = inf`, `radius = inf`), not special cases:
+//! every formula below is written so that an infinite value drops out (1/inf = 0).
+
+use nalgebra::Vector3;
+
+/// One body, as the scene describes it (SI units).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Body {
+    /// Display name ("body 1" by default).
+    pub name: String,
+    /// Mass in kg; `f64::INFINITY` for an immovable body.
+    pub mass: f64,
+    /// Radius in m; `f64::INFINITY` for a flat wall.
+    pub radius: f64,
+    /// Velocity of the centre of mass before contact, m/s.
+    pub velocity: Vector3<f64>,
+    /// Position of the centre (or of a point of the wall's plane), m, when the scene gives positions.
+    pub position: Option<Vector3<f64>>,
+    /// Angular velocity before contact, rad/s.
+    pub angular_velocity: Vector3<f64>,
+    /// Young's modulus in Pa (`f64::INFINITY` for a rigid body); needed only for Hertz stiffness.
+    pub young: Option<f64>,
+    /// Poisson's ratio; needed only for Hertz stiffness.
+    pub poisson: Option<f64>,
+}
+
+impl Body {
+    /// 1/m in 1/kg: zero for an immovable body.
+    pub fn inverse_mass(&self) -> f64 {
+        1.0 / self.mass
+    }
+
+    /// Whether the body cannot be moved by the contact force.
+    pub fn is_immovable(&self) -> bool {
+        self.mass.is_infinite()
+    }
+
+    /// Whether the body is a flat wall (infinite radius).
+    pub fn is_flat(&self) -> bool {
+        self.radius.is_infinite()
+    }
+
+    /// Moment of inertia of a solid sphere, (2/5) m r², in kg m²; infinite for walls and immovable bodies.
+    pub fn moment_of_inertia(&self) -> f64 {
+        0.4 * self.mass * self.radius * self.radius
+    }
+
+    /// Kinetic energy (translation and rotation) in J for a velocity and angular velocity; 0 for an immovable body.
+    pub fn kinetic_energy(&self, velocity: &Vector3<f64>, angular_velocity: &Vector3<f64>) -> f64 {
+        if self.is_immovable() {
+            return 0.0;
+        }
+        let translation = 0.5 * self.mass * velocity.norm_squared();
+        let spin = angular_velocity.norm_squared();
+        // A flat body of finite mass cannot spin in a scene (validation forbids it); 0 * inf is avoided.
+        let rotation = if spin == 0.0 { 0.0 } else { 0.5 * self.moment_of_inertia() * spin };
+        translation + rotation
+    }
+
+    /// Contribution (1 - nu²)/E to the effective compliance 1/E*, in 1/Pa; zero for a rigid body.
+    pub fn compliance(&self) -> Option<f64> {
+        let young = self.young?;
+        if young.is_infinite() {
+            return Some(0.0);
+        }
+        let poisson = self.poisson?;
+        Some((1.0 - poisson * poisson) / young)
+    }
+}

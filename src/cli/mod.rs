@@ -1,0 +1,44 @@
+//! The command line: one file per verb. Arguments become typed options before any work starts.
+
+mod demo;
+mod models;
+mod run;
+
+use clap::{Parser, Subcommand};
+
+/// Simulate the collision of two bodies with a compliant contact law and measure what the instantaneous-impact
+/// idealisation hides. With no command, runs a built-in demonstration.
+#[derive(Debug, Parser)]
+#[command(name = "impact", version, about)]
+pub struct Cli {
+    #[command(subcommand)]
+    pub command: Option<Command>,
+}
+
+#[derive(Debug, Subcommand)]
+pub enum Command {
+    /// Simulate one scene file and print its report.
+    Run(run::RunArgs),
+    /// List the contact laws with their formulas, damping maps and sources.
+    Models(models::ModelsArgs),
+}
+
+/// A bad scene or bad arguments: exit status 2.
+#[derive(Debug, thiserror::Error)]
+#[error("{0}")]
+pub struct BadInput(pub String);
+
+/// Runs the chosen verb.
+pub fn dispatch(cli: Cli) -> anyhow::Result<()> {
+    match cli.command {
+        None => demo::run(),
+        Some(Command::Run(args)) => run::run(&args),
+        Some(Command::Models(args)) => models::run(&args),
+    }
+}
+
+/// The exit status for an error: 2 for bad input (scene or arguments), 1 otherwise.
+pub fn exit_code(error: &anyhow::Error) -> u8 {
+    let bad = error.chain().any(|cause| cause.is::<crate::scene::SceneError>() || cause.is::<BadInput>());
+    if bad { 2 } else { 1 }
+}

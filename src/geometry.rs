@@ -1,0 +1,101 @@
+//! Contact geometry: effective mass, radius and modulus, the Hertz stiffness, the contact normal and the
+//! free flight up to first contact (physics.md §1).
+
+use crate::body::Body;
+use nalgebra::Vector3;
+
+/// Effective mass m* = m1 m2 / (m1 + m2) in kg, written as 1/(1/m1 + 1/m2) so that a wall (m = inf) gives m* = m1.
+/// `None` when both bodies are immovable.
+pub fn effective_mass(a: &Body, b: &Body) -> Option<f64> {
+    let inverse = a.inverse_mass() + b.inverse_mass();
+    (inverse > 0.0).then(|| 1.0 / inverse)
+}
+
+/// Effective radius R*, 1/R* = 1/r1 + 1/r2, in m; `None` for two flat bodies.
+pub fn effective_radius(a: &Body, b: &Body) -> Option<f64> {
+    let curvature = 1.0 / a.radius + 1.0 / b.radius;
+    (curvature > 0.0).then(|| 1.0 / curvature)
+}
+
+/// Effective modulus E*, 1/E* = (1-nu1²)/E1 + (1-nu2²)/E2, in Pa. `None` when a material constant is missing
+/// or both bodies are rigid.
+pub fn effective_modulus(a: &Body, b: &Body) -> Option<f64> {
+    let compliance = a.compliance()? + b.compliance()?;
+    (compliance > 0.0).then(|| 1.0 / compliance)
+}
+
+/// Hertz stiffness K = (4/3) E* sqrt(R*) in N/m^(3/2) (physics.md §1).
+pub fn hertz_stiffness(effective_modulus: f64, effective_radius: f64) -> f64 {
+    4.0 / 3.0 * effective_modulus * effective_radius.sqrt()
+}
+
+/// Where and when two bodies first touch, found in closed form from their straight-line flight.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FirstContact {
+    /// Time of first contact, s (>= 0).
+    pub time: f64,
+    /// Unit normal at the contact, from body 1 to body 2.
+    pub normal: Vector3<f64>,
+}
+
+/// Why two placed bodies do not give a usable first contact.
+#[derive(Debug, Clone, PartialEq)]
+pub enum PlacementProblem {
+    /// They start overlapped by more than the tolerance; the overlap in m.
+    Overlapping(f64),
+    /// Their straight-line paths never bring them into contact.
+    NeverMeet,
+    /// Two sphere centres coincide, so no line of centres exists.
+    CoincidentCentres,
+}
+
+/// Relative tolerance (of the smaller radius) within which bodies count as just touching.
+pub const TOUCH_TOLERANCE: f64 = 1e-12;
+
+/// First contact of two placed bodies moving at constant velocity. `wall_normal` is the scene's normal,
+/// used for the plane of a flat body. At most one body may be flat.
+pub fn first_contact(a: &Body, b: &Body, wall_normal: &Vector3<f64>) -> Result<FirstContact, PlacementProblem> {
+    let (xa, xb) = (a.position.unwrap_or_default(), b.position.unwrap_or_default());
+    let separation = xb - xa;
+    let relative_velocity = b.velocity - a.velocity;
+    let smallest = a.radius.min(b.radius);
+    let tolerance = TOUCH_TOLERANCE * smallest;
+    if a.is_flat() || b.is_flat() {
+        let sphere_radius = if a.is_flat() { b.radius } else { a.radius };
+        let gap = separation.dot(wall_normal) - sphere_radius;
+        if gap < -tolerance {
+            return Err(PlacementProblem::Overlapping(-gap));
+        }
+        if gap <= tolerance {
+            return Ok(FirstContact { time: 0.0, normal: *wall_normal });
+        }
+        let closing = -relative_velocity.dot(wall_normal);
+        if closing <= 0.0 {
+            return Err(PlacementProblem::NeverMeet);
+        }
+        return Ok(FirstContact { time: gap / closing, normal: *wall_normal });
+    }
+    let contact_distance = a.radius + b.radius;
+    let distance = separation.norm();
+    if distance == 0.0 {
+        return Err(PlacementProblem::CoincidentCentres);
+    }
+    let gap = distance - contact_distance;
+    if gap < -tolerance {
+        return Err(PlacementProblem::Overlapping(-gap));
+    }
+    if gap <= tolerance {
+        return Ok(FirstContact { time: 0.0, normal: separation / distance });
+    }
+    // |s + w t| = D: w² t² + 2 (s·w) t + (s² - D²) = 0; the earlier root is the first touch.
+    let (w2, sw) = (relative_velocity.norm_squared(), separation.dot(&relative_velocity));
+    let c = (distance - contact_distance) * (distance + contact_distance);
+    let discriminant = sw * sw - w2 * c;
+    if w2 == 0.0 || sw >= 0.0 || discriminant < 0.0 {
+        return Err(PlacementProblem::NeverMeet);
+    }
+    // Stable form of the smaller root: t = c / (-sw + sqrt(disc)).
+    let time = c / (-sw + discriminant.sqrt());
+    let at_contact = separation + relative_velocity * time;
+    Ok(FirstContact { time, normal: at_contact / at_contact.norm() })
+}

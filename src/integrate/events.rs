@@ -1,0 +1,114 @@
+//! Event functions and their location between two accepted steps.
+
+use super::{IntegrationError, State};
+
+/// Which sign changes of an event function count.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Direction {
+    /// From positive to zero or negative.
+    Falling,
+    /// From negative to zero or positive.
+    Rising,
+}
+
+/// A scalar function of the state whose zero marks an event (maximum compression, separation, peak force, ...).
+pub struct Event<'a, const N: usize> {
+    /// g(y); the event is where it crosses zero in `direction`.
+    pub function: &'a dyn Fn(&State<N>) -> f64,
+    pub direction: Direction,
+    /// A terminal event ends the run; others are only located and reported.
+    pub terminal: bool,
+}
+
+/// A located event: which one, when, and the state there.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Crossing<const N: usize> {
+    /// Index of the event in the list given to the run.
+    pub event: usize,
+    /// Scaled time of the crossing.
+    pub time: f64,
+    /// State at the crossing.
+    pub state: State<N>,
+}
+
+impl<const N: usize> Event<'_, N> {
+    fn value(&self, y: &State<N>) -> f64 {
+        let g = (self.function)(y);
+        match self.direction {
+            Direction::Falling => g,
+            Direction::Rising => -g,
+        }
+    }
+
+    /// Whether the event function crosses zero in its direction between two points.
+    pub fn crosses(&self, _t0: f64, y0: &State<N>, _t1: f64, y1: &State<N>) -> bool {
+        self.value(y0) > 0.0 && self.value(y1) <= 0.0
+    }
+}
+
+/// A point of the solution with its derivative: (time, state, state').
+pub type Point<const N: usize> = (f64, State<N>, State<N>);
+
+/// Cubic Hermite interpolant of the step from `a` to `b` at time `t`: only a starting guess for the root.
+fn hermite<const N: usize>(a: &Point<N>, b: &Point<N>, t: f64) -> State<N> {
+    let h = b.0 - a.0;
+    let s = (t - a.0) / h;
+    let (s2, s3) = (s * s, s * s * s);
+    let h00 = 2.0 * s3 - 3.0 * s2 + 1.0;
+    let h10 = s3 - 2.0 * s2 + s;
+    let h01 = -2.0 * s3 + 3.0 * s2;
+    let h11 = s3 - s2;
+    a.1 * h00 + a.2 * (h10 * h) + b.1 * h01 + b.2 * (h11 * h)
+}
+
+/// Locates the crossing of `event` between accepted points `a` and `b`, evaluating the true solution at trial times
+/// through `solution_at` (a re-step from `a`). Safeguarded secant on a shrinking bracket, started from the root
+/// of the Hermite interpolant; stops when the bracket or the step is a few ulps of the time.
+pub fn locate<const N: usize>(
+    event: &Event<'_, N>,
+    index: usize,
+    a: &Point<N>,
+    b: &Point<N>,
+    mut solution_at: impl FnMut(f64) -> Result<State<N>, IntegrationError>,
+) -> Result<Crossing<N>, IntegrationError> {
+    // Bracket [lo, hi] with value(lo) > 0 >= value(hi).
+    let (mut lo, mut g_lo) = (a.0, event.value(&a.1));
+    let (mut hi, mut g_hi, mut y_hi) = (b.0, event.value(&b.1), b.1);
+    if g_hi == 0.0 {
+        return Ok(Crossing { event: index, time: hi, state: y_hi });
+    }
+    let resolution = |t: f64| 4.0 * f64::EPSILON * t.abs().max(b.0 - a.0);
+    // Starting guess: bisection on the cheap interpolant.
+    let (mut left, mut right) = (lo, hi);
+    for _ in 0..60 {
+        let mid = 0.5 * (left + right);
+        if event.value(&hermite(a, b, mid)) > 0.0 { left = mid } else { right = mid }
+    }
+    let mut trial = 0.5 * (left + right);
+    let mut previous: Option<(f64, f64)> = None;
+    for _ in 0..60 {
+        let y = solution_at(trial)?;
+        let g = event.value(&y);
+        if g > 0.0 {
+            (lo, g_lo) = (trial, g);
+        } else {
+            (hi, g_hi, y_hi) = (trial, g, y);
+        }
+        if g == 0.0 || hi - lo <= resolution(trial) {
+            return Ok(Crossing { event: index, time: trial, state: y });
+        }
+        // Secant through the last two trials; regula falsi on the bracket when there is no usable secant, and
+        // bisection when the secant leaves the bracket.
+        let next = match previous {
+            Some((t_prev, g_prev)) if g != g_prev => trial - g * (trial - t_prev) / (g - g_prev),
+            _ => lo - g_lo * (hi - lo) / (g_hi - g_lo),
+        };
+        previous = Some((trial, g));
+        if (next - trial).abs() <= resolution(trial) {
+            return Ok(Crossing { event: index, time: trial, state: y });
+        }
+        trial = if next > lo && next < hi { next } else { 0.5 * (lo + hi) };
+    }
+    // Not reached in practice: the bracket halves at worst every other trial.
+    Ok(Crossing { event: index, time: hi, state: y_hi })
+}

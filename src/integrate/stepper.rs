@@ -1,0 +1,224 @@
+//! The Dop853 adapter: runs between events, re-steps for event location, counts work.
+
+use super::events::{Crossing, Event, Point, locate};
+use super::{IntegrationError, Model, State};
+use ode_solvers::dop853::Dop853;
+use ode_solvers::{OutputType, System};
+
+/// Error tolerances of the adaptive integrator, on the scaled state.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Tolerances {
+    /// Relative tolerance.
+    pub rtol: f64,
+    /// Absolute tolerance.
+    pub atol: f64,
+}
+
+impl Default for Tolerances {
+    fn default() -> Self {
+        Tolerances { rtol: 1e-10, atol: 1e-12 }
+    }
+}
+
+/// Work done by the integrator, summed over every run and re-step.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct Counters {
+    /// Accepted steps.
+    pub steps: u64,
+    /// Rejected steps.
+    pub rejected_steps: u64,
+    /// Right-hand-side (force) evaluations.
+    pub evaluations: u64,
+}
+
+/// How a run between events ended.
+#[derive(Debug, Clone)]
+pub struct RunEnd<const N: usize> {
+    /// Scaled time and state where the run stopped.
+    pub time: f64,
+    pub state: State<N>,
+    /// The terminal event that stopped it (its index in the list), or `None` at the time limit.
+    pub terminal: Option<usize>,
+    /// Every non-terminal crossing located on the way, in time order.
+    pub crossings: Vec<Crossing<N>>,
+}
+
+/// Integrates a model with Dop853, locating events; optionally records every accepted step.
+pub struct Stepper<'m, M, const N: usize> {
+    model: &'m M,
+    tolerances: Tolerances,
+    /// Work so far.
+    pub counters: Counters,
+    /// Accepted steps (time, state), kept only when a history was asked for.
+    pub record: Option<Vec<(f64, State<N>)>>,
+}
+
+/// What `solout` saw: the last accepted point and the first bracket of a sign change.
+struct Watch<'w, 'e, const N: usize> {
+    events: &'w [Event<'e, N>],
+    previous: Point<N>,
+    bracket: Option<(Point<N>, Point<N>)>,
+    record: Option<&'w mut Vec<(f64, State<N>)>>,
+}
+
+/// The `System` handed to Dop853: the model plus, optionally, a watch for events.
+struct Adapter<'a, 'w, 'e, M, const N: usize> {
+    model: &'a M,
+    watch: Option<&'a mut Watch<'w, 'e, N>>,
+}
+
+impl<M: Model<N>, const N: usize> System<f64, State<N>> for Adapter<'_, '_, '_, M, N> {
+    fn system(&self, t: f64, y: &State<N>, dy: &mut State<N>) {
+        self.model.derivative(t, y, dy);
+    }
+
+    fn solout(&mut self, t: f64, y: &State<N>, dy: &State<N>) -> bool {
+        let Some(watch) = self.watch.as_deref_mut() else { return false };
+        if let Some(record) = watch.record.as_deref_mut() {
+            record.push((t, *y));
+        }
+        let (t0, y0, _) = watch.previous;
+        let crossed = watch.events.iter().any(|event| event.crosses(t0, &y0, t, y));
+        let current = (t, *y, *dy);
+        if crossed {
+            watch.bracket = Some((watch.previous, current));
+            return true;
+        }
+        watch.previous = current;
+        false
+    }
+}
+
+impl<'m, M: Model<N>, const N: usize> Stepper<'m, M, N> {
+    /// A stepper for `model`; `record` keeps every accepted step.
+    pub fn new(model: &'m M, tolerances: Tolerances, record: bool) -> Self {
+        Stepper { model, tolerances, counters: Counters::default(), record: record.then(Vec::new) }
+    }
+
+    /// The model's derivative at a point (counted as one evaluation).
+    pub fn derivative(&mut self, t: f64, y: &State<N>) -> State<N> {
+        let mut dy = State::<N>::zeros();
+        self.model.derivative(t, y, &mut dy);
+        self.counters.evaluations += 1;
+        dy
+    }
+
+    /// Integrates from `(t, y)` until a terminal event of `events` fires (located) or `t_end` is reached.
+    /// Non-terminal events crossed before that are located and returned too.
+    pub fn run(
+        &mut self,
+        t: f64,
+        y: State<N>,
+        t_end: f64,
+        events: &[Event<'_, N>],
+    ) -> Result<RunEnd<N>, IntegrationError> {
+        let mut start: Point<N> = (t, y, self.derivative(t, &y));
+        let mut first_step = 0.0;
+        let mut crossings = Vec::new();
+        loop {
+            let (time, state, bracket, last_step) = self.advance(start, t_end, first_step, events)?;
+            let Some((left, right)) = bracket else {
+                return Ok(RunEnd { time, state, terminal: None, crossings });
+            };
+            let mut located: Vec<(usize, Crossing<N>)> = Vec::new();
+            for (index, event) in events.iter().enumerate() {
+                if event.crosses(left.0, &left.1, right.0, &right.1) {
+                    let crossing = locate(event, index, &left, &right, |t| self.step_to(&left, t))?;
+                    located.push((index, crossing));
+                }
+            }
+            located.sort_by(|a, b| a.1.time.total_cmp(&b.1.time));
+            let terminal = located.iter().find(|(i, _)| events[*i].terminal).map(|(_, c)| c.clone());
+            let cutoff = terminal.as_ref().map_or(f64::INFINITY, |c| c.time);
+            crossings.extend(located.into_iter().map(|(_, c)| c).filter(|c| !events[c.event].terminal && c.time <= cutoff));
+            if let Some(stop) = terminal {
+                if let Some(record) = self.record.as_mut() {
+                    record.retain(|(t, _)| *t < stop.time);
+                    record.push((stop.time, stop.state));
+                }
+                return Ok(RunEnd { time: stop.time, state: stop.state, terminal: Some(stop.event), crossings });
+            }
+            start = right;
+            first_step = last_step;
+        }
+    }
+
+    /// One Dop853 run from `start` until a bracket of a sign change or `t_end`: (end time, end state, bracket,
+    /// last step size).
+    #[allow(clippy::type_complexity)]
+    fn advance(
+        &mut self,
+        start: Point<N>,
+        t_end: f64,
+        first_step: f64,
+        events: &[Event<'_, N>],
+    ) -> Result<(f64, State<N>, Option<(Point<N>, Point<N>)>, f64), IntegrationError> {
+        let mut record = self.record.take();
+        let mut watch = Watch { events, previous: start, bracket: None, record: record.as_mut() };
+        let (t, y) = (start.0, start.1);
+        let adapter = Adapter { model: self.model, watch: Some(&mut watch) };
+        let mut solver = dop853(adapter, self.tolerances, t, y, t_end, first_step);
+        let result = solver.integrate();
+        let (time, state) = last_point(&solver, t, y);
+        let step = time - solver.x_out().iter().rev().nth(1).copied().unwrap_or(t);
+        drop(solver);
+        let bracket = watch.bracket;
+        self.record = record;
+        self.count(result, time)?;
+        Ok((time, state, bracket, step))
+    }
+
+    /// The solution at `t` reached by one (or, if rejected, a few) Dop853 steps from `from`: the re-step used to
+    /// evaluate an event function between accepted steps.
+    pub fn step_to(&mut self, from: &(f64, State<N>, State<N>), t: f64) -> Result<State<N>, IntegrationError> {
+        let h = t - from.0;
+        if h.abs() <= 16.0 * f64::EPSILON * from.0.abs().max(1.0) {
+            return Ok(from.1 + from.2 * h);
+        }
+        let adapter = Adapter { model: self.model, watch: None };
+        let mut solver = dop853(adapter, self.tolerances, from.0, from.1, t, h);
+        let result = solver.integrate();
+        let (_, state) = last_point(&solver, from.0, from.1);
+        drop(solver);
+        self.count(result, t)?;
+        Ok(state)
+    }
+
+    fn count(&mut self, result: Result<ode_solvers::dop_shared::Stats, ode_solvers::dop_shared::IntegrationError>, time: f64) -> Result<(), IntegrationError> {
+        match result {
+            Ok(stats) => {
+                self.counters.steps += u64::from(stats.accepted_steps);
+                self.counters.rejected_steps += u64::from(stats.rejected_steps);
+                self.counters.evaluations += u64::from(stats.num_eval);
+                Ok(())
+            }
+            Err(error) => Err(IntegrationError::Solver { time, reason: error.to_string() }),
+        }
+    }
+}
+
+/// A Dop853 solver from `(t, y)` to `t_end` with sparse output (dense output with dx = 0 never ends) and
+/// initial step `first_step` (0: let the solver choose).
+fn dop853<'a, 'w, 'e, M: Model<N>, const N: usize>(
+    adapter: Adapter<'a, 'w, 'e, M, N>,
+    tolerances: Tolerances,
+    t: f64,
+    y: State<N>,
+    t_end: f64,
+    first_step: f64,
+) -> Dop853<f64, State<N>, Adapter<'a, 'w, 'e, M, N>> {
+    let Tolerances { rtol, atol } = tolerances;
+    let h_max = t_end - t;
+    let h = first_step.min(h_max);
+    Dop853::from_param(adapter, t, t_end, 0.0, y, rtol, atol, 0.9, 0.0, 0.333, 6.0, h_max, h, 100_000, 1000, OutputType::Sparse)
+}
+
+fn last_point<M, const N: usize>(solver: &Dop853<f64, State<N>, M>, t: f64, y: State<N>) -> (f64, State<N>)
+where
+    M: System<f64, State<N>>,
+{
+    match (solver.x_out().last(), solver.y_out().last()) {
+        (Some(&time), Some(&state)) => (time, state),
+        _ => (t, y),
+    }
+}

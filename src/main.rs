@@ -1,0 +1,24 @@
+//! The `impact` command: parse arguments, dispatch to a verb, turn errors into messages and exit codes
+//! (2 for a bad scene or bad arguments, 1 for anything else).
+
+use clap::Parser;
+use impact::cli::{self, Cli};
+use std::process::ExitCode;
+
+fn main() -> ExitCode {
+    let arguments = match Cli::try_parse() {
+        Ok(arguments) => arguments,
+        Err(error) => {
+            let code = if error.use_stderr() { 2 } else { 0 };
+            let _ = error.print();
+            return ExitCode::from(code);
+        }
+    };
+    match cli::dispatch(arguments) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(error) => {
+            eprintln!("impact: {error:#}");
+            ExitCode::from(cli::exit_code(&error))
+        }
+    }
+}

@@ -1,0 +1,8 @@
+//! The JSON report of interface.md.
+
+use crate::report::Report;
+
+/// The report as pretty JSON with a final newline.
+pub fn render(report: &Report) -> serde_json::Result<String> {
+    Ok(serde_json::to_string_pretty(report)? + "\n")
+}

@@ -1,0 +1,5 @@
+//! Views of the report: each a function of the [`crate::report::Report`] (or the history), none recomputing physics.
+
+pub mod files;
+pub mod json;
+pub mod table;

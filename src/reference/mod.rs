@@ -1,0 +1,1 @@
+//! Exact references (closed forms and quadratures) — being written.

@@ -1,0 +1,37 @@
+//! A bad scene, located: file, key, line.
+
+use std::fmt;
+use std::path::Path;
+
+/// Why a scene cannot be simulated, with where it says so.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub struct SceneError {
+    /// The scene file.
+    pub file: String,
+    /// The dotted key (0-based indices, e.g. `bodies.1.velocity`), when one key is at fault.
+    pub key: Option<String>,
+    /// 1-based line, when known.
+    pub line: Option<usize>,
+    /// What is wrong and what was expected.
+    pub message: String,
+}
+
+impl SceneError {
+    /// An error about the file as a whole.
+    pub fn file(path: &Path, message: impl Into<String>) -> SceneError {
+        SceneError { file: path.display().to_string(), key: None, line: None, message: message.into() }
+    }
+}
+
+impl fmt::Display for SceneError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{}", self.file)?;
+        if let Some(line) = self.line {
+            write!(f, ", line {line}")?;
+        }
+        if let Some(key) = &self.key {
+            write!(f, ", key `{key}`")?;
+        }
+        write!(f, ": {}", self.message)
+    }
+}

@@ -1,0 +1,58 @@
+//! The TOML file as written: serde structs that reject unknown keys and keep each value's position.
+
+use serde::Deserialize;
+use toml::Spanned;
+
+/// A value with its byte span in the file.
+pub type At<T> = Spanned<T>;
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawScene {
+    pub title: Option<At<String>>,
+    pub bodies: Option<At<Vec<At<RawBody>>>>,
+    pub contact: Option<At<RawContact>>,
+    pub solver: Option<At<RawSolver>>,
+    pub output: Option<At<RawOutput>>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawBody {
+    pub name: Option<At<String>>,
+    pub radius: Option<At<f64>>,
+    pub mass: Option<At<f64>>,
+    pub density: Option<At<f64>>,
+    pub velocity: Option<At<Vec<f64>>>,
+    pub position: Option<At<Vec<f64>>>,
+    pub angular_velocity: Option<At<Vec<f64>>>,
+    pub young: Option<At<f64>>,
+    pub poisson: Option<At<f64>>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawContact {
+    pub law: Option<At<String>>,
+    pub restitution: Option<At<f64>>,
+    pub damping: Option<At<f64>>,
+    pub stiffness: Option<At<toml::Value>>,
+    pub exponent: Option<At<f64>>,
+    pub separation: Option<At<String>>,
+    pub friction: Option<At<f64>>,
+    pub normal: Option<At<Vec<f64>>>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawSolver {
+    pub rtol: Option<At<f64>>,
+    pub atol: Option<At<f64>>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawOutput {
+    pub series: Option<At<String>>,
+    pub plots: Option<At<String>>,
+}
