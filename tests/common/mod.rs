@@ -1,0 +1,34 @@
+//! Helpers shared by the physics tests: build a scene from TOML text and simulate it.
+#![allow(dead_code)]
+
+use impact::impact::simulate;
+use impact::report::Report;
+use impact::scene::Scene;
+use std::path::Path;
+
+/// Simulates a scene given as TOML text.
+pub fn run(toml: &str) -> Report {
+    let scene = Scene::parse(toml, Path::new("test.toml")).unwrap_or_else(|e| panic!("bad test scene: {e}\n{toml}"));
+    simulate(&scene, false).expect("simulation").report
+}
+
+/// A sphere of mass `mass` (kg) at `speed` (m/s, along x) against an immovable wall, with the given `[contact]`
+/// lines (law, damping, stiffness...).
+pub fn on_wall(mass: f64, speed: f64, contact: &str) -> Report {
+    run(&format!(
+        "[[bodies]]\nradius = 0.01\nmass = {mass}\nvelocity = [{speed}, 0.0, 0.0]\n\n\
+         [[bodies]]\nradius = inf\nmass = inf\nvelocity = [0.0, 0.0, 0.0]\n\n[contact]\n{contact}\n"
+    ))
+}
+
+/// |a - b| / |b|.
+pub fn relative(a: f64, b: f64) -> f64 {
+    ((a - b) / b).abs()
+}
+
+/// Asserts a relative agreement, naming the quantity.
+#[track_caller]
+pub fn assert_close(what: &str, simulated: f64, exact: f64, tolerance: f64) {
+    let error = relative(simulated, exact);
+    assert!(error <= tolerance, "{what}: simulated {simulated:.15e}, exact {exact:.15e}, relative error {error:.2e} > {tolerance:.0e}");
+}
