@@ -2,7 +2,7 @@
 //! [`Report`].
 
 use crate::dynamics::normal::{NormalContact, SIZE, index};
-use crate::history::History;
+use crate::history::{Frame, History, Recording};
 use crate::instantaneous::{Instantaneous, direct_impact};
 use crate::integrate::{Crossing, Direction, Event, IntegrationError, State, Stepper};
 use crate::report::{
@@ -34,12 +34,12 @@ const TIME_LIMIT: f64 = 1e4;
 /// Scaled size of |d| + |d'| below which the relative motion counts as died out.
 const SETTLED: f64 = 1e-10;
 
-/// Simulates the scene's impact; `record` keeps the contact history (for series and plots).
-pub fn simulate(scene: &Scene, record: bool) -> Result<Simulation, SimulationError> {
+/// Simulates the scene's impact; `recording` says whether (and how) to keep the contact history.
+pub fn simulate(scene: &Scene, recording: Recording) -> Result<Simulation, SimulationError> {
     let clock = Instant::now();
     let setup = Setup::new(scene).map_err(SimulationError::Setup)?;
     let model = NormalContact { law: setup.law, scales: setup.scales };
-    let mut stepper = Stepper::new(&model, scene.solver, record);
+    let mut stepper = Stepper::new(&model, scene.solver, recording != Recording::Off);
 
     let rate = |y: &State<SIZE>| y[index::RATE];
     let force = |y: &State<SIZE>| model.force(y);
@@ -49,6 +49,7 @@ pub fn simulate(scene: &Scene, record: bool) -> Result<Simulation, SimulationErr
     let peak = Event { function: &force_rate, direction: Direction::Falling, terminal: false };
 
     let start = NormalContact::initial_state();
+    stepper.note(0.0, start);
     let compression = [Event { function: &rate, direction: Direction::Falling, terminal: true }, peak];
     let compressed = stepper.run(0.0, start, TIME_LIMIT, &compression)?;
     let peak = Event { function: &force_rate, direction: Direction::Falling, terminal: false };
@@ -65,7 +66,8 @@ pub fn simulate(scene: &Scene, record: bool) -> Result<Simulation, SimulationErr
     let separated = released.terminal == Some(0);
 
     let mut candidates = vec![(0.0, start), (compressed.time, compressed.state), (released.time, released.state)];
-    candidates.extend(compressed.crossings.iter().chain(&released.crossings).map(|c: &Crossing<SIZE>| (c.time, c.state)));
+    candidates
+        .extend(compressed.crossings.iter().chain(&released.crossings).map(|c: &Crossing<SIZE>| (c.time, c.state)));
     let (peak_time, peak_state) = candidates
         .into_iter()
         .max_by(|a, b| model.force(&a.1).total_cmp(&model.force(&b.1)))
@@ -77,7 +79,21 @@ pub fn simulate(scene: &Scene, record: bool) -> Result<Simulation, SimulationErr
         peak: (peak_time, model.force(&peak_state)),
         separated,
     };
-    let history = stepper.record.take().map(|points| History::new(points, &model));
+    let frame = Frame {
+        model: &model,
+        bodies: &scene.bodies,
+        normal: setup.normal,
+        contact_time: setup.contact_time,
+        max_compression: compressed.time,
+    };
+    let history = match recording {
+        Recording::Off => None,
+        Recording::Steps => stepper.recorded().map(|points| History::new(points, &frame)),
+        Recording::Uniform(count) => {
+            let times = uniform(released.time, count);
+            Some(History::new(&stepper.resample(&times)?, &frame))
+        }
+    };
     let mut report = build_report(scene, &setup, &phases);
     report.solver = SolverReport {
         method: "dop853".into(),
@@ -92,6 +108,15 @@ pub fn simulate(scene: &Scene, record: bool) -> Result<Simulation, SimulationErr
         report.notes.push(stuck_note(&setup, &phases, released.terminal.is_some()));
     }
     Ok(Simulation { report, history })
+}
+
+/// `count` evenly spaced times over [0, end], both ends included.
+fn uniform(end: f64, count: usize) -> Vec<f64> {
+    match count {
+        0 => Vec::new(),
+        1 => vec![0.0],
+        _ => (0..count).map(|i| end * i as f64 / (count - 1) as f64).collect(),
+    }
 }
 
 /// The located phase boundaries, in scaled time and state.
@@ -124,7 +149,8 @@ fn build_report(scene: &Scene, setup: &Setup, phases: &Phases) -> Report {
     let (t_end, y_end) = phases.end;
     let deformation_impulse = y0[index::IMPULSE] * s.impulse;
     let total_impulse = y_end[index::IMPULSE] * s.impulse;
-    let kick = |impulse: f64| [a.velocity - n * (impulse * a.inverse_mass()), b.velocity + n * (impulse * b.inverse_mass())];
+    let kick =
+        |impulse: f64| [a.velocity - n * (impulse * a.inverse_mass()), b.velocity + n * (impulse * b.inverse_mass())];
     let at_max = kick(deformation_impulse);
     let after = kick(total_impulse);
     // V0 from the simulated impulse, read off a movable body (its error is the impulse integral's).
@@ -135,8 +161,10 @@ fn build_report(scene: &Scene, setup: &Setup, phases: &Phases) -> Report {
     let done = phases.separated;
     let when = |value: f64| done.then_some(value);
     let restitution_impulse = total_impulse - deformation_impulse;
-    let kinetic_before = a.kinetic_energy(&a.velocity, &a.angular_velocity) + b.kinetic_energy(&b.velocity, &b.angular_velocity);
-    let kinetic_after = a.kinetic_energy(&after[0], &a.angular_velocity) + b.kinetic_energy(&after[1], &b.angular_velocity);
+    let kinetic_before =
+        a.kinetic_energy(&a.velocity, &a.angular_velocity) + b.kinetic_energy(&b.velocity, &b.angular_velocity);
+    let kinetic_after =
+        a.kinetic_energy(&after[0], &a.angular_velocity) + b.kinetic_energy(&after[1], &b.angular_velocity);
 
     let nominal = match scene.contact.damping {
         DampingSpec::None => Some(1.0),
@@ -231,9 +259,8 @@ fn phases_summary(phases: &Phases, s: &crate::dynamics::Scales) -> Measured {
 }
 
 fn instantaneous_report(ideal: &Instantaneous, simulated: Option<&[Vector3<f64>; 2]>) -> InstantaneousReport {
-    let difference = simulated.map(|after| {
-        (0..2).map(|i| (after[i] - ideal.velocity_after[i]).amax()).fold(0.0, f64::max)
-    });
+    let difference =
+        simulated.map(|after| (0..2).map(|i| (after[i] - ideal.velocity_after[i]).amax()).fold(0.0, f64::max));
     InstantaneousReport {
         restitution: ideal.restitution,
         common_normal_velocity: ideal.common_normal_velocity,

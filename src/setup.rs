@@ -77,15 +77,14 @@ impl Setup {
         let damping = match scene.contact.damping {
             DampingSpec::None => 0.0,
             DampingSpec::Parameter(value) => value,
-            DampingSpec::Restitution(e) => {
-                damping_for_restitution(kind, e, stiffness, effective_mass, approach_speed).or_else(|error| {
+            DampingSpec::Restitution(e) => damping_for_restitution(kind, e, stiffness, effective_mass, approach_speed)
+                .or_else(|error| {
                     let why = match error {
                         MapError::NoMap => format!("the law `{}` has no restitution map", kind.name()),
                         MapError::UndefinedAtZero => format!("the map of `{}` is undefined at e = 0", kind.name()),
                     };
                     fail("contact.restitution", why)
-                })?
-            }
+                })?,
         };
         let tsuji_scale = if kind.family() == Family::Tsuji { (effective_mass * stiffness).sqrt() } else { 0.0 };
         let law = ContactLaw { kind, stiffness, exponent, damping, tsuji_scale };
@@ -122,17 +121,17 @@ fn placement(scene: &Scene) -> Result<(f64, Vector3<f64>), SetupError> {
                 }
             })?;
             let spheres = !a.is_flat() && !b.is_flat();
-            if let (true, Some(normal)) = (spheres, given) {
-                if (normal - contact.normal).norm() > 1e-9 {
-                    return fail(
-                        "contact.normal",
-                        format!(
-                            "the given normal {:?} disagrees with the line of centres at first contact {:?}",
-                            normal.as_slice(),
-                            contact.normal.as_slice()
-                        ),
-                    );
-                }
+            if let (true, Some(normal)) = (spheres, given)
+                && (normal - contact.normal).norm() > 1e-9
+            {
+                return fail(
+                    "contact.normal",
+                    format!(
+                        "the given normal {:?} disagrees with the line of centres at first contact {:?}",
+                        normal.as_slice(),
+                        contact.normal.as_slice()
+                    ),
+                );
             }
             Ok((contact.time, contact.normal))
         }
@@ -163,10 +162,10 @@ fn hertz_stiffness(a: &Body, b: &Body) -> Result<f64, SetupError> {
     for (i, body) in [a, b].iter().enumerate() {
         match (body.young, body.poisson) {
             (None, _) => {
-                return fail(format!("bodies.{i}.young"), "stiffness = \"hertz\" needs `young` (Pa) for every body")
+                return fail(format!("bodies.{i}.young"), "stiffness = \"hertz\" needs `young` (Pa) for every body");
             }
             (Some(e), None) if e.is_finite() => {
-                return fail(format!("bodies.{i}.poisson"), "stiffness = \"hertz\" needs `poisson` for an elastic body")
+                return fail(format!("bodies.{i}.poisson"), "stiffness = \"hertz\" needs `poisson` for an elastic body");
             }
             _ => {}
         }

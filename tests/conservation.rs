@@ -83,14 +83,19 @@ fn a_wall_can_be_either_body_and_imposes_v0() {
     let sphere = "radius = 0.01\nmass = 0.1\nyoung = 2e11\npoisson = 0.3";
     let wall = "radius = inf\nmass = inf\nyoung = 2e11\npoisson = 0.3";
     let contact = "[contact]\nlaw = \"hunt-crossley\"\ndamping = 0.3";
-    let right = run(&format!("[[bodies]]\n{sphere}\nvelocity = [2, 0, 0]\n[[bodies]]\n{wall}\nvelocity = [0.5, 0, 0]\n{contact}"));
-    let left = run(&format!("[[bodies]]\n{wall}\nvelocity = [-0.5, 0, 0]\n[[bodies]]\n{sphere}\nvelocity = [-2, 0, 0]\n{contact}"));
+    let right = run(&format!(
+        "[[bodies]]\n{sphere}\nvelocity = [2, 0, 0]\n[[bodies]]\n{wall}\nvelocity = [0.5, 0, 0]\n{contact}"
+    ));
+    let left = run(&format!(
+        "[[bodies]]\n{wall}\nvelocity = [-0.5, 0, 0]\n[[bodies]]\n{sphere}\nvelocity = [-2, 0, 0]\n{contact}"
+    ));
     // Approach 1.5 m/s either way; the wall's normal velocity is V0; the same e by symmetry.
     assert_close("approach", right.approach_speed, 1.5, 1e-15);
     assert_close("approach", left.approach_speed, 1.5, 1e-15);
     assert!((right.contact.common_normal_velocity - 0.5).abs() <= 1e-9 * 1.5);
     assert!((left.contact.common_normal_velocity + 0.5).abs() <= 1e-9 * 1.5);
-    let (e_right, e_left) = (right.contact.restitution_velocity_ratio.unwrap(), left.contact.restitution_velocity_ratio.unwrap());
+    let (e_right, e_left) =
+        (right.contact.restitution_velocity_ratio.unwrap(), left.contact.restitution_velocity_ratio.unwrap());
     assert_close("mirror e", e_left, e_right, 1e-12);
     // Hunt–Crossley e depends on x = alpha v0 = 0.45 only (physics.md §3): x (1 + e) = ln((1 + x)/(1 - e x)).
     let x = 0.3 * 1.5;

@@ -10,7 +10,9 @@ const DURATION_CONSTANT: f64 = 2.9432751843;
 /// Two equal spheres of one material closing at `speed` (half each way), elastic Hertz with Hertz stiffness.
 fn equal_spheres(young: f64, poisson: f64, density: f64, radius: f64, speed: f64) -> impact::report::Report {
     let body = |v: f64| {
-        format!("[[bodies]]\nradius = {radius}\ndensity = {density}\nvelocity = [{v}, 0, 0]\nyoung = {young}\npoisson = {poisson}\n")
+        format!(
+            "[[bodies]]\nradius = {radius}\ndensity = {density}\nvelocity = [{v}, 0, 0]\nyoung = {young}\npoisson = {poisson}\n"
+        )
     };
     run(&format!("{}{}[contact]\nlaw = \"hertz\"\n", body(speed / 2.0), body(-speed / 2.0)))
 }

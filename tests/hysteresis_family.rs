@@ -15,11 +15,51 @@ struct Row {
 }
 
 const TABLE: [Row; 5] = [
-    Row { x: 0.5, n: 1.5, e: 0.7484349315974, max_penetration: 0.9777703257171, max_compression_time: 1.505190262472, duration: 3.338252755937, max_force: 1.03820817965 },
-    Row { x: 2.0, n: 1.5, e: 0.410719686061, max_penetration: 0.7949076199716, max_compression_time: 1.33112133457, duration: 3.78025803753, max_force: 1.10425499427 },
-    Row { x: 0.5, n: 1.0, e: 0.7484349315974, max_penetration: 0.8696431079096, max_compression_time: 1.437445184309, duration: 3.166389384992, max_force: 0.945050174739 },
-    Row { x: 1.0, n: 2.2, e: 0.59362426004, max_penetration: 0.9943173787563, max_compression_time: 1.468630256523, duration: 3.613729878934, max_force: 1.18053806176 },
-    Row { x: 10.0, n: 1.5, e: 0.09998162475294, max_penetration: 0.5146945181523, max_compression_time: 1.026446744025, duration: 6.458113911715, max_force: 1.63632476647 },
+    Row {
+        x: 0.5,
+        n: 1.5,
+        e: 0.7484349315974,
+        max_penetration: 0.9777703257171,
+        max_compression_time: 1.505190262472,
+        duration: 3.338252755937,
+        max_force: 1.03820817965,
+    },
+    Row {
+        x: 2.0,
+        n: 1.5,
+        e: 0.410719686061,
+        max_penetration: 0.7949076199716,
+        max_compression_time: 1.33112133457,
+        duration: 3.78025803753,
+        max_force: 1.10425499427,
+    },
+    Row {
+        x: 0.5,
+        n: 1.0,
+        e: 0.7484349315974,
+        max_penetration: 0.8696431079096,
+        max_compression_time: 1.437445184309,
+        duration: 3.166389384992,
+        max_force: 0.945050174739,
+    },
+    Row {
+        x: 1.0,
+        n: 2.2,
+        e: 0.59362426004,
+        max_penetration: 0.9943173787563,
+        max_compression_time: 1.468630256523,
+        duration: 3.613729878934,
+        max_force: 1.18053806176,
+    },
+    Row {
+        x: 10.0,
+        n: 1.5,
+        e: 0.09998162475294,
+        max_penetration: 0.5146945181523,
+        max_compression_time: 1.026446744025,
+        duration: 6.458113911715,
+        max_force: 1.63632476647,
+    },
 ];
 
 /// Accuracy the issue asks for at the default tolerances.
@@ -85,7 +125,8 @@ fn published_maps_reach_the_effective_restitution_of_the_table() {
 #[test]
 fn exact_map_gives_the_nominal_restitution() {
     for nominal in [0.05, 0.3, 0.6, 0.8, 0.95, 0.999] {
-        let report = on_wall(1.0, 3.0, &format!("law = \"carvalho-martins\"\nrestitution = {nominal}\nstiffness = 1e9"));
+        let report =
+            on_wall(1.0, 3.0, &format!("law = \"carvalho-martins\"\nrestitution = {nominal}\nstiffness = 1e9"));
         assert_close("carvalho-martins e", report.contact.restitution_velocity_ratio.unwrap(), nominal, TOLERANCE);
     }
 }
@@ -94,7 +135,12 @@ fn exact_map_gives_the_nominal_restitution() {
 fn bounded_maps_cannot_go_below_their_floor() {
     // physics.md §3: Lankarani–Nikravesh and Lee–Wang never go below 0.662962, Hunt–Crossley and
     // Herbert–McWhannell never below 0.487741, whatever nominal e is asked (here the lowest, 0).
-    for (law, floor) in [("lankarani-nikravesh", 0.662962), ("lee-wang", 0.662962), ("hunt-crossley", 0.487741), ("herbert-mcwhannell", 0.487741)] {
+    for (law, floor) in [
+        ("lankarani-nikravesh", 0.662962),
+        ("lee-wang", 0.662962),
+        ("hunt-crossley", 0.487741),
+        ("herbert-mcwhannell", 0.487741),
+    ] {
         let report = on_wall(1.0, 1.0, &format!("law = \"{law}\"\nrestitution = 0\nstiffness = 1e7"));
         let e = report.contact.restitution_velocity_ratio.unwrap();
         assert!((e - floor).abs() < 5e-7, "{law} at e = 0 gives {e}, floor {floor}");

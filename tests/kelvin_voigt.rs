@@ -10,7 +10,11 @@ const STIFFNESS: f64 = 1e4;
 /// A sphere on a wall with damping ratio zeta and the given separation criterion.
 fn with_zeta(zeta: f64, separation: &str) -> impact::report::Report {
     let c = 2.0 * zeta * (STIFFNESS * MASS).sqrt();
-    on_wall(MASS, 1.5, &format!("law = \"kelvin-voigt\"\ndamping = {c}\nstiffness = {STIFFNESS}\nseparation = \"{separation}\""))
+    on_wall(
+        MASS,
+        1.5,
+        &format!("law = \"kelvin-voigt\"\ndamping = {c}\nstiffness = {STIFFNESS}\nseparation = \"{separation}\""),
+    )
 }
 
 #[test]
@@ -34,7 +38,9 @@ fn penetration_separation_gives_the_damped_oscillator_restitution_and_half_perio
 fn force_separation_gives_the_schwager_poschel_restitution() {
     let omega0 = (STIFFNESS / MASS).sqrt();
     // physics.md: zeta = 0.1 -> 0.7440793977, duration 2.9560753247/omega0; zeta = 0.3 -> 0.4509754529, 2.6544745638.
-    for (zeta, published_e, published_duration) in [(0.1, 0.7440793977, 2.9560753247), (0.3, 0.4509754529, 2.6544745638)] {
+    for (zeta, published_e, published_duration) in
+        [(0.1, 0.7440793977, 2.9560753247), (0.3, 0.4509754529, 2.6544745638)]
+    {
         let report = with_zeta(zeta, "force");
         let c = &report.contact;
         let beta = zeta * omega0;
@@ -49,7 +55,11 @@ fn force_separation_gives_the_schwager_poschel_restitution() {
 
 #[test]
 fn critical_damping_with_force_separation_gives_exp_minus_two() {
-    let report = on_wall(MASS, 1.0, &format!("law = \"kelvin-voigt\"\nrestitution = 0\nstiffness = {STIFFNESS}\nseparation = \"force\""));
+    let report = on_wall(
+        MASS,
+        1.0,
+        &format!("law = \"kelvin-voigt\"\nrestitution = 0\nstiffness = {STIFFNESS}\nseparation = \"force\""),
+    );
     assert_close("e", report.contact.restitution_velocity_ratio.unwrap(), (-2.0f64).exp(), 1e-9);
 }
 

@@ -15,7 +15,12 @@ fn tsuji_effective_restitution_equals_nominal_with_penetration_separation() {
 #[test]
 fn tsuji_matches_the_nondimensional_table() {
     // physics.md: e, dmax/L, tc/T, Fmax/F0 with L = (m* v0²/K)^(2/5), T = L/v0, F0 = K L^(3/2) (6-7 digits).
-    let table = [(1.0, 1.093362, 3.218065, 1.143263), (0.9, 1.049184, 3.253683, 1.076691), (0.5, 0.860991, 3.518532, 0.863967), (0.2, 0.697339, 4.170294, 0.831543)];
+    let table = [
+        (1.0, 1.093362, 3.218065, 1.143263),
+        (0.9, 1.049184, 3.253683, 1.076691),
+        (0.5, 0.860991, 3.518532, 0.863967),
+        (0.2, 0.697339, 4.170294, 0.831543),
+    ];
     let (mass, speed, stiffness): (f64, f64, f64) = (0.3, 2.0, 2e9);
     let length = (mass * speed * speed / stiffness).powf(0.4);
     for (e, dmax, tc, fmax) in table {
@@ -55,7 +60,10 @@ fn brilliantov_matches_exact_restitution_and_its_small_b_series() {
 #[test]
 fn brilliantov_restitution_falls_with_impact_speed() {
     let e_at = |speed: f64| {
-        on_wall(0.05, speed, "law = \"brilliantov\"\ndamping = 1e-6\nstiffness = 5e8").contact.restitution_velocity_ratio.unwrap()
+        on_wall(0.05, speed, "law = \"brilliantov\"\ndamping = 1e-6\nstiffness = 5e8")
+            .contact
+            .restitution_velocity_ratio
+            .unwrap()
     };
     assert!(e_at(0.1) > e_at(1.0) && e_at(1.0) > e_at(10.0));
 }
@@ -66,10 +74,14 @@ fn brilliantov_separation_criterion_matters_a_little() {
     let (mass, speed, stiffness): (f64, f64, f64) = (0.05, 2.0, 5e8);
     let a = 0.1 / (1.5 * (stiffness / mass).powf(0.4) * speed.powf(0.2));
     let e = |separation: &str| {
-        on_wall(mass, speed, &format!("law = \"brilliantov\"\ndamping = {a}\nstiffness = {stiffness}\nseparation = \"{separation}\""))
-            .contact
-            .restitution_velocity_ratio
-            .unwrap()
+        on_wall(
+            mass,
+            speed,
+            &format!("law = \"brilliantov\"\ndamping = {a}\nstiffness = {stiffness}\nseparation = \"{separation}\""),
+        )
+        .contact
+        .restitution_velocity_ratio
+        .unwrap()
     };
     let gap = e("force") - e("penetration");
     assert!((gap - 7.1e-4).abs() < 0.05e-4, "gap {gap}");

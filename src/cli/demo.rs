@@ -13,11 +13,14 @@ pub const FOLDER: &str = "out/demo";
 
 pub fn run() -> anyhow::Result<()> {
     let scene = Scene::parse(SCENE, Path::new("models/demo.toml"))?;
-    let simulation = simulate(&scene, false)?;
+    let simulation = simulate(&scene, crate::history::Recording::Off)?;
     print!("{}", output::table::render(&simulation.report));
     let folder = Path::new(FOLDER);
     output::files::write_atomically(&folder.join("scene.toml"), SCENE.as_bytes())?;
     output::files::write_atomically(&folder.join("report.json"), output::json::render(&simulation.report)?.as_bytes())?;
-    println!("\nwrote {}/scene.toml and {}/report.json (run `impact run SCENE.toml` on your own scenes)", FOLDER, FOLDER);
+    println!(
+        "\nwrote {}/scene.toml and {}/report.json (run `impact run SCENE.toml` on your own scenes)",
+        FOLDER, FOLDER
+    );
     Ok(())
 }

@@ -13,7 +13,8 @@ pub fn run(_args: &ModelsArgs) -> anyhow::Result<()> {
 
 /// The table of laws, as printed.
 pub fn render() -> String {
-    let mut text = String::from("Contact laws (`law = \"...\"` in [contact]); d penetration, d' its rate, v0 approach speed\n\n");
+    let mut text =
+        String::from("Contact laws (`law = \"...\"` in [contact]); d penetration, d' its rate, v0 approach speed\n\n");
     for law in &LAWS {
         text += &format!("{}\n", law.name);
         text += &format!("    force     F = {}\n", law.formula);

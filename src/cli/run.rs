@@ -17,8 +17,9 @@ pub struct RunArgs {
 
 pub fn run(args: &RunArgs) -> anyhow::Result<()> {
     let scene = Scene::load(&args.scene)?;
-    let simulation = simulate(&scene, false)?;
-    let text = if args.json { output::json::render(&simulation.report)? } else { output::table::render(&simulation.report) };
+    let simulation = simulate(&scene, crate::history::Recording::Off)?;
+    let text =
+        if args.json { output::json::render(&simulation.report)? } else { output::table::render(&simulation.report) };
     print!("{text}");
     Ok(())
 }

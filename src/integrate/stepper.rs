@@ -95,6 +95,36 @@ impl<'m, M: Model<N>, const N: usize> Stepper<'m, M, N> {
         Stepper { model, tolerances, counters: Counters::default(), record: record.then(Vec::new) }
     }
 
+    /// Adds a point (an event, the initial state) to the record, if one is kept. The record is sorted by
+    /// [`Stepper::recorded`].
+    pub fn note(&mut self, t: f64, y: State<N>) {
+        if let Some(record) = self.record.as_mut() {
+            record.push((t, y));
+        }
+    }
+
+    /// The record in time order (accepted steps and noted points), if one is kept.
+    pub fn recorded(&mut self) -> Option<&[(f64, State<N>)]> {
+        let record = self.record.as_mut()?;
+        record.sort_by(|a, b| a.0.total_cmp(&b.0));
+        record.dedup_by(|a, b| a.0 == b.0);
+        Some(record)
+    }
+
+    /// The solution at each of `times` (ascending, inside the recorded span), each reached by re-stepping from the
+    /// last recorded point at or before it: values on the integrator's own solution, not a lower-order interpolant.
+    pub fn resample(&mut self, times: &[f64]) -> Result<Vec<(f64, State<N>)>, IntegrationError> {
+        let Some(points) = self.recorded().map(<[_]>::to_vec) else { return Ok(Vec::new()) };
+        let mut samples = Vec::with_capacity(times.len());
+        for &t in times {
+            let after = points.partition_point(|(time, _)| *time <= t);
+            let Some(&(t0, y0)) = points.get(after.saturating_sub(1)) else { continue };
+            let from = (t0, y0, self.derivative(t0, &y0));
+            samples.push((t, self.step_to(&from, t)?));
+        }
+        Ok(samples)
+    }
+
     /// The model's derivative at a point (counted as one evaluation).
     pub fn derivative(&mut self, t: f64, y: &State<N>) -> State<N> {
         let mut dy = State::<N>::zeros();
@@ -130,7 +160,12 @@ impl<'m, M: Model<N>, const N: usize> Stepper<'m, M, N> {
             located.sort_by(|a, b| a.1.time.total_cmp(&b.1.time));
             let terminal = located.iter().find(|(i, _)| events[*i].terminal).map(|(_, c)| c.clone());
             let cutoff = terminal.as_ref().map_or(f64::INFINITY, |c| c.time);
-            crossings.extend(located.into_iter().map(|(_, c)| c).filter(|c| !events[c.event].terminal && c.time <= cutoff));
+            let passed: Vec<Crossing<N>> =
+                located.into_iter().map(|(_, c)| c).filter(|c| !events[c.event].terminal && c.time <= cutoff).collect();
+            for crossing in &passed {
+                self.note(crossing.time, crossing.state);
+            }
+            crossings.extend(passed);
             if let Some(stop) = terminal {
                 if let Some(record) = self.record.as_mut() {
                     record.retain(|(t, _)| *t < stop.time);
@@ -184,7 +219,11 @@ impl<'m, M: Model<N>, const N: usize> Stepper<'m, M, N> {
         Ok(state)
     }
 
-    fn count(&mut self, result: Result<ode_solvers::dop_shared::Stats, ode_solvers::dop_shared::IntegrationError>, time: f64) -> Result<(), IntegrationError> {
+    fn count(
+        &mut self,
+        result: Result<ode_solvers::dop_shared::Stats, ode_solvers::dop_shared::IntegrationError>,
+        time: f64,
+    ) -> Result<(), IntegrationError> {
         match result {
             Ok(stats) => {
                 self.counters.steps += u64::from(stats.accepted_steps);
@@ -210,7 +249,24 @@ fn dop853<'a, 'w, 'e, M: Model<N>, const N: usize>(
     let Tolerances { rtol, atol } = tolerances;
     let h_max = t_end - t;
     let h = first_step.min(h_max);
-    Dop853::from_param(adapter, t, t_end, 0.0, y, rtol, atol, 0.9, 0.0, 0.333, 6.0, h_max, h, 100_000, 1000, OutputType::Sparse)
+    Dop853::from_param(
+        adapter,
+        t,
+        t_end,
+        0.0,
+        y,
+        rtol,
+        atol,
+        0.9,
+        0.0,
+        0.333,
+        6.0,
+        h_max,
+        h,
+        100_000,
+        1000,
+        OutputType::Sparse,
+    )
 }
 
 fn last_point<M, const N: usize>(solver: &Dop853<f64, State<N>, M>, t: f64, y: State<N>) -> (f64, State<N>)

@@ -79,10 +79,7 @@ impl ContactLaw {
             Family::Tsuji => {
                 // F = K d^(3/2) + a sqrt(m* K) d^(1/4) d'  (Tsuji et al. 1992)
                 let quarter = d.sqrt().sqrt();
-                ForceParts {
-                    elastic: k * d * d.sqrt(),
-                    dissipative: c * self.tsuji_scale * quarter * rate,
-                }
+                ForceParts { elastic: k * d * d.sqrt(), dissipative: c * self.tsuji_scale * quarter * rate }
             }
             Family::Viscoelastic => {
                 // F = K (d^(3/2) + (3/2) A d^(1/2) d')  (Brilliantov et al. 1996)

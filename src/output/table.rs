@@ -61,7 +61,12 @@ pub fn render(report: &Report) -> String {
     for body in &report.bodies {
         let _ = writeln!(out, "  {}", body.name);
         let _ = writeln!(out, "    {:<32} {} m/s", "velocity before", vector(&body.velocity_before));
-        let _ = writeln!(out, "    {:<32} {} m/s", "velocity at maximum compression", vector(&body.velocity_at_max_compression));
+        let _ = writeln!(
+            out,
+            "    {:<32} {} m/s",
+            "velocity at maximum compression",
+            vector(&body.velocity_at_max_compression)
+        );
         let after = body.velocity_after.as_ref().map_or("—".into(), vector);
         let _ = writeln!(out, "    {:<32} {} m/s", "velocity after", after);
     }
@@ -86,7 +91,12 @@ pub fn render(report: &Report) -> String {
             ("common normal velocity", Some(reference.common_normal_velocity), Some(e.common_normal_velocity)),
         ] {
             if let Some(exact) = exact {
-                let _ = writeln!(text, "  {label:<34} {}   relative error {}", number(exact), maybe(error).replace('—', "n/a"));
+                let _ = writeln!(
+                    text,
+                    "  {label:<34} {}   relative error {}",
+                    number(exact),
+                    maybe(error).replace('—', "n/a")
+                );
             }
         }
     }
@@ -114,6 +124,7 @@ fn instantaneous(title: &str, ideal: &InstantaneousReport) -> String {
     let _ = writeln!(text, "  {:<34} {} m/s", "body 1 after", vector(&ideal.velocity_after[0]));
     let _ = writeln!(text, "  {:<34} {} m/s", "body 2 after", vector(&ideal.velocity_after[1]));
     let _ = writeln!(text, "  {:<34} {} J", "kinetic energy lost", number(ideal.energy_lost));
-    let _ = writeln!(text, "  {:<34} {} m/s", "largest difference from simulation", maybe(ideal.max_velocity_difference));
+    let _ =
+        writeln!(text, "  {:<34} {} m/s", "largest difference from simulation", maybe(ideal.max_velocity_difference));
     text
 }

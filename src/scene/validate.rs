@@ -34,28 +34,69 @@ impl Source<'_> {
         }
     }
 
-    /// The line of the first `key =` at the start of a line, for errors found after parsing without a span.
+    /// The line of the first `key =` at the start of a line, for errors found after parsing without a span; for a key
+    /// that is not written (a missing `position` or `young`), the line of its table's header.
     fn line_of_key(&self, key: &str) -> Option<usize> {
         let (table, index, leaf) = split_key(key);
         let mut in_table = table.is_empty();
+        let mut header_line = None;
         let mut seen = 0usize;
         for (number, line) in self.text.lines().enumerate() {
-            let trimmed = line.trim();
-            if trimmed.starts_with('[') {
-                let name = trimmed.trim_matches(|c| c == '[' || c == ']').trim();
+            if let Some((name, array)) = header(line) {
                 in_table = name == table && {
-                    seen += usize::from(trimmed.starts_with("[["));
+                    seen += usize::from(array);
                     index.is_none_or(|i| seen == i + 1)
                 };
+                if in_table {
+                    header_line = Some(number + 1);
+                }
                 continue;
             }
-            let assigned = trimmed.split('=').next().map(str::trim);
+            let assigned = line.trim().split('=').next().map(str::trim);
             if in_table && assigned == Some(leaf) {
                 return Some(number + 1);
             }
         }
+        header_line
+    }
+
+    /// The dotted key (0-based indices) assigned on a 1-based line, e.g. `bodies.1.colour` for `colour = "red"` in
+    /// the second `[[bodies]]`, or the table a header line opens.
+    fn key_on_line(&self, wanted: usize) -> Option<String> {
+        let mut table = String::new();
+        let mut arrays: Vec<&str> = Vec::new();
+        for (number, line) in self.text.lines().enumerate().take(wanted) {
+            if let Some((name, array)) = header(line) {
+                table = if array {
+                    arrays.push(name);
+                    format!("{name}.{}", arrays.iter().filter(|seen| **seen == name).count() - 1)
+                } else {
+                    name.to_string()
+                };
+                if number + 1 == wanted {
+                    return Some(table);
+                }
+            } else if number + 1 == wanted {
+                let (left, _) = line.split_once('=')?;
+                let leaf = left.trim();
+                if leaf.is_empty() || leaf.starts_with('#') {
+                    return None;
+                }
+                return Some(if table.is_empty() { leaf.to_string() } else { format!("{table}.{leaf}") });
+            }
+        }
         None
     }
+}
+
+/// A table header: `[contact]` -> ("contact", false); `[[bodies]]   # a comment` -> ("bodies", true).
+fn header(line: &str) -> Option<(&str, bool)> {
+    let code = line.split('#').next().unwrap_or_default().trim();
+    if let Some(name) = code.strip_prefix("[[").and_then(|rest| rest.strip_suffix("]]")) {
+        return Some((name.trim(), true));
+    }
+    let name = code.strip_prefix('[')?.strip_suffix(']')?;
+    Some((name.trim(), false))
 }
 
 /// `bodies.1.velocity` -> ("bodies", Some(1), "velocity"); `contact.law` -> ("contact", None, "law").
@@ -119,7 +160,11 @@ fn vector(src: &Source, key: &str, value: &At<Vec<f64>>) -> Checked<Vector3<f64>
     let span = value.span();
     let items = value.get_ref();
     if items.len() != 3 {
-        return Err(src.error(key, Some(&span), format!("expected [x, y, z] (3 numbers), got {} numbers", items.len())));
+        return Err(src.error(
+            key,
+            Some(&span),
+            format!("expected [x, y, z] (3 numbers), got {} numbers", items.len()),
+        ));
     }
     for (i, x) in items.iter().enumerate() {
         if !x.is_finite() {
@@ -167,13 +212,9 @@ pub fn scene(text: &str, path: &Path) -> Checked<Scene> {
 fn parse_error(src: &Source, error: &toml::de::Error) -> SceneError {
     let span = error.span();
     let line = span.as_ref().map(|s| src.line(s));
-    // The key is whatever stands before `=` on the offending line.
-    let key = line.and_then(|n| src.text.lines().nth(n - 1)).and_then(|text| {
-        let (left, _) = text.split_once('=')?;
-        Some(left.trim().to_string())
-    });
+    let key = line.and_then(|n| src.key_on_line(n));
     let message = error.message().trim().replace('\n', " ");
-    SceneError { file: src.file.clone(), key: key.filter(|k| !k.is_empty()), line, message }
+    SceneError { file: src.file.clone(), key, line, message }
 }
 
 fn body(src: &Source, i: usize, raw: &At<RawBody>) -> Checked<Body> {
@@ -224,10 +265,10 @@ fn body(src: &Source, i: usize, raw: &At<RawBody>) -> Checked<Body> {
     };
     let young = raw.young.as_ref().map(|e| number(src, &key("young"), e, Range_::PositiveOrInfinite)).transpose()?;
     let poisson = raw.poisson.as_ref().map(|nu| number(src, &key("poisson"), nu, Range_::Any)).transpose()?;
-    if let (Some(nu), Some(at)) = (poisson, &raw.poisson) {
-        if !(nu > -1.0 && nu <= 0.5) {
-            return Err(src.error(&key("poisson"), Some(&at.span()), format!("expected a number in (-1, 0.5], got {nu}")));
-        }
+    if let (Some(nu), Some(at)) = (poisson, &raw.poisson)
+        && !(nu > -1.0 && nu <= 0.5)
+    {
+        return Err(src.error(&key("poisson"), Some(&at.span()), format!("expected a number in (-1, 0.5], got {nu}")));
     }
     let name = raw.name.as_ref().map_or_else(|| format!("body {}", i + 1), |n| n.get_ref().clone());
     Ok(Body { name, mass, radius, velocity, position, angular_velocity, young, poisson })
@@ -237,7 +278,11 @@ fn contact_spec(src: &Source, raw: &At<RawContact>) -> Checked<ContactSpec> {
     let table = raw.span();
     let raw = raw.get_ref();
     let Some(law_name) = &raw.law else {
-        return Err(src.error("contact.law", Some(&table), format!("missing: give `law`, one of {}", LawKind::names().join(", "))));
+        return Err(src.error(
+            "contact.law",
+            Some(&table),
+            format!("missing: give `law`, one of {}", LawKind::names().join(", ")),
+        ));
     };
     let Some(law) = LawKind::from_name(law_name.get_ref()) else {
         return Err(src.error(
@@ -247,7 +292,7 @@ fn contact_spec(src: &Source, raw: &At<RawContact>) -> Checked<ContactSpec> {
         ));
     };
     let damping = damping_spec(src, law, raw, &table)?;
-    let (stiffness, exponent) = stiffness_and_exponent(src, law, raw)?;
+    let (stiffness, exponent) = stiffness_and_exponent(src, law, raw, &table)?;
     let separation = match &raw.separation {
         None => Separation::Penetration,
         Some(s) => match s.get_ref().as_str() {
@@ -262,15 +307,16 @@ fn contact_spec(src: &Source, raw: &At<RawContact>) -> Checked<ContactSpec> {
             }
         },
     };
-    let friction = raw.friction.as_ref().map(|f| number(src, "contact.friction", f, Range_::NonNegative)).transpose()?;
-    if let (Some(mu), Some(at)) = (friction, &raw.friction) {
-        if mu > 0.0 {
-            return Err(src.error(
-                "contact.friction",
-                Some(&at.span()),
-                "friction is not supported yet (only smooth direct central impacts): use 0 or leave it out",
-            ));
-        }
+    let friction =
+        raw.friction.as_ref().map(|f| number(src, "contact.friction", f, Range_::NonNegative)).transpose()?;
+    if let (Some(mu), Some(at)) = (friction, &raw.friction)
+        && mu > 0.0
+    {
+        return Err(src.error(
+            "contact.friction",
+            Some(&at.span()),
+            "friction is not supported yet (only smooth direct central impacts): use 0 or leave it out",
+        ));
     }
     let normal = match &raw.normal {
         Some(n) => {
@@ -287,7 +333,8 @@ fn contact_spec(src: &Source, raw: &At<RawContact>) -> Checked<ContactSpec> {
 }
 
 fn damping_spec(src: &Source, law: LawKind, raw: &RawContact, table: &Range<usize>) -> Checked<DampingSpec> {
-    let restitution = raw.restitution.as_ref().map(|e| number(src, "contact.restitution", e, Range_::Fraction)).transpose()?;
+    let restitution =
+        raw.restitution.as_ref().map(|e| number(src, "contact.restitution", e, Range_::Fraction)).transpose()?;
     let damping = raw.damping.as_ref().map(|c| number(src, "contact.damping", c, Range_::NonNegative)).transpose()?;
     let name = law.name();
     let restitution_span = raw.restitution.as_ref().map(|e| e.span());
@@ -330,7 +377,12 @@ fn damping_spec(src: &Source, law: LawKind, raw: &RawContact, table: &Range<usiz
     }
 }
 
-fn stiffness_and_exponent(src: &Source, law: LawKind, raw: &RawContact) -> Checked<(StiffnessSpec, f64)> {
+fn stiffness_and_exponent(
+    src: &Source,
+    law: LawKind,
+    raw: &RawContact,
+    table: &Range<usize>,
+) -> Checked<(StiffnessSpec, f64)> {
     let stiffness = match &raw.stiffness {
         None => StiffnessSpec::Hertz,
         Some(value) => match value.get_ref() {
@@ -360,7 +412,7 @@ fn stiffness_and_exponent(src: &Source, law: LawKind, raw: &RawContact) -> Check
         if stiffness == StiffnessSpec::Hertz {
             return Err(src.error(
                 "contact.stiffness",
-                raw.stiffness.as_ref().map(|s| s.span()).as_ref(),
+                Some(&raw.stiffness.as_ref().map_or_else(|| table.clone(), |s| s.span())),
                 "`kelvin-voigt` needs a numeric `stiffness` k in N/m",
             ));
         }
@@ -370,7 +422,9 @@ fn stiffness_and_exponent(src: &Source, law: LawKind, raw: &RawContact) -> Check
         return Ok((stiffness, 1.0));
     }
     if stiffness == StiffnessSpec::Hertz && exponent.is_some_and(|n| n != 1.5) {
-        return Err(bad_exponent("stiffness = \"hertz\" fixes the exponent at 1.5: give a numeric stiffness for another"));
+        return Err(bad_exponent(
+            "stiffness = \"hertz\" fixes the exponent at 1.5: give a numeric stiffness for another",
+        ));
     }
     Ok((stiffness, exponent.unwrap_or(1.5)))
 }
@@ -381,11 +435,18 @@ fn solver(src: &Source, raw: &RawSolver) -> Checked<Tolerances> {
         let Some(value) = value else { return Ok(default) };
         let x = number(src, key, value, Range_::Positive)?;
         if !(1e-14..=1e-2).contains(&x) {
-            return Err(src.error(key, Some(&value.span()), format!("expected a tolerance in [1e-14, 1e-2], got {x:e}")));
+            return Err(src.error(
+                key,
+                Some(&value.span()),
+                format!("expected a tolerance in [1e-14, 1e-2], got {x:e}"),
+            ));
         }
         Ok(x)
     };
-    Ok(Tolerances { rtol: tolerance("solver.rtol", &raw.rtol, defaults.rtol)?, atol: tolerance("solver.atol", &raw.atol, defaults.atol)? })
+    Ok(Tolerances {
+        rtol: tolerance("solver.rtol", &raw.rtol, defaults.rtol)?,
+        atol: tolerance("solver.atol", &raw.atol, defaults.atol)?,
+    })
 }
 
 fn output(raw: &RawOutput) -> OutputSpec {

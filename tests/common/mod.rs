@@ -9,7 +9,7 @@ use std::path::Path;
 /// Simulates a scene given as TOML text.
 pub fn run(toml: &str) -> Report {
     let scene = Scene::parse(toml, Path::new("test.toml")).unwrap_or_else(|e| panic!("bad test scene: {e}\n{toml}"));
-    simulate(&scene, false).expect("simulation").report
+    simulate(&scene, impact::history::Recording::Off).expect("simulation").report
 }
 
 /// A sphere of mass `mass` (kg) at `speed` (m/s, along x) against an immovable wall, with the given `[contact]`
@@ -30,5 +30,8 @@ pub fn relative(a: f64, b: f64) -> f64 {
 #[track_caller]
 pub fn assert_close(what: &str, simulated: f64, exact: f64, tolerance: f64) {
     let error = relative(simulated, exact);
-    assert!(error <= tolerance, "{what}: simulated {simulated:.15e}, exact {exact:.15e}, relative error {error:.2e} > {tolerance:.0e}");
+    assert!(
+        error <= tolerance,
+        "{what}: simulated {simulated:.15e}, exact {exact:.15e}, relative error {error:.2e} > {tolerance:.0e}"
+    );
 }
