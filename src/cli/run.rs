@@ -1,10 +1,12 @@
-//! `impact run SCENE.toml [--json]`: simulate one scene and print its report.
+//! `impact run SCENE.toml`: simulate one scene, print its report, write the series and figures it asks for.
 
-use crate::impact::simulate;
+use super::BadInput;
+use crate::history::Recording;
+use crate::impact::{Simulation, simulate};
 use crate::output;
 use crate::scene::Scene;
 use clap::Args;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 #[derive(Debug, Args)]
 pub struct RunArgs {
@@ -13,13 +15,70 @@ pub struct RunArgs {
     /// Print the JSON report on stdout instead of the readable one.
     #[arg(long)]
     pub json: bool,
+    /// Write the contact history as CSV to FILE (overrides the scene's [output] series).
+    #[arg(long, value_name = "FILE")]
+    pub csv: Option<PathBuf>,
+    /// Resample the history at N instants evenly spaced over the contact (on the integrator's solution) instead
+    /// of writing the integrator's own steps and events.
+    #[arg(long, value_name = "N")]
+    pub samples: Option<usize>,
+    /// Write the figures (PNG and SVG) into folder DIR (overrides the scene's [output] plots).
+    #[arg(long, value_name = "DIR")]
+    pub plot: Option<PathBuf>,
 }
 
+/// Instants per figure curve: enough for a smooth line at the figure's width.
+pub const FIGURE_SAMPLES: usize = 600;
+
 pub fn run(args: &RunArgs) -> anyhow::Result<()> {
+    if args.samples.is_some_and(|n| n < 2) {
+        return Err(BadInput("--samples needs at least 2 instants".into()).into());
+    }
     let scene = Scene::load(&args.scene)?;
-    let simulation = simulate(&scene, crate::history::Recording::Off)?;
-    let text =
-        if args.json { output::json::render(&simulation.report)? } else { output::table::render(&simulation.report) };
+    let series = args.csv.clone().or_else(|| scene.output.series.clone());
+    let plots = args.plot.clone().or_else(|| scene.output.plots.clone());
+    let recording = match (&series, args.samples) {
+        (None, _) => Recording::Off,
+        (Some(_), None) => Recording::Steps,
+        (Some(_), Some(n)) => Recording::Uniform(n),
+    };
+    let simulation = simulate(&scene, recording)?;
+    let written = write_outputs(&scene, &simulation, series.as_deref(), plots.as_deref())?;
+    let text = if args.json {
+        output::json::render(&simulation.report)?
+    } else {
+        output::table::render(&simulation.report)
+    };
     print!("{text}");
+    for path in written {
+        eprintln!("wrote {}", path.display());
+    }
     Ok(())
+}
+
+/// Writes the series and figures a run asks for; returns the files written.
+pub fn write_outputs(
+    scene: &Scene,
+    simulation: &Simulation,
+    series: Option<&Path>,
+    plots: Option<&Path>,
+) -> anyhow::Result<Vec<PathBuf>> {
+    let mut written = Vec::new();
+    if let (Some(path), Some(history)) = (series, &simulation.history) {
+        output::files::write_atomically(path, output::csv::render(history).as_bytes())?;
+        written.push(path.to_path_buf());
+    }
+    if let Some(folder) = plots {
+        let smooth = matches!(simulation.history.as_ref().map(|h| h.samples.len()), Some(n) if n >= FIGURE_SAMPLES)
+            && series.is_some();
+        let resampled;
+        let history = if smooth {
+            simulation.history.as_ref().expect("checked above")
+        } else {
+            resampled = simulate(scene, Recording::Uniform(FIGURE_SAMPLES))?.history.expect("a uniform history");
+            &resampled
+        };
+        written.extend(output::figures::write_all(&simulation.report, history, folder)?);
+    }
+    Ok(written)
 }

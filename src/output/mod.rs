@@ -1,5 +1,7 @@
 //! Views of the report: each a function of the [`crate::report::Report`] (or the history), none recomputing physics.
 
+pub mod csv;
+pub mod figures;
 pub mod files;
 pub mod json;
 pub mod table;
