@@ -1,11 +1,70 @@
-//! The simulation measured against exact references (physics.md §3–4), where the law has them.
+//! The simulation measured against exact references (physics.md §3–4), where the law has them: the report's
+//! `reference` section.
 
 use crate::impact::Measured;
-use crate::report::ReferenceReport;
+use crate::instantaneous::direct_impact;
+use crate::law::{Family, Separation};
+use crate::reference::{self, ContactReference, SeparationCriterion};
+use crate::report::{ReferenceErrors, ReferenceReport};
 use crate::scene::Scene;
 use crate::setup::Setup;
 
-/// Exact values for this contact and the relative errors of `measured` against them.
-pub fn reference(_scene: &Scene, _setup: &Setup, _measured: Measured) -> Option<ReferenceReport> {
-    None
+/// The exact nondimensional contact of this scene's law and where it comes from; `None` when no exact result
+/// exists (Brilliantov's law, or a contact that never separates).
+fn exact(setup: &Setup, separation: Separation) -> Option<(ContactReference, &'static str)> {
+    let law = &setup.law;
+    let criterion = match separation {
+        Separation::Penetration => SeparationCriterion::Penetration,
+        Separation::Force => SeparationCriterion::Force,
+    };
+    match law.kind.family() {
+        Family::Elastic => Some((reference::hertz_elastic(law.exponent), "elastic power-law Hertz closed form")),
+        Family::Hysteresis => Some((
+            reference::hysteresis_contact(law.damping * setup.approach_speed, law.exponent),
+            "exact Hunt–Crossley relation and quadratures (physics.md §3)",
+        )),
+        Family::Linear => {
+            let zeta = law.damping / (2.0 * (law.stiffness * setup.effective_mass).sqrt());
+            Some((reference::kelvin_voigt(zeta, criterion)?, "Kelvin–Voigt closed forms (physics.md §3)"))
+        }
+        Family::Tsuji => {
+            Some((reference::tsuji(law.damping, criterion)?, "Tsuji law mapped to a linear oscillator (physics.md §3)"))
+        }
+        Family::Viscoelastic => None,
+    }
+}
+
+/// Exact values for this contact (SI units) and the relative errors of `measured` against them.
+pub fn reference(scene: &Scene, setup: &Setup, measured: Measured) -> Option<ReferenceReport> {
+    let (exact, source) = exact(setup, scene.contact.separation)?;
+    let s = &setup.scales;
+    let finite = |value: f64| value.is_finite().then_some(value);
+    let restitution = finite(exact.restitution);
+    let max_penetration = finite(exact.max_penetration * s.length);
+    let max_compression_time = finite(exact.max_compression_time * s.time);
+    let duration = finite(exact.duration * s.time);
+    let max_force = finite(exact.max_force * s.force);
+    let error = |simulated: Option<f64>, exact: Option<f64>| match (simulated, exact) {
+        (Some(simulated), Some(exact)) if exact != 0.0 => Some(((simulated - exact) / exact).abs()),
+        _ => None,
+    };
+    let ideal = direct_impact(&scene.bodies, &setup.normal, setup.effective_mass, 1.0);
+    let v0_error = (measured.common_normal_velocity - ideal.common_normal_velocity).abs() / setup.approach_speed;
+    Some(ReferenceReport {
+        source: source.into(),
+        restitution,
+        max_penetration,
+        max_compression_time,
+        duration,
+        max_force,
+        common_normal_velocity: ideal.common_normal_velocity,
+        errors: ReferenceErrors {
+            restitution: error(measured.restitution, restitution),
+            max_penetration: error(Some(measured.max_penetration), max_penetration),
+            max_compression_time: error(Some(measured.max_compression_time), max_compression_time),
+            duration: error(measured.duration, duration),
+            max_force: error(Some(measured.max_force), max_force),
+            common_normal_velocity: v0_error,
+        },
+    })
 }

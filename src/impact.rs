@@ -221,7 +221,7 @@ fn build_report(scene: &Scene, setup: &Setup, phases: &Phases) -> Report {
         },
         instantaneous: when(e_velocity).map(compare),
         instantaneous_nominal: nominal.map(compare),
-        reference: crate::accuracy::reference(scene, setup, phases_summary(phases, s)),
+        reference: crate::accuracy::reference(scene, setup, phases_summary(phases, s, common_normal_velocity)),
         solver: SolverReport {
             method: String::new(),
             rtol: 0.0,
@@ -246,15 +246,18 @@ pub struct Measured {
     /// s (None when not separated).
     pub duration: Option<f64>,
     pub max_force: f64,
+    /// V0 read off the simulated impulse, m/s.
+    pub common_normal_velocity: f64,
 }
 
-fn phases_summary(phases: &Phases, s: &crate::dynamics::Scales) -> Measured {
+fn phases_summary(phases: &Phases, s: &crate::dynamics::Scales, common_normal_velocity: f64) -> Measured {
     Measured {
         restitution: phases.separated.then_some(-phases.end.1[index::RATE]),
         max_penetration: phases.max_compression.1[index::PENETRATION] * s.length,
         max_compression_time: phases.max_compression.0 * s.time,
         duration: phases.separated.then_some(phases.end.0 * s.time),
         max_force: phases.peak.1 * s.force,
+        common_normal_velocity,
     }
 }
 

@@ -165,7 +165,10 @@ fn hertz_stiffness(a: &Body, b: &Body) -> Result<f64, SetupError> {
                 return fail(format!("bodies.{i}.young"), "stiffness = \"hertz\" needs `young` (Pa) for every body");
             }
             (Some(e), None) if e.is_finite() => {
-                return fail(format!("bodies.{i}.poisson"), "stiffness = \"hertz\" needs `poisson` for an elastic body");
+                return fail(
+                    format!("bodies.{i}.poisson"),
+                    "stiffness = \"hertz\" needs `poisson` for an elastic body",
+                );
             }
             _ => {}
         }

@@ -509,8 +509,6 @@ fn tree(root: &Path) -> Vec<String> {
 }
 
 #[test]
-#[ignore = "demo fails (exit 2): src/law/damping.rs has a TEMP stub for the carvalho-martins map, which always \
-            reports `undefined at e = 0`, and models/demo.toml uses carvalho-martins with e = 0.8"]
 fn no_argument_runs_the_demonstration_and_writes_only_under_out_demo() {
     let scratch = Scratch::new("no_argument_runs_the_demonstration_and_writes_only_under_out_demo");
     let before = tree(scratch.path());

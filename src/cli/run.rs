@@ -44,11 +44,8 @@ pub fn run(args: &RunArgs) -> anyhow::Result<()> {
     };
     let simulation = simulate(&scene, recording)?;
     let written = write_outputs(&scene, &simulation, series.as_deref(), plots.as_deref())?;
-    let text = if args.json {
-        output::json::render(&simulation.report)?
-    } else {
-        output::table::render(&simulation.report)
-    };
+    let text =
+        if args.json { output::json::render(&simulation.report)? } else { output::table::render(&simulation.report) };
     print!("{text}");
     for path in written {
         eprintln!("wrote {}", path.display());

@@ -34,7 +34,7 @@ pub fn hysteresis_chi(kind: LawKind, e: f64) -> Result<f64, MapError> {
         LawKind::Flores => 8.0 * eps / (5.0 * e),
         LawKind::GharibHurmuzlu => eps / e,
         LawKind::HuGuo => 1.5 * eps / e,
-        LawKind::CarvalhoMartins => None::<f64>.ok_or /*TEMP*/(MapError::UndefinedAtZero)?,
+        LawKind::CarvalhoMartins => crate::reference::hunt_crossley_chi(e).ok_or(MapError::UndefinedAtZero)?,
         _ => return Err(MapError::NoMap),
     };
     Ok(chi)

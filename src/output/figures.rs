@@ -99,7 +99,11 @@ fn caption(report: &Report, what: &str) -> String {
     format!("{} — {what}", report.title)
 }
 
-fn force_time<DB: DrawingBackend<ErrorType: 'static>>(report: &Report, history: &History, root: &DrawingArea<DB, Shift>) -> Drawn {
+fn force_time<DB: DrawingBackend<ErrorType: 'static>>(
+    report: &Report,
+    history: &History,
+    root: &DrawingArea<DB, Shift>,
+) -> Drawn {
     let c = &report.contact;
     let start = c.start_time;
     let end = history.samples.last().map_or(start, |s| s.time);
@@ -121,10 +125,7 @@ fn force_time<DB: DrawingBackend<ErrorType: 'static>>(report: &Report, history: 
         .label_style((FONT, 16))
         .draw()?;
     let t0 = (c.max_compression_time - start) / tf;
-    for (from, to, color, label) in [
-        (0.0, t0, COMPRESSION, "compression"),
-        (t0, x_max, RESTITUTION, "restitution"),
-    ] {
+    for (from, to, color, label) in [(0.0, t0, COMPRESSION, "compression"), (t0, x_max, RESTITUTION, "restitution")] {
         chart
             .draw_series(std::iter::once(Rectangle::new([(from, y_min), (to, y_max)], color.mix(0.12).filled())))?
             .label(label)
@@ -195,7 +196,11 @@ fn force_penetration<DB: DrawingBackend<ErrorType: 'static>>(
     legend(&mut chart, SeriesLabelPosition::UpperLeft)
 }
 
-fn velocities<DB: DrawingBackend<ErrorType: 'static>>(report: &Report, history: &History, root: &DrawingArea<DB, Shift>) -> Drawn {
+fn velocities<DB: DrawingBackend<ErrorType: 'static>>(
+    report: &Report,
+    history: &History,
+    root: &DrawingArea<DB, Shift>,
+) -> Drawn {
     let c = &report.contact;
     let n = history.normal;
     let start = c.start_time;
@@ -207,11 +212,13 @@ fn velocities<DB: DrawingBackend<ErrorType: 'static>>(report: &Report, history: 
     if let Some(ideal) = &report.instantaneous {
         for (i, color) in [(0, COMPRESSION), (1, BODY_2)] {
             let value = normal(&ideal.velocity_after[i]);
-            let label = format!("body {} after, instantaneous (e = {:.4}): {} m/s", i + 1, ideal.restitution, fixed(value));
+            let label =
+                format!("body {} after, instantaneous (e = {:.4}): {} m/s", i + 1, ideal.restitution, fixed(value));
             references.push((label, value, color));
         }
     }
-    let mut values: Vec<f64> = history.samples.iter().flat_map(|s| [s.velocities[0].dot(&n), s.velocities[1].dot(&n)]).collect();
+    let mut values: Vec<f64> =
+        history.samples.iter().flat_map(|s| [s.velocities[0].dot(&n), s.velocities[1].dot(&n)]).collect();
     values.extend(references.iter().map(|r| r.1));
     let (low, high) = values.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &v| (a.min(v), b.max(v)));
     let pad = 0.08 * (high - low).max(1e-12);
