@@ -1,8 +1,11 @@
 //! The command line: one file per verb. Arguments become typed options before any work starts.
 
+mod calibrate;
 mod demo;
+mod merge;
 mod models;
-mod run;
+pub mod run;
+mod sweep;
 
 use clap::{Parser, Subcommand};
 
@@ -21,6 +24,12 @@ pub enum Command {
     Run(run::RunArgs),
     /// List the contact laws with their formulas, damping maps and sources.
     Models(models::ModelsArgs),
+    /// Run a scene over a grid of parameter values (and laws), one CSV row per point and law.
+    Sweep(sweep::SweepArgs),
+    /// Join the CSV shards of a sweep split with --shard into the whole sweep.
+    Merge(merge::MergeArgs),
+    /// Find the damping for which the simulated e equals a target.
+    Calibrate(calibrate::CalibrateArgs),
 }
 
 /// A bad scene or bad arguments: exit status 2.
@@ -34,6 +43,9 @@ pub fn dispatch(cli: Cli) -> anyhow::Result<()> {
         None => demo::run(),
         Some(Command::Run(args)) => run::run(&args),
         Some(Command::Models(args)) => models::run(&args),
+        Some(Command::Sweep(args)) => sweep::run(&args),
+        Some(Command::Merge(args)) => merge::run(&args),
+        Some(Command::Calibrate(args)) => calibrate::run(&args),
     }
 }
 

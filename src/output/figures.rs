@@ -15,12 +15,12 @@ const SIZE: (u32, u32) = (960, 640);
 const COMPRESSION: RGBColor = RGBColor(31, 119, 180);
 const RESTITUTION: RGBColor = RGBColor(214, 39, 40);
 const BODY_2: RGBColor = RGBColor(44, 160, 44);
-const FONT: &str = "sans-serif";
+pub const FONT: &str = "sans-serif";
 
 /// The figures one impact gives, by file stem.
 pub const FIGURES: [&str; 3] = ["force_time", "force_penetration", "velocities"];
 
-fn register_font() {
+pub fn register_font() {
     static REGISTER: Once = Once::new();
     REGISTER.call_once(|| {
         // The embedded DejaVu Sans is a valid font, so registration cannot fail.
