@@ -2,6 +2,7 @@
 
 mod calibrate;
 mod demo;
+mod gallery;
 mod merge;
 mod models;
 pub mod run;
@@ -30,6 +31,8 @@ pub enum Command {
     Merge(merge::MergeArgs),
     /// Find the damping for which the simulated e equals a target.
     Calibrate(calibrate::CalibrateArgs),
+    /// Regenerate the README's figures in plots/.
+    Gallery(gallery::GalleryArgs),
 }
 
 /// A bad scene or bad arguments: exit status 2.
@@ -46,6 +49,7 @@ pub fn dispatch(cli: Cli) -> anyhow::Result<()> {
         Some(Command::Sweep(args)) => sweep::run(&args),
         Some(Command::Merge(args)) => merge::run(&args),
         Some(Command::Calibrate(args)) => calibrate::run(&args),
+        Some(Command::Gallery(args)) => gallery::run(&args),
     }
 }
 

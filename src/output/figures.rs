@@ -112,7 +112,7 @@ fn force_time<DB: DrawingBackend<ErrorType: 'static>>(
     let low = history.samples.iter().map(|s| s.force).fold(0.0, f64::min);
     let (x_max, y_max, y_min) = ((end - start) / tf, c.max_force / ff * 1.08, (low / ff * 1.08).min(0.0));
     let mut chart = ChartBuilder::on(root)
-        .caption(caption(report, "contact force"), (FONT, 26))
+        .caption(caption(report, "contact force"), (FONT, 22))
         .margin(20)
         .x_label_area_size(55)
         .y_label_area_size(80)
@@ -121,6 +121,7 @@ fn force_time<DB: DrawingBackend<ErrorType: 'static>>(
         .configure_mesh()
         .x_desc(format!("time since first contact ({tp}s)"))
         .y_desc(format!("contact force ({fp}N)"))
+        .light_line_style(BLACK.mix(0.04))
         .axis_desc_style((FONT, 20))
         .label_style((FONT, 16))
         .draw()?;
@@ -160,7 +161,7 @@ fn force_penetration<DB: DrawingBackend<ErrorType: 'static>>(
     let (ff, fp) = prefix(c.max_force);
     let low = history.samples.iter().map(|s| s.force).fold(0.0, f64::min);
     let mut chart = ChartBuilder::on(root)
-        .caption(caption(report, "force against penetration"), (FONT, 26))
+        .caption(caption(report, "force against penetration"), (FONT, 22))
         .margin(20)
         .x_label_area_size(55)
         .y_label_area_size(80)
@@ -169,6 +170,7 @@ fn force_penetration<DB: DrawingBackend<ErrorType: 'static>>(
         .configure_mesh()
         .x_desc(format!("penetration ({dp}m)"))
         .y_desc(format!("contact force ({fp}N)"))
+        .light_line_style(BLACK.mix(0.04))
         .axis_desc_style((FONT, 20))
         .label_style((FONT, 16))
         .draw()?;
@@ -222,16 +224,23 @@ fn velocities<DB: DrawingBackend<ErrorType: 'static>>(
     values.extend(references.iter().map(|r| r.1));
     let (low, high) = values.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &v| (a.min(v), b.max(v)));
     let pad = 0.08 * (high - low).max(1e-12);
+    // Headroom above the curves for the legend, so it never hides the crossing at V0.
+    let headroom = 0.6 * (high - low).max(1e-12);
     let mut chart = ChartBuilder::on(root)
-        .caption(caption(report, "normal velocities"), (FONT, 26))
+        .caption(caption(report, "normal velocities"), (FONT, 22))
         .margin(20)
         .x_label_area_size(55)
         .y_label_area_size(80)
-        .build_cartesian_2d(0.0..(end - start) / tf, (low - pad)..(high + pad))?;
+        .build_cartesian_2d(0.0..(end - start) / tf, (low - pad)..(high + headroom))?;
     chart
         .configure_mesh()
         .x_desc(format!("time since first contact ({tp}s)"))
         .y_desc("normal velocity (m/s)")
+        .y_label_formatter(&|v| {
+            let text = format!("{v:.2}");
+            if text.trim_start_matches('-').chars().all(|c| c == '0' || c == '.') { "0".into() } else { text }
+        })
+        .light_line_style(BLACK.mix(0.04))
         .axis_desc_style((FONT, 20))
         .label_style((FONT, 16))
         .draw()?;
@@ -252,7 +261,7 @@ fn velocities<DB: DrawingBackend<ErrorType: 'static>>(
             .label(name)
             .legend(move |(x, y)| PathElement::new([(x, y), (x + 18, y)], color.stroke_width(3)));
     }
-    legend(&mut chart, SeriesLabelPosition::MiddleRight)
+    legend(&mut chart, SeriesLabelPosition::UpperRight)
 }
 
 fn legend<'a, DB: DrawingBackend<ErrorType: 'static> + 'a, X: Ranged, Y: Ranged>(
