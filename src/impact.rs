@@ -4,7 +4,7 @@
 use crate::dynamics::normal::{NormalContact, SIZE, index};
 use crate::history::{Frame, History, Recording};
 use crate::instantaneous::{Instantaneous, direct_impact};
-use crate::integrate::{Crossing, Direction, Event, IntegrationError, State, Stepper};
+use crate::integrate::{Crossing, Direction, Ending, Event, IntegrationError, State, Stepper};
 use crate::report::{
     BodyReport, ContactReport, EnergyReport, InstantaneousReport, LawReport, Report, SolverReport, Vec3,
 };
@@ -27,6 +27,8 @@ pub enum SimulationError {
     Setup(SetupError),
     #[error(transparent)]
     Integration(#[from] IntegrationError),
+    #[error("the compression phase did not end: {0}")]
+    Compression(String),
 }
 
 /// Scaled time after which a contact that has not separated is declared stuck (elastic contacts last about 3).
@@ -52,6 +54,12 @@ pub fn simulate(scene: &Scene, recording: Recording) -> Result<Simulation, Simul
     stepper.note(0.0, start);
     let compression = [Event { function: &rate, direction: Direction::Falling, terminal: true }, peak];
     let compressed = stepper.run(0.0, start, TIME_LIMIT, &compression)?;
+    if compressed.ending != Ending::Event(0) {
+        return Err(SimulationError::Compression(match compressed.ending {
+            Ending::GaveUp(reason) => reason,
+            _ => format!("no maximum compression within {TIME_LIMIT} elastic time units"),
+        }));
+    }
     let peak = Event { function: &force_rate, direction: Direction::Falling, terminal: false };
     // Laws that never turn tensile end at d = 0 whichever criterion is named (physics.md §1), and d is the
     // smoother event function there (F ~ d^n is not).
@@ -63,7 +71,7 @@ pub fn simulate(scene: &Scene, recording: Recording) -> Result<Simulation, Simul
     };
     let restitution = [separation, Event { function: &settled, direction: Direction::Falling, terminal: true }, peak];
     let released = stepper.run(compressed.time, compressed.state, TIME_LIMIT, &restitution)?;
-    let separated = released.terminal == Some(0);
+    let separated = released.ending == Ending::Event(0);
 
     let mut candidates = vec![(0.0, start), (compressed.time, compressed.state), (released.time, released.state)];
     candidates
@@ -106,7 +114,7 @@ pub fn simulate(scene: &Scene, recording: Recording) -> Result<Simulation, Simul
     };
     let mut report = build_report(scene, &setup, &phases, solver);
     if !separated {
-        report.notes.push(stuck_note(&setup, &phases, released.terminal.is_some()));
+        report.notes.push(stuck_note(&setup, &phases, &released.ending));
     }
     Ok(Simulation { report, history })
 }
@@ -129,10 +137,16 @@ struct Phases {
     separated: bool,
 }
 
-fn stuck_note(setup: &Setup, phases: &Phases, settled: bool) -> String {
+fn stuck_note(setup: &Setup, phases: &Phases, ending: &Ending) -> String {
     let s = &setup.scales;
     let (time, state) = phases.end;
-    let how = if settled { "the relative motion died out" } else { "the time limit was reached" };
+    let how = match ending {
+        Ending::Event(_) => "the relative motion died out".to_string(),
+        Ending::TimeLimit => format!("the time limit ({TIME_LIMIT} elastic time units) was reached"),
+        Ending::GaveUp(reason) => format!(
+            "the integration stopped ({reason}; a creeping, stiff restitution is typical of very heavy damping)"
+        ),
+    };
     format!(
         "the bodies did not separate: {how} {:.6e} s after first contact with penetration {:.6e} m and \
          penetration rate {:.6e} m/s still in contact",

@@ -3,6 +3,7 @@
 
 pub mod accuracy;
 pub mod body;
+pub mod calibrate;
 pub mod cli;
 pub mod dynamics;
 pub mod geometry;
@@ -16,3 +17,4 @@ pub mod reference;
 pub mod report;
 pub mod scene;
 pub mod setup;
+pub mod sweep;

@@ -1,10 +1,170 @@
-//! `impact calibrate`: being written.
+//! `impact calibrate --law LAW --restitution E [--approach-speed V] [--separation S] [SCENE] [--json]`: the
+//! damping parameter for which the simulated e equals E (see [`crate::calibrate`] for the methods), and what the
+//! law's own published map would have given.
 
+use super::BadInput;
+use crate::calibrate::{Calibration, CalibrationError, Request, calibrate, readable};
+use crate::law::{LawKind, Separation};
+use crate::scene::Scene;
 use clap::Args;
+use std::fmt::Write as _;
+use std::path::PathBuf;
 
+/// Find the damping parameter of a contact law for which the simulated coefficient of restitution equals E.
+///
+/// Uses the exact relation where one exists (hysteresis family; kelvin-voigt and tsuji with separation at zero
+/// penetration), a root-find on the exact closed form for kelvin-voigt and tsuji with separation = "force", and a
+/// bracketed root-find on the simulation of SCENE for brilliantov. The result is checked by one more simulation.
+/// Without SCENE, hysteresis laws use v0 = 1 m/s unless --approach-speed is given, kelvin-voigt reports only zeta
+/// (c = 2 zeta sqrt(k m*) needs a scene), and brilliantov is an error.
 #[derive(Debug, Args)]
-pub struct CalibrateArgs {}
+#[command(after_help = AFTER_HELP)]
+pub struct CalibrateArgs {
+    /// Scene file (TOML) supplying the bodies, stiffness, separation and approach speed; its own restitution or
+    /// damping is replaced by the calibrated damping. Required for brilliantov.
+    pub scene: Option<PathBuf>,
+    /// The law to calibrate (see `impact models`); replaces the scene's law. Default: the scene's law.
+    #[arg(long, value_name = "LAW")]
+    pub law: Option<String>,
+    /// Target coefficient of restitution (velocity ratio), in (0, 1].
+    #[arg(long, value_name = "E", allow_negative_numbers = true)]
+    pub restitution: f64,
+    /// Approach speed v0 in m/s; replaces the scene's (both bodies' velocities are scaled by one factor).
+    /// Without a scene: 1 m/s.
+    #[arg(long, value_name = "V", allow_negative_numbers = true)]
+    pub approach_speed: Option<f64>,
+    /// "penetration" or "force": which event ends the contact; replaces the scene's. Default: the scene's, or
+    /// "penetration" without a scene.
+    #[arg(long, value_name = "CRITERION")]
+    pub separation: Option<String>,
+    /// Print the result as JSON on stdout instead of the readable summary.
+    #[arg(long)]
+    pub json: bool,
+}
 
-pub fn run(_args: &CalibrateArgs) -> anyhow::Result<()> {
-    anyhow::bail!("`impact calibrate` is not written yet")
+const AFTER_HELP: &str = "\
+Methods (the first that applies):
+  hysteresis family        exact relation chi(E), alpha = chi / v0  (v0 = 1 m/s without a scene)
+  kelvin-voigt, tsuji      exact relation with separation = penetration; root-find on the exact
+                           closed form with separation = force (kelvin-voigt's c needs a scene)
+  brilliantov              bracketed root-find on the simulation of SCENE (required)
+Every result is checked by one simulation, and shown beside what the law's own published map gives.
+
+Examples:
+  impact calibrate --law lankarani-nikravesh --restitution 0.5 --approach-speed 2
+  impact calibrate models/rubber-ball-kelvin-voigt.toml --restitution 0.6 --separation force
+  impact calibrate models/viscoelastic-spheres.toml --restitution 0.7 --json";
+
+pub fn run(args: &CalibrateArgs) -> anyhow::Result<()> {
+    let law = match &args.law {
+        Some(name) => Some(LawKind::from_name(name).ok_or_else(|| {
+            BadInput(format!("unknown law `{name}` for --law; expected one of {}", LawKind::names().join(", ")))
+        })?),
+        None => None,
+    };
+    let separation = match args.separation.as_deref() {
+        None => None,
+        Some("penetration") => Some(Separation::Penetration),
+        Some("force") => Some(Separation::Force),
+        Some(other) => {
+            return Err(BadInput(format!("--separation must be \"penetration\" or \"force\", got \"{other}\"")).into());
+        }
+    };
+    let scene = args.scene.as_deref().map(Scene::load).transpose()?;
+    let law = match (law, &scene) {
+        (Some(law), _) => law,
+        (None, Some(scene)) => scene.contact.law,
+        (None, None) => return Err(BadInput("give --law LAW (or a SCENE whose law to calibrate)".into()).into()),
+    };
+    let request =
+        Request { law, restitution: args.restitution, approach_speed: args.approach_speed, separation, scene };
+    let calibration = calibrate(&request).map_err(|error| located(error, args))?;
+    let text = if args.json { serde_json::to_string_pretty(&calibration)? + "\n" } else { render(&calibration) };
+    print!("{text}");
+    Ok(())
+}
+
+/// The error as a message naming the scene where it concerns the scene; bad input exits with status 2.
+fn located(error: CalibrationError, args: &CalibrateArgs) -> anyhow::Error {
+    let about_scene = matches!(
+        error,
+        CalibrationError::Incompatible(_) | CalibrationError::Unattainable(_) | CalibrationError::Simulation(_)
+    );
+    let scene = args.scene.as_ref().filter(|_| about_scene).map(|path| path.display().to_string());
+    if error.is_bad_input() {
+        let message = match (scene, &error) {
+            (Some(path), _) => format!("{path}: {error}"),
+            (None, CalibrationError::Target(_)) => format!("--restitution {}: {error}", readable(args.restitution)),
+            (None, CalibrationError::ApproachSpeed(_)) => format!("--approach-speed: {error}"),
+            (None, CalibrationError::NoDamping) => format!("{error} with --law"),
+            (None, CalibrationError::NeedsScene(_)) => format!("{error} file (and --approach-speed to set its speed)"),
+            (None, _) => error.to_string(),
+        };
+        return BadInput(message).into();
+    }
+    let error = anyhow::Error::new(error);
+    match scene {
+        Some(path) => error.context(path),
+        None => error,
+    }
+}
+
+/// The readable summary.
+pub fn render(c: &Calibration) -> String {
+    let mut text = format!("Calibration of `{}` for e = {}\n", c.law, readable(c.restitution_target));
+    let mut line = |label: &str, value: String| {
+        let _ = writeln!(text, "  {label:<16} {value}");
+    };
+    line(
+        "damping",
+        match c.damping {
+            Some(damping) => format!("{}  ({})", readable(damping), c.damping_units),
+            None => format!("needs a scene ({}; see the notes)", c.damping_units),
+        },
+    );
+    line("dimensionless", format!("{} = {}", c.dimensionless.symbol, readable(c.dimensionless.value)));
+    line("method", c.method.name().to_string());
+    line("approach speed", format!("{} m/s; separation at zero {}", readable(c.approach_speed), c.separation));
+    line(
+        "scene",
+        match &c.scene {
+            Some(s) => format!(
+                "\"{}\": m* = {} kg, stiffness {} N/m^{}",
+                s.title,
+                readable(s.effective_mass),
+                readable(s.stiffness),
+                s.exponent
+            ),
+            None => "none (a default scene, see the notes)".into(),
+        },
+    );
+    let simulations = format!("{} simulation{}", c.simulations, if c.simulations == 1 { "" } else { "s" });
+    line(
+        "simulated e",
+        match c.restitution_simulated {
+            Some(e) => format!("{e:.12}  (|e - E| = {:.1e}; {simulations})", (e - c.restitution_target).abs()),
+            None => format!("none: the bodies did not separate ({simulations})"),
+        },
+    );
+    let symbol = c.dimensionless.symbol.split(" =").next().unwrap_or("damping");
+    line(
+        "published map",
+        match &c.published_map {
+            Some(p) => format!(
+                "{} gives {symbol} = {}{}, which yields e = {:.6}",
+                p.map,
+                readable(p.dimensionless),
+                p.damping.map_or_else(String::new, |d| format!(" (damping {})", readable(d))),
+                p.restitution
+            ),
+            None => "none (this law has no e -> damping map)".into(),
+        },
+    );
+    if !c.notes.is_empty() {
+        text += "notes\n";
+        for note in &c.notes {
+            let _ = writeln!(text, "  - {note}");
+        }
+    }
+    text
 }

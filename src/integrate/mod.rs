@@ -10,7 +10,7 @@ mod events;
 mod stepper;
 
 pub use events::{Crossing, Direction, Event};
-pub use stepper::{Counters, Stepper, Tolerances};
+pub use stepper::{Counters, Ending, STEP_BUDGET, Stepper, Tolerances};
 
 use nalgebra::SVector;
 

@@ -31,14 +31,29 @@ pub struct Counters {
     pub evaluations: u64,
 }
 
+/// Why a run stopped.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Ending {
+    /// A terminal event fired (its index in the event list), located.
+    Event(usize),
+    /// The end time was reached.
+    TimeLimit,
+    /// The integrator gave up (step budget spent, stiffness, step size underflow): the reason.
+    GaveUp(String),
+}
+
+/// Accepted plus rejected steps one stepper may take over all its runs: a stiff or creeping contact ends with
+/// [`Ending::GaveUp`] after about this many steps (a fraction of a second) instead of running for minutes.
+pub const STEP_BUDGET: u64 = 300_000;
+
 /// How a run between events ended.
 #[derive(Debug, Clone)]
 pub struct RunEnd<const N: usize> {
     /// Scaled time and state where the run stopped.
     pub time: f64,
     pub state: State<N>,
-    /// The terminal event that stopped it (its index in the list), or `None` at the time limit.
-    pub terminal: Option<usize>,
+    /// Why it stopped.
+    pub ending: Ending,
     /// Every non-terminal crossing located on the way, in time order.
     pub crossings: Vec<Crossing<N>>,
 }
@@ -146,9 +161,10 @@ impl<'m, M: Model<N>, const N: usize> Stepper<'m, M, N> {
         let mut first_step = 0.0;
         let mut crossings = Vec::new();
         loop {
-            let (time, state, bracket, last_step) = self.advance(start, t_end, first_step, events)?;
+            let (time, state, bracket, last_step, gave_up) = self.advance(start, t_end, first_step, events)?;
             let Some((left, right)) = bracket else {
-                return Ok(RunEnd { time, state, terminal: None, crossings });
+                let ending = gave_up.map_or(Ending::TimeLimit, Ending::GaveUp);
+                return Ok(RunEnd { time, state, ending, crossings });
             };
             let mut located: Vec<(usize, Crossing<N>)> = Vec::new();
             for (index, event) in events.iter().enumerate() {
@@ -171,7 +187,7 @@ impl<'m, M: Model<N>, const N: usize> Stepper<'m, M, N> {
                     record.retain(|(t, _)| *t < stop.time);
                     record.push((stop.time, stop.state));
                 }
-                return Ok(RunEnd { time: stop.time, state: stop.state, terminal: Some(stop.event), crossings });
+                return Ok(RunEnd { time: stop.time, state: stop.state, ending: Ending::Event(stop.event), crossings });
             }
             start = right;
             first_step = last_step;
@@ -179,7 +195,7 @@ impl<'m, M: Model<N>, const N: usize> Stepper<'m, M, N> {
     }
 
     /// One Dop853 run from `start` until a bracket of a sign change or `t_end`: (end time, end state, bracket,
-    /// last step size).
+    /// last step size, why the integrator gave up if it did).
     #[allow(clippy::type_complexity)]
     fn advance(
         &mut self,
@@ -187,20 +203,47 @@ impl<'m, M: Model<N>, const N: usize> Stepper<'m, M, N> {
         t_end: f64,
         first_step: f64,
         events: &[Event<'_, N>],
-    ) -> Result<(f64, State<N>, Option<(Point<N>, Point<N>)>, f64), IntegrationError> {
+    ) -> Result<(f64, State<N>, Option<(Point<N>, Point<N>)>, f64, Option<String>), IntegrationError> {
         let mut record = self.record.take();
         let mut watch = Watch { events, previous: start, bracket: None, record: record.as_mut() };
         let (t, y) = (start.0, start.1);
         let adapter = Adapter { model: self.model, watch: Some(&mut watch) };
-        let mut solver = dop853(adapter, self.tolerances, t, y, t_end, first_step);
+        let budget = STEP_BUDGET.saturating_sub(self.counters.steps + self.counters.rejected_steps);
+        let mut solver = dop853(adapter, self.tolerances, t, y, t_end, first_step, budget);
         let result = solver.integrate();
         let (time, state) = last_point(&solver, t, y);
         let step = time - solver.x_out().iter().rev().nth(1).copied().unwrap_or(t);
+        let taken = solver.x_out().len().saturating_sub(1) as u64;
         drop(solver);
         let bracket = watch.bracket;
         self.record = record;
-        self.count(result, time)?;
-        Ok((time, state, bracket, step))
+        let gave_up = match result {
+            Ok(stats) => {
+                self.add(&stats);
+                None
+            }
+            Err(error) => {
+                // The solver's own statistics are lost with the error: count the accepted steps it left.
+                self.counters.steps += taken;
+                self.counters.evaluations += 12 * taken;
+                match error {
+                    // ode_solvers reports an underflow when its last step lands within rounding of the end.
+                    ode_solvers::dop_shared::IntegrationError::StepSizeUnderflow { x }
+                        if (t_end - x).abs() <= 1e-12 * t_end.abs().max(1.0) =>
+                    {
+                        None
+                    }
+                    ode_solvers::dop_shared::IntegrationError::MaxNumStepReached { .. } => {
+                        Some(format!("the budget of {STEP_BUDGET} steps was spent"))
+                    }
+                    ode_solvers::dop_shared::IntegrationError::StiffnessDetected { .. } => {
+                        Some("the problem became stiff for an explicit method".into())
+                    }
+                    other => Some(other.to_string()),
+                }
+            }
+        };
+        Ok((time, state, bracket, step, gave_up))
     }
 
     /// The solution at `t` reached by one (or, if rejected, a few) Dop853 steps from `from`: the re-step used to
@@ -211,33 +254,24 @@ impl<'m, M: Model<N>, const N: usize> Stepper<'m, M, N> {
             return Ok(from.1 + from.2 * h);
         }
         let adapter = Adapter { model: self.model, watch: None };
-        let mut solver = dop853(adapter, self.tolerances, from.0, from.1, t, h);
+        let mut solver = dop853(adapter, self.tolerances, from.0, from.1, t, h, 1000);
         let result = solver.integrate();
         let (_, state) = last_point(&solver, from.0, from.1);
         drop(solver);
-        self.count(result, t)?;
+        let stats = result.map_err(|error| IntegrationError::Solver { time: t, reason: error.to_string() })?;
+        self.add(&stats);
         Ok(state)
     }
 
-    fn count(
-        &mut self,
-        result: Result<ode_solvers::dop_shared::Stats, ode_solvers::dop_shared::IntegrationError>,
-        time: f64,
-    ) -> Result<(), IntegrationError> {
-        match result {
-            Ok(stats) => {
-                self.counters.steps += u64::from(stats.accepted_steps);
-                self.counters.rejected_steps += u64::from(stats.rejected_steps);
-                self.counters.evaluations += u64::from(stats.num_eval);
-                Ok(())
-            }
-            Err(error) => Err(IntegrationError::Solver { time, reason: error.to_string() }),
-        }
+    fn add(&mut self, stats: &ode_solvers::dop_shared::Stats) {
+        self.counters.steps += u64::from(stats.accepted_steps);
+        self.counters.rejected_steps += u64::from(stats.rejected_steps);
+        self.counters.evaluations += u64::from(stats.num_eval);
     }
 }
 
-/// A Dop853 solver from `(t, y)` to `t_end` with sparse output (dense output with dx = 0 never ends) and
-/// initial step `first_step` (0: let the solver choose).
+/// A Dop853 solver from `(t, y)` to `t_end` with sparse output (dense output with dx = 0 never ends),
+/// initial step `first_step` (0: let the solver choose) and at most `max_steps` steps.
 fn dop853<'a, 'w, 'e, M: Model<N>, const N: usize>(
     adapter: Adapter<'a, 'w, 'e, M, N>,
     tolerances: Tolerances,
@@ -245,6 +279,7 @@ fn dop853<'a, 'w, 'e, M: Model<N>, const N: usize>(
     y: State<N>,
     t_end: f64,
     first_step: f64,
+    max_steps: u64,
 ) -> Dop853<f64, State<N>, Adapter<'a, 'w, 'e, M, N>> {
     let Tolerances { rtol, atol } = tolerances;
     let h_max = t_end - t;
@@ -263,7 +298,7 @@ fn dop853<'a, 'w, 'e, M: Model<N>, const N: usize>(
         6.0,
         h_max,
         h,
-        100_000,
+        u32::try_from(max_steps).unwrap_or(u32::MAX),
         1000,
         OutputType::Sparse,
     )

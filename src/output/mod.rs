@@ -4,4 +4,5 @@ pub mod csv;
 pub mod figures;
 pub mod files;
 pub mod json;
+pub mod sweep_figure;
 pub mod table;

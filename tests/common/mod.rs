@@ -16,7 +16,7 @@ pub fn run(toml: &str) -> Report {
 /// lines (law, damping, stiffness...).
 pub fn on_wall(mass: f64, speed: f64, contact: &str) -> Report {
     run(&format!(
-        "[[bodies]]\nradius = 0.01\nmass = {mass}\nvelocity = [{speed}, 0.0, 0.0]\n\n\
+        "[[bodies]]\nradius = 0.01\nmass = {mass:?}\nvelocity = [{speed:?}, 0.0, 0.0]\n\n\
          [[bodies]]\nradius = inf\nmass = inf\nvelocity = [0.0, 0.0, 0.0]\n\n[contact]\n{contact}\n"
     ))
 }

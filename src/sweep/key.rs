@@ -1,0 +1,240 @@
+//! The scene keys a sweep can vary: numbers of the scene file, named by dotted paths with 0-based indices
+//! (`contact.restitution`, `bodies.1.mass`, `bodies.1.velocity.0` = the second body's x velocity).
+//!
+//! Setting a key edits the scene's TOML document. Keys that exclude each other in a scene are switched, so that a
+//! point stays a valid scene whatever the file gave:
+//! - `contact.restitution` removes `contact.damping`, and `contact.damping` removes `contact.restitution`;
+//! - `bodies.I.mass` removes `bodies.I.density`, and `bodies.I.density` removes `bodies.I.mass`;
+//! - a number set on `contact.stiffness` replaces `"hertz"`;
+//! - a component of `contact.normal` or `bodies.I.angular_velocity` that the file leaves out starts from the
+//!   default vector (`[1, 0, 0]` and `[0, 0, 0]`); `bodies.I.velocity` and `bodies.I.position` have no default, so
+//!   the file must give the whole vector to vary one component.
+
+use super::SweepError;
+use std::fmt;
+use toml::{Table, Value};
+
+const BODY_NUMBERS: [&str; 5] = ["radius", "mass", "density", "young", "poisson"];
+const BODY_VECTORS: [&str; 3] = ["velocity", "position", "angular_velocity"];
+const CONTACT_NUMBERS: [&str; 5] = ["restitution", "damping", "stiffness", "exponent", "friction"];
+const CONTACT_VECTORS: [&str; 1] = ["normal"];
+const SOLVER_NUMBERS: [&str; 2] = ["rtol", "atol"];
+
+/// The keys a sweep accepts, for error messages.
+pub const VALID_KEYS: &str = "bodies.I.radius, bodies.I.mass, bodies.I.density, bodies.I.young, bodies.I.poisson, \
+     bodies.I.velocity.J, bodies.I.position.J, bodies.I.angular_velocity.J, contact.restitution, contact.damping, \
+     contact.stiffness, contact.exponent, contact.friction, contact.normal.J, solver.rtol, solver.atol \
+     (I = 0 or 1, the body; J = 0, 1 or 2, the component)";
+
+/// A number in the scene that a sweep sets.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct SceneKey {
+    /// The table: `bodies`, `contact` or `solver`.
+    table: &'static str,
+    /// The body (0-based) for `bodies` keys.
+    body: Option<usize>,
+    /// The field inside the table, e.g. `restitution`.
+    field: &'static str,
+    /// The component (0-based) of a vector field.
+    component: Option<usize>,
+}
+
+impl fmt::Display for SceneKey {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{}", self.table)?;
+        if let Some(body) = self.body {
+            write!(f, ".{body}")?;
+        }
+        write!(f, ".{}", self.field)?;
+        if let Some(component) = self.component {
+            write!(f, ".{component}")?;
+        }
+        Ok(())
+    }
+}
+
+fn unknown(key: &str, why: &str) -> SweepError {
+    SweepError::Usage(format!("cannot vary `{key}`: {why}; a sweep varies one of {VALID_KEYS}"))
+}
+
+/// `"3"` -> 3, for indices.
+fn index(text: &str) -> Option<usize> {
+    if text.is_empty() || !text.bytes().all(|b| b.is_ascii_digit()) { None } else { text.parse().ok() }
+}
+
+/// The field spelled `name` among `fields`, as a `'static` str.
+fn field(fields: &[&'static str], name: &str) -> Option<&'static str> {
+    fields.iter().copied().find(|f| *f == name)
+}
+
+impl SceneKey {
+    /// Parses a dotted key; anything that is not a number of a scene is a usage error that lists the valid keys.
+    pub fn parse(key: &str) -> Result<SceneKey, SweepError> {
+        let parts: Vec<&str> = key.split('.').collect();
+        let (table, body, rest) = match parts.as_slice() {
+            ["bodies", i, rest @ ..] => {
+                let Some(body) = index(i) else {
+                    return Err(unknown(key, &format!("`{i}` is not a body index (0 or 1)")));
+                };
+                if body > 1 {
+                    return Err(unknown(key, &format!("a scene has two bodies, 0 and 1, not {body}")));
+                }
+                ("bodies", Some(body), rest)
+            }
+            ["contact", rest @ ..] => ("contact", None, rest),
+            ["solver", rest @ ..] => ("solver", None, rest),
+            ["bodies" | "title"] | ["output", ..] => return Err(unknown(key, "it is not a number of the scene")),
+            _ => return Err(unknown(key, "no such scene key")),
+        };
+        let (numbers, vectors): (&[&'static str], &[&'static str]) = match table {
+            "bodies" => (&BODY_NUMBERS, &BODY_VECTORS),
+            "contact" => (&CONTACT_NUMBERS, &CONTACT_VECTORS),
+            _ => (&SOLVER_NUMBERS, &[]),
+        };
+        match rest {
+            [] => Err(unknown(key, "it is a table, not a number")),
+            ["law"] if table == "contact" => Err(SweepError::Usage(format!(
+                "cannot vary `{key}` with --vary: it is not a number; give the laws with --law a,b,c"
+            ))),
+            [name] => match (field(numbers, name), field(vectors, name)) {
+                (Some(field), _) => Ok(SceneKey { table, body, field, component: None }),
+                (None, Some(_)) => Err(SweepError::Usage(format!(
+                    "cannot vary `{key}`: it is a vector; vary one component, e.g. `{key}.0` (x), `{key}.1` (y) \
+                     or `{key}.2` (z)"
+                ))),
+                (None, None) => Err(unknown(key, "no such number in the scene")),
+            },
+            [name, j] => match (field(vectors, name), index(j)) {
+                (Some(field), Some(component)) if component < 3 => {
+                    Ok(SceneKey { table, body, field, component: Some(component) })
+                }
+                (Some(_), _) => Err(unknown(key, &format!("`{j}` is not a vector component (0, 1 or 2)"))),
+                (None, _) if field(numbers, name).is_some() => {
+                    Err(unknown(key, &format!("`{name}` is a number, not a vector")))
+                }
+                (None, _) => Err(unknown(key, "no such number in the scene")),
+            },
+            _ => Err(unknown(key, "no such scene key")),
+        }
+    }
+
+    /// Whether this is `contact.<field>`.
+    pub fn is_contact(&self, field: &str) -> bool {
+        self.table == "contact" && self.field == field
+    }
+
+    /// Whether this is a component of a body's velocity (the sweep figure then plots against the approach speed).
+    pub fn is_velocity(&self) -> bool {
+        self.table == "bodies" && self.field == "velocity"
+    }
+
+    /// The key this one removes when set (`restitution` <-> `damping`, `mass` <-> `density` of the same body).
+    fn partner(&self) -> Option<&'static str> {
+        match (self.table, self.field) {
+            ("contact", "restitution") => Some("damping"),
+            ("contact", "damping") => Some("restitution"),
+            ("bodies", "mass") => Some("density"),
+            ("bodies", "density") => Some("mass"),
+            _ => None,
+        }
+    }
+
+    /// Whether two keys cannot both be varied: the same number twice, or two numbers that exclude each other.
+    pub fn conflicts_with(&self, other: &SceneKey) -> bool {
+        self == other || (self.table == other.table && self.body == other.body && self.partner() == Some(other.field))
+    }
+
+    /// Checks, before any work, that the scene file has what this key needs: the body it names, and the whole
+    /// vector for a component of a vector without a default.
+    pub fn check_in(&self, scene: &Table) -> Result<(), SweepError> {
+        let Some(table) = self.find_table(scene) else {
+            return match self.body {
+                Some(body) => Err(SweepError::Usage(format!(
+                    "cannot vary `{self}`: the scene has no body {body} (bodies count from 0: give two [[bodies]])"
+                ))),
+                None => Ok(()),
+            };
+        };
+        let Some(component) = self.component else { return Ok(()) };
+        match table.get(self.field) {
+            Some(Value::Array(items)) if component < items.len() => Ok(()),
+            Some(Value::Array(items)) => Err(SweepError::Usage(format!(
+                "cannot vary `{self}`: the scene's `{}` has {} components",
+                self.parent(),
+                items.len()
+            ))),
+            Some(_) => {
+                Err(SweepError::Usage(format!("cannot vary `{self}`: the scene's `{}` is not a vector", self.parent())))
+            }
+            None if self.default_vector().is_some() => Ok(()),
+            None => Err(SweepError::Usage(format!(
+                "cannot vary `{self}`: the scene has no `{}`; write the whole vector in the file to vary one component",
+                self.parent()
+            ))),
+        }
+    }
+
+    /// `bodies.1.velocity` for `bodies.1.velocity.0`.
+    fn parent(&self) -> String {
+        SceneKey { component: None, ..self.clone() }.to_string()
+    }
+
+    /// The vector a scene means when it leaves this field out (interface.md), if it has one.
+    fn default_vector(&self) -> Option<[f64; 3]> {
+        match self.field {
+            "normal" => Some([1.0, 0.0, 0.0]),
+            "angular_velocity" => Some([0.0, 0.0, 0.0]),
+            _ => None,
+        }
+    }
+
+    /// The table holding this key in `scene`, if the file has it.
+    fn find_table<'a>(&self, scene: &'a Table) -> Option<&'a Table> {
+        let table = scene.get(self.table)?;
+        match self.body {
+            Some(body) => table.as_array()?.get(body)?.as_table(),
+            None => table.as_table(),
+        }
+    }
+
+    /// The table holding this key, created when a `[contact]` or `[solver]` table is missing. `Err` says why the
+    /// scene cannot take the key (that point's row says so).
+    fn table_mut<'a>(&self, scene: &'a mut Table) -> Result<&'a mut Table, String> {
+        let table = scene.entry(self.table).or_insert_with(|| Value::Table(Table::new()));
+        let table = match self.body {
+            Some(body) => table
+                .as_array_mut()
+                .and_then(|bodies| bodies.get_mut(body))
+                .ok_or_else(|| format!("the scene has no body {body}"))?,
+            None => table,
+        };
+        table.as_table_mut().ok_or_else(|| format!("`{}` is not a table", self.parent()))
+    }
+
+    /// Sets this key to `value` in the scene document, applying the switching rules of the module doc.
+    pub fn set(&self, scene: &mut Table, value: f64) -> Result<(), String> {
+        let default = self.default_vector();
+        let table = self.table_mut(scene)?;
+        if let Some(partner) = self.partner() {
+            table.remove(partner);
+        }
+        let Some(component) = self.component else {
+            table.insert(self.field.to_string(), Value::Float(value));
+            return Ok(());
+        };
+        let vector = match (table.get_mut(self.field), default) {
+            (Some(vector), _) => vector,
+            (None, Some(default)) => {
+                let items = default.iter().map(|&x| Value::Float(x)).collect();
+                table.entry(self.field).or_insert(Value::Array(items))
+            }
+            (None, None) => return Err(format!("the scene has no `{}`", self.parent())),
+        };
+        let slot = vector
+            .as_array_mut()
+            .and_then(|items| items.get_mut(component))
+            .ok_or_else(|| format!("`{}` has no component {component}", self.parent()))?;
+        *slot = Value::Float(value);
+        Ok(())
+    }
+}

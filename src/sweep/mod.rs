@@ -1,0 +1,221 @@
+//! Parameter sweeps: one scene run over a grid of values of some of its numbers, under one or several laws.
+//!
+//! A point is applied by editing the scene's TOML document — the law's defaults first ([`laws`]), then each
+//! varied key ([`key`]) — and validating the edited text with [`Scene::parse`], exactly as `impact run` would read
+//! a file holding it. A point that is not a valid scene, or that a law cannot take, becomes a row saying why; it
+//! never stops the sweep. Rows come in a fixed order — points in lexicographic order of the grid (the first
+//! `--vary` slowest), and for each point the laws in `--law` order — and row `i` of the whole sweep has global index
+//! `i`, whatever part of the sweep ([`shard`]) or however many threads compute it. [`table`] writes the CSV,
+//! [`merge`] joins shards, [`figure`] turns a sweep's CSV into the data of its figure.
+
+pub mod figure;
+pub mod grid;
+pub mod key;
+pub mod laws;
+pub mod merge;
+pub mod shard;
+pub mod table;
+
+use crate::history::Recording;
+use crate::impact::simulate;
+use crate::law::LawKind;
+use crate::scene::{Scene, SceneError};
+use grid::Grid;
+use rayon::prelude::*;
+use std::path::{Path, PathBuf};
+use table::{Cell, Row, Status};
+
+/// Why a sweep cannot start (bad arguments, a scene file that is not TOML) or shards cannot be merged.
+#[derive(Debug, thiserror::Error)]
+pub enum SweepError {
+    /// A bad `--vary`, `--law`, `--shard`... or shard files that do not make up one sweep.
+    #[error("{0}")]
+    Usage(String),
+    /// The scene file cannot be read or is not TOML.
+    #[error(transparent)]
+    Scene(#[from] SceneError),
+}
+
+/// Largest number of rows a sweep accepts (its rows are held in memory until the CSV is written).
+pub const MAX_ROWS: usize = 100_000_000;
+
+/// A sweep: the scene document, the grid, the laws.
+#[derive(Debug, Clone)]
+pub struct Sweep {
+    /// The scene file (names errors, gives the default title).
+    path: PathBuf,
+    /// The scene text as read (fingerprinted for shards).
+    text: String,
+    /// The scene document every point starts from.
+    document: toml::Table,
+    pub grid: Grid,
+    /// The laws, in `--law` order; empty to run the scene's own law.
+    pub laws: Vec<LawKind>,
+}
+
+/// The laws named in `--law` (scene spellings), checked.
+pub fn parse_laws(names: &[String]) -> Result<Vec<LawKind>, SweepError> {
+    let mut laws = Vec::new();
+    for name in names {
+        let Some(law) = LawKind::from_name(name.trim()) else {
+            return Err(SweepError::Usage(format!(
+                "--law: unknown law `{}`; expected one of {}",
+                name.trim(),
+                LawKind::names().join(", ")
+            )));
+        };
+        if laws.contains(&law) {
+            return Err(SweepError::Usage(format!("--law: `{}` is given twice", law.name())));
+        }
+        laws.push(law);
+    }
+    Ok(laws)
+}
+
+impl Sweep {
+    /// Checks a sweep before any work: the scene text is TOML, the varied keys fit this scene, the size is sane.
+    /// The scene's values are checked per point (a file may leave out what the sweep sets).
+    pub fn new(path: &Path, text: String, grid: Grid, laws: Vec<LawKind>) -> Result<Sweep, SweepError> {
+        let document: toml::Table = match text.parse() {
+            Ok(document) => document,
+            // The scene reader locates the syntax error (file, line, key).
+            Err(error) => {
+                return Err(match Scene::parse(&text, path) {
+                    Err(located) => located.into(),
+                    Ok(_) => SceneError::file(path, format!("not a TOML document: {error}")).into(),
+                });
+            }
+        };
+        if grid.axes.is_empty() {
+            return Err(SweepError::Usage("give at least one --vary KEY=START:STOP:COUNT".into()));
+        }
+        for axis in &grid.axes {
+            axis.key.check_in(&document)?;
+        }
+        let sweep = Sweep { path: path.to_path_buf(), text, document, grid, laws };
+        match sweep.grid.points().and_then(|points| points.checked_mul(sweep.law_count())) {
+            Some(rows) if rows <= MAX_ROWS => Ok(sweep),
+            _ => Err(SweepError::Usage(format!("the sweep has more than {MAX_ROWS} rows: split it into several"))),
+        }
+    }
+
+    fn law_count(&self) -> usize {
+        self.laws.len().max(1)
+    }
+
+    /// Number of rows of the whole sweep: points times laws.
+    pub fn rows(&self) -> usize {
+        self.grid.points().unwrap_or(0) * self.law_count()
+    }
+
+    /// The varied keys, as written in the CSV header.
+    pub fn keys(&self) -> Vec<String> {
+        self.grid.axes.iter().map(|axis| axis.key.to_string()).collect()
+    }
+
+    /// The varied values and the law (`None`: the scene's own) of row `index`.
+    pub fn point(&self, index: usize) -> (Vec<f64>, Option<LawKind>) {
+        let laws = self.law_count();
+        (self.grid.values(index / laws), self.laws.get(index % laws).copied())
+    }
+
+    /// The scene text of row `index`: the document with the law's defaults and the point's values applied.
+    /// `Err` says why this law cannot take the point.
+    pub fn scene_text(&self, index: usize) -> Result<String, String> {
+        let (values, law) = self.point(index);
+        let mut document = self.document.clone();
+        if let Some(law) = law {
+            let keys: Vec<_> = self.grid.axes.iter().map(|axis| axis.key.clone()).collect();
+            laws::apply(&mut document, law, &keys)?;
+        }
+        for (axis, value) in self.grid.axes.iter().zip(values) {
+            axis.key.set(&mut document, value).map_err(|why| format!("{}: {why}", axis.key))?;
+        }
+        toml::to_string(&document).map_err(|error| format!("cannot write the scene: {error}"))
+    }
+
+    /// The law's name for row `index`: from `--law`, or as the scene file writes it.
+    fn law_name(&self, law: Option<LawKind>) -> String {
+        match law {
+            Some(law) => law.name().into(),
+            None => {
+                let written = self.document.get("contact").and_then(|c| c.get("law")).and_then(|l| l.as_str());
+                written.unwrap_or_default().into()
+            }
+        }
+    }
+
+    /// Runs row `index`: validates its scene and simulates it.
+    pub fn evaluate(&self, index: usize) -> Row {
+        let (values, law) = self.point(index);
+        let law = self.law_name(law);
+        let scene = self.scene_text(index).and_then(|text| Scene::parse(&text, &self.path).map_err(scene_message));
+        let simulation = scene.and_then(|scene| simulate(&scene, Recording::Off).map_err(|error| error.to_string()));
+        let (status, results) = match simulation {
+            Ok(simulation) => {
+                let status = if simulation.report.contact.separated { Status::Ok } else { Status::NotSeparated };
+                (status, table::results(&simulation.report))
+            }
+            Err(why) => (Status::Error(why), vec![Cell::Empty; table::RESULT_COLUMNS.len()]),
+        };
+        Row { index, status, law, values, results }
+    }
+
+    /// Runs the rows `indices` on `threads` threads (`None`: one per core), calling `done` after each row. The
+    /// rows come back in the order of `indices`, so the result does not depend on the number of threads.
+    pub fn run(&self, indices: &[usize], threads: Option<usize>, done: impl Fn() + Sync) -> anyhow::Result<Vec<Row>> {
+        let pool = rayon::ThreadPoolBuilder::new().num_threads(threads.unwrap_or(0)).build()?;
+        Ok(pool.install(|| {
+            indices
+                .par_iter()
+                .map(|&index| {
+                    let row = self.evaluate(index);
+                    done();
+                    row
+                })
+                .collect()
+        }))
+    }
+
+    /// A fingerprint of what the rows depend on (scene text, grid, laws), so that shards of different sweeps are
+    /// never merged. FNV-1a, stable across machines and builds.
+    pub fn fingerprint(&self) -> u64 {
+        let mut hash = Fnv::default();
+        hash.write(self.text.as_bytes());
+        for axis in &self.grid.axes {
+            hash.write(axis.key.to_string().as_bytes());
+            for value in &axis.values {
+                hash.write(&value.to_bits().to_le_bytes());
+            }
+        }
+        for law in &self.laws {
+            hash.write(law.name().as_bytes());
+        }
+        hash.0
+    }
+}
+
+/// A point's scene error without file and line (they would point into the edited text, not the user's file).
+fn scene_message(error: SceneError) -> String {
+    match error.key {
+        Some(key) => format!("{key}: {}", error.message),
+        None => error.message,
+    }
+}
+
+/// 64-bit FNV-1a.
+struct Fnv(u64);
+
+impl Default for Fnv {
+    fn default() -> Fnv {
+        Fnv(0xcbf2_9ce4_8422_2325)
+    }
+}
+
+impl Fnv {
+    fn write(&mut self, bytes: &[u8]) {
+        for &byte in bytes.iter().chain(&[0xff]) {
+            self.0 = (self.0 ^ u64::from(byte)).wrapping_mul(0x0000_0100_0000_01b3);
+        }
+    }
+}
