@@ -40,5 +40,30 @@ pub fn run(args: &GalleryArgs) -> anyhow::Result<()> {
         }
         std::fs::remove_dir(&staging)?;
     }
-    Ok(())
+    effective_restitution(&args.out)
+}
+
+/// The comparison figure of the contact-mechanics literature: the e each published map actually gives against
+/// the e it was asked for (physics.md §3), from a sweep of the hysteresis-family scene under several laws.
+fn effective_restitution(folder: &Path) -> anyhow::Result<()> {
+    let scratch = std::env::temp_dir().join(format!("impact-gallery-{}", std::process::id()));
+    std::fs::create_dir_all(&scratch)?;
+    let scene = scratch.join("scene.toml");
+    std::fs::write(&scene, include_str!("../../models/hysteresis-lankarani-nikravesh.toml"))?;
+    let target = folder.join("effective_restitution.png");
+    let sweep = super::sweep::SweepArgs {
+        scene,
+        vary: vec!["contact.restitution=0.05:1:39".into()],
+        log: false,
+        law: ["hunt-crossley", "lankarani-nikravesh", "gonthier", "flores", "hu-guo", "carvalho-martins"]
+            .map(String::from)
+            .to_vec(),
+        out: scratch.join("sweep.csv"),
+        plot: Some(target.clone()),
+        shard: None,
+        threads: None,
+    };
+    let result = super::sweep::run(&sweep);
+    let _ = std::fs::remove_dir_all(&scratch);
+    result
 }

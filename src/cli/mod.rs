@@ -6,7 +6,7 @@ mod gallery;
 mod merge;
 mod models;
 pub mod run;
-mod sweep;
+pub mod sweep;
 
 use clap::{Parser, Subcommand};
 
