@@ -209,14 +209,19 @@ fn velocities<DB: DrawingBackend<ErrorType: 'static>>(
     let end = history.samples.last().map_or(start, |s| s.time);
     let (tf, tp) = prefix(end - start);
     let normal = |v: &[f64; 3]| v[0] * n.x + v[1] * n.y + v[2] * n.z;
-    let mut references: Vec<(String, f64, RGBColor)> =
-        vec![(format!("V0 = {} m/s", fixed(c.common_normal_velocity)), c.common_normal_velocity, BLACK)];
+    // (label, value, colour, dash length): long dashes for V0 and the instantaneous values after, short for before.
+    let mut references: Vec<(String, f64, RGBColor, u32)> =
+        vec![(format!("V0 = {} m/s", fixed(c.common_normal_velocity)), c.common_normal_velocity, BLACK, 8)];
+    for (i, color) in [(0, COMPRESSION), (1, BODY_2)] {
+        let value = normal(&report.bodies[i].velocity_before);
+        references.push((format!("body {} before: {} m/s", i + 1, fixed(value)), value, color, 2));
+    }
     if let Some(ideal) = &report.instantaneous {
         for (i, color) in [(0, COMPRESSION), (1, BODY_2)] {
             let value = normal(&ideal.velocity_after[i]);
             let label =
                 format!("body {} after, instantaneous (e = {:.4}): {} m/s", i + 1, ideal.restitution, fixed(value));
-            references.push((label, value, color));
+            references.push((label, value, color, 8));
         }
     }
     let mut values: Vec<f64> =
@@ -245,11 +250,18 @@ fn velocities<DB: DrawingBackend<ErrorType: 'static>>(
         .label_style((FONT, 16))
         .draw()?;
     let x_max = (end - start) / tf;
-    for (label, value, color) in references {
+    for (label, value, color, dash) in references {
         chart
-            .draw_series(DashedLineSeries::new([(0.0, value), (x_max, value)], 8, 5, color.stroke_width(1)))?
+            .draw_series(DashedLineSeries::new([(0.0, value), (x_max, value)], dash, 5, color.stroke_width(1)))?
             .label(label)
-            .legend(move |(x, y)| PathElement::new([(x, y), (x + 18, y)], color.stroke_width(1)));
+            .legend(move |(x, y)| {
+                // Three dashes of the line's own length (capped to fit the 18-pixel key).
+                let length = dash.min(5) as i32;
+                EmptyElement::at((x, y))
+                    + PathElement::new([(0, 0), (length, 0)], color.stroke_width(1))
+                    + PathElement::new([(7, 0), (7 + length, 0)], color.stroke_width(1))
+                    + PathElement::new([(14, 0), (14 + length, 0)], color.stroke_width(1))
+            });
     }
     for (i, color) in [(0usize, COMPRESSION), (1, BODY_2)] {
         let name = report.bodies[i].name.clone();
