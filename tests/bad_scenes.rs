@@ -5,9 +5,11 @@
 //! The expected line is counted here from the scene text the test wrote (the line that starts with the offending
 //! key, or the header of the table a missing key belongs to), never copied from the program's output.
 
+mod common;
+
+use common::binary::{Scratch, impact};
 use std::fs;
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::process::Output;
 
 // ---------------------------------------------------------------------------------------------------------------
 // Scenes
@@ -96,40 +98,6 @@ series = "out/every_key.csv"
 
 // ---------------------------------------------------------------------------------------------------------------
 // Running the binary and checking its answer
-
-/// A fresh folder for one test under the system temp folder; removed when the test passes, kept when it fails.
-struct Scratch(PathBuf);
-
-impl Scratch {
-    fn new(test: &str) -> Scratch {
-        let path = std::env::temp_dir().join(format!("impact-bad-scenes-{}-{test}", std::process::id()));
-        let _ = fs::remove_dir_all(&path);
-        fs::create_dir_all(&path).unwrap_or_else(|e| panic!("cannot create {}: {e}", path.display()));
-        Scratch(path)
-    }
-
-    fn path(&self) -> &Path {
-        &self.0
-    }
-}
-
-impl Drop for Scratch {
-    fn drop(&mut self) {
-        if !std::thread::panicking() {
-            let _ = fs::remove_dir_all(&self.0);
-        }
-    }
-}
-
-/// Runs `impact ARGS...` in `folder`, with no backtrace asked for (so that a panic shows its hint on stderr).
-fn impact(folder: &Path, args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_impact"))
-        .args(args)
-        .current_dir(folder)
-        .env_remove("RUST_BACKTRACE")
-        .output()
-        .expect("the impact binary runs")
-}
 
 /// Where the error must point in the scene.
 enum At {

@@ -4,65 +4,20 @@
 //!
 //! Every expected number comes from physics.md or from a formula written out here, never from an earlier run.
 
+mod common;
+
+use common::binary::{Scratch, describe, impact};
 use serde_json::Value;
 use std::f64::consts::PI;
-use std::fs;
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
 
 // ---------------------------------------------------------------------------------------------------------------
 // Running the binary
-
-/// A fresh folder for one test under the system temp folder; removed when the test passes, kept when it fails.
-struct Scratch(PathBuf);
-
-impl Scratch {
-    fn new(test: &str) -> Scratch {
-        let path = std::env::temp_dir().join(format!("impact-calibrate-{}-{test}", std::process::id()));
-        let _ = fs::remove_dir_all(&path);
-        fs::create_dir_all(&path).unwrap_or_else(|e| panic!("cannot create {}: {e}", path.display()));
-        Scratch(path)
-    }
-
-    /// Writes a scene file into the folder and returns its path as an argument.
-    fn scene(&self, name: &str, text: &str) -> String {
-        let path = self.0.join(name);
-        fs::write(&path, text).expect("write the scene");
-        path.to_str().expect("a UTF-8 temp path").to_string()
-    }
-}
-
-impl Drop for Scratch {
-    fn drop(&mut self) {
-        if !std::thread::panicking() {
-            let _ = fs::remove_dir_all(&self.0);
-        }
-    }
-}
-
-fn impact(folder: &Path, args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_impact"))
-        .args(args)
-        .current_dir(folder)
-        .env_remove("RUST_BACKTRACE")
-        .output()
-        .expect("the impact binary runs")
-}
-
-fn describe(output: &Output) -> String {
-    format!(
-        "status {:?}\nstderr: {}\nstdout: {}",
-        output.status.code(),
-        String::from_utf8_lossy(&output.stderr),
-        String::from_utf8_lossy(&output.stdout)
-    )
-}
 
 /// `impact calibrate ARGS --json`, which must succeed.
 fn calibrate(scratch: &Scratch, args: &[&str]) -> Value {
     let mut all = vec!["calibrate", "--json"];
     all.extend_from_slice(args);
-    let output = impact(&scratch.0, &all);
+    let output = impact(scratch.path(), &all);
     assert!(output.status.success(), "impact {all:?} failed\n{}", describe(&output));
     serde_json::from_slice(&output.stdout).unwrap_or_else(|e| panic!("bad JSON ({e})\n{}", describe(&output)))
 }
@@ -70,7 +25,7 @@ fn calibrate(scratch: &Scratch, args: &[&str]) -> Value {
 /// The simulated velocity ratio of `impact run --json` on a scene given as text.
 fn simulated_e(scratch: &Scratch, name: &str, text: &str) -> f64 {
     let path = scratch.scene(name, text);
-    let output = impact(&scratch.0, &["run", "--json", &path]);
+    let output = impact(scratch.path(), &["run", "--json", &path]);
     assert!(output.status.success(), "impact run {name} failed\n{}", describe(&output));
     let report: Value = serde_json::from_slice(&output.stdout).expect("JSON report");
     report["contact"]["restitution_velocity_ratio"].as_f64().expect("the bodies separate")
@@ -80,7 +35,7 @@ fn simulated_e(scratch: &Scratch, name: &str, text: &str) -> f64 {
 fn refused(scratch: &Scratch, args: &[&str]) -> String {
     let mut all = vec!["calibrate"];
     all.extend_from_slice(args);
-    let output = impact(&scratch.0, &all);
+    let output = impact(scratch.path(), &all);
     let stderr = String::from_utf8_lossy(&output.stderr).into_owned();
     assert_eq!(output.status.code(), Some(2), "impact {all:?} should exit with 2\n{}", describe(&output));
     assert!(!stderr.contains("panicked") && !stderr.trim().is_empty(), "impact {all:?}: {stderr}");
@@ -442,7 +397,7 @@ fn json_has_the_documented_keys() {
 #[test]
 fn readable_summary_names_the_damping_and_the_method() {
     let scratch = Scratch::new("readable");
-    let output = impact(&scratch.0, &["calibrate", "--law", "hunt-crossley", "--restitution", "0.5"]);
+    let output = impact(scratch.path(), &["calibrate", "--law", "hunt-crossley", "--restitution", "0.5"]);
     assert!(output.status.success(), "{}", describe(&output));
     let text = String::from_utf8_lossy(&output.stdout);
     for words in ["hunt-crossley", "alpha in s/m", "exact relation", "simulated e", "published map", "1 m/s"] {

@@ -2,70 +2,15 @@
 //! real binary: the JSON report's keys and types, the readable report, `models`, `--help`, the demonstration and
 //! bad arguments. Physics is only touched where a closed form makes it free; the physics tests live elsewhere.
 
+mod common;
+
+use common::binary::{Scratch, assert_success, describe, impact, stdout};
 use serde_json::Value;
 use std::fs;
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::path::Path;
 
 // ---------------------------------------------------------------------------------------------------------------
 // Running the binary
-
-/// A fresh folder for one test under the system temp folder; removed when the test passes, kept when it fails.
-struct Scratch(PathBuf);
-
-impl Scratch {
-    fn new(test: &str) -> Scratch {
-        let path = std::env::temp_dir().join(format!("impact-cli-{}-{test}", std::process::id()));
-        let _ = fs::remove_dir_all(&path);
-        fs::create_dir_all(&path).unwrap_or_else(|e| panic!("cannot create {}: {e}", path.display()));
-        Scratch(path)
-    }
-
-    fn path(&self) -> &Path {
-        &self.0
-    }
-
-    /// Writes a scene file into the folder and returns its path as an argument.
-    fn scene(&self, name: &str, text: &str) -> String {
-        let path = self.0.join(name);
-        fs::write(&path, text).expect("write the scene");
-        path.to_str().expect("a UTF-8 temp path").to_string()
-    }
-}
-
-impl Drop for Scratch {
-    fn drop(&mut self) {
-        if !std::thread::panicking() {
-            let _ = fs::remove_dir_all(&self.0);
-        }
-    }
-}
-
-/// Runs `impact ARGS...` in `folder`, with no backtrace asked for (so that a panic shows its hint on stderr).
-fn impact(folder: &Path, args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_impact"))
-        .args(args)
-        .current_dir(folder)
-        .env_remove("RUST_BACKTRACE")
-        .output()
-        .expect("the impact binary runs")
-}
-
-fn stdout(output: &Output) -> String {
-    String::from_utf8_lossy(&output.stdout).into_owned()
-}
-
-/// Status, stderr and stdout, for failure messages.
-fn describe(output: &Output) -> String {
-    let stderr = String::from_utf8_lossy(&output.stderr);
-    format!("status {:?}\n--- stderr\n{stderr}--- stdout\n{}", output.status.code(), stdout(output))
-}
-
-#[track_caller]
-fn assert_success(output: &Output) {
-    assert_eq!(output.status.code(), Some(0), "expected success\n{}", describe(output));
-    assert!(!String::from_utf8_lossy(&output.stderr).contains("panicked"), "{}", describe(output));
-}
 
 /// `impact run SCENE --json` on `text`, parsed.
 #[track_caller]

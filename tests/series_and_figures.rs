@@ -1,19 +1,9 @@
 //! The views of one impact: the CSV time series and the figures, written completely or not at all.
 
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+mod common;
 
-/// A fresh, empty folder for one test.
-fn scratch(name: &str) -> PathBuf {
-    let folder = std::env::temp_dir().join(format!("impact-series-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&folder);
-    std::fs::create_dir_all(&folder).unwrap();
-    folder
-}
-
-fn impact(folder: &Path, args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_impact")).current_dir(folder).args(args).output().unwrap()
-}
+use common::binary::{Scratch, impact};
+use std::path::Path;
 
 /// Steel sphere (1 kg) on a wall at 2 m/s, exact Hunt–Crossley map for e = 0.8: the total impulse is
 /// (1 + e) m* v0 = 1.8 * 1 * 2 = 3.6 N s.
@@ -49,9 +39,10 @@ fn trapezoid(time: &[f64], force: &[f64]) -> f64 {
 
 #[test]
 fn uniform_series_integrates_to_the_total_impulse() {
-    let folder = scratch("uniform");
+    let scratch = Scratch::new("uniform");
+    let folder = scratch.path();
     std::fs::write(folder.join("s.toml"), SCENE).unwrap();
-    let out = impact(&folder, &["run", "s.toml", "--csv", "series.csv", "--samples", "4000"]);
+    let out = impact(folder, &["run", "s.toml", "--csv", "series.csv", "--samples", "4000"]);
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
     let series = Series::read(&folder.join("series.csv"));
     assert_eq!(series.rows.len(), 4000);
@@ -72,9 +63,10 @@ fn uniform_series_integrates_to_the_total_impulse() {
 
 #[test]
 fn step_series_has_named_columns_phases_and_the_events() {
-    let folder = scratch("steps");
+    let scratch = Scratch::new("steps");
+    let folder = scratch.path();
     std::fs::write(folder.join("s.toml"), SCENE).unwrap();
-    let out = impact(&folder, &["run", "s.toml", "--csv", "series.csv", "--json"]);
+    let out = impact(folder, &["run", "s.toml", "--csv", "series.csv", "--json"]);
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
     let report: serde_json::Value = serde_json::from_slice(&out.stdout).expect("stdout stays pure JSON");
     let series = Series::read(&folder.join("series.csv"));
@@ -129,9 +121,10 @@ fn assert_svg(path: &Path) {
 
 #[test]
 fn figures_are_rendered_as_png_and_svg() {
-    let folder = scratch("figures");
+    let scratch = Scratch::new("figures");
+    let folder = scratch.path();
     std::fs::write(folder.join("s.toml"), SCENE).unwrap();
-    let out = impact(&folder, &["run", "s.toml", "--plot", "figs"]);
+    let out = impact(folder, &["run", "s.toml", "--plot", "figs"]);
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
     for name in ["force_time", "force_penetration", "velocities"] {
         assert_png(&folder.join("figs").join(format!("{name}.png")));
@@ -143,10 +136,11 @@ fn figures_are_rendered_as_png_and_svg() {
 
 #[test]
 fn the_scene_output_table_asks_for_series_and_figures() {
-    let folder = scratch("output-table");
+    let scratch = Scratch::new("output-table");
+    let folder = scratch.path();
     let scene = format!("{SCENE}[output]\nseries = \"out/s.csv\"\nplots = \"out/figs\"\n");
     std::fs::write(folder.join("s.toml"), scene).unwrap();
-    let out = impact(&folder, &["run", "s.toml"]);
+    let out = impact(folder, &["run", "s.toml"]);
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
     assert!(folder.join("out/s.csv").is_file());
     assert_png(&folder.join("out/figs/force_time.png"));
@@ -154,25 +148,27 @@ fn the_scene_output_table_asks_for_series_and_figures() {
 
 #[test]
 fn nothing_is_written_when_an_output_cannot_be() {
-    let folder = scratch("unwritable");
+    let scratch = Scratch::new("unwritable");
+    let folder = scratch.path();
     std::fs::write(folder.join("s.toml"), SCENE).unwrap();
     // A file where the figure folder should be: the figures cannot be written.
     std::fs::write(folder.join("blocked"), "not a folder").unwrap();
-    let out = impact(&folder, &["run", "s.toml", "--plot", "blocked/figs"]);
+    let out = impact(folder, &["run", "s.toml", "--plot", "blocked/figs"]);
     assert_eq!(out.status.code(), Some(1), "{}", String::from_utf8_lossy(&out.stderr));
     assert!(String::from_utf8_lossy(&out.stderr).contains("blocked"));
     // And a bad scene writes no series.
     std::fs::write(folder.join("bad.toml"), SCENE.replace("0.8", "1.8")).unwrap();
-    let out = impact(&folder, &["run", "bad.toml", "--csv", "bad.csv"]);
+    let out = impact(folder, &["run", "bad.toml", "--csv", "bad.csv"]);
     assert_eq!(out.status.code(), Some(2));
     assert!(!folder.join("bad.csv").exists());
 }
 
 #[test]
 fn samples_below_two_are_a_usage_error() {
-    let folder = scratch("samples");
+    let scratch = Scratch::new("samples");
+    let folder = scratch.path();
     std::fs::write(folder.join("s.toml"), SCENE).unwrap();
-    let out = impact(&folder, &["run", "s.toml", "--csv", "x.csv", "--samples", "1"]);
+    let out = impact(folder, &["run", "s.toml", "--csv", "x.csv", "--samples", "1"]);
     assert_eq!(out.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&out.stderr).contains("--samples"));
 }

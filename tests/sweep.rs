@@ -2,91 +2,16 @@
 //! reproduce physics.md's tables, do not depend on the thread count or on sharding, and bad arguments are clear
 //! errors with exit status 2. Every expected number comes from physics.md or a hand calculation written here.
 
+mod common;
+
+use common::binary::{Scratch, assert_success, describe, impact, stderr};
 use impact::output::sweep_figure::{self, SIZE};
 use serde_json::Value;
 use std::collections::HashMap;
 use std::fs;
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
 
 // ---------------------------------------------------------------------------------------------------------------
 // Running the binary
-
-/// A fresh folder for one test under the system temp folder; removed when the test passes, kept when it fails.
-struct Scratch(PathBuf);
-
-impl Scratch {
-    fn new(test: &str) -> Scratch {
-        let path = std::env::temp_dir().join(format!("impact-sweep-{}-{test}", std::process::id()));
-        let _ = fs::remove_dir_all(&path);
-        fs::create_dir_all(&path).unwrap_or_else(|e| panic!("cannot create {}: {e}", path.display()));
-        Scratch(path)
-    }
-
-    fn path(&self) -> &Path {
-        &self.0
-    }
-
-    /// Writes a file into the folder; returns its name (commands run in the folder).
-    fn write(&self, name: &str, text: &str) -> String {
-        fs::write(self.0.join(name), text).expect("write a file");
-        name.to_string()
-    }
-
-    fn read(&self, name: &str) -> String {
-        fs::read_to_string(self.0.join(name)).unwrap_or_else(|e| panic!("cannot read {name}: {e}"))
-    }
-
-    fn exists(&self, name: &str) -> bool {
-        self.0.join(name).exists()
-    }
-
-    /// The names of the files in the folder, sorted.
-    fn files(&self) -> Vec<String> {
-        let mut names: Vec<String> = fs::read_dir(&self.0)
-            .expect("list the folder")
-            .map(|entry| entry.expect("an entry").file_name().to_string_lossy().into_owned())
-            .collect();
-        names.sort();
-        names
-    }
-}
-
-impl Drop for Scratch {
-    fn drop(&mut self) {
-        if !std::thread::panicking() {
-            let _ = fs::remove_dir_all(&self.0);
-        }
-    }
-}
-
-fn impact(folder: &Path, args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_impact"))
-        .args(args)
-        .current_dir(folder)
-        .env_remove("RUST_BACKTRACE")
-        .output()
-        .expect("the impact binary runs")
-}
-
-fn stderr(output: &Output) -> String {
-    String::from_utf8_lossy(&output.stderr).into_owned()
-}
-
-fn describe(output: &Output) -> String {
-    format!(
-        "status {:?}\n--- stderr\n{}--- stdout\n{}",
-        output.status.code(),
-        stderr(output),
-        String::from_utf8_lossy(&output.stdout)
-    )
-}
-
-#[track_caller]
-fn assert_success(output: &Output) {
-    assert_eq!(output.status.code(), Some(0), "expected success\n{}", describe(output));
-    assert!(!stderr(output).contains("panicked"), "{}", describe(output));
-}
 
 /// Runs `impact ARGS` in the scratch folder and expects success.
 #[track_caller]

@@ -1,5 +1,8 @@
-//! Helpers shared by the physics tests: build a scene from TOML text and simulate it.
+//! Helpers shared by the tests: build a scene from TOML text and simulate it (the physics tests); `binary` runs
+//! the real `impact` binary in a scratch folder (the command-line tests).
 #![allow(dead_code)]
+
+pub mod binary;
 
 use impact::impact::simulate;
 use impact::report::Report;
