@@ -4,32 +4,39 @@
 use crate::impact::Measured;
 use crate::instantaneous::direct_impact;
 use crate::law::{Family, Separation};
-use crate::reference::{self, ContactReference, SeparationCriterion};
+
+use crate::reference::{self, ContactReference};
 use crate::report::{ReferenceErrors, ReferenceReport};
 use crate::scene::Scene;
 use crate::setup::Setup;
+
+/// Largest alpha v0 for which the hysteresis-family reference is reported.
+const MAX_HYSTERESIS_X: f64 = 1e8;
 
 /// The exact nondimensional contact of this scene's law and where it comes from; `None` when no exact result
 /// exists (Brilliantov's law, or a contact that never separates).
 fn exact(setup: &Setup, separation: Separation) -> Option<(ContactReference, &'static str)> {
     let law = &setup.law;
-    let criterion = match separation {
-        Separation::Penetration => SeparationCriterion::Penetration,
-        Separation::Force => SeparationCriterion::Force,
-    };
     match law.kind.family() {
         Family::Elastic => Some((reference::hertz_elastic(law.exponent), "elastic power-law Hertz closed form")),
-        Family::Hysteresis => Some((
-            reference::hysteresis_contact(law.damping * setup.approach_speed, law.exponent),
-            "exact Hunt–Crossley relation and quadratures (physics.md §3)",
-        )),
+        Family::Hysteresis => {
+            let x = law.damping * setup.approach_speed;
+            // Beyond x ~ 1e8 (e ~ 1e-8) the quadratures of the creeping restitution are no longer trustworthy.
+            (x <= MAX_HYSTERESIS_X).then(|| {
+                (
+                    reference::hysteresis_contact(x, law.exponent),
+                    "exact Hunt–Crossley relation and quadratures (physics.md §3)",
+                )
+            })
+        }
         Family::Linear => {
             let zeta = law.damping / (2.0 * (law.stiffness * setup.effective_mass).sqrt());
-            Some((reference::kelvin_voigt(zeta, criterion)?, "Kelvin–Voigt closed forms (physics.md §3)"))
+            Some((reference::kelvin_voigt(zeta, separation)?, "Kelvin–Voigt closed forms (physics.md §3)"))
         }
-        Family::Tsuji => {
-            Some((reference::tsuji(law.damping, criterion)?, "Tsuji law mapped to a linear oscillator (physics.md §3)"))
-        }
+        Family::Tsuji => Some((
+            reference::tsuji(law.damping, separation)?,
+            "Tsuji law mapped to a linear oscillator (physics.md §3)",
+        )),
         Family::Viscoelastic => None,
     }
 }

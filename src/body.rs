@@ -69,3 +69,11 @@ impl Body {
         Some((1.0 - poisson * poisson) / young)
     }
 }
+
+/// Velocities of two bodies after a normal impulse `impulse` (N s, compressive positive) along the unit `normal`
+/// (body 1 -> body 2): body 1 loses impulse/m1 along the normal, body 2 gains impulse/m2 (an immovable body keeps
+/// its velocity).
+pub fn after_normal_impulse(bodies: &[Body; 2], normal: &Vector3<f64>, impulse: f64) -> [Vector3<f64>; 2] {
+    let [a, b] = bodies;
+    [a.velocity - normal * (impulse * a.inverse_mass()), b.velocity + normal * (impulse * b.inverse_mass())]
+}

@@ -192,7 +192,7 @@ pub enum CalibrationError {
 impl CalibrationError {
     /// Whether the error is the user's input (exit status 2) rather than a failure of the program.
     pub fn is_bad_input(&self) -> bool {
-        !matches!(self, CalibrationError::Simulation(SimulationError::Integration(_)))
+        !matches!(self, CalibrationError::Simulation(SimulationError::Integration(_) | SimulationError::Compression(_)))
     }
 }
 
@@ -265,9 +265,9 @@ fn published_map(law: LawKind, target: f64, contact: &Contact, has_scene: bool) 
         }
         Family::Linear => {
             let zeta = reference::kelvin_voigt_zeta(target);
-            (zeta, reference::kelvin_voigt(zeta, contact.criterion())?.restitution)
+            (zeta, reference::kelvin_voigt(zeta, contact.separation)?.restitution)
         }
-        Family::Tsuji => (damping / 5f64.sqrt(), reference::tsuji(damping, contact.criterion())?.restitution),
+        Family::Tsuji => (damping / 5f64.sqrt(), reference::tsuji(damping, contact.separation)?.restitution),
         Family::Elastic | Family::Viscoelastic => return None,
     };
     let damping = (has_scene || law.family() != Family::Linear).then_some(damping);
@@ -432,13 +432,6 @@ impl Contact {
             stiffness: setup.law.stiffness,
             separation: scene.contact.separation,
         })
-    }
-
-    fn criterion(&self) -> SeparationCriterion {
-        match self.separation {
-            Separation::Penetration => SeparationCriterion::Penetration,
-            Separation::Force => SeparationCriterion::Force,
-        }
     }
 
     /// sqrt(k m*), N s/m: c = 2 zeta sqrt(k m*) for Kelvin–Voigt.

@@ -1,7 +1,7 @@
 //! The recorded contact history, in SI units: every accepted integrator step plus the located events, or a
 //! uniform resampling on the integrator's solution. It exists only when a series or a figure asks for it.
 
-use crate::body::Body;
+use crate::body::{Body, after_normal_impulse};
 use crate::dynamics::normal::{NormalContact, SIZE, index};
 use crate::integrate::State;
 use nalgebra::Vector3;
@@ -78,7 +78,6 @@ impl History {
     /// Converts scaled (time, state) points to SI samples.
     pub fn new(points: &[(f64, State<SIZE>)], frame: &Frame) -> History {
         let s = &frame.model.scales;
-        let [a, b] = frame.bodies;
         let n = frame.normal;
         let samples = points
             .iter()
@@ -90,10 +89,7 @@ impl History {
                     rate: y[index::RATE] * s.speed,
                     force: frame.model.force(y) * s.force,
                     impulse,
-                    velocities: [
-                        a.velocity - n * (impulse * a.inverse_mass()),
-                        b.velocity + n * (impulse * b.inverse_mass()),
-                    ],
+                    velocities: after_normal_impulse(frame.bodies, &n, impulse),
                     phase: if *t <= frame.max_compression { Phase::Compression } else { Phase::Restitution },
                 }
             })

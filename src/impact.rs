@@ -1,6 +1,7 @@
 //! One impact through its phases: flight (closed form) → compression → restitution → separation, producing the
 //! [`Report`].
 
+use crate::body::after_normal_impulse;
 use crate::dynamics::normal::{NormalContact, SIZE, index};
 use crate::history::{Frame, History, Recording};
 use crate::instantaneous::{Instantaneous, direct_impact};
@@ -71,7 +72,9 @@ pub fn simulate(scene: &Scene, recording: Recording) -> Result<Simulation, Simul
     };
     let restitution = [separation, Event { function: &settled, direction: Direction::Falling, terminal: true }, peak];
     let released = stepper.run(compressed.time, compressed.state, TIME_LIMIT, &restitution)?;
-    let separated = released.ending == Ending::Event(0);
+    // A penetration that returns to zero without a separation speed (e = 0 to the integration's accuracy, e.g. a
+    // critically damped contact under loose tolerances) has not separated: the bodies stay together.
+    let separated = released.ending == Ending::Event(0) && released.state[index::RATE] < 0.0;
 
     let mut candidates = vec![(0.0, start), (compressed.time, compressed.state), (released.time, released.state)];
     candidates
@@ -141,6 +144,7 @@ fn stuck_note(setup: &Setup, phases: &Phases, ending: &Ending) -> String {
     let s = &setup.scales;
     let (time, state) = phases.end;
     let how = match ending {
+        Ending::Event(0) => "the penetration returned to zero with no separation speed".to_string(),
         Ending::Event(_) => "the relative motion died out".to_string(),
         Ending::TimeLimit => format!("the time limit ({TIME_LIMIT} elastic time units) was reached"),
         Ending::GaveUp(reason) => format!(
@@ -164,8 +168,7 @@ fn build_report(scene: &Scene, setup: &Setup, phases: &Phases, solver: SolverRep
     let (t_end, y_end) = phases.end;
     let deformation_impulse = y0[index::IMPULSE] * s.impulse;
     let total_impulse = y_end[index::IMPULSE] * s.impulse;
-    let kick =
-        |impulse: f64| [a.velocity - n * (impulse * a.inverse_mass()), b.velocity + n * (impulse * b.inverse_mass())];
+    let kick = |impulse: f64| after_normal_impulse(&scene.bodies, &n, impulse);
     let at_max = kick(deformation_impulse);
     let after = kick(total_impulse);
     // V0 from the simulated impulse, read off a movable body (its error is the impulse integral's).

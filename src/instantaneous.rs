@@ -1,6 +1,6 @@
 //! The idealised instantaneous impact (physics.md §2): what momentum and a coefficient of restitution alone say.
 
-use crate::body::Body;
+use crate::body::{Body, after_normal_impulse};
 use nalgebra::Vector3;
 
 /// Result of an instantaneous direct (or smooth oblique) impact of two bodies along `normal`.
@@ -12,8 +12,6 @@ pub struct Instantaneous {
     pub common_normal_velocity: f64,
     /// Velocities after, m/s: normal parts changed by the impulse (1+e) m* (u1 - u2), tangential parts kept.
     pub velocity_after: [Vector3<f64>; 2],
-    /// Normal impulse on body 2, N s.
-    pub impulse: f64,
     /// (1/2) m* (1 - e²) (u1 - u2)², J.
     pub energy_lost: f64,
 }
@@ -28,11 +26,7 @@ pub fn direct_impact(bodies: &[Body; 2], normal: &Vector3<f64>, effective_mass: 
     Instantaneous {
         restitution: e,
         common_normal_velocity,
-        velocity_after: [
-            a.velocity - normal * (impulse * a.inverse_mass()),
-            b.velocity + normal * (impulse * b.inverse_mass()),
-        ],
-        impulse,
+        velocity_after: after_normal_impulse(bodies, normal, impulse),
         energy_lost: 0.5 * effective_mass * (1.0 - e * e) * approach * approach,
     }
 }

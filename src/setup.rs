@@ -86,9 +86,13 @@ impl Setup {
                     fail("contact.restitution", why)
                 })?,
         };
+        if !damping.is_finite() {
+            return fail("contact.restitution", format!("the damping {damping} is not a finite number"));
+        }
         let tsuji_scale = if kind.family() == Family::Tsuji { (effective_mass * stiffness).sqrt() } else { 0.0 };
         let law = ContactLaw { kind, stiffness, exponent, damping, tsuji_scale };
         let scales = Scales::new(effective_mass, stiffness, exponent, approach_speed);
+        check_scales(&scales)?;
         Ok(Setup { contact_time, normal, approach_speed, effective_mass, law, scales })
     }
 }
@@ -136,6 +140,23 @@ fn placement(scene: &Scene) -> Result<(f64, Vector3<f64>), SetupError> {
             Ok((contact.time, contact.normal))
         }
     }
+}
+
+/// The scaled formulation needs finite, non-zero units: m* v0² and its ratio to K must stay inside double
+/// precision (a velocity of 1e200 m/s or a body of 1e-300 kg do not).
+fn check_scales(scales: &Scales) -> Result<(), SetupError> {
+    let units = [scales.length, scales.time, scales.force, scales.impulse, scales.energy];
+    if units.iter().all(|u| u.is_finite() && *u > 0.0) {
+        return Ok(());
+    }
+    fail(
+        "bodies.0.velocity",
+        format!(
+            "the contact's scales leave double precision (penetration scale {:e} m, time scale {:e} s, energy \
+             scale m* v0² = {:e} J): check the masses, velocities and stiffness",
+            scales.length, scales.time, scales.energy
+        ),
+    )
 }
 
 /// Until oblique impacts land, every velocity must lie along the normal.

@@ -2,6 +2,10 @@
 
 mod common;
 use common::{assert_close, on_wall};
+use impact::history::Recording;
+use impact::impact::simulate;
+use impact::scene::Scene;
+use std::path::Path;
 
 /// One row of physics.md's quadrature table: x = alpha v0, n, then e, dmax/L, t0/T, tc/T, Fmax/F0 (checked values).
 struct Row {
@@ -96,8 +100,17 @@ fn hunt_crossley_matches_exact_restitution_penetration_times_and_peak_force() {
 #[test]
 fn damped_force_peaks_before_maximum_compression() {
     // physics.md §3: with damping the force peaks before d' = 0 (Hunt–Crossley x = 0.5: while d' = 0.284 v0).
-    let report = on_wall(1.0, 1.0, "law = \"hunt-crossley\"\ndamping = 0.5\nstiffness = 1e6");
-    assert!(report.contact.max_force_time < report.contact.max_compression_time);
+    let text = "[[bodies]]\nradius = 0.01\nmass = 1.0\nvelocity = [1.0, 0, 0]\n[[bodies]]\nradius = inf\nmass = inf\n\
+                velocity = [0, 0, 0]\n[contact]\nlaw = \"hunt-crossley\"\ndamping = 0.5\nstiffness = 1e6\n";
+    let scene = Scene::parse(text, Path::new("peak.toml")).unwrap();
+    let simulation = simulate(&scene, Recording::Steps).unwrap();
+    let contact = &simulation.report.contact;
+    assert!(contact.max_force_time < contact.max_compression_time);
+    // The located peak is a sample of the history: its penetration rate there, in units of v0 = 1 m/s.
+    let history = simulation.history.unwrap();
+    let peak = history.samples.iter().find(|s| s.time == contact.max_force_time).expect("the peak is recorded");
+    assert!((peak.rate - 0.284).abs() < 5e-4, "d' at the peak {}", peak.rate);
+    assert!((peak.force - contact.max_force).abs() <= 1e-12 * contact.max_force);
 }
 
 /// physics.md's effective-e table: the e each published map actually gives, for nominal e = 0.1 ... 0.99.

@@ -91,3 +91,16 @@ fn nominal_map_is_exact_for_penetration_separation() {
         assert_close("e", report.contact.restitution_velocity_ratio.unwrap(), e, 1e-9);
     }
 }
+
+#[test]
+fn heavy_damping_peaks_at_first_contact_with_the_dashpot_force() {
+    // For zeta >= 1/2 the force k d + c d' falls from its first value c v0 (dF/dt = k v0 - c² v0 / m* < 0 at
+    // t = 0+), so the peak is the jump itself: c v0 = 2 zeta sqrt(k m*) v0.
+    for (zeta, separation) in [(0.7, "force"), (0.7, "penetration"), (2.0, "force")] {
+        let report = with_zeta(zeta, separation);
+        let c = 2.0 * zeta * (STIFFNESS * MASS).sqrt();
+        assert_close("max force", report.contact.max_force, c * 1.5, 1e-12);
+        assert_eq!(report.contact.max_force_time, report.contact.start_time);
+        assert!(report.reference.unwrap().errors.max_force.unwrap() < 1e-9);
+    }
+}

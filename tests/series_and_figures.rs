@@ -172,3 +172,13 @@ fn samples_below_two_are_a_usage_error() {
     assert_eq!(out.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&out.stderr).contains("--samples"));
 }
+
+#[test]
+fn samples_without_a_series_are_a_usage_error() {
+    let scratch = Scratch::new("samples-alone");
+    let folder = scratch.path();
+    std::fs::write(folder.join("s.toml"), SCENE).unwrap();
+    let out = impact(folder, &["run", "s.toml", "--samples", "100"]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("--csv"));
+}

@@ -58,3 +58,30 @@ fn power_law_exponents_below_one_stay_finite() {
     assert_close("dmax", report.contact.max_penetration, 0.75f64.powf(2.0 / 3.0) * length, 1e-9);
     assert_close("e", report.contact.restitution_velocity_ratio.unwrap(), 1.0, 1e-9);
 }
+
+#[test]
+fn loose_tolerances_never_report_a_negative_restitution() {
+    // e = 0 with separation at zero penetration: the exact contact never separates (physics.md §3). Loose
+    // tolerances may bring d back to zero, but without a separation speed that is no separation.
+    for law in ["tsuji", "kelvin-voigt"] {
+        let text = format!(
+            "[[bodies]]\nradius = 0.01\nmass = 1\nvelocity = [1, 0, 0]\n[[bodies]]\nradius = inf\nmass = inf\n\
+             velocity = [0, 0, 0]\n[contact]\nlaw = \"{law}\"\nrestitution = 0\nstiffness = 1e6\n\
+             [solver]\nrtol = 1e-2\natol = 1e-2\n"
+        );
+        let report = common::run(&text);
+        if let Some(e) = report.contact.restitution_velocity_ratio {
+            assert!(e > 0.0, "{law}: separated with e = {e}");
+        }
+    }
+}
+
+#[test]
+fn scales_outside_double_precision_are_a_scene_error() {
+    // m* v0² overflows for v0 = 1e200 m/s: the scene is refused naming a key, not left to the integrator.
+    let text = "[[bodies]]\nradius = 0.01\nmass = 1\nvelocity = [1e200, 0, 0]\n[[bodies]]\nradius = inf\n\
+                mass = inf\nvelocity = [0, 0, 0]\n[contact]\nlaw = \"hertz\"\nstiffness = 1e6\n";
+    let error = impact::scene::Scene::parse(text, std::path::Path::new("huge.toml")).unwrap_err();
+    assert_eq!(error.key.as_deref(), Some("bodies.0.velocity"));
+    assert!(error.message.contains("double precision"), "{}", error.message);
+}

@@ -603,6 +603,8 @@ fn bad_keys_ranges_laws_and_shard_specs_exit_2() {
         bad(&["--vary", "contact.restitution=0.5", "--shard", shard], &["--shard", "1 <= I <= N"]);
     }
     bad(&["--vary", "contact.restitution=0.5", "--threads", "0"], &["--threads"]);
+    bad(&["--vary", "contact.restitution=0.5", "--threads", "100000"], &["--threads"]);
+    bad(&["--vary", "contact.restitution=0.1:0.9:18446744073709551615"], &["COUNT"]);
     bad(&["--vary", "contact.restitution=0.5", "--plot", "e.jpg"], &[".png or .svg"]);
     bad(&["--vary", "contact.restitution=0.5", "--plot", "e.png", "--shard", "1/2"], &["merge"]);
     assert_bad(
@@ -647,4 +649,24 @@ fn outputs_are_written_completely_or_not_at_all() {
     assert!(!scratch.exists("e.png"), "the figure is only shown with its CSV");
     let left: Vec<String> = scratch.files().into_iter().filter(|name| name.contains("partial")).collect();
     assert!(left.is_empty(), "temporary files left behind: {left:?}");
+}
+
+#[test]
+fn a_scene_of_the_wrong_form_is_a_bad_scene_not_a_sweep_of_errors() {
+    let scratch = Scratch::new("form");
+    // A string where a vector is expected can never be mended by varying numbers.
+    let text = steel_pair(1.0, -1.0, "law = \"hunt-crossley\"\nrestitution = 0.5").replacen("[1", "\"fast\" #[1", 1);
+    let scene = scratch.write("typo.toml", &text);
+    assert_bad(
+        &scratch,
+        &["sweep", scene.as_str(), "--vary", "contact.restitution=0.1:0.9:3", "--out", "o.csv"],
+        &["velocity"],
+    );
+    let empty = scratch.write("empty.toml", "");
+    assert_bad(
+        &scratch,
+        &["sweep", empty.as_str(), "--vary", "contact.restitution=0.1:0.9:3", "--out", "o.csv"],
+        &["bodies"],
+    );
+    assert!(!scratch.exists("o.csv"));
 }

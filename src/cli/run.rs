@@ -37,10 +37,15 @@ pub fn run(args: &RunArgs) -> anyhow::Result<()> {
     let scene = Scene::load(&args.scene)?;
     let series = args.csv.clone().or_else(|| scene.output.series.clone());
     let plots = args.plot.clone().or_else(|| scene.output.plots.clone());
-    let recording = match (&series, args.samples) {
-        (None, _) => Recording::Off,
-        (Some(_), None) => Recording::Steps,
-        (Some(_), Some(n)) => Recording::Uniform(n),
+    if args.samples.is_some() && series.is_none() {
+        return Err(BadInput("--samples applies to the series: give --csv FILE (or [output] series)".into()).into());
+    }
+    // One simulation serves both views when it can: figures alone take a uniform history of their own size.
+    let recording = match (&series, args.samples, &plots) {
+        (Some(_), Some(n), _) => Recording::Uniform(n),
+        (Some(_), None, _) => Recording::Steps,
+        (None, _, Some(_)) => Recording::Uniform(FIGURE_SAMPLES),
+        (None, _, None) => Recording::Off,
     };
     let simulation = simulate(&scene, recording)?;
     let written = write_outputs(&scene, &simulation, series.as_deref(), plots.as_deref())?;
@@ -62,12 +67,12 @@ pub fn write_outputs(
 ) -> anyhow::Result<Vec<PathBuf>> {
     let mut written = Vec::new();
     if let (Some(path), Some(history)) = (series, &simulation.history) {
+        // (The caller records a history whenever a series is asked for.)
         output::files::write_atomically(path, output::csv::render(history).as_bytes())?;
         written.push(path.to_path_buf());
     }
     if let Some(folder) = plots {
-        let smooth = matches!(simulation.history.as_ref().map(|h| h.samples.len()), Some(n) if n >= FIGURE_SAMPLES)
-            && series.is_some();
+        let smooth = matches!(simulation.history.as_ref().map(|h| h.samples.len()), Some(n) if n >= FIGURE_SAMPLES);
         let resampled;
         let history = if smooth {
             simulation.history.as_ref().expect("checked above")

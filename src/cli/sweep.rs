@@ -58,10 +58,15 @@ pub(super) fn bad(error: SweepError) -> anyhow::Error {
     }
 }
 
+/// More threads than this only add start-up cost (a machine of this project's kind has 2 cores).
+const MAX_THREADS: usize = 256;
+
 pub fn run(args: &SweepArgs) -> anyhow::Result<()> {
     let shard = args.shard.as_deref().map(Shard::parse).transpose().map_err(bad)?;
-    if args.threads == Some(0) {
-        return Err(BadInput("--threads must be at least 1".into()).into());
+    if let Some(threads) = args.threads
+        && !(1..=MAX_THREADS).contains(&threads)
+    {
+        return Err(BadInput(format!("--threads must be between 1 and {MAX_THREADS}, got {threads}")).into());
     }
     if let Some(plot) = &args.plot {
         if sweep_figure::format_of(plot).is_none() {

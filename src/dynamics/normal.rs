@@ -7,6 +7,10 @@ use super::Scales;
 use crate::integrate::{Model, State};
 use crate::law::ContactLaw;
 
+/// Scaled penetration below zero that still counts as the edge of the contact: event location leaves the
+/// separation state within a few ulps of d = 0 on either side.
+pub const EDGE: f64 = 1e-12;
+
 /// Size of the normal-contact state.
 pub const SIZE: usize = 5;
 
@@ -39,10 +43,14 @@ impl NormalContact {
         y
     }
 
-    /// Scaled contact force (elastic, dissipative) at a state.
+    /// Scaled contact force (elastic, dissipative) at a state. A penetration within [`EDGE`] below zero is the
+    /// located edge of the contact (first contact, or separation found to rounding): its force is the limit from
+    /// inside, which matters for Kelvin–Voigt (c d' there, not 0).
     pub fn force_parts(&self, y: &State<SIZE>) -> (f64, f64) {
         let s = &self.scales;
-        let parts = self.law.split_force(y[index::PENETRATION] * s.length, y[index::RATE] * s.speed);
+        let penetration =
+            if y[index::PENETRATION] > -EDGE { y[index::PENETRATION].max(0.0) } else { y[index::PENETRATION] };
+        let parts = self.law.split_force(penetration * s.length, y[index::RATE] * s.speed);
         (parts.elastic / s.force, parts.dissipative / s.force)
     }
 

@@ -183,9 +183,10 @@ pub const LAWS: [LawInfo; 14] = [
 ];
 
 impl LawKind {
-    /// This law's row of the table.
+    /// This law's row of the table (the rows are in variant order; a test checks it). Constant time: the force
+    /// evaluation asks for the family at every step.
     pub fn info(self) -> &'static LawInfo {
-        LAWS.iter().find(|row| row.kind == self).expect("every law has a row")
+        &LAWS[self as usize]
     }
 
     /// Scene spelling, e.g. `"hunt-crossley"`.
@@ -212,5 +213,18 @@ impl LawKind {
     /// separation criterion matters.
     pub fn can_turn_tensile(self) -> bool {
         matches!(self.family(), Family::Linear | Family::Tsuji | Family::Viscoelastic)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn rows_are_in_variant_order_and_names_are_unique() {
+        for (i, row) in LAWS.iter().enumerate() {
+            assert_eq!(row.kind as usize, i, "row {i} ({})", row.name);
+            assert_eq!(LawKind::from_name(row.name), Some(row.kind));
+        }
     }
 }

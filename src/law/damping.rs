@@ -40,16 +40,21 @@ pub fn hysteresis_chi(kind: LawKind, e: f64) -> Result<f64, MapError> {
     Ok(chi)
 }
 
-/// Kelvin–Voigt damping ratio zeta(e) = -ln e / sqrt(pi² + ln² e), e = 0 -> 1 (critical).
+/// Kelvin–Voigt damping ratio zeta(e) = -ln e / sqrt(pi² + ln² e) (physics.md §3, exact for separation at
+/// d = 0); e = 0 gives 1 (critical, the limit), e = 1 gives 0, and NaN for e outside [0, 1].
 pub fn kelvin_voigt_zeta(e: f64) -> f64 {
-    if e <= 0.0 {
+    if !(0.0..=1.0).contains(&e) {
+        return f64::NAN;
+    }
+    if e == 0.0 {
         return 1.0;
     }
-    let log = e.ln();
-    -log / (PI * PI + log * log).sqrt()
+    let log = -e.ln();
+    log / PI.hypot(log)
 }
 
-/// Tsuji's dimensionless damping a(e) = -sqrt(5) ln e / sqrt(pi² + ln² e) = sqrt(5) zeta(e), e = 0 -> sqrt(5).
+/// Tsuji's dimensionless damping a(e) = -sqrt(5) ln e / sqrt(pi² + ln² e) = sqrt(5) zeta(e) (physics.md §3),
+/// e = 0 -> sqrt(5); NaN for e outside [0, 1].
 pub fn tsuji_damping(e: f64) -> f64 {
     5f64.sqrt() * kelvin_voigt_zeta(e)
 }

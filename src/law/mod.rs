@@ -10,7 +10,7 @@ pub mod damping;
 pub use catalogue::{Family, LawKind};
 
 /// Which event ends the contact (physics.md §1).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum Separation {
     /// The penetration returns to zero (tension allowed before that).
     Penetration,
@@ -60,10 +60,11 @@ impl ForceParts {
 }
 
 impl ContactLaw {
-    /// Force parts at penetration `d` (m) and penetration rate `rate` (m/s). Zero when `d <= 0`, so a step that
-    /// overshoots separation never takes a fractional power of a negative number.
+    /// Force parts at penetration `d` (m) and penetration rate `rate` (m/s). Zero when `d < 0`, so a step that
+    /// overshoots separation never takes a fractional power of a negative number. At `d = 0` it is the limit from
+    /// inside the contact: zero for every law but Kelvin–Voigt, whose force jumps to c d' at first contact.
     pub fn split_force(&self, d: f64, rate: f64) -> ForceParts {
-        if d <= 0.0 {
+        if d < 0.0 {
             return ForceParts { elastic: 0.0, dissipative: 0.0 };
         }
         let (k, c) = (self.stiffness, self.damping);
@@ -94,14 +95,15 @@ impl ContactLaw {
         self.split_force(d, rate).total()
     }
 
-    /// Partial derivatives (dF/dd in N/m, dF/dd' in N s/m) at `d > 0`, for the force-rate event
-    /// dF/dt = F_d d' + F_v d''. Zero when `d <= 0`.
+    /// Partial derivatives (dF/dd in N/m, dF/dd' in N s/m), for the force-rate event dF/dt = F_d d' + F_v d''.
+    /// Zero outside the contact, and at `d = 0` for the power laws (whose gradient is singular there).
     pub fn force_gradient(&self, d: f64, rate: f64) -> (f64, f64) {
-        if d <= 0.0 {
+        let (k, c, n) = (self.stiffness, self.damping, self.exponent);
+        let family = self.kind.family();
+        if d < 0.0 || (d == 0.0 && family != Family::Linear) {
             return (0.0, 0.0);
         }
-        let (k, c, n) = (self.stiffness, self.damping, self.exponent);
-        match self.kind.family() {
+        match family {
             Family::Elastic => (k * n * d.powf(n - 1.0), 0.0),
             Family::Hysteresis => {
                 let spring = k * d.powf(n);

@@ -87,7 +87,8 @@ fn draw<DB: DrawingBackend<ErrorType: 'static>>(
     drawn.map_err(|e| anyhow!("cannot draw {name}: {e}"))
 }
 
-type Drawn = Result<(), Box<dyn std::error::Error>>;
+/// What drawing a figure gives: nothing, or plotters' error.
+pub type Drawn = Result<(), Box<dyn std::error::Error>>;
 
 /// Four decimals, without a minus sign on a value that rounds to zero.
 fn fixed(value: f64) -> String {
@@ -276,7 +277,8 @@ fn velocities<DB: DrawingBackend<ErrorType: 'static>>(
     legend(&mut chart, SeriesLabelPosition::UpperRight)
 }
 
-fn legend<'a, DB: DrawingBackend<ErrorType: 'static> + 'a, X: Ranged, Y: Ranged>(
+/// The legend box every figure of the project uses, at `position`.
+pub fn legend<'a, DB: DrawingBackend<ErrorType: 'static> + 'a, X: Ranged, Y: Ranged>(
     chart: &mut ChartContext<'a, DB, Cartesian2d<X, Y>>,
     position: SeriesLabelPosition,
 ) -> Drawn {

@@ -213,12 +213,5 @@ where
         }
     }
     let position = if figure.diagonal { SeriesLabelPosition::LowerRight } else { SeriesLabelPosition::UpperRight };
-    chart
-        .configure_series_labels()
-        .background_style(WHITE.mix(0.85))
-        .border_style(BLACK)
-        .label_font((FONT, 16))
-        .position(position)
-        .draw()?;
-    Ok(())
+    super::figures::legend(&mut chart, position)
 }

@@ -153,23 +153,10 @@ fn max_force(osc: &UnitOscillator) -> f64 {
     }
 }
 
-/// Damping ratio giving restitution `e` with separation at `d = 0` (physics.md §3):
-/// `zeta = -ln e / sqrt(pi² + ln² e)`; `e = 0` gives 1 (the limit), `e = 1` gives 0.
-/// NaN for `e < 0`, `e > 1` or NaN.
-pub fn kelvin_voigt_zeta(e: f64) -> f64 {
-    if !(0.0..=1.0).contains(&e) {
-        return f64::NAN;
-    }
-    if e == 0.0 {
-        return 1.0;
-    }
-    let l = -e.ln();
-    l / PI.hypot(l)
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::law::damping::kelvin_voigt_zeta;
     use SeparationCriterion::{Force, Penetration};
 
     fn rel(a: f64, b: f64) -> f64 {

@@ -16,13 +16,14 @@ mod kelvin_voigt;
 mod numerics;
 mod tsuji;
 
+pub use crate::law::damping::{kelvin_voigt_zeta, tsuji_damping};
 pub use brilliantov::{brilliantov_c1, brilliantov_c2, brilliantov_restitution_series};
 pub use hertz::hertz_elastic;
 pub use hunt_crossley::{hunt_crossley_chi, hunt_crossley_restitution};
 pub use hysteresis::hysteresis_contact;
-pub use kelvin_voigt::{kelvin_voigt, kelvin_voigt_zeta};
+pub use kelvin_voigt::kelvin_voigt;
 pub use numerics::beta;
-pub use tsuji::{tsuji, tsuji_damping};
+pub use tsuji::tsuji;
 
 /// Nondimensional exact values of one impact (units `L`, `T`, `F0` of the module docs; restitution dimensionless).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -51,12 +52,5 @@ impl ContactReference {
     };
 }
 
-/// Which event ends the contact (physics.md §1): penetration back to zero, or the force back to zero.
-/// They differ only for laws whose force turns tensile (Kelvin–Voigt, Tsuji, Brilliantov).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub enum SeparationCriterion {
-    /// Separation where `d` returns to 0 (tensile force allowed before that).
-    Penetration,
-    /// Separation where the force returns to 0.
-    Force,
-}
+/// Which event ends the contact (physics.md §1); the law module's type, under the name this module always used.
+pub use crate::law::Separation as SeparationCriterion;

@@ -5,7 +5,7 @@
 //! `s = omega0 tau`, `omega0 = sqrt(5)/2`, this is the unit Kelvin–Voigt oscillator with `zeta = a/sqrt(5)`:
 //! `w = omega0 D(s)`, `d' = D'(s)`, `dt = omega0^(-6/5) D^(-1/5) ds`, `F = omega0^(6/5) D^(1/5) (D + 2 zeta D')`.
 
-use super::kelvin_voigt::{UnitOscillator, kelvin_voigt_zeta};
+use super::kelvin_voigt::UnitOscillator;
 use super::numerics::{bisect, integrate};
 use super::{ContactReference, SeparationCriterion};
 
@@ -41,13 +41,6 @@ pub fn tsuji(a: f64, separation: SeparationCriterion) -> Option<ContactReference
         duration: time_unit * time_integral(&osc, s_end),
         max_force: OMEGA0_SQ.powf(0.6) * max_scaled_force(&osc),
     })
-}
-
-/// Damping coefficient of the Tsuji law for a nominal restitution `e` (physics.md §3):
-/// `a = -sqrt(5) ln e / sqrt(pi² + ln² e)` (exact for separation at `d = 0`); `e = 0` gives `sqrt(5)`.
-/// NaN for `e` outside `[0, 1]` or NaN.
-pub fn tsuji_damping(e: f64) -> f64 {
-    5.0_f64.sqrt() * kelvin_voigt_zeta(e)
 }
 
 /// `∫_0^{s_end} D(s)^(-1/5) ds`. Near `s = 0` (`D ~ s`) the substitution `s = sigma^5` gives the bounded
@@ -95,6 +88,7 @@ fn max_scaled_force(osc: &UnitOscillator) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::law::damping::tsuji_damping;
     use SeparationCriterion::{Force, Penetration};
 
     #[test]

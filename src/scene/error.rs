@@ -14,12 +14,15 @@ pub struct SceneError {
     pub line: Option<usize>,
     /// What is wrong and what was expected.
     pub message: String,
+    /// Whether the file's form is wrong (TOML syntax, an unknown key, a value of the wrong type, missing tables),
+    /// as opposed to a value out of its range: no sweep over values can mend such a file.
+    pub form: bool,
 }
 
 impl SceneError {
     /// An error about the file as a whole.
     pub fn file(path: &Path, message: impl Into<String>) -> SceneError {
-        SceneError { file: path.display().to_string(), key: None, line: None, message: message.into() }
+        SceneError { file: path.display().to_string(), key: None, line: None, message: message.into(), form: true }
     }
 }
 

@@ -31,6 +31,8 @@ impl Source<'_> {
             key: Some(key.to_string()),
             line: span.map(|s| self.line(s)),
             message: message.into(),
+            // Missing tables, a wrong number of bodies, a bad separation word: nothing a sweep's numbers can set.
+            form: matches!(key, "bodies" | "contact" | "contact.separation"),
         }
     }
 
@@ -204,7 +206,7 @@ pub fn scene(text: &str, path: &Path) -> Checked<Scene> {
     let scene = Scene { title, bodies: [first, second], contact, solver, output };
     Setup::new(&scene).map_err(|error| {
         let line = src.line_of_key(&error.key);
-        SceneError { file: src.file.clone(), key: Some(error.key), line, message: error.message }
+        SceneError { file: src.file.clone(), key: Some(error.key), line, message: error.message, form: false }
     })?;
     Ok(scene)
 }
@@ -214,7 +216,7 @@ fn parse_error(src: &Source, error: &toml::de::Error) -> SceneError {
     let line = span.as_ref().map(|s| src.line(s));
     let key = line.and_then(|n| src.key_on_line(n));
     let message = error.message().trim().replace('\n', " ");
-    SceneError { file: src.file.clone(), key, line, message }
+    SceneError { file: src.file.clone(), key, line, message, form: true }
 }
 
 fn body(src: &Source, i: usize, raw: &At<RawBody>) -> Checked<Body> {

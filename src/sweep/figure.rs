@@ -12,6 +12,7 @@
 //! axis is logarithmic when every x is positive and they span a factor of 100 or more.
 
 use super::SweepError;
+use super::key::SceneKey;
 use super::table::split;
 use crate::output::sweep_figure::{Curve, SweepFigure};
 
@@ -30,7 +31,7 @@ pub fn from_csv(text: &str) -> Result<SweepFigure, SweepError> {
     let keys: Vec<usize> = (0..header.len()).filter(|&i| header[i].contains('.')).collect();
     let Some(&first) = keys.first() else { return Err(SweepError::Usage("the CSV has no varied key column".into())) };
     let key = header[first].as_str();
-    let velocity = key.starts_with("bodies.") && key.contains(".velocity.");
+    let velocity = SceneKey::parse(key).is_ok_and(|k| k.is_velocity());
     let x = if velocity { speed } else { first };
 
     let mut curves: Vec<(Vec<String>, Curve)> = Vec::new();

@@ -76,7 +76,13 @@ fn parse_range(spec: &str, range: &str, default: Spacing) -> Result<Vec<f64>, Sw
     let start = number(bounds[0], "START", spec)?;
     let stop = number(bounds[1], "STOP", spec)?;
     let count = match bounds[2].trim().parse::<usize>() {
-        Ok(count) if count >= 1 => count,
+        Ok(count) if (1..=super::MAX_ROWS).contains(&count) => count,
+        Ok(count) if count > super::MAX_ROWS => {
+            return Err(usage(format!(
+                "--vary {spec}: COUNT {count} is more than a sweep may have ({})",
+                super::MAX_ROWS
+            )));
+        }
         _ => return Err(usage(format!("--vary {spec}: COUNT `{}` is not a whole number >= 1", bounds[2]))),
     };
     if count == 1 && start != stop {

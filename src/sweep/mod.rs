@@ -89,6 +89,13 @@ impl Sweep {
         if grid.axes.is_empty() {
             return Err(SweepError::Usage("give at least one --vary KEY=START:STOP:COUNT".into()));
         }
+        // A scene whose form is wrong (unknown keys, wrong types, missing tables) fails at every point: it is a bad
+        // scene (exit 2), not a sweep of error rows. Bad values are left to the points, which may set them.
+        if let Err(error) = Scene::parse(&text, path)
+            && error.form
+        {
+            return Err(error.into());
+        }
         for axis in &grid.axes {
             axis.key.check_in(&document)?;
         }
