@@ -27,12 +27,15 @@ pub fn render(report: &Report) -> String {
     let law = &report.law;
     let c = &report.contact;
     let mut text = format!("{}\n", report.title);
+    // The law's formula and units are catalogue facts, looked up by name (no physics is computed here).
+    let info = crate::law::LawKind::from_name(&law.name).map(|kind| kind.info());
+    let _ = writeln!(text, "law {}: F = {}", law.name, info.map_or("?", |i| i.formula));
     let _ = writeln!(
         text,
-        "law {} (n = {}, K = {} , damping = {}, nominal e = {}, separation at zero {})",
-        law.name,
-        law.exponent,
+        "  K = {} N/m^{}, damping {} = {}, nominal e = {}, the contact ends where the {} returns to zero",
         number(law.stiffness),
+        law.exponent,
+        info.map_or("", |i| i.damping_units),
         number(law.damping),
         law.restitution_nominal.map_or("—".into(), |e| e.to_string()),
         law.separation
