@@ -31,8 +31,12 @@ pub struct Crossing<const N: usize> {
     pub state: State<N>,
 }
 
+/// Most events one run may watch (the stepper keeps their last values in a fixed array, off the heap).
+pub const MAX_EVENTS: usize = 8;
+
 impl<const N: usize> Event<'_, N> {
-    fn value(&self, y: &State<N>) -> f64 {
+    /// The event function signed so that the event is a fall through zero.
+    pub(crate) fn value(&self, y: &State<N>) -> f64 {
         let g = (self.function)(y);
         match self.direction {
             Direction::Falling => g,
@@ -41,9 +45,14 @@ impl<const N: usize> Event<'_, N> {
     }
 
     /// Whether the event function crosses zero in its direction between two points.
-    pub fn crosses(&self, _t0: f64, y0: &State<N>, _t1: f64, y1: &State<N>) -> bool {
-        self.value(y0) > 0.0 && self.value(y1) <= 0.0
+    pub fn crosses(&self, y0: &State<N>, y1: &State<N>) -> bool {
+        falls(self.value(y0), self.value(y1))
     }
+}
+
+/// Whether a signed event value falls through zero from `before` to `after`.
+pub(crate) fn falls(before: f64, after: f64) -> bool {
+    before > 0.0 && after <= 0.0
 }
 
 /// A point of the solution with its derivative: (time, state, state').

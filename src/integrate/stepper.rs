@@ -1,6 +1,6 @@
 //! The Dop853 adapter: runs between events, re-steps for event location, counts work.
 
-use super::events::{Crossing, Event, Point, locate};
+use super::events::{Crossing, Event, MAX_EVENTS, Point, falls, locate};
 use super::{IntegrationError, Model, State};
 use ode_solvers::dop853::Dop853;
 use ode_solvers::{OutputType, System};
@@ -72,6 +72,8 @@ pub struct Stepper<'m, M, const N: usize> {
 struct Watch<'w, 'e, const N: usize> {
     events: &'w [Event<'e, N>],
     previous: Point<N>,
+    /// The events' values at `previous`, so each accepted step evaluates every event function once.
+    previous_values: [f64; MAX_EVENTS],
     bracket: Option<(Point<N>, Point<N>)>,
     record: Option<&'w mut Vec<(f64, State<N>)>>,
 }
@@ -92,14 +94,18 @@ impl<M: Model<N>, const N: usize> System<f64, State<N>> for Adapter<'_, '_, '_, 
         if let Some(record) = watch.record.as_deref_mut() {
             record.push((t, *y));
         }
-        let (t0, y0, _) = watch.previous;
-        let crossed = watch.events.iter().any(|event| event.crosses(t0, &y0, t, y));
+        let mut values = [0.0; MAX_EVENTS];
+        for (value, event) in values.iter_mut().zip(watch.events) {
+            *value = event.value(y);
+        }
+        let crossed = values.iter().zip(&watch.previous_values).take(watch.events.len()).any(|(&v, &p)| falls(p, v));
         let current = (t, *y, *dy);
         if crossed {
             watch.bracket = Some((watch.previous, current));
             return true;
         }
         watch.previous = current;
+        watch.previous_values = values;
         false
     }
 }
@@ -168,7 +174,7 @@ impl<'m, M: Model<N>, const N: usize> Stepper<'m, M, N> {
             };
             let mut located: Vec<(usize, Crossing<N>)> = Vec::new();
             for (index, event) in events.iter().enumerate() {
-                if event.crosses(left.0, &left.1, right.0, &right.1) {
+                if event.crosses(&left.1, &right.1) {
                     let crossing = locate(event, index, &left, &right, |t| self.step_to(&left, t))?;
                     located.push((index, crossing));
                 }
@@ -205,7 +211,12 @@ impl<'m, M: Model<N>, const N: usize> Stepper<'m, M, N> {
         events: &[Event<'_, N>],
     ) -> Result<(f64, State<N>, Option<(Point<N>, Point<N>)>, f64, Option<String>), IntegrationError> {
         let mut record = self.record.take();
-        let mut watch = Watch { events, previous: start, bracket: None, record: record.as_mut() };
+        assert!(events.len() <= MAX_EVENTS, "at most {MAX_EVENTS} events per run");
+        let mut previous_values = [0.0; MAX_EVENTS];
+        for (value, event) in previous_values.iter_mut().zip(events) {
+            *value = event.value(&start.1);
+        }
+        let mut watch = Watch { events, previous: start, previous_values, bracket: None, record: record.as_mut() };
         let (t, y) = (start.0, start.1);
         let adapter = Adapter { model: self.model, watch: Some(&mut watch) };
         let budget = STEP_BUDGET.saturating_sub(self.counters.steps + self.counters.rejected_steps);

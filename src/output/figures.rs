@@ -90,6 +90,17 @@ fn draw<DB: DrawingBackend<ErrorType: 'static>>(
 /// What drawing a figure gives: nothing, or plotters' error.
 pub type Drawn = Result<(), Box<dyn std::error::Error>>;
 
+/// A chart builder with the project's title, margins and axis areas; the caller picks the axes.
+pub fn frame<'a, 'b, DB: DrawingBackend>(
+    root: &'a DrawingArea<DB, Shift>,
+    title: &str,
+    title_size: u32,
+) -> ChartBuilder<'a, 'b, DB> {
+    let mut builder = ChartBuilder::on(root);
+    builder.caption(title, (FONT, title_size)).margin(20).x_label_area_size(55).y_label_area_size(80);
+    builder
+}
+
 /// Four decimals, without a minus sign on a value that rounds to zero.
 fn fixed(value: f64) -> String {
     let text = format!("{value:.4}");
@@ -112,12 +123,7 @@ fn force_time<DB: DrawingBackend<ErrorType: 'static>>(
     let (ff, fp) = prefix(c.max_force);
     let low = history.samples.iter().map(|s| s.force).fold(0.0, f64::min);
     let (x_max, y_max, y_min) = ((end - start) / tf, c.max_force / ff * 1.08, (low / ff * 1.08).min(0.0));
-    let mut chart = ChartBuilder::on(root)
-        .caption(caption(report, "contact force"), (FONT, 22))
-        .margin(20)
-        .x_label_area_size(55)
-        .y_label_area_size(80)
-        .build_cartesian_2d(0.0..x_max, y_min..y_max)?;
+    let mut chart = frame(root, &caption(report, "contact force"), 22).build_cartesian_2d(0.0..x_max, y_min..y_max)?;
     chart
         .configure_mesh()
         .x_desc(format!("time since first contact ({tp}s)"))
@@ -161,11 +167,7 @@ fn force_penetration<DB: DrawingBackend<ErrorType: 'static>>(
     let (df, dp) = prefix(c.max_penetration);
     let (ff, fp) = prefix(c.max_force);
     let low = history.samples.iter().map(|s| s.force).fold(0.0, f64::min);
-    let mut chart = ChartBuilder::on(root)
-        .caption(caption(report, "force against penetration"), (FONT, 22))
-        .margin(20)
-        .x_label_area_size(55)
-        .y_label_area_size(80)
+    let mut chart = frame(root, &caption(report, "force against penetration"), 22)
         .build_cartesian_2d(0.0..c.max_penetration / df * 1.05, (low / ff * 1.08).min(0.0)..c.max_force / ff * 1.08)?;
     chart
         .configure_mesh()
@@ -232,11 +234,7 @@ fn velocities<DB: DrawingBackend<ErrorType: 'static>>(
     let pad = 0.08 * (high - low).max(1e-12);
     // Headroom above the curves for the legend, so it never hides the crossing at V0.
     let headroom = 0.6 * (high - low).max(1e-12);
-    let mut chart = ChartBuilder::on(root)
-        .caption(caption(report, "normal velocities"), (FONT, 22))
-        .margin(20)
-        .x_label_area_size(55)
-        .y_label_area_size(80)
+    let mut chart = frame(root, &caption(report, "normal velocities"), 22)
         .build_cartesian_2d(0.0..(end - start) / tf, (low - pad)..(high + headroom))?;
     chart
         .configure_mesh()

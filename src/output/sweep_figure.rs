@@ -164,12 +164,7 @@ where
 {
     let (x0, x1) = figure.x_range();
     let (y0, y1) = figure.y_range();
-    let mut chart = ChartBuilder::on(root)
-        .caption(&figure.title, (FONT, 26))
-        .margin(20)
-        .x_label_area_size(55)
-        .y_label_area_size(80)
-        .build_cartesian_2d(x_axis, y0..y1)?;
+    let mut chart = super::figures::frame(root, &figure.title, 26).build_cartesian_2d(x_axis, y0..y1)?;
     chart
         .configure_mesh()
         .x_desc(figure.x_label.as_str())

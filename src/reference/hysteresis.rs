@@ -208,26 +208,10 @@ mod tests {
         }
     }
 
-    /// Classical RK4 on `d'' = -d^n (1 + x d')` from `d = 0`, `d' = 1` until `d` returns to 0 (crossing located by
-    /// linear interpolation): returns `(tc, e)`. An independent check of the quadrature at large `x`.
+    /// RK4 on `d'' = -d^n (1 + x d')` until `d` returns to 0: `(tc, e)`, an independent check of the quadrature.
     fn rk4_contact(x: f64, n: f64, dt: f64) -> (f64, f64) {
-        let f = |d: f64, v: f64| (v, -d.max(0.0).powf(n) * (1.0 + x * v));
-        let (mut t, mut d, mut v) = (0.0, 0.0, 1.0);
-        loop {
-            let k1 = f(d, v);
-            let k2 = f(d + 0.5 * dt * k1.0, v + 0.5 * dt * k1.1);
-            let k3 = f(d + 0.5 * dt * k2.0, v + 0.5 * dt * k2.1);
-            let k4 = f(d + dt * k3.0, v + dt * k3.1);
-            let dn = d + dt / 6.0 * (k1.0 + 2.0 * k2.0 + 2.0 * k3.0 + k4.0);
-            let vn = v + dt / 6.0 * (k1.1 + 2.0 * k2.1 + 2.0 * k3.1 + k4.1);
-            if t > 0.0 && dn <= 0.0 {
-                let frac = d / (d - dn);
-                return (t + frac * dt, -(v + frac * (vn - v)));
-            }
-            t += dt;
-            d = dn;
-            v = vn;
-        }
+        let (tc, rate) = super::super::numerics::rk4_until(|d, v| -d.max(0.0).powf(n) * (1.0 + x * v), |d, _| d, dt);
+        (tc, -rate)
     }
 
     #[test]

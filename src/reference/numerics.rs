@@ -120,6 +120,31 @@ pub(crate) fn bisect(f: impl Fn(f64) -> f64, mut lo: f64, mut hi: f64) -> f64 {
     lo + 0.5 * (hi - lo)
 }
 
+/// Test-only independent check: classical RK4 with step `dt` on d'' = `acceleration(d, d')` from d = 0, d' = 1,
+/// until `event(d, d')` falls to zero after the start (located by linear interpolation in the step).
+/// Returns the time and d' there.
+#[cfg(test)]
+pub fn rk4_until(acceleration: impl Fn(f64, f64) -> f64, event: impl Fn(f64, f64) -> f64, dt: f64) -> (f64, f64) {
+    let f = |d: f64, v: f64| (v, acceleration(d, v));
+    let (mut t, mut d, mut v) = (0.0, 0.0, 1.0);
+    loop {
+        let k1 = f(d, v);
+        let k2 = f(d + 0.5 * dt * k1.0, v + 0.5 * dt * k1.1);
+        let k3 = f(d + 0.5 * dt * k2.0, v + 0.5 * dt * k2.1);
+        let k4 = f(d + dt * k3.0, v + dt * k3.1);
+        let dn = d + dt / 6.0 * (k1.0 + 2.0 * k2.0 + 2.0 * k3.0 + k4.0);
+        let vn = v + dt / 6.0 * (k1.1 + 2.0 * k2.1 + 2.0 * k3.1 + k4.1);
+        let (g0, g1) = (event(d, v), event(dn, vn));
+        if t > 0.0 && g1 <= 0.0 {
+            let frac = g0 / (g0 - g1);
+            return (t + frac * dt, v + frac * (vn - v));
+        }
+        t += dt;
+        d = dn;
+        v = vn;
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -140,25 +140,8 @@ mod tests {
         // Duration against classical RK4 on d'' = -d^(3/2) - a d^(1/4) d' until F = 0 (dt = 2.5e-4; the d^(1/4)
         // kink at contact limits it to ~3e-6).
         let a = 3.0;
-        let f = |d: f64, v: f64| (v, -d.max(0.0).powf(1.5) - a * d.max(0.0).powf(0.25) * v);
         let force = |d: f64, v: f64| d.max(0.0).powf(1.5) + a * d.max(0.0).powf(0.25) * v;
-        let dt = 2.5e-4;
-        let (mut t, mut d, mut v) = (0.0, 0.0, 1.0_f64);
-        let tc = loop {
-            let k1 = f(d, v);
-            let k2 = f(d + 0.5 * dt * k1.0, v + 0.5 * dt * k1.1);
-            let k3 = f(d + 0.5 * dt * k2.0, v + 0.5 * dt * k2.1);
-            let k4 = f(d + dt * k3.0, v + dt * k3.1);
-            let dn = d + dt / 6.0 * (k1.0 + 2.0 * k2.0 + 2.0 * k3.0 + k4.0);
-            let vn = v + dt / 6.0 * (k1.1 + 2.0 * k2.1 + 2.0 * k3.1 + k4.1);
-            let (f0, f1) = (force(d, v), force(dn, vn));
-            if t > 0.0 && f1 <= 0.0 {
-                break t + f0 / (f0 - f1) * dt;
-            }
-            t += dt;
-            d = dn;
-            v = vn;
-        };
+        let (tc, _) = super::super::numerics::rk4_until(|d, v| -force(d, v), force, 2.5e-4);
         assert!((r.duration - tc).abs() < 1e-5, "{} vs {tc}", r.duration);
     }
 

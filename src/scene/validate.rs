@@ -114,7 +114,7 @@ fn split_key(key: &str) -> (&str, Option<usize>, &str) {
 
 /// What a number may be.
 #[derive(Clone, Copy)]
-enum Range_ {
+enum Allowed {
     /// Finite and > 0.
     Positive,
     /// > 0, `+inf` allowed (mass, radius, young).
@@ -127,7 +127,7 @@ enum Range_ {
     Any,
 }
 
-fn number(src: &Source, key: &str, value: &At<f64>, range: Range_) -> Checked<f64> {
+fn number(src: &Source, key: &str, value: &At<f64>, range: Allowed) -> Checked<f64> {
     let x = *value.get_ref();
     let span = Some(value.span());
     let span = span.as_ref();
@@ -138,21 +138,21 @@ fn number(src: &Source, key: &str, value: &At<f64>, range: Range_) -> Checked<f6
         return Err(src.error(key, span, "-inf is not a valid value"));
     }
     let ok = match range {
-        Range_::Positive => x.is_finite() && x > 0.0,
-        Range_::PositiveOrInfinite => x > 0.0,
-        Range_::NonNegative => x.is_finite() && x >= 0.0,
-        Range_::Fraction => (0.0..=1.0).contains(&x),
-        Range_::Any => x.is_finite(),
+        Allowed::Positive => x.is_finite() && x > 0.0,
+        Allowed::PositiveOrInfinite => x > 0.0,
+        Allowed::NonNegative => x.is_finite() && x >= 0.0,
+        Allowed::Fraction => (0.0..=1.0).contains(&x),
+        Allowed::Any => x.is_finite(),
     };
     if ok {
         return Ok(x);
     }
     let expected = match range {
-        Range_::Positive => "a finite number > 0",
-        Range_::PositiveOrInfinite => "a number > 0 (or inf)",
-        Range_::NonNegative => "a finite number >= 0",
-        Range_::Fraction => "a number in [0, 1]",
-        Range_::Any => "a finite number",
+        Allowed::Positive => "a finite number > 0",
+        Allowed::PositiveOrInfinite => "a number > 0 (or inf)",
+        Allowed::NonNegative => "a finite number >= 0",
+        Allowed::Fraction => "a number in [0, 1]",
+        Allowed::Any => "a finite number",
     };
     let got = if x.is_infinite() { "inf".to_string() } else { x.to_string() };
     Err(src.error(key, span, format!("expected {expected}, got {got}")))
@@ -225,16 +225,16 @@ fn body(src: &Source, i: usize, raw: &At<RawBody>) -> Checked<Body> {
     let raw = raw.get_ref();
     let missing = |leaf: &str, what: &str| src.error(&key(leaf), Some(&table), format!("missing: {what}"));
     let radius = match &raw.radius {
-        Some(r) => number(src, &key("radius"), r, Range_::PositiveOrInfinite)?,
+        Some(r) => number(src, &key("radius"), r, Allowed::PositiveOrInfinite)?,
         None => return Err(missing("radius", "give `radius` in m (inf for a flat wall)")),
     };
     let mass = match (&raw.mass, &raw.density) {
         (Some(_), Some(d)) => {
             return Err(src.error(&key("density"), Some(&d.span()), "give `mass` or `density`, not both"));
         }
-        (Some(m), None) => number(src, &key("mass"), m, Range_::PositiveOrInfinite)?,
+        (Some(m), None) => number(src, &key("mass"), m, Allowed::PositiveOrInfinite)?,
         (None, Some(d)) => {
-            let density = number(src, &key("density"), d, Range_::Positive)?;
+            let density = number(src, &key("density"), d, Allowed::Positive)?;
             if radius.is_infinite() {
                 return Err(src.error(
                     &key("density"),
@@ -265,8 +265,8 @@ fn body(src: &Source, i: usize, raw: &At<RawBody>) -> Checked<Body> {
         }
         None => Vector3::zeros(),
     };
-    let young = raw.young.as_ref().map(|e| number(src, &key("young"), e, Range_::PositiveOrInfinite)).transpose()?;
-    let poisson = raw.poisson.as_ref().map(|nu| number(src, &key("poisson"), nu, Range_::Any)).transpose()?;
+    let young = raw.young.as_ref().map(|e| number(src, &key("young"), e, Allowed::PositiveOrInfinite)).transpose()?;
+    let poisson = raw.poisson.as_ref().map(|nu| number(src, &key("poisson"), nu, Allowed::Any)).transpose()?;
     if let (Some(nu), Some(at)) = (poisson, &raw.poisson)
         && !(nu > -1.0 && nu <= 0.5)
     {
@@ -310,7 +310,7 @@ fn contact_spec(src: &Source, raw: &At<RawContact>) -> Checked<ContactSpec> {
         },
     };
     let friction =
-        raw.friction.as_ref().map(|f| number(src, "contact.friction", f, Range_::NonNegative)).transpose()?;
+        raw.friction.as_ref().map(|f| number(src, "contact.friction", f, Allowed::NonNegative)).transpose()?;
     if let (Some(mu), Some(at)) = (friction, &raw.friction)
         && mu > 0.0
     {
@@ -336,8 +336,8 @@ fn contact_spec(src: &Source, raw: &At<RawContact>) -> Checked<ContactSpec> {
 
 fn damping_spec(src: &Source, law: LawKind, raw: &RawContact, table: &Range<usize>) -> Checked<DampingSpec> {
     let restitution =
-        raw.restitution.as_ref().map(|e| number(src, "contact.restitution", e, Range_::Fraction)).transpose()?;
-    let damping = raw.damping.as_ref().map(|c| number(src, "contact.damping", c, Range_::NonNegative)).transpose()?;
+        raw.restitution.as_ref().map(|e| number(src, "contact.restitution", e, Allowed::Fraction)).transpose()?;
+    let damping = raw.damping.as_ref().map(|c| number(src, "contact.damping", c, Allowed::NonNegative)).transpose()?;
     let name = law.name();
     let restitution_span = raw.restitution.as_ref().map(|e| e.span());
     match (law.family(), restitution, damping) {
@@ -392,7 +392,7 @@ fn stiffness_and_exponent(
             toml::Value::Float(_) | toml::Value::Integer(_) => {
                 let k = value.get_ref().as_float().or_else(|| value.get_ref().as_integer().map(|i| i as f64));
                 let k = At::new(value.span(), k.unwrap_or(f64::NAN));
-                StiffnessSpec::Value(number(src, "contact.stiffness", &k, Range_::Positive)?)
+                StiffnessSpec::Value(number(src, "contact.stiffness", &k, Allowed::Positive)?)
             }
             other => {
                 return Err(src.error(
@@ -403,7 +403,7 @@ fn stiffness_and_exponent(
             }
         },
     };
-    let exponent = raw.exponent.as_ref().map(|n| number(src, "contact.exponent", n, Range_::Positive)).transpose()?;
+    let exponent = raw.exponent.as_ref().map(|n| number(src, "contact.exponent", n, Allowed::Positive)).transpose()?;
     let exponent_span = raw.exponent.as_ref().map(|n| n.span());
     let bad_exponent = |message: &str| src.error("contact.exponent", exponent_span.as_ref(), message);
     let family = law.family();
@@ -435,7 +435,7 @@ fn solver(src: &Source, raw: &RawSolver) -> Checked<Tolerances> {
     let defaults = Tolerances::default();
     let tolerance = |key: &str, value: &Option<At<f64>>, default: f64| -> Checked<f64> {
         let Some(value) = value else { return Ok(default) };
-        let x = number(src, key, value, Range_::Positive)?;
+        let x = number(src, key, value, Allowed::Positive)?;
         if !(1e-14..=1e-2).contains(&x) {
             return Err(src.error(
                 key,
