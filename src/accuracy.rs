@@ -1,7 +1,6 @@
 //! The simulation measured against exact references (physics.md §3–4), where the law has them: the report's
 //! `reference` section.
 
-use crate::impact::Measured;
 use crate::instantaneous::direct_impact;
 use crate::law::{Family, Separation};
 
@@ -9,6 +8,23 @@ use crate::reference::{self, ContactReference};
 use crate::report::{ReferenceErrors, ReferenceReport};
 use crate::scene::Scene;
 use crate::setup::Setup;
+
+/// The simulated values that exact references are compared with, in SI units.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Measured {
+    /// Velocity ratio e (None when not separated).
+    pub restitution: Option<f64>,
+    /// m.
+    pub max_penetration: f64,
+    /// s after first contact.
+    pub max_compression_time: f64,
+    /// s (None when not separated).
+    pub duration: Option<f64>,
+    /// N.
+    pub max_force: f64,
+    /// V0 read off the simulated impulse, m/s.
+    pub common_normal_velocity: f64,
+}
 
 /// Largest alpha v0 for which the hysteresis-family reference is reported.
 const MAX_HYSTERESIS_X: f64 = 1e8;

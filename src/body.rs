@@ -18,8 +18,11 @@ pub struct Body {
     pub velocity: Vector3<f64>,
     /// Position of the centre (or of a point of the wall's plane), m, when the scene gives positions.
     pub position: Option<Vector3<f64>>,
-    /// Angular velocity before contact, rad/s.
+    /// Angular velocity before contact, rad/s (right-handed).
     pub angular_velocity: Vector3<f64>,
+    /// Moment of inertia about any axis through the centre, kg m²: the scene's `inertia`, or (2/5) m r² for a solid
+    /// sphere; infinite for an immovable body and for a flat body (a wall translates but does not rotate).
+    pub inertia: f64,
     /// Young's modulus in Pa (`f64::INFINITY` for a rigid body); needed only for Hertz stiffness.
     pub young: Option<f64>,
     /// Poisson's ratio; needed only for Hertz stiffness.
@@ -42,9 +45,20 @@ impl Body {
         self.radius.is_infinite()
     }
 
-    /// Moment of inertia of a solid sphere, (2/5) m r², in kg m²; infinite for walls and immovable bodies.
-    pub fn moment_of_inertia(&self) -> f64 {
-        0.4 * self.mass * self.radius * self.radius
+    /// Moment of inertia of a solid sphere of this mass and radius, (2/5) m r², in kg m²; infinite for walls and
+    /// immovable bodies (the default of the scene's `inertia`).
+    pub fn solid_sphere_inertia(mass: f64, radius: f64) -> f64 {
+        if mass.is_infinite() || radius.is_infinite() { f64::INFINITY } else { 0.4 * mass * radius * radius }
+    }
+
+    /// 1/I in 1/(kg m²): zero for a body that does not rotate (immovable or flat).
+    pub fn inverse_inertia(&self) -> f64 {
+        1.0 / self.inertia
+    }
+
+    /// Whether the contact can change the body's spin (finite mass, finite radius, finite inertia).
+    pub fn rotates(&self) -> bool {
+        self.inertia.is_finite()
     }
 
     /// Kinetic energy (translation and rotation) in J for a velocity and angular velocity; 0 for an immovable body.
@@ -54,8 +68,8 @@ impl Body {
         }
         let translation = 0.5 * self.mass * velocity.norm_squared();
         let spin = angular_velocity.norm_squared();
-        // A flat body of finite mass cannot spin in a scene (validation forbids it); 0 * inf is avoided.
-        let rotation = if spin == 0.0 { 0.0 } else { 0.5 * self.moment_of_inertia() * spin };
+        // A flat body cannot spin in a scene (validation forbids it); 0 * inf is avoided.
+        let rotation = if spin == 0.0 { 0.0 } else { 0.5 * self.inertia * spin };
         translation + rotation
     }
 

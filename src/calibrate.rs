@@ -23,7 +23,6 @@
 
 use crate::body::Body;
 use crate::impact::{SimulationError, simulate};
-use crate::integrate::Tolerances;
 use crate::law::damping::{damping_for_restitution, hysteresis_chi};
 use crate::law::{Family, LawKind, Separation};
 use crate::reference::{self, SeparationCriterion, brilliantov_c1};
@@ -385,6 +384,7 @@ pub fn default_scene(law: LawKind, approach_speed: f64, separation: Separation) 
         velocity: Vector3::new(speed, 0.0, 0.0),
         position: None,
         angular_velocity: Vector3::zeros(),
+        inertia: Body::solid_sphere_inertia(mass, radius),
         young: None,
         poisson: None,
     };
@@ -399,9 +399,11 @@ pub fn default_scene(law: LawKind, approach_speed: f64, separation: Separation) 
             exponent,
             separation,
             friction: 0.0,
+            tangential_stiffness: crate::scene::TangentialStiffnessSpec::Mindlin,
+            tangential_damping: 0.0,
             normal: None,
         },
-        solver: Tolerances::default(),
+        solver: crate::scene::SolverSpec::default(),
         output: OutputSpec::default(),
     }
 }

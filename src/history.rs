@@ -1,8 +1,7 @@
 //! The recorded contact history, in SI units: every accepted integrator step plus the located events, or a
 //! uniform resampling on the integrator's solution. It exists only when a series or a figure asks for it.
 
-use crate::body::{Body, after_normal_impulse};
-use crate::dynamics::normal::{NormalContact, SIZE, index};
+use crate::dynamics::ContactModel;
 use crate::integrate::State;
 use nalgebra::Vector3;
 
@@ -37,7 +36,7 @@ impl Phase {
     }
 }
 
-/// One recorded instant of the contact.
+/// One recorded instant of the contact (SI units).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Sample {
     /// Time from the scene's t = 0, s.
@@ -46,54 +45,63 @@ pub struct Sample {
     pub penetration: f64,
     /// Penetration rate d', m/s.
     pub rate: f64,
-    /// Contact force, N (compressive positive).
+    /// Normal contact force, N (compressive positive).
     pub force: f64,
-    /// Impulse so far, N s.
+    /// Normal impulse so far, N s.
     pub impulse: f64,
     /// Velocities of body 1 and body 2, m/s.
     pub velocities: [Vector3<f64>; 2],
     pub phase: Phase,
+    /// Unit normal at this instant (it turns with the line of centres of two spheres).
+    pub normal: Vector3<f64>,
+    /// Tangential force on body 1, N.
+    pub tangential_force: Vector3<f64>,
+    /// Slip of body 1's contact point relative to body 2's, m/s.
+    pub slip: Vector3<f64>,
+    /// Angular velocities of body 1 and body 2, rad/s.
+    pub spins: [Vector3<f64>; 2],
+    /// Whether a frictional contact was sliding (false when sticking or smooth).
+    pub sliding: bool,
 }
 
-/// The contact history, in time order, with the frame it was recorded in.
+/// The contact history, in time order.
 #[derive(Debug, Clone, PartialEq)]
 pub struct History {
-    /// Unit contact normal (body 1 -> body 2).
+    /// Unit contact normal at first contact (body 1 -> body 2): the frame the velocities are split in.
     pub normal: Vector3<f64>,
     pub samples: Vec<Sample>,
 }
 
-/// How scaled states become samples: the model (force), the bodies (velocities) and the timing of the phases.
-pub struct Frame<'a> {
-    pub model: &'a NormalContact,
-    pub bodies: &'a [Body; 2],
-    pub normal: Vector3<f64>,
-    /// First contact, s.
-    pub contact_time: f64,
-    /// Scaled time of maximum compression.
-    pub max_compression: f64,
-}
-
 impl History {
-    /// Converts scaled (time, state) points to SI samples.
-    pub fn new(points: &[(f64, State<SIZE>)], frame: &Frame) -> History {
-        let s = &frame.model.scales;
-        let n = frame.normal;
-        let samples = points
+    /// Converts scaled (time, state) points of `model` to SI samples; `max_compression` is the scaled time that
+    /// ends the compression phase, `contact_time` the scene time of first contact (s).
+    pub fn new<const N: usize, M: ContactModel<N>>(
+        points: &[(f64, State<N>)],
+        model: &M,
+        max_compression: f64,
+        contact_time: f64,
+    ) -> History {
+        let samples: Vec<Sample> = points
             .iter()
             .map(|(t, y)| {
-                let impulse = y[index::IMPULSE] * s.impulse;
+                let snapshot = model.snapshot(*t, y);
                 Sample {
-                    time: frame.contact_time + t * s.time,
-                    penetration: y[index::PENETRATION] * s.length,
-                    rate: y[index::RATE] * s.speed,
-                    force: frame.model.force(y) * s.force,
-                    impulse,
-                    velocities: after_normal_impulse(frame.bodies, &n, impulse),
-                    phase: if *t <= frame.max_compression { Phase::Compression } else { Phase::Restitution },
+                    time: contact_time + snapshot.time,
+                    penetration: snapshot.penetration,
+                    rate: snapshot.rate,
+                    force: snapshot.normal_force,
+                    impulse: snapshot.normal_impulse,
+                    velocities: snapshot.velocities,
+                    phase: if *t <= max_compression { Phase::Compression } else { Phase::Restitution },
+                    normal: snapshot.normal,
+                    tangential_force: snapshot.tangential_force,
+                    slip: snapshot.slip,
+                    spins: snapshot.spins,
+                    sliding: model.sliding(y),
                 }
             })
             .collect();
-        History { normal: n, samples }
+        let normal = samples.first().map_or_else(Vector3::x, |s| s.normal);
+        History { normal, samples }
     }
 }

@@ -7,7 +7,7 @@ use crate::dynamics::Scales;
 use crate::geometry::{self, PlacementProblem};
 use crate::law::damping::{MapError, damping_for_restitution};
 use crate::law::{ContactLaw, Family};
-use crate::scene::{DampingSpec, Scene, StiffnessSpec};
+use crate::scene::{DampingSpec, Scene, StiffnessSpec, TangentialStiffnessSpec};
 use nalgebra::Vector3;
 
 /// The contact of a scene, ready to integrate (SI units).
@@ -15,8 +15,11 @@ use nalgebra::Vector3;
 pub struct Setup {
     /// Time of first contact, s.
     pub contact_time: f64,
-    /// Unit normal at the contact, body 1 -> body 2.
+    /// Unit normal at first contact, body 1 -> body 2.
     pub normal: Vector3<f64>,
+    /// Where the bodies are at first contact, m: the centres of spheres, a point of a wall's plane (on the line
+    /// through the sphere's centre along the normal).
+    pub positions: [Vector3<f64>; 2],
     /// v0 = (v1 - v2)·n > 0, m/s.
     pub approach_speed: f64,
     /// m*, kg.
@@ -25,6 +28,42 @@ pub struct Setup {
     pub law: ContactLaw,
     /// Scaled-variable units of this contact.
     pub scales: Scales,
+    /// The tangential contact of a frictional scene; `None` when the contact is smooth (`friction = 0`).
+    pub friction: Option<Friction>,
+    /// Relative velocity of the centres across the normal at first contact, (v2 - v1) minus its normal part, m/s.
+    pub tangential_velocity: Vector3<f64>,
+    /// Slip of the contact points at first contact (body 1's contact point relative to body 2's, across the
+    /// normal), m/s.
+    pub initial_slip: Vector3<f64>,
+    /// Which equations the impact needs (see [`Motion`]).
+    pub motion: Motion,
+}
+
+/// Which equations of motion an impact needs.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Motion {
+    /// The relative motion along a fixed normal is the whole story: a smooth (or slip-free) contact whose line of
+    /// action cannot turn (a wall, or no relative motion across the normal). Tangential velocities and spins pass
+    /// through unchanged. The 1-D model, and the fast path.
+    Normal,
+    /// Positions, velocities and spins in 3-D: the normal turns with the line of centres, friction changes the
+    /// tangential motion and the spins.
+    Full,
+}
+
+/// Coulomb friction with a tangential spring (Mindlin) and optional tangential damping (physics.md §2).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Friction {
+    /// Coulomb coefficient mu (> 0).
+    pub coefficient: f64,
+    /// The tangential spring: kt = `stiffness` d^`stiffness_exponent` (N/m), with the exponent 1/2 for Mindlin's
+    /// kt = 8 G* sqrt(R* d) (stiffness = 8 G* sqrt(R*) in N/m^(3/2)) and 0 for a constant kt.
+    pub stiffness: f64,
+    pub stiffness_exponent: f64,
+    /// Damping ratio of the tangential spring: c_t = 2 ratio sqrt(kt m_t).
+    pub damping_ratio: f64,
+    /// m_t = 1/B, B = 1/m1 + 1/m2 + r1²/I1 + r2²/I2: the mass the tangential force sees at the contact point, kg.
+    pub tangential_mass: f64,
 }
 
 /// A broken physics-level rule: the key at fault and what is wrong.
@@ -39,8 +78,13 @@ fn fail<T>(key: impl Into<String>, message: impl Into<String>) -> Result<T, Setu
     Err(SetupError { key: key.into(), message: message.into() })
 }
 
-/// Relative size below which a velocity component across the normal counts as zero.
+/// Relative size (of the approach speed) below which a velocity across the normal counts as zero.
 const ACROSS_TOLERANCE: f64 = 1e-12;
+
+/// Largest dissipative-to-elastic force ratio at the contact's own scales (alpha v0 for the hysteresis family,
+/// about 2 zeta for Kelvin–Voigt, a for Tsuji): beyond it e is below about 1e-10 and the restitution creeps for
+/// longer than any integration can follow, so the scene is refused rather than left to a step-size underflow.
+pub const MAX_DAMPING_RATIO: f64 = 1e10;
 
 impl Setup {
     /// Resolves a scene's contact, checking the rules that involve more than one key.
@@ -52,21 +96,11 @@ impl Setup {
         if a.is_flat() && b.is_flat() {
             return fail("bodies.1.radius", "both bodies are flat (radius = inf): one must be a sphere");
         }
-        let (contact_time, normal) = placement(scene)?;
-        check_motion_along_normal(&scene.bodies, &normal)?;
+        check_finite_motion(&scene.bodies)?;
+        let (contact_time, normal, positions) = placement(scene)?;
         let approach_speed = (a.velocity - b.velocity).dot(&normal);
         if approach_speed <= 0.0 || !approach_speed.is_finite() {
-            return fail(
-                "bodies.0.velocity",
-                format!(
-                    "the bodies do not approach: normal velocities {} m/s (body 1) and {} m/s (body 2) along the \
-                     normal {:?} give an approach speed (v1 - v2)·n = {} m/s, which must be > 0",
-                    a.velocity.dot(&normal),
-                    b.velocity.dot(&normal),
-                    normal.as_slice(),
-                    approach_speed
-                ),
-            );
+            return fail(no_approach_key(scene), no_approach(scene, &normal, approach_speed));
         }
         let stiffness = match scene.contact.stiffness {
             StiffnessSpec::Value(k) => k,
@@ -86,27 +120,204 @@ impl Setup {
                     fail("contact.restitution", why)
                 })?,
         };
+        let damping_key = match scene.contact.damping {
+            DampingSpec::Restitution(_) => "contact.restitution",
+            _ => "contact.damping",
+        };
         if !damping.is_finite() {
-            return fail("contact.restitution", format!("the damping {damping} is not a finite number"));
+            return fail(damping_key, format!("the damping {damping} is not a finite number"));
         }
         let tsuji_scale = if kind.family() == Family::Tsuji { (effective_mass * stiffness).sqrt() } else { 0.0 };
         let law = ContactLaw { kind, stiffness, exponent, damping, tsuji_scale };
         let scales = Scales::new(effective_mass, stiffness, exponent, approach_speed);
         check_scales(&scales)?;
-        Ok(Setup { contact_time, normal, approach_speed, effective_mass, law, scales })
+        let ratio = law.damping_ratio(scales.length, scales.speed);
+        if ratio.is_nan() || ratio > MAX_DAMPING_RATIO {
+            return fail(
+                damping_key,
+                format!(
+                    "the damping is too heavy to simulate: its force is {ratio:e} times the elastic force at the \
+                     contact's own scales (at most {MAX_DAMPING_RATIO:e}; e would be below about 1e-10, and the \
+                     restitution creeps for longer than any integration can follow)"
+                ),
+            );
+        }
+        let tangential_velocity = {
+            let relative = b.velocity - a.velocity;
+            relative - normal * relative.dot(&normal)
+        };
+        let initial_slip = contact_point_slip(&scene.bodies, &normal);
+        let friction = friction(scene, effective_mass)?;
+        let coupled = friction.is_some() && initial_slip.norm() > ACROSS_TOLERANCE * approach_speed;
+        let turning = !a.is_flat() && !b.is_flat() && tangential_velocity.norm() > ACROSS_TOLERANCE * approach_speed;
+        let motion = if coupled || turning { Motion::Full } else { Motion::Normal };
+        Ok(Setup {
+            contact_time,
+            normal,
+            positions,
+            approach_speed,
+            effective_mass,
+            law,
+            scales,
+            friction,
+            tangential_velocity,
+            initial_slip,
+            motion,
+        })
+    }
+
+    /// Lever arms from each centre to the contact point at first contact, m: the contact point divides the line of
+    /// centres in the ratio of the radii (see [`crate::dynamics::contact`]); a wall's arm is zero (it does not
+    /// rotate).
+    pub fn lever_arms(bodies: &[Body; 2], normal: &Vector3<f64>) -> [Vector3<f64>; 2] {
+        let [a, b] = bodies;
+        let arm =
+            |body: &Body, sign: f64| if body.is_flat() { Vector3::zeros() } else { normal * (sign * body.radius) };
+        [arm(a, 1.0), arm(b, -1.0)]
     }
 }
 
-/// When and along which normal the bodies first touch.
-fn placement(scene: &Scene) -> Result<(f64, Vector3<f64>), SetupError> {
+/// Slip of the contact points before impact: (v1 + w1 x a1) - (v2 + w2 x a2), its part across the normal.
+fn contact_point_slip(bodies: &[Body; 2], normal: &Vector3<f64>) -> Vector3<f64> {
+    let [a, b] = bodies;
+    let [arm_a, arm_b] = Setup::lever_arms(bodies, normal);
+    let spin = |body: &Body, arm: &Vector3<f64>| {
+        if body.angular_velocity == Vector3::zeros() { Vector3::zeros() } else { body.angular_velocity.cross(arm) }
+    };
+    let relative = (a.velocity + spin(a, &arm_a)) - (b.velocity + spin(b, &arm_b));
+    relative - normal * relative.dot(normal)
+}
+
+/// The key to name when the bodies do not approach: `contact.normal` when the normal was the default.
+fn no_approach_key(scene: &Scene) -> &'static str {
+    let placed = scene.bodies.iter().all(|body| body.position.is_some());
+    let wall = scene.bodies.iter().any(Body::is_flat);
+    if scene.contact.normal.is_none() && (!placed || wall) { "contact.normal" } else { "bodies.0.velocity" }
+}
+
+fn no_approach(scene: &Scene, normal: &Vector3<f64>, approach_speed: f64) -> String {
+    let [a, b] = &scene.bodies;
+    let placed = scene.bodies.iter().all(|body| body.position.is_some());
+    let wall = scene.bodies.iter().any(Body::is_flat);
+    let which = match (scene.contact.normal.is_some(), placed && !wall) {
+        (_, true) => "the line of centres at first contact",
+        (true, false) => "the scene's `contact.normal`",
+        (false, false) => "the default normal (no `contact.normal` given)",
+    };
+    format!(
+        "the bodies do not approach along {which} {:?}: normal velocities {} m/s (body 1) and {} m/s (body 2) give \
+         an approach speed (v1 - v2)·n = {} m/s, which must be > 0",
+        normal.as_slice(),
+        a.velocity.dot(normal),
+        b.velocity.dot(normal),
+        approach_speed
+    )
+}
+
+/// Quantities derived from the inputs must stay inside double precision: each movable body's momentum and kinetic
+/// energy (translation and rotation), and the relative velocity.
+fn check_finite_motion(bodies: &[Body; 2]) -> Result<(), SetupError> {
+    for (i, body) in bodies.iter().enumerate() {
+        if body.is_immovable() {
+            continue;
+        }
+        let momentum = body.velocity * body.mass;
+        let kinetic = body.kinetic_energy(&body.velocity, &body.angular_velocity);
+        if !momentum.iter().all(|p| p.is_finite()) || !(0.5 * body.mass * body.velocity.norm_squared()).is_finite() {
+            return fail(
+                format!("bodies.{i}.velocity"),
+                format!(
+                    "the momentum or kinetic energy of a body of {:e} kg at {:?} m/s is outside double precision",
+                    body.mass,
+                    body.velocity.as_slice()
+                ),
+            );
+        }
+        if !kinetic.is_finite() {
+            return fail(
+                format!("bodies.{i}.angular_velocity"),
+                format!(
+                    "the rotational energy of a body of inertia {:e} kg m² spinning at {:?} rad/s is outside double \
+                     precision",
+                    body.inertia,
+                    body.angular_velocity.as_slice()
+                ),
+            );
+        }
+    }
+    let relative = bodies[1].velocity - bodies[0].velocity;
+    if !relative.norm().is_finite() {
+        return fail("bodies.1.velocity", "the relative velocity of the bodies is outside double precision");
+    }
+    Ok(())
+}
+
+/// The tangential contact of a frictional scene, or `None` for a smooth one.
+fn friction(scene: &Scene, effective_mass: f64) -> Result<Option<Friction>, SetupError> {
+    let contact = &scene.contact;
+    if contact.friction == 0.0 {
+        return Ok(None);
+    }
+    let [a, b] = &scene.bodies;
+    let (stiffness, stiffness_exponent) = match contact.tangential_stiffness {
+        TangentialStiffnessSpec::Value(k) => (k, 0.0),
+        TangentialStiffnessSpec::Mindlin => (mindlin_coefficient(a, b)?, 0.5),
+    };
+    // B = 1/m1 + 1/m2 + r1²/I1 + r2²/I2: a body that does not rotate adds only its 1/m.
+    let rotational = |body: &Body| if body.rotates() { body.radius * body.radius / body.inertia } else { 0.0 };
+    let inverse = 1.0 / effective_mass + rotational(a) + rotational(b);
+    Ok(Some(Friction {
+        coefficient: contact.friction,
+        stiffness,
+        stiffness_exponent,
+        damping_ratio: contact.tangential_damping,
+        tangential_mass: 1.0 / inverse,
+    }))
+}
+
+/// 8 G* sqrt(R*) in N/m^(3/2), with 1/G* = (2 - nu1)/G1 + (2 - nu2)/G2 and G = E / (2 (1 + nu)) (physics.md §2).
+fn mindlin_coefficient(a: &Body, b: &Body) -> Result<f64, SetupError> {
+    const KEY: &str = "contact.tangential_stiffness";
+    let mut compliance = 0.0;
+    for (i, body) in [a, b].iter().enumerate() {
+        match (body.young, body.poisson) {
+            (Some(e), _) if e.is_infinite() => {}
+            (Some(e), Some(nu)) => compliance += (2.0 - nu) * 2.0 * (1.0 + nu) / e,
+            _ => {
+                return fail(
+                    KEY,
+                    format!(
+                        "the Mindlin tangential stiffness (the default) needs `young` and `poisson` of every \
+                         elastic body (bodies.{i} lacks them): give them, or a numeric `tangential_stiffness` in N/m"
+                    ),
+                );
+            }
+        }
+    }
+    if compliance == 0.0 {
+        return fail(KEY, "both bodies are rigid (young = inf): the Mindlin stiffness would be infinite");
+    }
+    let radius = geometry::effective_radius(a, b).expect("two flat bodies were rejected before");
+    Ok(8.0 / compliance * radius.sqrt())
+}
+
+/// When (s) and along which normal the bodies first touch, and where they are then (m).
+type Placement = (f64, Vector3<f64>, [Vector3<f64>; 2]);
+
+/// The first contact of the scene's bodies.
+fn placement(scene: &Scene) -> Result<Placement, SetupError> {
     let [a, b] = &scene.bodies;
     let given = scene.contact.normal;
     let scene_normal = given.unwrap_or_else(Vector3::x);
     match (a.position, b.position) {
-        (None, None) => Ok((0.0, scene_normal)),
+        (None, None) => {
+            // Body 1 at the origin, body 2 touching it along the normal.
+            let reach = |body: &Body| if body.is_flat() { 0.0 } else { body.radius };
+            Ok((0.0, scene_normal, [Vector3::zeros(), scene_normal * (reach(a) + reach(b))]))
+        }
         (Some(_), None) => fail("bodies.1.position", "give `position` for both bodies or for neither"),
         (None, Some(_)) => fail("bodies.0.position", "give `position` for both bodies or for neither"),
-        (Some(_), Some(_)) => {
+        (Some(xa), Some(xb)) => {
             let contact = geometry::first_contact(a, b, &scene_normal).or_else(|problem| match problem {
                 PlacementProblem::Overlapping(overlap) => fail(
                     "bodies.1.position",
@@ -124,6 +335,12 @@ fn placement(scene: &Scene) -> Result<(f64, Vector3<f64>), SetupError> {
                     fail("bodies.1.position", "the two sphere centres coincide: no line of centres")
                 }
             })?;
+            if !contact.time.is_finite() {
+                return fail(
+                    "bodies.1.position",
+                    format!("the first contact lies beyond double precision in time ({} s)", contact.time),
+                );
+            }
             let spheres = !a.is_flat() && !b.is_flat();
             if let (true, Some(normal)) = (spheres, given)
                 && (normal - contact.normal).norm() > 1e-9
@@ -137,7 +354,19 @@ fn placement(scene: &Scene) -> Result<(f64, Vector3<f64>), SetupError> {
                     ),
                 );
             }
-            Ok((contact.time, contact.normal))
+            let t = contact.time;
+            let mut positions = [xa + a.velocity * t, xb + b.velocity * t];
+            // A wall is represented by the point of its plane on the normal through the sphere's centre.
+            let n = contact.normal;
+            if a.is_flat() {
+                positions[0] = positions[1] - n * b.radius;
+            } else if b.is_flat() {
+                positions[1] = positions[0] + n * a.radius;
+            }
+            if !positions.iter().all(|x| x.iter().all(|c| c.is_finite())) {
+                return fail("bodies.1.position", "the positions at first contact are outside double precision");
+            }
+            Ok((t, n, positions))
         }
     }
 }
@@ -157,25 +386,6 @@ fn check_scales(scales: &Scales) -> Result<(), SetupError> {
             scales.length, scales.time, scales.energy
         ),
     )
-}
-
-/// Until oblique impacts land, every velocity must lie along the normal.
-fn check_motion_along_normal(bodies: &[Body; 2], normal: &Vector3<f64>) -> Result<(), SetupError> {
-    for (i, body) in bodies.iter().enumerate() {
-        let across = body.velocity - normal * body.velocity.dot(normal);
-        if across.norm() > ACROSS_TOLERANCE * body.velocity.norm() {
-            return fail(
-                format!("bodies.{i}.velocity"),
-                format!(
-                    "velocity {:?} has a part {:?} across the normal {:?}: oblique impacts are not supported yet",
-                    body.velocity.as_slice(),
-                    across.as_slice(),
-                    normal.as_slice()
-                ),
-            );
-        }
-    }
-    Ok(())
 }
 
 /// K = (4/3) E* sqrt(R*), with the rules of interface.md for rigid bodies and missing constants.

@@ -685,8 +685,9 @@ fn bodies_that_do_not_approach_are_rejected_naming_the_velocities() {
         &edit(RIGHT_BALL, "velocity = [-1.0, 0.0, 0.0]", "velocity = [1.25, 0.0, 0.0]"),
         HUNT_CROSSLEY,
     );
+    // No normal was given, so the default one was used: the message says so and names `contact.normal`.
     let test = "bodies_that_do_not_approach_are_rejected_naming_the_velocities";
-    assert_rejected(test, &text, "bodies.0.velocity", At::Line("velocity = [0.75"), &["0.75", "1.25"]);
+    assert_rejected(test, &text, "contact.normal", At::Line("[contact]"), &["0.75", "1.25", "default normal"]);
 }
 
 #[test]
@@ -694,7 +695,7 @@ fn a_ball_at_rest_against_a_wall_at_rest_is_rejected_naming_the_key() {
     let resting = edit(LEFT_BALL, "velocity = [1.0, 0.0, 0.0]", "velocity = [0.0, 0.0, 0.0]");
     let text = scene(&resting, WALL, HUNT_CROSSLEY);
     let test = "a_ball_at_rest_against_a_wall_at_rest_is_rejected_naming_the_key";
-    assert_rejected(test, &text, "bodies.0.velocity", At::Nth("velocity =", 1), &[]);
+    assert_rejected(test, &text, "contact.normal", At::Line("[contact]"), &["default normal"]);
 }
 
 #[test]
@@ -705,9 +706,10 @@ fn header_comments_do_not_shift_the_line_of_an_error() {
         &edit(RIGHT_BALL, "velocity = [-1.0, 0.0, 0.0]", "velocity = [1.25, 0.0, 0.0]"),
         HUNT_CROSSLEY,
     )
-    .replace("[[bodies]]\n", "[[bodies]]                       # a body\n");
+    .replace("[[bodies]]\n", "[[bodies]]                       # a body\n")
+    .replace("[contact]\n", "[contact]\nnormal = [1.0, 0.0, 0.0]\n");
     let test = "header_comments_do_not_shift_the_line_of_an_error";
-    assert_rejected(test, &text, "bodies.0.velocity", At::Line("velocity = [0.75"), &[]);
+    assert_rejected(test, &text, "bodies.0.velocity", At::Line("velocity = [0.75"), &["contact.normal"]);
 }
 
 /// The two balls (closing along x) placed at these centres.
@@ -784,37 +786,77 @@ fn position_for_the_second_body_only_is_rejected_naming_the_key() {
 }
 
 // ---------------------------------------------------------------------------------------------------------------
-// Not supported yet (until the oblique issue lands): an error, never silently ignored
+// Oblique impact, friction and spin: the keys' own rules
 
 #[test]
-fn velocity_across_the_normal_is_not_supported_yet() {
-    let text = scene(
-        LEFT_BALL,
-        &edit(RIGHT_BALL, "velocity = [-1.0, 0.0, 0.0]", "velocity = [-1.0, 0.5, 0.0]"),
-        HUNT_CROSSLEY,
-    );
-    let test = "velocity_across_the_normal_is_not_supported_yet";
-    assert_rejected(test, &text, "bodies.1.velocity", At::Line("velocity = [-1.0, 0.5"), &["not supported yet"]);
-}
-
-#[test]
-fn velocity_across_a_given_normal_is_not_supported_yet() {
-    // The balls close along x, but the scene puts the contact normal along y.
+fn a_given_normal_without_approach_is_rejected_naming_the_velocity_and_the_normal_used() {
+    // The balls close along x, but the scene puts the contact normal along y: no approach along it.
     let text = balls_with(&with(HUNT_CROSSLEY, "normal = [0.0, 1.0, 0.0]"));
-    let test = "velocity_across_a_given_normal_is_not_supported_yet";
-    assert_rejected(test, &text, "bodies.0.velocity", At::Nth("velocity =", 1), &["not supported yet"]);
+    let test = "a_given_normal_without_approach_is_rejected_naming_the_velocity_and_the_normal_used";
+    assert_rejected(
+        test,
+        &text,
+        "bodies.0.velocity",
+        At::Nth("velocity =", 1),
+        &["`contact.normal`", "[0.0, 1.0, 0.0]"],
+    );
 }
 
 #[test]
-fn spin_is_not_supported_yet() {
-    let text = scene(&with(LEFT_BALL, "angular_velocity = [0.0, 0.0, 10.0]"), RIGHT_BALL, HUNT_CROSSLEY);
-    let test = "spin_is_not_supported_yet";
-    assert_rejected(test, &text, "bodies.0.angular_velocity", At::Line("angular_velocity ="), &["not supported yet"]);
+fn zero_inertia_is_rejected_naming_the_key() {
+    let text = scene(&with(LEFT_BALL, "inertia = 0.0"), RIGHT_BALL, HUNT_CROSSLEY);
+    assert_rejected("zero_inertia_is_rejected_naming_the_key", &text, "bodies.0.inertia", At::Line("inertia ="), &[]);
 }
 
 #[test]
-fn friction_above_zero_is_not_supported_yet() {
-    let text = balls_with(&with(HUNT_CROSSLEY, "friction = 0.3"));
-    let test = "friction_above_zero_is_not_supported_yet";
-    assert_rejected(test, &text, "contact.friction", At::Line("friction ="), &["not supported yet"]);
+fn inertia_of_an_immovable_body_is_rejected_naming_the_key() {
+    let fixed = edit(&with(RIGHT_BALL, "inertia = 1e-6"), "mass = 0.0329", "mass = inf");
+    let text = scene(LEFT_BALL, &fixed, HUNT_CROSSLEY);
+    let test = "inertia_of_an_immovable_body_is_rejected_naming_the_key";
+    assert_rejected(test, &text, "bodies.1.inertia", At::Line("inertia ="), &["immovable"]);
+}
+
+#[test]
+fn spin_given_to_a_wall_is_rejected_naming_the_key() {
+    let text = scene(LEFT_BALL, &with(WALL, "angular_velocity = [0.0, 0.0, 10.0]"), HUNT_CROSSLEY);
+    let test = "spin_given_to_a_wall_is_rejected_naming_the_key";
+    assert_rejected(test, &text, "bodies.1.angular_velocity", At::Line("angular_velocity ="), &["flat"]);
+}
+
+#[test]
+fn a_zero_normal_is_rejected_naming_the_key() {
+    let text = balls_with(&with(HUNT_CROSSLEY, "normal = [0.0, 0.0, 0.0]"));
+    assert_rejected("a_zero_normal_is_rejected_naming_the_key", &text, "contact.normal", At::Line("normal ="), &[]);
+}
+
+#[test]
+fn a_bad_tangential_stiffness_is_rejected_naming_the_key() {
+    let text = balls_with(&with(HUNT_CROSSLEY, "friction = 0.3\ntangential_stiffness = \"stiff\""));
+    let test = "a_bad_tangential_stiffness_is_rejected_naming_the_key";
+    assert_rejected(test, &text, "contact.tangential_stiffness", At::Line("tangential_stiffness ="), &["mindlin"]);
+}
+
+#[test]
+fn mindlin_stiffness_without_elastic_constants_is_rejected_naming_the_key() {
+    let text = scene(
+        &edit(LEFT_BALL, "poisson = 0.3", ""),
+        RIGHT_BALL,
+        "law = \"hunt-crossley\"\nrestitution = 0.8\nstiffness = 1e9\nfriction = 0.3",
+    );
+    let test = "mindlin_stiffness_without_elastic_constants_is_rejected_naming_the_key";
+    assert_rejected(test, &text, "contact.tangential_stiffness", At::Line("[contact]"), &["poisson"]);
+}
+
+#[test]
+fn negative_tangential_damping_is_rejected_naming_the_key() {
+    let text = balls_with(&with(HUNT_CROSSLEY, "friction = 0.3\ntangential_damping = -1"));
+    let test = "negative_tangential_damping_is_rejected_naming_the_key";
+    assert_rejected(test, &text, "contact.tangential_damping", At::Line("tangential_damping ="), &[]);
+}
+
+#[test]
+fn an_unknown_solver_method_is_rejected_naming_the_key() {
+    let text = balls_with(HUNT_CROSSLEY) + "\n[solver]\nmethod = \"euler\"\n";
+    let test = "an_unknown_solver_method_is_rejected_naming_the_key";
+    assert_rejected(test, &text, "solver.method", At::Line("method ="), &["dop853"]);
 }

@@ -3,8 +3,19 @@
 //! Lengths are measured in the elastic penetration scale L = (m* v0²/K)^(1/(n+1)), speeds in the approach speed v0,
 //! times in T = L/v0, forces in F0 = K L^n = m* v0²/L (physics.md §3). Every scaled quantity is O(1) whatever the
 //! bodies, which is what makes one absolute tolerance meaningful.
+//!
+//! Two models share one interface ([`ContactModel`]) so that one phase driver (`crate::impact`) runs either:
+//! [`normal::NormalContact`], the relative motion along a fixed normal (a central or smooth impact: the special case
+//! that needs nothing else), and [`pair::PairContact`], two bodies in 3-D with a normal that turns with the line of
+//! centres, friction with a tangential spring, and spins. [`contact`] holds what a contact between two bodies
+//! computes from their relative kinematics — the piece several contacts in one run would each use.
 
+pub mod contact;
 pub mod normal;
+pub mod pair;
+
+use crate::integrate::{Model, State};
+use nalgebra::Vector3;
 
 /// The units of the scaled variables of one contact.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -38,4 +49,81 @@ impl Scales {
             energy,
         }
     }
+}
+
+/// The contact and both bodies at one instant, in SI units: what a report and a history are built from.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Snapshot {
+    /// Time since first contact, s.
+    pub time: f64,
+    /// Penetration d, m (negative once the bodies have parted).
+    pub penetration: f64,
+    /// Penetration rate d' = (v1 - v2)·n, m/s.
+    pub rate: f64,
+    /// Normal contact force, N (compressive positive; the law's force, zero out of contact).
+    pub normal_force: f64,
+    /// Unit normal, body 1 -> body 2.
+    pub normal: Vector3<f64>,
+    /// Tangential contact force on body 1, N (body 2 feels its opposite).
+    pub tangential_force: Vector3<f64>,
+    /// Slip: velocity of body 1's contact point relative to body 2's, across the normal, m/s.
+    pub slip: Vector3<f64>,
+    /// Velocities of the centres, m/s.
+    pub velocities: [Vector3<f64>; 2],
+    /// Angular velocities, rad/s.
+    pub spins: [Vector3<f64>; 2],
+    /// Positions of the centres (a wall: the point of its plane on the normal through the sphere), m.
+    pub positions: [Vector3<f64>; 2],
+    /// ∫ Fn dt since first contact, N s.
+    pub normal_impulse: f64,
+    /// ∫ Fn d' dt: work of the normal force on the relative normal motion, J.
+    pub normal_work: f64,
+    /// ∫ F_dissipative d' dt: energy dissipated by the normal damping, J.
+    pub dissipated_normal: f64,
+    /// ∫ Ft·slip dt: work of the tangential force on the slip, J (negative: taken from the bodies).
+    pub tangential_work: f64,
+    /// Work done on the movable bodies by a body of infinite mass (a moving wall, a driven sphere), J.
+    pub work_of_immovable_bodies: f64,
+    /// Energy stored in the normal spring, J.
+    pub elastic_energy: f64,
+    /// Energy stored in the tangential spring, |T|²/(2 kt), J.
+    pub tangential_elastic_energy: f64,
+}
+
+/// What the phase driver needs of a model: its scaled state's meaning, the event functions, and SI snapshots.
+pub trait ContactModel<const N: usize>: Model<N> {
+    /// The units of the scaled state.
+    fn scales(&self) -> &Scales;
+    /// The state at first contact (scaled time 0), with the stick-or-slip mode it starts in.
+    fn start(&self) -> State<N>;
+    /// Scaled penetration d/L.
+    fn penetration(&self, y: &State<N>) -> f64;
+    /// Scaled penetration rate d'/v0.
+    fn rate(&self, y: &State<N>) -> f64;
+    /// Scaled normal force F/F0.
+    fn force(&self, y: &State<N>) -> f64;
+    /// Scaled normal-force rate dF/dt (its fall through zero is the force peak).
+    fn force_rate(&self, y: &State<N>) -> f64;
+    /// A continuous function whose fall through zero is a force separation (see
+    /// [`crate::law::ContactLaw::separation_function`]).
+    fn separation_force(&self, y: &State<N>) -> f64;
+    /// The function whose fall through zero switches the contact between sticking and sliding, in the state's
+    /// mode; `None` for a model without modes.
+    fn switch_function(&self, _y: &State<N>) -> Option<f64> {
+        None
+    }
+    /// Switches the state's mode at a located zero of [`ContactModel::switch_function`]. The mode is part of the
+    /// state (constant between switches), so that re-stepping and recorded histories always see the right one.
+    fn switch(&self, _y: &mut State<N>) {}
+    /// Whether the state's mode is sliding (false for a smooth contact).
+    fn sliding(&self, _y: &State<N>) -> bool {
+        false
+    }
+    /// The contact and the bodies at scaled time `t` and state `y`, in SI units.
+    fn snapshot(&self, t: f64, y: &State<N>) -> Snapshot;
+}
+
+/// `value / scale`, for the scaled energy integrals; a zero scale means the integral is zero anyway.
+pub(crate) fn unit_or_one(scale: f64) -> f64 {
+    if scale > 0.0 && scale.is_finite() { scale } else { 1.0 }
 }

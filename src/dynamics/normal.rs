@@ -1,11 +1,15 @@
-//! One contact along a fixed normal: the relative motion of two bodies under a contact law.
+//! One contact along a fixed normal: the relative motion of two bodies under a contact law — the special case of a
+//! central (or smooth, slip-free) impact whose line of action cannot turn, where nothing but the normal motion
+//! changes.
 //!
 //! The state carries, besides penetration and its rate, the integrals the report needs, so that impulses and
-//! works come from the force history itself rather than from momentum (issue: "from the force history").
+//! works come from the force history itself rather than from momentum.
 
-use super::Scales;
+use super::{ContactModel, Scales, Snapshot, unit_or_one};
+use crate::body::{Body, after_normal_impulse};
 use crate::integrate::{Model, State};
 use crate::law::ContactLaw;
+use crate::setup::Setup;
 
 /// Scaled penetration below zero that still counts as the edge of the contact: event location leaves the
 /// separation state within a few ulps of d = 0 on either side.
@@ -24,18 +28,32 @@ pub mod index {
     pub const IMPULSE: usize = 2;
     /// ∫ F d' dt / (m* v0²): work of the contact force on the relative motion so far.
     pub const WORK: usize = 3;
-    /// ∫ F_dissipative d' dt / (m* v0²): energy dissipated so far.
+    /// ∫ F_dissipative d' dt / (m* v0² delta): energy dissipated so far, in units of the damping's own size delta
+    /// (see [`super::normal::NormalContact::dissipation_scale`]), so that a light damping's small dissipation is
+    /// integrated to the tolerance relative to itself (physics.md §5).
     pub const DISSIPATED: usize = 4;
 }
 
 /// The relative normal motion m* d'' = -F(d, d').
 #[derive(Debug, Clone, Copy)]
-pub struct NormalContact {
+pub struct NormalContact<'a> {
     pub law: ContactLaw,
     pub scales: Scales,
+    /// delta: the damping's size at the contact's scales ([`ContactLaw::damping_ratio`]), the unit of the
+    /// dissipated-energy state (1 for an elastic law).
+    pub dissipation_scale: f64,
+    bodies: &'a [Body; 2],
+    setup: &'a Setup,
 }
 
-impl NormalContact {
+impl<'a> NormalContact<'a> {
+    /// The normal contact of a resolved scene.
+    pub fn new(bodies: &'a [Body; 2], setup: &'a Setup) -> NormalContact<'a> {
+        let (law, scales) = (setup.law, setup.scales);
+        let dissipation_scale = unit_or_one(law.damping_ratio(scales.length, scales.speed));
+        NormalContact { law, scales, dissipation_scale, bodies, setup }
+    }
+
     /// The state at first contact: no penetration, closing at the approach speed.
     pub fn initial_state() -> State<SIZE> {
         let mut y = State::<SIZE>::zeros();
@@ -53,24 +71,9 @@ impl NormalContact {
         let parts = self.law.split_force(penetration * s.length, y[index::RATE] * s.speed);
         (parts.elastic / s.force, parts.dissipative / s.force)
     }
-
-    /// Scaled contact force.
-    pub fn force(&self, y: &State<SIZE>) -> f64 {
-        let (elastic, dissipative) = self.force_parts(y);
-        elastic + dissipative
-    }
-
-    /// Scaled force rate dF/dt = F_d d' + F_v d'' (its zero is the force peak).
-    pub fn force_rate(&self, y: &State<SIZE>) -> f64 {
-        let s = &self.scales;
-        let (d, rate) = (y[index::PENETRATION] * s.length, y[index::RATE] * s.speed);
-        let (by_penetration, by_rate) = self.law.force_gradient(d, rate);
-        let acceleration = -self.force(y) * s.speed / s.time;
-        (by_penetration * rate + by_rate * acceleration) * s.time / s.force
-    }
 }
 
-impl Model<SIZE> for NormalContact {
+impl Model<SIZE> for NormalContact<'_> {
     fn derivative(&self, _t: f64, y: &State<SIZE>, dy: &mut State<SIZE>) {
         let (elastic, dissipative) = self.force_parts(y);
         let force = elastic + dissipative;
@@ -79,6 +82,88 @@ impl Model<SIZE> for NormalContact {
         dy[index::RATE] = -force;
         dy[index::IMPULSE] = force;
         dy[index::WORK] = force * rate;
-        dy[index::DISSIPATED] = dissipative * rate;
+        dy[index::DISSIPATED] = dissipative * rate / self.dissipation_scale;
+    }
+}
+
+impl ContactModel<SIZE> for NormalContact<'_> {
+    fn scales(&self) -> &Scales {
+        &self.scales
+    }
+
+    fn start(&self) -> State<SIZE> {
+        NormalContact::initial_state()
+    }
+
+    fn penetration(&self, y: &State<SIZE>) -> f64 {
+        y[index::PENETRATION]
+    }
+
+    fn rate(&self, y: &State<SIZE>) -> f64 {
+        y[index::RATE]
+    }
+
+    fn force(&self, y: &State<SIZE>) -> f64 {
+        let (elastic, dissipative) = self.force_parts(y);
+        elastic + dissipative
+    }
+
+    /// dF/dt = F_d d' + F_v d'' with d'' = -F.
+    fn force_rate(&self, y: &State<SIZE>) -> f64 {
+        let s = &self.scales;
+        let (d, rate) = (y[index::PENETRATION] * s.length, y[index::RATE] * s.speed);
+        let (by_penetration, by_rate) = self.law.force_gradient(d, rate);
+        let acceleration = -self.force(y) * s.speed / s.time;
+        (by_penetration * rate + by_rate * acceleration) * s.time / s.force
+    }
+
+    fn separation_force(&self, y: &State<SIZE>) -> f64 {
+        let s = &self.scales;
+        self.law.separation_function(y[index::PENETRATION] * s.length, y[index::RATE] * s.speed)
+    }
+
+    fn snapshot(&self, t: f64, y: &State<SIZE>) -> Snapshot {
+        let s = &self.scales;
+        let setup = self.setup;
+        let n = setup.normal;
+        let [a, b] = self.bodies;
+        let time = t * s.time;
+        let penetration = y[index::PENETRATION] * s.length;
+        let impulse = y[index::IMPULSE] * s.impulse;
+        // The force moves the bodies apart from their free flight by (v0 t - d) along the normal, shared in the
+        // ratio of the inverse masses (m*/m_i).
+        let pushed = n * (setup.approach_speed * time - penetration);
+        let share = |body: &Body| setup.effective_mass * body.inverse_mass();
+        let positions = [
+            setup.positions[0] + a.velocity * time - pushed * share(a),
+            setup.positions[1] + b.velocity * time + pushed * share(b),
+        ];
+        // Work by an immovable body: minus the work the contact force does on it (its velocity is constant).
+        let work_of_immovable_bodies = if b.is_immovable() {
+            -impulse * b.velocity.dot(&n)
+        } else if a.is_immovable() {
+            impulse * a.velocity.dot(&n)
+        } else {
+            0.0
+        };
+        Snapshot {
+            time,
+            penetration,
+            rate: y[index::RATE] * s.speed,
+            normal_force: self.force(y) * s.force,
+            normal: n,
+            tangential_force: nalgebra::Vector3::zeros(),
+            slip: setup.initial_slip,
+            velocities: after_normal_impulse(self.bodies, &n, impulse),
+            spins: [a.angular_velocity, b.angular_velocity],
+            positions,
+            normal_impulse: impulse,
+            normal_work: y[index::WORK] * s.energy,
+            dissipated_normal: y[index::DISSIPATED] * s.energy * self.dissipation_scale,
+            tangential_work: 0.0,
+            work_of_immovable_bodies,
+            elastic_energy: self.law.elastic_energy(penetration),
+            tangential_elastic_energy: 0.0,
+        }
     }
 }

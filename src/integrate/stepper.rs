@@ -127,8 +127,12 @@ impl<'m, M: Model<N>, const N: usize> Stepper<'m, M, N> {
     /// The record in time order (accepted steps and noted points), if one is kept.
     pub fn recorded(&mut self) -> Option<&[(f64, State<N>)]> {
         let record = self.record.as_mut()?;
+        // Stable sort, then keep the last point noted at each time (a stick–slip switch notes the switched state
+        // after the located one).
         record.sort_by(|a, b| a.0.total_cmp(&b.0));
+        record.reverse();
         record.dedup_by(|a, b| a.0 == b.0);
+        record.reverse();
         Some(record)
     }
 

@@ -95,6 +95,38 @@ impl ContactLaw {
         self.split_force(d, rate).total()
     }
 
+    /// The damping's size at a contact's own scales: |dissipative| / elastic force at penetration `length` (m) and
+    /// rate `speed` (m/s) — alpha v0 for the hysteresis family, a for Tsuji, 2 zeta (about) for Kelvin–Voigt, 0 for
+    /// Hertz. Used to scale the dissipated-energy integral so that it is accurate relative to itself.
+    pub fn damping_ratio(&self, length: f64, speed: f64) -> f64 {
+        let parts = self.split_force(length, speed);
+        if parts.elastic > 0.0 { parts.dissipative.abs() / parts.elastic } else { 0.0 }
+    }
+
+    /// A function of (d, d') whose zero where it falls is a force separation, continuous through d = 0 (physics.md
+    /// §5): the force divided by the power of d in its damping term, continued to d < 0 by the law's own expression
+    /// (k d + c d'; K d |d|^(1/4) + a sqrt(m* K) d' for Tsuji; K (d + (3/2) A d') for Brilliantov). Its units are
+    /// N/m^q (q the power divided out). For laws that never turn tensile it is the penetration (m).
+    pub fn separation_function(&self, d: f64, rate: f64) -> f64 {
+        let (k, c) = (self.stiffness, self.damping);
+        match self.kind.family() {
+            Family::Elastic | Family::Hysteresis => d,
+            Family::Linear => k * d + c * rate,
+            Family::Tsuji => k * d * d.abs().sqrt().sqrt() + c * self.tsuji_scale * rate,
+            Family::Viscoelastic => k * (d + 1.5 * c * rate),
+        }
+    }
+
+    /// Elastic (spring) energy stored at penetration `d` (m), the integral of the elastic force from 0 to d, J:
+    /// K d^(n+1)/(n+1) (k d²/2 for Kelvin–Voigt, (2/5) K d^(5/2) for Tsuji and Brilliantov); zero for d <= 0.
+    pub fn elastic_energy(&self, d: f64) -> f64 {
+        if d <= 0.0 {
+            return 0.0;
+        }
+        let n = self.exponent;
+        self.stiffness * d.powf(n + 1.0) / (n + 1.0)
+    }
+
     /// Partial derivatives (dF/dd in N/m, dF/dd' in N s/m), for the force-rate event dF/dt = F_d d' + F_v d''.
     /// Zero outside the contact, and at `d = 0` for the power laws (whose gradient is singular there).
     pub fn force_gradient(&self, d: f64, rate: f64) -> (f64, f64) {

@@ -26,6 +26,7 @@ pub struct RawBody {
     pub velocity: Option<At<Vec<f64>>>,
     pub position: Option<At<Vec<f64>>>,
     pub angular_velocity: Option<At<Vec<f64>>>,
+    pub inertia: Option<At<f64>>,
     pub young: Option<At<f64>>,
     pub poisson: Option<At<f64>>,
 }
@@ -40,12 +41,15 @@ pub struct RawContact {
     pub exponent: Option<At<f64>>,
     pub separation: Option<At<String>>,
     pub friction: Option<At<f64>>,
+    pub tangential_stiffness: Option<At<toml::Value>>,
+    pub tangential_damping: Option<At<f64>>,
     pub normal: Option<At<Vec<f64>>>,
 }
 
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct RawSolver {
+    pub method: Option<At<String>>,
     pub rtol: Option<At<f64>>,
     pub atol: Option<At<f64>>,
 }

@@ -23,8 +23,8 @@ pub struct Scene {
     /// The two bodies, in scene order (body 1, body 2).
     pub bodies: [Body; 2],
     pub contact: ContactSpec,
-    /// Integrator tolerances on the scaled state.
-    pub solver: Tolerances,
+    /// The integration method and its tolerances.
+    pub solver: SolverSpec,
     pub output: OutputSpec,
 }
 
@@ -48,6 +48,44 @@ pub enum StiffnessSpec {
     Value(f64),
 }
 
+/// The `[solver]` table.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct SolverSpec {
+    /// Which integration path to take.
+    pub method: Method,
+    /// Integrator tolerances on the scaled state.
+    pub tolerances: Tolerances,
+}
+
+/// The integration path a scene asks for (`[solver] method`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Method {
+    /// The fastest path that covers the scene.
+    #[default]
+    Auto,
+    /// The general `ode_solvers` Dop853 path, always available.
+    Dop853,
+}
+
+impl Method {
+    /// Every method, by its scene spelling.
+    pub const ALL: [(&'static str, Method); 2] = [("auto", Method::Auto), ("dop853", Method::Dop853)];
+
+    /// The scene spelling.
+    pub fn name(self) -> &'static str {
+        Method::ALL.iter().find(|(_, m)| *m == self).map_or("auto", |(name, _)| name)
+    }
+}
+
+/// Where the tangential (Mindlin) stiffness comes from.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum TangentialStiffnessSpec {
+    /// The Mindlin no-slip stiffness kt = 8 G* sqrt(R* d) from the bodies' elastic constants.
+    Mindlin,
+    /// A constant kt in N/m.
+    Value(f64),
+}
+
 /// The `[contact]` table.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ContactSpec {
@@ -57,8 +95,12 @@ pub struct ContactSpec {
     /// n in K d^n.
     pub exponent: f64,
     pub separation: Separation,
-    /// Coulomb friction coefficient (0: smooth).
+    /// Coulomb friction coefficient mu (0: smooth).
     pub friction: f64,
+    /// The tangential spring of a frictional contact.
+    pub tangential_stiffness: TangentialStiffnessSpec,
+    /// Damping ratio of the tangential spring (0: none): c_t = 2 ratio sqrt(k_t m_t).
+    pub tangential_damping: f64,
     /// The scene's unit normal (body 1 -> body 2), if it gave one.
     pub normal: Option<Vector3<f64>>,
 }

@@ -1,7 +1,9 @@
 //! From the raw file to a checked [`Scene`]: every rule of interface.md, each failure naming key and line.
 
 use super::file::{At, RawBody, RawContact, RawOutput, RawScene, RawSolver};
-use super::{ContactSpec, DampingSpec, OutputSpec, Scene, SceneError, StiffnessSpec};
+use super::{
+    ContactSpec, DampingSpec, Method, OutputSpec, Scene, SceneError, SolverSpec, StiffnessSpec, TangentialStiffnessSpec,
+};
 use crate::body::Body;
 use crate::integrate::Tolerances;
 use crate::law::damping::{MapError, check_restitution};
@@ -112,6 +114,15 @@ fn split_key(key: &str) -> (&str, Option<usize>, &str) {
     }
 }
 
+/// A user's string as echoed in a message: cut to a readable length.
+fn cut(text: &str) -> String {
+    const MAX: usize = 60;
+    match text.char_indices().nth(MAX) {
+        None => text.to_string(),
+        Some((end, _)) => format!("{}… ({} characters)", &text[..end], text.chars().count()),
+    }
+}
+
 /// What a number may be.
 #[derive(Clone, Copy)]
 enum Allowed {
@@ -201,7 +212,7 @@ pub fn scene(text: &str, path: &Path) -> Checked<Scene> {
         return Err(src.error("contact", None, "missing: give a [contact] table with at least `law`"));
     };
     let contact = contact_spec(&src, contact)?;
-    let solver = raw.solver.as_ref().map_or(Ok(Tolerances::default()), |s| solver(&src, s.get_ref()))?;
+    let solver = raw.solver.as_ref().map_or(Ok(SolverSpec::default()), |s| solver(&src, s.get_ref()))?;
     let output = raw.output.as_ref().map_or(OutputSpec::default(), |o| output(o.get_ref()));
     let scene = Scene { title, bodies: [first, second], contact, solver, output };
     Setup::new(&scene).map_err(|error| {
@@ -242,7 +253,18 @@ fn body(src: &Source, i: usize, raw: &At<RawBody>) -> Checked<Body> {
                     "`density` needs a finite radius: a flat body's mass would be infinite (give `mass`)",
                 ));
             }
-            density * 4.0 / 3.0 * std::f64::consts::PI * radius.powi(3)
+            let mass = density * 4.0 / 3.0 * std::f64::consts::PI * radius.powi(3);
+            if !(mass.is_finite() && mass > 0.0) {
+                return Err(src.error(
+                    &key("density"),
+                    Some(&d.span()),
+                    format!(
+                        "the mass (4/3) pi r^3 density = {mass:e} kg of this radius and density is outside double \
+                         precision: give `mass` or check the radius"
+                    ),
+                ));
+            }
+            mass
         }
         (None, None) => return Err(missing("mass", "give `mass` in kg (inf for immovable) or `density` in kg/m^3")),
     };
@@ -254,16 +276,33 @@ fn body(src: &Source, i: usize, raw: &At<RawBody>) -> Checked<Body> {
     let angular_velocity = match &raw.angular_velocity {
         Some(w) => {
             let spin = vector(src, &key("angular_velocity"), w)?;
-            if spin != Vector3::zeros() {
+            if spin != Vector3::zeros() && radius.is_infinite() {
                 return Err(src.error(
                     &key("angular_velocity"),
                     Some(&w.span()),
-                    "spin is not supported yet (only direct central impacts): use [0, 0, 0] or leave it out",
+                    "a flat body (radius = inf) cannot spin: use [0, 0, 0] or leave it out",
                 ));
             }
             spin
         }
         None => Vector3::zeros(),
+    };
+    let inertia = match &raw.inertia {
+        None => Body::solid_sphere_inertia(mass, radius),
+        Some(i) => {
+            let inertia = number(src, &key("inertia"), i, Allowed::Positive)?;
+            let why = if mass.is_infinite() {
+                Some("an immovable body (mass = inf) does not rotate")
+            } else if radius.is_infinite() {
+                Some("a flat body (radius = inf) does not rotate")
+            } else {
+                None
+            };
+            if let Some(why) = why {
+                return Err(src.error(&key("inertia"), Some(&i.span()), format!("{why}: leave `inertia` out")));
+            }
+            inertia
+        }
     };
     let young = raw.young.as_ref().map(|e| number(src, &key("young"), e, Allowed::PositiveOrInfinite)).transpose()?;
     let poisson = raw.poisson.as_ref().map(|nu| number(src, &key("poisson"), nu, Allowed::Any)).transpose()?;
@@ -273,7 +312,7 @@ fn body(src: &Source, i: usize, raw: &At<RawBody>) -> Checked<Body> {
         return Err(src.error(&key("poisson"), Some(&at.span()), format!("expected a number in (-1, 0.5], got {nu}")));
     }
     let name = raw.name.as_ref().map_or_else(|| format!("body {}", i + 1), |n| n.get_ref().clone());
-    Ok(Body { name, mass, radius, velocity, position, angular_velocity, young, poisson })
+    Ok(Body { name, mass, radius, velocity, position, angular_velocity, inertia, young, poisson })
 }
 
 fn contact_spec(src: &Source, raw: &At<RawContact>) -> Checked<ContactSpec> {
@@ -311,15 +350,30 @@ fn contact_spec(src: &Source, raw: &At<RawContact>) -> Checked<ContactSpec> {
     };
     let friction =
         raw.friction.as_ref().map(|f| number(src, "contact.friction", f, Allowed::NonNegative)).transpose()?;
-    if let (Some(mu), Some(at)) = (friction, &raw.friction)
-        && mu > 0.0
-    {
-        return Err(src.error(
-            "contact.friction",
-            Some(&at.span()),
-            "friction is not supported yet (only smooth direct central impacts): use 0 or leave it out",
-        ));
-    }
+    let tangential_stiffness = match &raw.tangential_stiffness {
+        None => TangentialStiffnessSpec::Mindlin,
+        Some(value) => match value.get_ref() {
+            toml::Value::String(s) if s == "mindlin" => TangentialStiffnessSpec::Mindlin,
+            toml::Value::Float(_) | toml::Value::Integer(_) => {
+                let k = value.get_ref().as_float().or_else(|| value.get_ref().as_integer().map(|i| i as f64));
+                let k = At::new(value.span(), k.unwrap_or(f64::NAN));
+                TangentialStiffnessSpec::Value(number(src, "contact.tangential_stiffness", &k, Allowed::Positive)?)
+            }
+            other => {
+                return Err(src.error(
+                    "contact.tangential_stiffness",
+                    Some(&value.span()),
+                    format!("expected \"mindlin\" or a number in N/m, got {}", cut(&other.to_string())),
+                ));
+            }
+        },
+    };
+    let tangential_damping = raw
+        .tangential_damping
+        .as_ref()
+        .map(|c| number(src, "contact.tangential_damping", c, Allowed::NonNegative))
+        .transpose()?
+        .unwrap_or(0.0);
     let normal = match &raw.normal {
         Some(n) => {
             let v = vector(src, "contact.normal", n)?;
@@ -331,7 +385,17 @@ fn contact_spec(src: &Source, raw: &At<RawContact>) -> Checked<ContactSpec> {
         }
         None => None,
     };
-    Ok(ContactSpec { law, damping, stiffness, exponent, separation, friction: friction.unwrap_or(0.0), normal })
+    Ok(ContactSpec {
+        law,
+        damping,
+        stiffness,
+        exponent,
+        separation,
+        friction: friction.unwrap_or(0.0),
+        tangential_stiffness,
+        tangential_damping,
+        normal,
+    })
 }
 
 fn damping_spec(src: &Source, law: LawKind, raw: &RawContact, table: &Range<usize>) -> Checked<DampingSpec> {
@@ -431,7 +495,24 @@ fn stiffness_and_exponent(
     Ok((stiffness, exponent.unwrap_or(1.5)))
 }
 
-fn solver(src: &Source, raw: &RawSolver) -> Checked<Tolerances> {
+fn solver(src: &Source, raw: &RawSolver) -> Checked<SolverSpec> {
+    let method = match &raw.method {
+        None => Method::Auto,
+        Some(name) => {
+            Method::ALL.iter().find(|(spelling, _)| spelling == name.get_ref()).map(|(_, m)| *m).ok_or_else(|| {
+                let names: Vec<_> = Method::ALL.iter().map(|(spelling, _)| format!("\"{spelling}\"")).collect();
+                src.error(
+                    "solver.method",
+                    Some(&name.span()),
+                    format!("unknown method \"{}\"; expected one of {}", cut(name.get_ref()), names.join(", ")),
+                )
+            })?
+        }
+    };
+    Ok(SolverSpec { method, tolerances: tolerances(src, raw)? })
+}
+
+fn tolerances(src: &Source, raw: &RawSolver) -> Checked<Tolerances> {
     let defaults = Tolerances::default();
     let tolerance = |key: &str, value: &Option<At<f64>>, default: f64| -> Checked<f64> {
         let Some(value) = value else { return Ok(default) };

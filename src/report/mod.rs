@@ -1,4 +1,9 @@
-//! The report: the one product of a simulation (interface.md, "JSON report"). Every view is built from it.
+//! The report: the one product of a simulation (the JSON report of the README). Every view is built from it, and it
+//! is built in one place ([`build`]) from the phases' outcome.
+
+mod build;
+
+pub use build::build;
 
 use serde::{Serialize, Serializer};
 
@@ -19,7 +24,9 @@ pub struct Report {
     pub contact: ContactReport,
     pub bodies: [BodyReport; 2],
     pub energy: EnergyReport,
-    /// The instantaneous impact with the simulated e; null when the bodies did not separate.
+    /// Oblique impact, friction and spin: null for a direct central impact without spin.
+    pub oblique: Option<ObliqueReport>,
+    /// The instantaneous (smooth, four-equation) impact with the simulated e; null when the bodies did not separate.
     pub instantaneous: Option<InstantaneousReport>,
     /// The instantaneous impact with the nominal e; null when `damping` was given.
     pub instantaneous_nominal: Option<InstantaneousReport>,
@@ -83,19 +90,78 @@ pub struct BodyReport {
     /// m, "inf" for a flat wall (an addition).
     #[serde(serialize_with = "maybe_infinite")]
     pub radius: f64,
+    /// kg m², "inf" for a body that does not rotate (an addition).
+    #[serde(serialize_with = "maybe_infinite")]
+    pub inertia: f64,
+    /// m/s.
     pub velocity_before: Vec3,
     pub velocity_after: Option<Vec3>,
     pub velocity_at_max_compression: Vec3,
+    /// rad/s (an addition: the spin before).
+    pub angular_velocity_before: Vec3,
     pub angular_velocity_after: Option<Vec3>,
+    /// Direction of the velocity from the tangent plane at first contact, degrees (90: along the normal, towards
+    /// body 2; negative: towards body 1); null for a body at rest.
+    pub angle_from_tangent_before_deg: Option<f64>,
+    pub angle_from_tangent_after_deg: Option<f64>,
+    /// Centre (a wall: the point of its plane under the sphere) at first contact and at separation, m (additions).
+    pub position_at_first_contact: Vec3,
+    pub position_at_separation: Option<Vec3>,
 }
 
-/// Energies in J; kinetic energies count finite bodies only and include rotation.
+/// Energies in J; kinetic energies count finite bodies only and include rotation. The balance
+/// `kinetic_before + work_of_immovable_bodies = kinetic_after + dissipated + elastic_left_at_separation` closes to
+/// integration accuracy (every term is integrated separately).
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct EnergyReport {
     pub kinetic_before: f64,
     pub kinetic_after: Option<f64>,
-    /// Work of the dissipative forces through the contact.
+    /// Work of the dissipative forces through the contact: normal damping plus friction.
     pub dissipated: Option<f64>,
+    /// Spring energy still stored in the contact when it ends (a force separation of a law that turns tensile).
+    pub elastic_left_at_separation: Option<f64>,
+    /// Work done on the movable bodies by a body of infinite mass (a moving wall).
+    pub work_of_immovable_bodies: Option<f64>,
+}
+
+/// Oblique impact, friction and spin (interface.md, "Oblique impact, friction, spin"). Angles in degrees.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct ObliqueReport {
+    /// The relative velocity of the contact points before impact, from the normal.
+    pub incidence_from_normal_deg: f64,
+    /// The same after impact, signed along the initial slip (negative: the slip reversed).
+    pub rebound_from_normal_deg: Option<f64>,
+    /// Tangential relative velocity of the centres after / before (along the initial one); null without one.
+    pub tangential_restitution_centre: Option<f64>,
+    /// Slip of the contact points after / before (along the initial slip; negative: reversal); null without slip.
+    pub tangential_restitution_contact: Option<f64>,
+    /// Work of friction (dissipated by slip and tangential damping), J; included in `energy.dissipated`.
+    pub friction_work: Option<f64>,
+    /// "smooth", "sliding" (slid throughout) or "sticking" (stuck at some time).
+    pub regime: String,
+    /// Time the contact spent sticking, s (an addition; null for a smooth contact).
+    pub stick_duration: Option<f64>,
+    /// Angle between the normals at first contact and at separation (how far the line of centres turned).
+    pub normal_turn_deg: Option<f64>,
+    /// Unit normal at separation (an addition).
+    pub normal_at_separation: Option<Vec3>,
+    /// The rigid-body prediction with the simulated normal e; null when the bodies did not separate.
+    pub rigid_body: Option<RigidBodyReport>,
+}
+
+/// Rigid-body theory of a frictional impact (physics.md §2) with the simulated normal e.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct RigidBodyReport {
+    /// "smooth", "sliding" or "sticking" (the slip stops and the contact rolls).
+    pub regime: String,
+    /// m/s, [body 1, body 2].
+    pub velocity_after: [Vec3; 2],
+    /// rad/s, [body 1, body 2].
+    pub angular_velocity_after: [Vec3; 2],
+    /// Largest |simulated - rigid| velocity component, m/s.
+    pub max_velocity_difference: f64,
+    /// Largest |simulated - rigid| angular velocity component, rad/s (an addition).
+    pub max_angular_velocity_difference: f64,
 }
 
 /// The idealised instantaneous impact with a given e (physics.md §2).

@@ -1,0 +1,215 @@
+//! One contact between two bodies in 3-D, in scaled variables: where the normal points and how deep the bodies
+//! overlap, how fast the contact points slip, and the tangential (friction) force of a Mindlin spring capped by
+//! Coulomb's law. Pure functions of the relative kinematics — each contact of a run with several would use them.
+//!
+//! Conventions (physics.md §1): the normal n points from body 1 to body 2; the penetration is d = r1 + r2 - |x2 - x1|
+//! for two spheres and the overlap with the wall's plane for a sphere on a wall; the slip is the velocity of body 1's
+//! contact point relative to body 2's, across the normal; the tangential force Ft acts on body 1, -Ft on body 2.
+//!
+//! The contact point divides the line of centres in the ratio of the radii (the overlap shared in proportion to
+//! them): the lever arms are a1 = r1/(r1 + r2) (x2 - x1) and a2 = -r2/(r1 + r2) (x2 - x1). They add up to the line
+//! of centres, so two free spheres conserve angular momentum exactly; on a wall the sphere's arm is its radius, as
+//! rigid-body theory has it.
+
+use crate::integrate::State;
+use nalgebra::Vector3;
+
+/// The geometry of a contact, scaled by the penetration scale L.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Shape {
+    /// Two spheres: the normal follows the line of centres.
+    Spheres {
+        /// (r1 + r2)/L.
+        reach: f64,
+        /// The line of centres at first contact, (x2 - x1)/L: length `reach`, along the first normal.
+        contact_vector: Vector3<f64>,
+    },
+    /// A sphere and a flat body: the wall's normal, fixed.
+    Wall { normal: Vector3<f64>, sphere: usize },
+}
+
+/// Where the contact stands at one instant (scaled).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Kinematics {
+    pub normal: Vector3<f64>,
+    /// d/L.
+    pub penetration: f64,
+    /// d'/v0 = -(relative velocity)·n.
+    pub rate: f64,
+    /// Lever arms a_i / r_i, from each centre to the contact point (zero for a flat body).
+    pub arms: [Vector3<f64>; 2],
+    /// Slip of the contact points across the normal, in units of v0.
+    pub slip: Vector3<f64>,
+    /// dn/dt in units of 1/T.
+    pub normal_rate: Vector3<f64>,
+}
+
+impl Shape {
+    /// The contact's kinematics for a relative displacement `displacement` of body 2 with respect to body 1 since
+    /// first contact (in L), relative velocity `relative_velocity` = v2 - v1 (in v0), and spins scaled as
+    /// omega_i r_i / v0 (so that omega x a is `spin x arm` in units of v0).
+    pub fn kinematics(
+        &self,
+        displacement: &Vector3<f64>,
+        relative_velocity: &Vector3<f64>,
+        spins: &[Vector3<f64>; 2],
+    ) -> Kinematics {
+        let (normal, penetration, arms, normal_rate) = match *self {
+            Shape::Spheres { reach, contact_vector } => {
+                let centres = contact_vector + displacement;
+                let distance = centres.norm();
+                let normal = centres / distance;
+                // d = R - |r_c + rho| without the cancellation of two nearly equal lengths:
+                // |r_c + rho|² - R² = 2 r_c·rho + rho·rho.
+                let penetration =
+                    -(2.0 * contact_vector.dot(displacement) + displacement.norm_squared()) / (distance + reach);
+                let arm = centres / reach;
+                let across = relative_velocity - normal * relative_velocity.dot(&normal);
+                (normal, penetration, [arm, -arm], across / distance)
+            }
+            Shape::Wall { normal, sphere } => {
+                let mut arms = [Vector3::zeros(); 2];
+                arms[sphere] = if sphere == 0 { normal } else { -normal };
+                (normal, -displacement.dot(&normal), arms, Vector3::zeros())
+            }
+        };
+        let relative = -relative_velocity + spins[0].cross(&arms[0]) - spins[1].cross(&arms[1]);
+        let slip = relative - normal * relative.dot(&normal);
+        Kinematics { normal, penetration, rate: -relative_velocity.dot(&normal), arms, slip, normal_rate }
+    }
+}
+
+/// Whether the tangential spring holds (stick) or the contact slides at the Coulomb limit (slip).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Mode {
+    Stick,
+    Slip,
+}
+
+/// The tangential contact, scaled: an incremental spring dT/dt = -kt slip (Mindlin: kt = 8 G* sqrt(R* d)) with a
+/// dashpot c_t on the slip, the total capped at mu Fn (Coulomb). While sticking the spring follows the slip; while
+/// sliding it stays on the cap |T| = mu Fn, turning towards the slip, until the spring would unload faster than the
+/// cap falls — the elastic–perfectly-plastic slider in continuous time, with the switches located as events.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Tangential {
+    /// Coulomb coefficient mu.
+    pub friction: f64,
+    /// kt = `stiffness` d^`exponent`, in units of F0/L (d in L).
+    pub stiffness: f64,
+    pub exponent: f64,
+    /// c_t = `damping` sqrt(kt), in units of F0/v0 (2 ratio sqrt(m_t/m*) in scaled units).
+    pub damping: f64,
+}
+
+/// The tangential force and the rate of the spring at one instant (scaled).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TangentialForce {
+    /// Force on body 1.
+    pub force: Vector3<f64>,
+    /// dT/dt of the spring.
+    pub spring_rate: Vector3<f64>,
+}
+
+impl Tangential {
+    /// kt at penetration `d` (scaled), zero out of contact.
+    pub fn stiffness_at(&self, d: f64) -> f64 {
+        if d <= 0.0 {
+            0.0
+        } else if self.exponent == 0.0 {
+            self.stiffness
+        } else {
+            self.stiffness * d.powf(self.exponent)
+        }
+    }
+
+    /// The direction of the spring's force: along the spring, or — an unloaded spring — against the slip.
+    pub fn direction(spring: &Vector3<f64>, slip: &Vector3<f64>) -> Vector3<f64> {
+        let length = spring.norm();
+        if length > 1e-300 {
+            spring / length
+        } else {
+            let speed = slip.norm();
+            if speed > 0.0 { -slip / speed } else { Vector3::zeros() }
+        }
+    }
+
+    /// The force and spring rate in `mode`, for the spring `spring` (in the tangent plane), the kinematics, the
+    /// normal force `normal_force` and its rate `normal_force_rate`.
+    pub fn evaluate(
+        &self,
+        mode: Mode,
+        spring: &Vector3<f64>,
+        kinematics: &Kinematics,
+        normal_force: f64,
+        normal_force_rate: f64,
+    ) -> TangentialForce {
+        let k = &kinematics;
+        let kt = self.stiffness_at(k.penetration);
+        let loading = -k.slip * kt;
+        // Keep the spring in the tangent plane as the normal turns: d(T·n)/dt = 0.
+        let turning = -k.normal * spring.dot(&k.normal_rate);
+        let cap = self.friction * normal_force.max(0.0);
+        match mode {
+            Mode::Stick => {
+                let trial = spring - k.slip * (self.damping * kt.sqrt());
+                let size = trial.norm();
+                let force = if size > cap { trial * (cap / size) } else { trial };
+                TangentialForce { force, spring_rate: loading + turning }
+            }
+            Mode::Slip => {
+                let along = Tangential::direction(spring, &k.slip);
+                let cap_rate = if normal_force > 0.0 { self.friction * normal_force_rate } else { 0.0 };
+                let spring_rate = loading - along * loading.dot(&along) + along * cap_rate + turning;
+                let force = if normal_force > 0.0 { *spring } else { Vector3::zeros() };
+                TangentialForce { force, spring_rate }
+            }
+        }
+    }
+
+    /// The function whose fall through zero ends the present mode: the room left under the cap while sticking,
+    /// mu Fn - |T|; while sliding, how much faster the spring loads than the cap grows, (-kt slip)·t - mu dFn/dt
+    /// (positive, no switch, while the normal force is not compressive).
+    pub fn switch_function(
+        &self,
+        mode: Mode,
+        spring: &Vector3<f64>,
+        kinematics: &Kinematics,
+        normal_force: f64,
+        normal_force_rate: f64,
+    ) -> f64 {
+        match mode {
+            Mode::Stick => self.friction * normal_force - spring.norm(),
+            // Without compression there is no friction to stick with: a sliding contact stays sliding.
+            Mode::Slip if normal_force <= 0.0 => 1.0,
+            Mode::Slip => {
+                let kt = self.stiffness_at(kinematics.penetration);
+                let along = Tangential::direction(spring, &kinematics.slip);
+                -kinematics.slip.dot(&along) * kt - self.friction * normal_force_rate
+            }
+        }
+    }
+
+    /// The mode at first contact (T = 0, d = 0): sliding when the spring would outgrow the Coulomb cap from the
+    /// start. Both grow from zero; their ratio tends to a limit, read at a tiny penetration `probe` (scaled) from the
+    /// leading terms: a spring loaded at the initial slip over the time the penetration took, against mu F(probe).
+    pub fn initial_mode(&self, slip: f64, rate: f64, probe: f64, normal_force: f64) -> Mode {
+        if slip == 0.0 {
+            return Mode::Stick;
+        }
+        // d = rate t and kt = k d^a give |T| = k d^(a+1) slip / ((a + 1) rate).
+        let spring = self.stiffness_at(probe) * probe * slip / ((self.exponent + 1.0) * rate);
+        if spring > self.friction * normal_force { Mode::Slip } else { Mode::Stick }
+    }
+}
+
+/// The spring part of a state slice.
+pub fn vector<const N: usize>(y: &State<N>, at: usize) -> Vector3<f64> {
+    Vector3::new(y[at], y[at + 1], y[at + 2])
+}
+
+/// Writes a vector into a state slice.
+pub fn set_vector<const N: usize>(y: &mut State<N>, at: usize, v: &Vector3<f64>) {
+    y[at] = v.x;
+    y[at + 1] = v.y;
+    y[at + 2] = v.z;
+}

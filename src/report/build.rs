@@ -1,0 +1,241 @@
+//! Building the [`Report`] from the outcome of an impact's phases: the one place where simulated numbers become
+//! report values.
+
+use super::{
+    BodyReport, ContactReport, EnergyReport, InstantaneousReport, LawReport, ObliqueReport, Report, RigidBodyReport,
+    SolverReport, Vec3,
+};
+use crate::accuracy::{self, Measured};
+use crate::body::Body;
+use crate::impact::{Outcome, TIME_LIMIT};
+use crate::instantaneous::{Instantaneous, direct_impact, rigid_body_impact};
+use crate::integrate::Ending;
+use crate::scene::{DampingSpec, Scene};
+use crate::setup::{Motion, Setup};
+use nalgebra::Vector3;
+
+/// The report of one impact.
+pub fn build(scene: &Scene, setup: &Setup, outcome: &Outcome, wall_time: f64) -> Report {
+    let [a, b] = &scene.bodies;
+    let n = setup.normal;
+    let (max, end) = (&outcome.max_compression, &outcome.end);
+    let done = outcome.separated;
+    let when = |value: f64| done.then_some(value);
+    let deformation_impulse = max.normal_impulse;
+    let restitution_impulse = end.normal_impulse - deformation_impulse;
+    let compression_work = max.normal_work;
+    let restitution_work = compression_work - end.normal_work;
+    let e_velocity = -end.rate / setup.approach_speed;
+    // V0 read off a movable body's simulated velocity (its error is the impulse integral's).
+    let moving = if a.is_immovable() { 1 } else { 0 };
+    let common_normal_velocity = max.velocities[moving].dot(&max.normal);
+    let kinetic = |i: usize, body: &Body| body.kinetic_energy(&end.velocities[i], &end.spins[i]);
+    let kinetic_before =
+        a.kinetic_energy(&a.velocity, &a.angular_velocity) + b.kinetic_energy(&b.velocity, &b.angular_velocity);
+    let friction_work = 0.0 - (end.tangential_work + end.tangential_elastic_energy);
+
+    let nominal = match scene.contact.damping {
+        DampingSpec::None => Some(1.0),
+        DampingSpec::Restitution(e) => Some(e),
+        DampingSpec::Parameter(_) => None,
+    };
+    let after = done.then_some(&end.velocities);
+    let compare = |e: f64| instantaneous_report(&direct_impact(&scene.bodies, &n, setup.effective_mass, e), after);
+    let body = |i: usize, body: &Body| BodyReport {
+        name: body.name.clone(),
+        mass: body.mass,
+        radius: body.radius,
+        inertia: body.inertia,
+        velocity_before: vec3(&body.velocity),
+        velocity_after: done.then(|| vec3(&end.velocities[i])),
+        velocity_at_max_compression: vec3(&max.velocities[i]),
+        angular_velocity_before: vec3(&body.angular_velocity),
+        angular_velocity_after: done.then(|| vec3(&end.spins[i])),
+        angle_from_tangent_before_deg: angle_from_tangent(&body.velocity, &n),
+        angle_from_tangent_after_deg: done.then(|| angle_from_tangent(&end.velocities[i], &n)).flatten(),
+        position_at_first_contact: vec3(&setup.positions[i]),
+        position_at_separation: done.then(|| vec3(&end.positions[i])),
+    };
+    let measured = Measured {
+        restitution: when(e_velocity),
+        max_penetration: max.penetration,
+        max_compression_time: max.time,
+        duration: when(end.time),
+        max_force: outcome.peak_force.1,
+        common_normal_velocity,
+    };
+    // The exact references describe the relative motion along a fixed normal: a turning line of centres couples it
+    // to the tangential motion, and they no longer apply.
+    let fixed_normal = setup.motion == Motion::Normal || a.is_flat() || b.is_flat();
+    let mut notes = Vec::new();
+    if !done {
+        notes.push(stuck_note(outcome));
+    }
+    let oblique = oblique(scene, setup, outcome, e_velocity, friction_work);
+    if let Some(turn) = oblique.as_ref().and_then(|o| o.normal_turn_deg).filter(|_| !fixed_normal) {
+        notes.push(format!(
+            "the line of centres turned by {turn:.3e} degrees during the contact: the exact references of a fixed \
+             normal do not apply"
+        ));
+    }
+    if outcome.switches > 0 {
+        notes.push(format!("the contact switched between sticking and sliding {} times", outcome.switches));
+    }
+    Report {
+        title: scene.title.clone(),
+        law: LawReport {
+            name: setup.law.kind.name().into(),
+            stiffness: setup.law.stiffness,
+            exponent: setup.law.exponent,
+            damping: setup.law.damping,
+            restitution_nominal: nominal,
+            separation: scene.contact.separation.name().into(),
+        },
+        effective_mass: setup.effective_mass,
+        approach_speed: setup.approach_speed,
+        normal: vec3(&n),
+        contact: ContactReport {
+            start_time: setup.contact_time,
+            max_compression_time: setup.contact_time + max.time,
+            end_time: when(setup.contact_time + end.time),
+            duration: when(end.time),
+            max_penetration: max.penetration,
+            max_force: outcome.peak_force.1,
+            max_force_time: setup.contact_time + outcome.peak_force.0,
+            common_normal_velocity,
+            deformation_impulse,
+            restitution_impulse: when(restitution_impulse),
+            restitution_impulse_ratio: when(restitution_impulse / deformation_impulse),
+            restitution_velocity_ratio: when(e_velocity),
+            restitution_energy: when((restitution_work.max(0.0) / compression_work).sqrt()),
+            separated: done,
+        },
+        bodies: [body(0, a), body(1, b)],
+        energy: EnergyReport {
+            kinetic_before,
+            kinetic_after: when(kinetic(0, a) + kinetic(1, b)),
+            dissipated: when(end.dissipated_normal + friction_work),
+            elastic_left_at_separation: when(end.elastic_energy + end.tangential_elastic_energy),
+            work_of_immovable_bodies: when(end.work_of_immovable_bodies),
+        },
+        oblique,
+        instantaneous: when(e_velocity).map(compare),
+        instantaneous_nominal: nominal.map(compare),
+        reference: if fixed_normal { accuracy::reference(scene, setup, measured) } else { None },
+        solver: SolverReport {
+            method: outcome.method.into(),
+            rtol: scene.solver.tolerances.rtol,
+            atol: scene.solver.tolerances.atol,
+            steps: outcome.counters.steps,
+            rejected_steps: outcome.counters.rejected_steps,
+            force_evaluations: outcome.counters.evaluations,
+            wall_time_s: wall_time,
+        },
+        notes,
+    }
+}
+
+/// The oblique section: null for a direct central impact without spin.
+fn oblique(scene: &Scene, setup: &Setup, outcome: &Outcome, e: f64, friction_work: f64) -> Option<ObliqueReport> {
+    let bodies = &scene.bodies;
+    let spinning = bodies.iter().any(|body| body.angular_velocity != Vector3::zeros());
+    if setup.tangential_velocity == Vector3::zeros() && !spinning {
+        return None;
+    }
+    let done = outcome.separated;
+    let end = &outcome.end;
+    let n = setup.normal;
+    let v0 = setup.approach_speed;
+    let slip = setup.initial_slip;
+    let degrees = f64::to_degrees;
+    // Components along the initial direction (the whole size when there was none).
+    let along = |after: &Vector3<f64>, before: &Vector3<f64>| {
+        let size = before.norm();
+        if size > 0.0 { after.dot(before) / size } else { after.norm() }
+    };
+    let ratio = |after: &Vector3<f64>, before: &Vector3<f64>| {
+        let size = before.norm();
+        (size > 0.0).then(|| after.dot(before) / (size * size))
+    };
+    let relative_after = end.velocities[1] - end.velocities[0];
+    let centre_after = relative_after - end.normal * relative_after.dot(&end.normal);
+    let friction = scene.contact.friction;
+    let regime = if friction == 0.0 {
+        "smooth"
+    } else if setup.motion == Motion::Normal || outcome.stick_duration > 0.0 {
+        // Friction without slip (Motion::Normal) never lets the contact slide.
+        "sticking"
+    } else {
+        "sliding"
+    };
+    let rigid_body = done.then(|| {
+        let rigid = rigid_body_impact(bodies, &n, setup.effective_mass, e, friction, &slip);
+        let largest = |simulated: &[Vector3<f64>; 2], ideal: &[Vector3<f64>; 2]| {
+            (0..2).map(|i| (simulated[i] - ideal[i]).amax()).fold(0.0, f64::max)
+        };
+        RigidBodyReport {
+            regime: rigid.regime.name().into(),
+            velocity_after: [vec3(&rigid.velocity_after[0]), vec3(&rigid.velocity_after[1])],
+            angular_velocity_after: [vec3(&rigid.angular_velocity_after[0]), vec3(&rigid.angular_velocity_after[1])],
+            max_velocity_difference: largest(&end.velocities, &rigid.velocity_after),
+            max_angular_velocity_difference: largest(&end.spins, &rigid.angular_velocity_after),
+        }
+    });
+    Some(ObliqueReport {
+        incidence_from_normal_deg: degrees(slip.norm().atan2(v0)),
+        rebound_from_normal_deg: done.then(|| degrees(along(&end.slip, &slip).atan2(-end.rate))),
+        tangential_restitution_centre: done.then(|| ratio(&centre_after, &setup.tangential_velocity)).flatten(),
+        tangential_restitution_contact: done.then(|| ratio(&end.slip, &slip)).flatten(),
+        friction_work: done.then_some(friction_work),
+        regime: regime.into(),
+        stick_duration: (friction > 0.0).then_some(if setup.motion == Motion::Normal {
+            end.time
+        } else {
+            outcome.stick_duration
+        }),
+        normal_turn_deg: done.then(|| degrees(n.cross(&end.normal).norm().atan2(n.dot(&end.normal)))),
+        normal_at_separation: done.then(|| vec3(&end.normal)),
+        rigid_body,
+    })
+}
+
+/// The direction of a velocity from the tangent plane of `normal`, degrees: 90 along the normal, negative towards
+/// body 1; `None` at rest.
+fn angle_from_tangent(velocity: &Vector3<f64>, normal: &Vector3<f64>) -> Option<f64> {
+    let along = velocity.dot(normal);
+    let across = (velocity - normal * along).norm();
+    (velocity.norm() > 0.0).then(|| along.atan2(across).to_degrees())
+}
+
+fn stuck_note(outcome: &Outcome) -> String {
+    let end = &outcome.end;
+    let how = match &outcome.ending {
+        Ending::Event(0) => "the penetration returned to zero with no separation speed".to_string(),
+        Ending::Event(_) => "the relative motion died out".to_string(),
+        Ending::TimeLimit => format!("the time limit ({TIME_LIMIT} elastic time units) was reached"),
+        Ending::GaveUp(reason) => format!(
+            "the integration stopped ({reason}; a creeping, stiff restitution is typical of very heavy damping)"
+        ),
+    };
+    format!(
+        "the bodies did not separate: {how} {:.6e} s after first contact with penetration {:.6e} m and \
+         penetration rate {:.6e} m/s still in contact",
+        end.time, end.penetration, end.rate
+    )
+}
+
+fn instantaneous_report(ideal: &Instantaneous, simulated: Option<&[Vector3<f64>; 2]>) -> InstantaneousReport {
+    let difference =
+        simulated.map(|after| (0..2).map(|i| (after[i] - ideal.velocity_after[i]).amax()).fold(0.0, f64::max));
+    InstantaneousReport {
+        restitution: ideal.restitution,
+        common_normal_velocity: ideal.common_normal_velocity,
+        velocity_after: [vec3(&ideal.velocity_after[0]), vec3(&ideal.velocity_after[1])],
+        energy_lost: ideal.energy_lost,
+        max_velocity_difference: difference,
+    }
+}
+
+fn vec3(v: &Vector3<f64>) -> Vec3 {
+    [v.x, v.y, v.z]
+}
