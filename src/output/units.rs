@@ -90,6 +90,18 @@ pub fn plain_digits(value: f64, digits: usize) -> String {
     format!("{sign}{text}")
 }
 
+/// A number as given, for inputs such as an exponent or a nominal e: [`plain`] without trailing zeros
+/// (1.5 -> "1.5", 0.8 -> "0.8", 1 -> "1", 1.5e-7 -> "1.5e-7").
+pub fn short(value: f64) -> String {
+    let text = plain(value);
+    let (mantissa, exponent) = text.split_once('e').map_or((text.as_str(), None), |(m, e)| (m, Some(e)));
+    let mantissa = if mantissa.contains('.') { mantissa.trim_end_matches('0').trim_end_matches('.') } else { mantissa };
+    match exponent {
+        Some(exponent) => format!("{mantissa}e{exponent}"),
+        None => mantissa.to_string(),
+    }
+}
+
 /// The SI prefix [`engineering`] would choose for a value of size `scale` in a prefixable unit, and its factor:
 /// 0.2 -> (1e-3, "m"). For a set of values shown in one unit (the components of a vector). Falls back to no
 /// prefix for zero, non-finite or out-of-range scales.
@@ -232,6 +244,19 @@ mod tests {
         assert_eq!(plain(1.2345678e-7), "1.23457e-7");
         assert_eq!(plain(0.0), "0");
         assert_eq!(plain_digits(3.6901870448e-11, 2), "3.7e-11");
+    }
+
+    #[test]
+    fn short_numbers_drop_trailing_zeros() {
+        assert_eq!(short(1.5), "1.5");
+        assert_eq!(short(0.8), "0.8");
+        assert_eq!(short(1.0), "1");
+        assert_eq!(short(100.0), "100");
+        assert_eq!(short(-0.25), "-0.25");
+        assert_eq!(short(1.5e-7), "1.5e-7");
+        // Six significant digits at most: 1.23456789 -> 1.23457.
+        assert_eq!(short(1.23456789), "1.23457");
+        assert_eq!(short(0.0), "0");
     }
 
     #[test]
