@@ -42,11 +42,7 @@ impl Scales {
         let v0 = report.approach_speed;
         let largest = report.bodies.iter().flat_map(|b| b.velocity_before).map(f64::abs).fold(0.0, f64::max);
         let m = report.effective_mass;
-        Scales {
-            speed: v0.max(largest),
-            impulse: m * v0,
-            energy: (m * v0 * v0).max(report.energy.kinetic_before),
-        }
+        Scales { speed: v0.max(largest), impulse: m * v0, energy: (m * v0 * v0).max(report.energy.kinetic_before) }
     }
 }
 

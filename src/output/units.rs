@@ -120,10 +120,10 @@ fn mass(kg: f64, digits: usize) -> String {
     let grams = kg * 1e3;
     let (_, _, exponent) = decompose(grams, digits);
     // 0.99999996 kg rounds to 1000.00 g: exponent 3, so it is written in kg ("1.00000 kg").
-    if exponent < 3 {
-        if let Some(text) = prefixed(grams, "g", digits) {
-            return text;
-        }
+    if exponent < 3
+        && let Some(text) = prefixed(grams, "g", digits)
+    {
+        return text;
     }
     with_unit(plain_digits(kg, digits), "kg")
 }
