@@ -237,7 +237,8 @@ fn bodies(report: &Report, scales: &Scales) -> Section {
 fn instantaneous(with: String, ideal: &InstantaneousReport, report: &Report, scales: &Scales) -> Section {
     let mut section = Section::new(format!("instantaneous impact with {with}"));
     section.row("common normal velocity V0", engineering(denoise(ideal.common_normal_velocity, scales.speed), "m/s"));
-    for (body, after) in report.bodies.iter().zip(&ideal.velocity_after) {
+    // (An immovable body keeps its velocity: the bodies section gives it once.)
+    for (body, after) in report.bodies.iter().zip(&ideal.velocity_after).filter(|(body, _)| body.mass.is_finite()) {
         section.row(format!("velocity after, {}", body.name), velocity(after, scales));
     }
     section.row("kinetic energy lost", engineering(denoise(ideal.energy_lost, scales.energy), "J"));
@@ -262,7 +263,8 @@ fn reference(report: &Report, scales: &Scales) -> Option<Section> {
         ("common normal velocity V0", Some(v0), Some(e.common_normal_velocity), "m/s", " of v0"),
     ] {
         if let Some(exact) = exact {
-            let error = maybe(error, |x| format!("{}{per}", plain_digits(x, ERROR_DIGITS)));
+            let error =
+                maybe(error, |x| if x == 0.0 { "0".into() } else { format!("{}{per}", plain_digits(x, ERROR_DIGITS)) });
             section.row(label, format!("{:<EXACT_WIDTH$}  {error}", engineering(exact, unit)));
         }
     }
