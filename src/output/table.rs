@@ -1,11 +1,11 @@
 //! The readable terminal report: a title, then sections of labelled rows with the values in one aligned column.
 //!
 //! Numbers are in engineering form with six significant digits ([`super::units`]); the JSON and CSV views keep
-//! full precision. Each section is one small function of the [`Report`] returning a [`Section`] (or `None` when
+//! full precision. Each section is one small function of the [`Report`] returning a `Section` (or `None` when
 //! the report has nothing for it), so a new part of the report is a new function and one line in [`render`].
 //!
 //! Two conventions make the numbers readable:
-//! - a value whose size is below [`NOISE`] times the impact's own scale for its quantity ([`Scales`]) is double
+//! - a value whose size is below [`NOISE`] times the impact's own scale for its quantity (`Scales`) is double
 //!   precision rounding, not physics, and is shown as 0 (V0 of a symmetric impact is 0, not 1e-16 m/s);
 //! - times of the contact are measured from first contact; the scene time of first contact is given once.
 
@@ -31,7 +31,7 @@ struct Scales {
     /// m/s: the approach speed v0, or the largest velocity component before the impact if larger (a body's
     /// velocity in the scene's frame carries rounding of its own size).
     speed: f64,
-    /// N s: m* v0, the deformation impulse of an impact without a wall's inf/inf.
+    /// N s: m* v0, the size of the deformation impulse.
     impulse: f64,
     /// J: m* v0², or the kinetic energy before if larger.
     energy: f64,
