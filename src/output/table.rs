@@ -1,133 +1,307 @@
-//! The readable terminal report.
+//! The readable terminal report: a title, then sections of labelled rows with the values in one aligned column.
+//!
+//! Numbers are in engineering form with six significant digits ([`super::units`]); the JSON and CSV views keep
+//! full precision. Each section is one small function of the [`Report`] returning a `Section` (or `None` when
+//! the report has nothing for it), so a new part of the report is a new function and one line in [`render`].
+//!
+//! Two conventions make the numbers readable:
+//! - a value whose size is below [`NOISE`] times the impact's own scale for its quantity (`Scales`) is double
+//!   precision rounding, not physics, and is shown as 0 (V0 of a symmetric impact is 0, not 1e-16 m/s);
+//! - times of the contact are measured from first contact; the scene time of first contact is given once.
 
+use super::units::{DIGITS, engineering, engineering_digits, plain, plain_digits, prefix_for, short};
+use crate::law::{Family, LawKind};
 use crate::report::{InstantaneousReport, Report, Vec3};
 use std::fmt::Write;
 
-fn number(value: f64) -> String {
-    if value.is_infinite() {
-        return "inf".into();
+/// A value smaller than this fraction of its quantity's scale is shown as zero. Sums of terms of the scale's size
+/// carry rounding errors of a few 1e-16 per operation; after the few hundred operations of one impact they stay
+/// well below 1e-12, and anything the integrator can resolve (its tolerance is 1e-10 by default) stays above it.
+pub const NOISE: f64 = 1e-12;
+
+/// Significant digits of relative errors and of differences from the simulation: enough to read their order.
+const ERROR_DIGITS: usize = 2;
+
+/// Width of the exact-value column of the reference section, in characters.
+const EXACT_WIDTH: usize = 14;
+
+/// The impact's own size for each kind of quantity, from the report's own numbers.
+#[derive(Debug, Clone, Copy)]
+struct Scales {
+    /// m/s: the approach speed v0, or the largest velocity component before the impact if larger (a body's
+    /// velocity in the scene's frame carries rounding of its own size).
+    speed: f64,
+    /// N s: m* v0, the size of the deformation impulse.
+    impulse: f64,
+    /// J: m* v0², or the kinetic energy before if larger.
+    energy: f64,
+}
+
+impl Scales {
+    fn of(report: &Report) -> Scales {
+        let v0 = report.approach_speed;
+        let largest = report.bodies.iter().flat_map(|b| b.velocity_before).map(f64::abs).fold(0.0, f64::max);
+        let m = report.effective_mass;
+        Scales { speed: v0.max(largest), impulse: m * v0, energy: (m * v0 * v0).max(report.energy.kinetic_before) }
     }
-    format!("{value:.10e}")
 }
 
-fn maybe(value: Option<f64>) -> String {
-    value.map_or_else(|| "—".into(), number)
+/// `value`, or 0 when it is below [`NOISE`] times `scale`.
+fn denoise(value: f64, scale: f64) -> f64 {
+    if value.abs() < NOISE * scale { 0.0 } else { value }
 }
 
-fn vector(v: &Vec3) -> String {
-    format!("[{}, {}, {}]", number(v[0]), number(v[1]), number(v[2]))
+/// One block of the report: a title line and rows of (label, value); a row with an empty value is printed as a
+/// sub-heading.
+struct Section {
+    title: String,
+    rows: Vec<(String, String)>,
+}
+
+impl Section {
+    fn new(title: impl Into<String>) -> Section {
+        Section { title: title.into(), rows: Vec::new() }
+    }
+
+    fn row(&mut self, label: impl Into<String>, value: impl Into<String>) {
+        self.rows.push((label.into(), value.into()));
+    }
+
+    fn heading(&mut self, text: impl Into<String>) {
+        self.rows.push((text.into(), String::new()));
+    }
 }
 
 /// The whole report as aligned text.
 pub fn render(report: &Report) -> String {
-    let mut out = String::new();
-    let mut line = |label: &str, value: String, unit: &str| {
-        let _ = writeln!(out, "  {label:<34} {value} {unit}");
-    };
-    let law = &report.law;
-    let c = &report.contact;
+    let scales = Scales::of(report);
+    let sections: Vec<Section> = [
+        Some(law(report)),
+        Some(impact(report)),
+        Some(contact(report, &scales)),
+        Some(restitution(report)),
+        Some(energy(report, &scales)),
+        Some(bodies(report, &scales)),
+        // The simulated e is a measurement (six digits), the nominal e an input (as given).
+        report.instantaneous.as_ref().map(|ideal| {
+            instantaneous(format!("the simulated e = {}", plain(ideal.restitution)), ideal, report, &scales)
+        }),
+        report.instantaneous_nominal.as_ref().map(|ideal| {
+            instantaneous(format!("the nominal e = {}", short(ideal.restitution)), ideal, report, &scales)
+        }),
+        reference(report, &scales),
+        Some(solver(report)),
+    ]
+    .into_iter()
+    .flatten()
+    .collect();
+    // Headings (rows without a value) run across the value column and do not set its position.
+    let width = sections
+        .iter()
+        .flat_map(|s| &s.rows)
+        .filter(|(_, value)| !value.is_empty())
+        .map(|(label, _)| label.chars().count())
+        .max()
+        .unwrap_or(0);
     let mut text = format!("{}\n", report.title);
-    // The law's formula and units are catalogue facts, looked up by name (no physics is computed here).
-    let info = crate::law::LawKind::from_name(&law.name).map(|kind| kind.info());
-    let _ = writeln!(text, "law {}: F = {}", law.name, info.map_or("?", |i| i.formula));
-    let _ = writeln!(
-        text,
-        "  K = {} N/m^{}, damping {} = {}, nominal e = {}, the contact ends where the {} returns to zero",
-        number(law.stiffness),
-        law.exponent,
-        info.map_or("", |i| i.damping_units),
-        number(law.damping),
-        law.restitution_nominal.map_or("—".into(), |e| e.to_string()),
-        law.separation
-    );
-    line("effective mass m*", number(report.effective_mass), "kg");
-    line("approach speed v0", number(report.approach_speed), "m/s");
-    line("first contact", number(c.start_time), "s");
-    line("maximum compression (d' = 0)", number(c.max_compression_time), "s");
-    line("separation", maybe(c.end_time), "s");
-    line("contact duration", maybe(c.duration), "s");
-    line("maximum penetration", number(c.max_penetration), "m");
-    line("maximum force", number(c.max_force), "N");
-    line("maximum force at", number(c.max_force_time), "s");
-    line("common normal velocity V0", number(c.common_normal_velocity), "m/s");
-    line("deformation impulse", number(c.deformation_impulse), "N s");
-    line("restitution impulse", maybe(c.restitution_impulse), "N s");
-    line("e, impulse ratio (Poisson)", maybe(c.restitution_impulse_ratio), "");
-    line("e, velocity ratio (Newton)", maybe(c.restitution_velocity_ratio), "");
-    line("e, energy ratio (Stronge)", maybe(c.restitution_energy), "");
-    line("kinetic energy before", number(report.energy.kinetic_before), "J");
-    line("kinetic energy after", maybe(report.energy.kinetic_after), "J");
-    line("dissipated by damping", maybe(report.energy.dissipated), "J");
-    text += &out;
-    text += "\nbodies\n";
-    out = String::new();
-    for body in &report.bodies {
-        let _ = writeln!(out, "  {}", body.name);
-        let _ = writeln!(out, "    {:<32} {} m/s", "velocity before", vector(&body.velocity_before));
-        let _ = writeln!(
-            out,
-            "    {:<32} {} m/s",
-            "velocity at maximum compression",
-            vector(&body.velocity_at_max_compression)
-        );
-        let after = body.velocity_after.as_ref().map_or("—".into(), vector);
-        let _ = writeln!(out, "    {:<32} {} m/s", "velocity after", after);
-    }
-    text += &out;
-    for (title, ideal) in [
-        ("instantaneous impact with the simulated e", &report.instantaneous),
-        ("instantaneous impact with the nominal e", &report.instantaneous_nominal),
-    ] {
-        if let Some(ideal) = ideal {
-            text += &instantaneous(title, ideal);
+    for section in &sections {
+        let _ = writeln!(text, "\n{}", section.title);
+        for (label, value) in &section.rows {
+            let line = if value.is_empty() { format!("  {label}") } else { format!("  {label:<width$}  {value}") };
+            let _ = writeln!(text, "{}", line.trim_end());
         }
     }
-    if let Some(reference) = &report.reference {
-        let _ = writeln!(text, "\nexact reference ({})", reference.source);
-        let e = &reference.errors;
-        for (label, exact, error) in [
-            ("restitution", reference.restitution, e.restitution),
-            ("maximum penetration", reference.max_penetration, e.max_penetration),
-            ("time of maximum compression", reference.max_compression_time, e.max_compression_time),
-            ("duration", reference.duration, e.duration),
-            ("maximum force", reference.max_force, e.max_force),
-            ("common normal velocity", Some(reference.common_normal_velocity), Some(e.common_normal_velocity)),
-        ] {
-            if let Some(exact) = exact {
-                let _ = writeln!(
-                    text,
-                    "  {label:<34} {}   relative error {}",
-                    number(exact),
-                    maybe(error).replace('—', "n/a")
-                );
-            }
-        }
+    if !report.notes.is_empty() {
+        text.push('\n');
     }
-    let s = &report.solver;
-    let _ = writeln!(
-        text,
-        "\nsolver {} rtol {:e} atol {:e}: {} steps ({} rejected), {} force evaluations, {:.3} ms",
-        s.method,
-        s.rtol,
-        s.atol,
-        s.steps,
-        s.rejected_steps,
-        s.force_evaluations,
-        s.wall_time_s * 1e3
-    );
     for note in &report.notes {
         let _ = writeln!(text, "note: {note}");
     }
     text
 }
 
-fn instantaneous(title: &str, ideal: &InstantaneousReport) -> String {
-    let mut text = format!("\n{title} (e = {})\n", number(ideal.restitution));
-    let _ = writeln!(text, "  {:<34} {} m/s", "common normal velocity V0", number(ideal.common_normal_velocity));
-    let _ = writeln!(text, "  {:<34} {} m/s", "body 1 after", vector(&ideal.velocity_after[0]));
-    let _ = writeln!(text, "  {:<34} {} m/s", "body 2 after", vector(&ideal.velocity_after[1]));
-    let _ = writeln!(text, "  {:<34} {} J", "kinetic energy lost", number(ideal.energy_lost));
-    let _ =
-        writeln!(text, "  {:<34} {} m/s", "largest difference from simulation", maybe(ideal.max_velocity_difference));
-    text
+/// The law: its formula, parameters and separation criterion. Only what the law has: no damping for Hertz, no
+/// exponent row for laws whose formula fixes it, no nominal e when the damping was given.
+fn law(report: &Report) -> Section {
+    let law = &report.law;
+    // The law's formula and family are catalogue facts, looked up by name (no physics is computed here).
+    let info = LawKind::from_name(&law.name).map(|kind| kind.info());
+    let formula = info.map_or("?", |i| i.formula);
+    let family = info.map(|i| i.family);
+    let mut section = Section::new(format!("law: {}, F = {formula}", law.name));
+    let symbol = if family == Some(Family::Linear) { "k" } else { "K" };
+    section.row(format!("stiffness {symbol}"), stiffness(law.stiffness, law.exponent));
+    if formula.contains("d^n") {
+        section.row("exponent n", short(law.exponent));
+    }
+    let damping = match family {
+        Some(Family::Elastic) => None,
+        Some(Family::Linear) => Some(("damping c", "N s/m")),
+        Some(Family::Hysteresis) => Some(("damping alpha", "s/m")),
+        Some(Family::Tsuji) => Some(("damping a", "")),
+        Some(Family::Viscoelastic) => Some(("material time A", "s")),
+        None => Some(("damping", "")),
+    };
+    if let Some((label, unit)) = damping {
+        let origin = if law.restitution_nominal.is_some() { " (from the nominal e by the law's map)" } else { "" };
+        section.row(label, format!("{}{origin}", engineering(law.damping, unit)));
+    }
+    if let (Some(e), false) = (law.restitution_nominal, family == Some(Family::Elastic)) {
+        section.row("nominal e", short(e));
+    }
+    section.row("contact ends where", format!("the {} returns to zero", law.separation));
+    section
+}
+
+/// K in N/m^n: with an SI prefix for a linear spring (N/m), in exponent form otherwise.
+fn stiffness(value: f64, exponent: f64) -> String {
+    if exponent == 1.0 { engineering(value, "N/m") } else { engineering(value, &format!("N/m^{}", short(exponent))) }
+}
+
+/// What the two bodies bring to the contact: m*, v0 and the normal.
+fn impact(report: &Report) -> Section {
+    let mut section = Section::new("impact");
+    section.row("effective mass m*", engineering(report.effective_mass, "kg"));
+    section.row("approach speed v0", engineering(report.approach_speed, "m/s"));
+    let n = report.normal.map(|c| denoise(c, 1.0));
+    section.row("contact normal n (body 1 to 2)", format!("[{}, {}, {}]", short(n[0]), short(n[1]), short(n[2])));
+    section
+}
+
+/// The phases of the contact, times since first contact.
+fn contact(report: &Report, scales: &Scales) -> Section {
+    let c = &report.contact;
+    // A time since first contact is a difference of scene times: rounding of the size of either.
+    let scale = (c.max_compression_time - c.start_time).max(c.start_time.abs());
+    let since = |t: f64| engineering(denoise(t - c.start_time, scale), "s");
+    let mut section = Section::new("contact (times since first contact)");
+    section.row("first contact, in the scene's time", format!("t = {}", engineering(c.start_time, "s")));
+    section.row("maximum force at", since(c.max_force_time));
+    section.row("maximum compression (d' = 0) at", since(c.max_compression_time));
+    let separation = c.duration.map_or_else(|| "none: the bodies did not separate".into(), |d| engineering(d, "s"));
+    section.row("separation at (= contact duration)", separation);
+    section.row("maximum penetration", engineering(c.max_penetration, "m"));
+    section.row("maximum force", engineering(c.max_force, "N"));
+    section.row("common normal velocity V0", engineering(denoise(c.common_normal_velocity, scales.speed), "m/s"));
+    let impulse = |value: f64| engineering(denoise(value, scales.impulse), "N s");
+    section.row("deformation impulse", impulse(c.deformation_impulse));
+    section.row("restitution impulse", maybe(c.restitution_impulse, impulse));
+    section
+}
+
+/// e three ways.
+fn restitution(report: &Report) -> Section {
+    let c = &report.contact;
+    let mut section = Section::new("coefficient of restitution e");
+    section.row("impulse ratio (Poisson)", maybe(c.restitution_impulse_ratio, plain));
+    section.row("velocity ratio (Newton)", maybe(c.restitution_velocity_ratio, plain));
+    section.row("energy ratio (Stronge)", maybe(c.restitution_energy, plain));
+    section
+}
+
+/// Kinetic energies and the work of the damping force (none for an elastic law).
+fn energy(report: &Report, scales: &Scales) -> Section {
+    let e = &report.energy;
+    let joules = |value: f64| engineering(denoise(value, scales.energy), "J");
+    let mut section = Section::new("energy");
+    section.row("kinetic energy before", joules(e.kinetic_before));
+    section.row("kinetic energy after", maybe(e.kinetic_after, joules));
+    if family(report) != Some(Family::Elastic) {
+        section.row("dissipated by damping", maybe(e.dissipated, joules));
+    }
+    section
+}
+
+/// Each body: mass, radius and its velocity before, at maximum compression and after, all in one unit.
+fn bodies(report: &Report, scales: &Scales) -> Section {
+    let mut section = Section::new("bodies");
+    for body in &report.bodies {
+        let mass = if body.mass.is_infinite() { "immovable".into() } else { engineering(body.mass, "kg") };
+        let radius =
+            if body.radius.is_infinite() { "flat".into() } else { format!("radius {}", engineering(body.radius, "m")) };
+        section.heading(format!("{}: {mass}, {radius}", body.name));
+        let velocity = |v: &Vec3| velocity(v, scales);
+        if body.mass.is_infinite() {
+            // Nothing moves an immovable body: one velocity throughout.
+            section.row("  velocity throughout", velocity(&body.velocity_before));
+            continue;
+        }
+        section.row("  velocity before", velocity(&body.velocity_before));
+        section.row("  at maximum compression", velocity(&body.velocity_at_max_compression));
+        section.row("  after", body.velocity_after.as_ref().map_or_else(|| "—".into(), velocity));
+    }
+    section
+}
+
+/// The idealised instantaneous impact with the simulated or the nominal e (`with`: which e, and its value).
+fn instantaneous(with: String, ideal: &InstantaneousReport, report: &Report, scales: &Scales) -> Section {
+    let mut section = Section::new(format!("instantaneous impact with {with}"));
+    section.row("common normal velocity V0", engineering(denoise(ideal.common_normal_velocity, scales.speed), "m/s"));
+    // (An immovable body keeps its velocity: the bodies section gives it once.)
+    for (body, after) in report.bodies.iter().zip(&ideal.velocity_after).filter(|(body, _)| body.mass.is_finite()) {
+        section.row(format!("velocity after, {}", body.name), velocity(after, scales));
+    }
+    section.row("kinetic energy lost", engineering(denoise(ideal.energy_lost, scales.energy), "J"));
+    section.row("largest difference from simulation", maybe(ideal.max_velocity_difference, |d| difference(d, "m/s")));
+    section
+}
+
+/// The exact values for this contact and the simulation's relative error against each.
+fn reference(report: &Report, scales: &Scales) -> Option<Section> {
+    let reference = report.reference.as_ref()?;
+    let e = &reference.errors;
+    let mut section = Section::new("exact reference (times since first contact)");
+    section.row("source", &reference.source);
+    section.row("", format!("{:<EXACT_WIDTH$}  relative error of the simulation", "exact"));
+    let v0 = denoise(reference.common_normal_velocity, scales.speed);
+    for (label, exact, error, unit, per) in [
+        ("restitution e", reference.restitution, e.restitution, "", ""),
+        ("maximum penetration", reference.max_penetration, e.max_penetration, "m", ""),
+        ("maximum compression at", reference.max_compression_time, e.max_compression_time, "s", ""),
+        ("contact duration", reference.duration, e.duration, "s", ""),
+        ("maximum force", reference.max_force, e.max_force, "N", ""),
+        ("common normal velocity V0", Some(v0), Some(e.common_normal_velocity), "m/s", " of v0"),
+    ] {
+        if let Some(exact) = exact {
+            let error =
+                maybe(error, |x| if x == 0.0 { "0".into() } else { format!("{}{per}", plain_digits(x, ERROR_DIGITS)) });
+            section.row(label, format!("{:<EXACT_WIDTH$}  {error}", engineering(exact, unit)));
+        }
+    }
+    Some(section)
+}
+
+/// The integrator and its work, on one line.
+fn solver(report: &Report) -> Section {
+    let s = &report.solver;
+    Section::new(format!(
+        "solver: {}, rtol {:e}, atol {:e}: {} steps ({} rejected), {} force evaluations, {}",
+        s.method,
+        s.rtol,
+        s.atol,
+        s.steps,
+        s.rejected_steps,
+        s.force_evaluations,
+        engineering_digits(s.wall_time_s, "s", 3)
+    ))
+}
+
+/// A velocity vector in the unit its scale calls for ("[-0.800000, 0, 0] m/s"), components below the noise 0.
+fn velocity(v: &Vec3, scales: &Scales) -> String {
+    let (factor, prefix) = prefix_for(scales.speed);
+    let parts = v.map(|c| plain_digits(denoise(c, scales.speed) / factor, DIGITS));
+    format!("[{}, {}, {}] {prefix}m/s", parts[0], parts[1], parts[2])
+}
+
+/// A difference between two results: its order is what matters (two significant digits).
+fn difference(value: f64, unit: &str) -> String {
+    format!("{} {unit}", plain_digits(value, ERROR_DIGITS))
+}
+
+fn maybe(value: Option<f64>, show: impl Fn(f64) -> String) -> String {
+    value.map_or_else(|| "—".into(), show)
+}
+
+fn family(report: &Report) -> Option<Family> {
+    LawKind::from_name(&report.law.name).map(LawKind::family)
 }

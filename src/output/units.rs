@@ -1,0 +1,269 @@
+//! Numbers for people: SI prefixes chosen for the quantity, six significant digits.
+//!
+//! Only the terminal report uses these; JSON and CSV keep full precision. Every function rounds once, by the
+//! standard library's correctly rounded `{:e}` formatting, and builds the text from its digits, so a value that
+//! rounds up to the next power of a thousand takes the next prefix ("1.00000 kN", never "1000.00 N").
+
+/// Significant digits of the readable report.
+pub const DIGITS: usize = 6;
+
+/// SI prefixes by power of ten, from atto to exa. The micro sign is U+00B5, as in the README.
+const PREFIXES: [(i32, &str); 13] = [
+    (-18, "a"),
+    (-15, "f"),
+    (-12, "p"),
+    (-9, "n"),
+    (-6, "µ"),
+    (-3, "m"),
+    (0, ""),
+    (3, "k"),
+    (6, "M"),
+    (9, "G"),
+    (12, "T"),
+    (15, "P"),
+    (18, "E"),
+];
+
+/// Units that take an SI prefix in front of their first symbol ("N s" -> "mN s", "m/s" -> "mm/s").
+const PREFIXABLE: [&str; 10] = ["m", "s", "N", "J", "Pa", "W", "m/s", "N s", "N/m", "N s/m"];
+
+/// `value` in `unit` for a reader: the SI prefix that puts the mantissa in [1, 1000), with [`DIGITS`] significant
+/// digits: 40 m/s -> "40.0000 m/s", 6.01641e-5 s -> "60.1641 µs", 1005.38 N -> "1.00538 kN".
+///
+/// Units that cannot take a prefix are handled as a reader expects: a mass in kg is shown in g, mg, ... below
+/// 1 kg and in kg above; a stiffness "N/m^n" (n != 1) in exponent form ("1.08786e10 N/m^1.5"); a dimensionless
+/// value (unit "") and any other unit (e.g. "s/m") in [`plain`] form. Zero is "0 unit"; infinities "inf unit".
+pub fn engineering(value: f64, unit: &str) -> String {
+    engineering_digits(value, unit, DIGITS)
+}
+
+/// [`engineering`] with `digits` significant digits (at least 1), e.g. 3 for a wall-clock time.
+pub fn engineering_digits(value: f64, unit: &str, digits: usize) -> String {
+    let digits = digits.max(1);
+    if !value.is_finite() || value == 0.0 {
+        return with_unit(special(value), unit);
+    }
+    if unit == "kg" {
+        return mass(value, digits);
+    }
+    if unit.starts_with("N/m^") {
+        return with_unit(format!("{value:.*e}", digits - 1), unit);
+    }
+    if !PREFIXABLE.contains(&unit) {
+        return with_unit(plain_digits(value, digits), unit);
+    }
+    prefixed(value, unit, digits).unwrap_or_else(|| with_unit(format!("{value:.*e}", digits - 1), unit))
+}
+
+/// `value` with the SI prefix that puts its rounded mantissa in [1, 1000) in front of `unit`; None beyond the
+/// prefixes (atto to exa).
+fn prefixed(value: f64, unit: &str, digits: usize) -> Option<String> {
+    let (negative, mantissa, exponent) = decompose(value, digits);
+    let power = exponent.div_euclid(3) * 3;
+    let (_, prefix) = PREFIXES.iter().find(|(p, _)| *p == power)?;
+    let sign = if negative { "-" } else { "" };
+    Some(format!("{sign}{} {prefix}{unit}", place_point(&mantissa, exponent - power)))
+}
+
+/// A dimensionless number with [`DIGITS`] significant digits: fixed notation from 1e-4 up to 999999
+/// (0.8 -> "0.800000", 1 -> "1.00000"), exponent form outside it ("1.23457e-7"); zero is "0".
+pub fn plain(value: f64) -> String {
+    plain_digits(value, DIGITS)
+}
+
+/// [`plain`] with `digits` significant digits (at least 1).
+pub fn plain_digits(value: f64, digits: usize) -> String {
+    let digits = digits.max(1);
+    if !value.is_finite() || value == 0.0 {
+        return special(value);
+    }
+    let (negative, mantissa, exponent) = decompose(value, digits);
+    let sign = if negative { "-" } else { "" };
+    if exponent < -4 || exponent >= digits.max(6) as i32 {
+        return format!("{value:.*e}", digits - 1);
+    }
+    let text = if exponent >= 0 {
+        place_point(&mantissa, exponent)
+    } else {
+        format!("0.{}{mantissa}", "0".repeat((-exponent - 1) as usize))
+    };
+    format!("{sign}{text}")
+}
+
+/// A number as given, for inputs such as an exponent or a nominal e: [`plain`] without trailing zeros
+/// (1.5 -> "1.5", 0.8 -> "0.8", 1 -> "1", 1.5e-7 -> "1.5e-7").
+pub fn short(value: f64) -> String {
+    let text = plain(value);
+    let (mantissa, exponent) = text.split_once('e').map_or((text.as_str(), None), |(m, e)| (m, Some(e)));
+    let mantissa = if mantissa.contains('.') { mantissa.trim_end_matches('0').trim_end_matches('.') } else { mantissa };
+    match exponent {
+        Some(exponent) => format!("{mantissa}e{exponent}"),
+        None => mantissa.to_string(),
+    }
+}
+
+/// The SI prefix [`engineering`] would choose for a value of size `scale` in a prefixable unit, and its factor:
+/// 0.2 -> (1e-3, "m"). For a set of values shown in one unit (the components of a vector). Falls back to no
+/// prefix for zero, non-finite or out-of-range scales.
+pub fn prefix_for(scale: f64) -> (f64, &'static str) {
+    if !scale.is_finite() || scale == 0.0 {
+        return (1.0, "");
+    }
+    let (_, _, exponent) = decompose(scale, DIGITS);
+    let power = exponent.div_euclid(3) * 3;
+    PREFIXES.iter().find(|(p, _)| *p == power).map_or((1.0, ""), |&(p, prefix)| (10f64.powi(p), prefix))
+}
+
+/// A mass in kg: g and its prefixes below 1 kg (0.06 -> "60.0000 g"), plain kg from 1 kg to 999999 kg, exponent
+/// form above.
+fn mass(kg: f64, digits: usize) -> String {
+    let grams = kg * 1e3;
+    let (_, _, exponent) = decompose(grams, digits);
+    // 0.99999996 kg rounds to 1000.00 g: exponent 3, so it is written in kg ("1.00000 kg").
+    if exponent < 3
+        && let Some(text) = prefixed(grams, "g", digits)
+    {
+        return text;
+    }
+    with_unit(plain_digits(kg, digits), "kg")
+}
+
+/// Sign, the `digits` significant digits and the decimal exponent of `value` after rounding to those digits:
+/// -1005.38 with 6 digits -> (true, "100538", 3).
+fn decompose(value: f64, digits: usize) -> (bool, String, i32) {
+    let text = format!("{:.*e}", digits - 1, value.abs());
+    let (mantissa, exponent) = text.split_once('e').expect("exponent form");
+    (value < 0.0, mantissa.replace('.', ""), exponent.parse().expect("an integer exponent"))
+}
+
+/// Digits with the decimal point after the first `1 + shift` of them ("100538", 0 -> "1.00538").
+fn place_point(digits: &str, shift: i32) -> String {
+    let whole = (shift + 1) as usize;
+    if whole >= digits.len() {
+        format!("{digits}{}", "0".repeat(whole - digits.len()))
+    } else {
+        format!("{}.{}", &digits[..whole], &digits[whole..])
+    }
+}
+
+fn special(value: f64) -> String {
+    if value.is_nan() {
+        "NaN".into()
+    } else if value.is_infinite() {
+        if value > 0.0 { "inf".into() } else { "-inf".into() }
+    } else {
+        "0".into()
+    }
+}
+
+fn with_unit(number: String, unit: &str) -> String {
+    if unit.is_empty() { number } else { format!("{number} {unit}") }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn prefixes_put_the_mantissa_between_1_and_1000() {
+        // 40 = 4.0 x 10^1: no prefix, six digits.
+        assert_eq!(engineering(40.0, "m/s"), "40.0000 m/s");
+        // 6.01641e-5 s = 60.1641e-6 s.
+        assert_eq!(engineering(6.01641e-5, "s"), "60.1641 µs");
+        // 1005.38 N = 1.00538e3 N.
+        assert_eq!(engineering(1005.38, "N"), "1.00538 kN");
+        // 2.04412e-5 m = 20.4412e-6 m.
+        assert_eq!(engineering(2.04412e-5, "m"), "20.4412 µm");
+        // 0.0328820 N s = 32.8820e-3 N s: the prefix goes on the first symbol.
+        assert_eq!(engineering(0.032882, "N s"), "32.8820 mN s");
+        // 2.1e11 Pa = 210e9 Pa.
+        assert_eq!(engineering(2.1e11, "Pa"), "210.000 GPa");
+        // 5.4735806287e-14 J = 54.735806287e-15 J -> 54.7358 fJ.
+        assert_eq!(engineering(5.4735806287e-14, "J"), "54.7358 fJ");
+        // 1 exactly.
+        assert_eq!(engineering(1.0, "s"), "1.00000 s");
+        assert_eq!(engineering(-0.8, "m/s"), "-800.000 mm/s");
+    }
+
+    #[test]
+    fn rounding_up_to_a_thousand_takes_the_next_prefix() {
+        // 999.9996 rounds to 1000.00 at six digits = 1.00000e3.
+        assert_eq!(engineering(999.9996, "N"), "1.00000 kN");
+        // 999.9994 stays below: 999.999.
+        assert_eq!(engineering(999.9994, "N"), "999.999 N");
+        // 9.999996e-7 s rounds to 1.00000e-6 s.
+        assert_eq!(engineering(9.999996e-7, "s"), "1.00000 µs");
+    }
+
+    #[test]
+    fn zero_infinity_and_out_of_range() {
+        assert_eq!(engineering(0.0, "m/s"), "0 m/s");
+        assert_eq!(engineering(-0.0, "m/s"), "0 m/s");
+        assert_eq!(engineering(f64::INFINITY, "kg"), "inf kg");
+        // 1.5e-20 m is below atto (1e-18): exponent form in the base unit.
+        assert_eq!(engineering(1.5e-20, "m"), "1.50000e-20 m");
+        assert_eq!(engineering(3.0e21, "J"), "3.00000e21 J");
+    }
+
+    #[test]
+    fn masses_are_in_grams_below_a_kilogram() {
+        // 0.06 kg = 60 g.
+        assert_eq!(engineering(0.06, "kg"), "60.0000 g");
+        // 0.016441001554 kg = 16.441001554 g -> 16.4410 g.
+        assert_eq!(engineering(0.016441001554, "kg"), "16.4410 g");
+        // 2.5e-7 kg = 2.5e-4 g = 250 µg.
+        assert_eq!(engineering(2.5e-7, "kg"), "250.000 µg");
+        // 0.99999996 kg rounds to 1000.00 g = 1.00000 kg.
+        assert_eq!(engineering(0.99999996, "kg"), "1.00000 kg");
+        assert_eq!(engineering(1.0, "kg"), "1.00000 kg");
+        assert_eq!(engineering(2000.0, "kg"), "2000.00 kg");
+        // 5.972e24 kg: exponent form.
+        assert_eq!(engineering(5.972e24, "kg"), "5.97200e24 kg");
+    }
+
+    #[test]
+    fn units_without_prefixes() {
+        // A Hertz stiffness: 4/3 E* sqrt(R*) for two 10 mm steel balls = 1.0878565864e10 N/m^1.5.
+        assert_eq!(engineering(1.0878565864e10, "N/m^1.5"), "1.08786e10 N/m^1.5");
+        // alpha in s/m: 0.18657310168 -> six digits, no prefix.
+        assert_eq!(engineering(0.18657310168, "s/m"), "0.186573 s/m");
+        // A linear stiffness takes a prefix: 2e4 N/m = 20 kN/m.
+        assert_eq!(engineering(2.0e4, "N/m"), "20.0000 kN/m");
+        assert_eq!(engineering(0.8, ""), "0.800000");
+    }
+
+    #[test]
+    fn plain_numbers() {
+        assert_eq!(plain(0.8), "0.800000");
+        assert_eq!(plain(1.0), "1.00000");
+        // 0.88377369295 -> 0.883774 (the 7th digit is 6: round up).
+        assert_eq!(plain(0.88377369295), "0.883774");
+        assert_eq!(plain(-0.00012345678), "-0.000123457");
+        assert_eq!(plain(123456.7), "123457");
+        assert_eq!(plain(1234567.0), "1.23457e6");
+        assert_eq!(plain(1.2345678e-7), "1.23457e-7");
+        assert_eq!(plain(0.0), "0");
+        assert_eq!(plain_digits(3.6901870448e-11, 2), "3.7e-11");
+    }
+
+    #[test]
+    fn short_numbers_drop_trailing_zeros() {
+        assert_eq!(short(1.5), "1.5");
+        assert_eq!(short(0.8), "0.8");
+        assert_eq!(short(1.0), "1");
+        assert_eq!(short(100.0), "100");
+        assert_eq!(short(-0.25), "-0.25");
+        assert_eq!(short(1.5e-7), "1.5e-7");
+        // Six significant digits at most: 1.23456789 -> 1.23457.
+        assert_eq!(short(1.23456789), "1.23457");
+        assert_eq!(short(0.0), "0");
+    }
+
+    #[test]
+    fn prefix_for_a_scale() {
+        assert_eq!(prefix_for(0.2), (1e-3, "m"));
+        assert_eq!(prefix_for(2.0), (1.0, ""));
+        assert_eq!(prefix_for(1500.0), (1e3, "k"));
+        assert_eq!(prefix_for(0.0), (1.0, ""));
+    }
+}
