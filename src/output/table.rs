@@ -35,6 +35,8 @@ struct Scales {
     impulse: f64,
     /// J: m* v0², or the kinetic energy before if larger.
     energy: f64,
+    /// rad/s: the speed scale over the smallest radius.
+    spin: f64,
 }
 
 impl Scales {
@@ -42,7 +44,14 @@ impl Scales {
         let v0 = report.approach_speed;
         let largest = report.bodies.iter().flat_map(|b| b.velocity_before).map(f64::abs).fold(0.0, f64::max);
         let m = report.effective_mass;
-        Scales { speed: v0.max(largest), impulse: m * v0, energy: (m * v0 * v0).max(report.energy.kinetic_before) }
+        let radius = report.bodies.iter().map(|b| b.radius).fold(f64::INFINITY, f64::min);
+        let spins = report.bodies.iter().flat_map(|b| b.angular_velocity_before).map(f64::abs).fold(0.0, f64::max);
+        Scales {
+            speed: v0.max(largest),
+            impulse: m * v0,
+            energy: (m * v0 * v0).max(report.energy.kinetic_before),
+            spin: (v0.max(largest) / radius).max(spins),
+        }
     }
 }
 
@@ -81,6 +90,7 @@ pub fn render(report: &Report) -> String {
         Some(contact(report, &scales)),
         Some(restitution(report)),
         Some(energy(report, &scales)),
+        oblique(report, &scales),
         Some(bodies(report, &scales)),
         // The simulated e is a measurement (six digits), the nominal e an input (as given).
         report.instantaneous.as_ref().map(|ideal| {
@@ -199,17 +209,71 @@ fn restitution(report: &Report) -> Section {
     section
 }
 
-/// Kinetic energies and the work of the damping force (none for an elastic law).
+/// Kinetic energies, the work of the damping (and friction) forces, what an immovable body put in and what the
+/// contact still holds when it ends — and how well the balance of these separately integrated terms closes.
 fn energy(report: &Report, scales: &Scales) -> Section {
     let e = &report.energy;
     let joules = |value: f64| engineering(denoise(value, scales.energy), "J");
     let mut section = Section::new("energy");
     section.row("kinetic energy before", joules(e.kinetic_before));
+    if let Some(work) = e.work_of_immovable_bodies.filter(|w| denoise(*w, scales.energy) != 0.0) {
+        section.row("work done by the immovable body", joules(work));
+    }
     section.row("kinetic energy after", maybe(e.kinetic_after, joules));
-    if family(report) != Some(Family::Elastic) {
-        section.row("dissipated by damping", maybe(e.dissipated, joules));
+    let frictional = report.oblique.as_ref().is_some_and(|o| o.friction_work.is_some_and(|w| w != 0.0));
+    if family(report) != Some(Family::Elastic) || frictional {
+        let what = if frictional { "dissipated (damping and friction)" } else { "dissipated by damping" };
+        section.row(what, maybe(e.dissipated, joules));
+    }
+    if let Some(left) = e.elastic_left_at_separation.filter(|l| denoise(*l, scales.energy) != 0.0) {
+        section.row("elastic energy left at separation", joules(left));
+    }
+    if let (Some(after), Some(dissipated), Some(left), Some(work)) =
+        (e.kinetic_after, e.dissipated, e.elastic_left_at_separation, e.work_of_immovable_bodies)
+    {
+        let imbalance = (e.kinetic_before + work - after - dissipated - left) / scales.energy;
+        section.row(
+            "balance (in - out) / m* v0²",
+            if imbalance == 0.0 { "0".into() } else { plain_digits(imbalance, ERROR_DIGITS) },
+        );
     }
     section
+}
+
+/// Oblique impact, friction and spin: angles, tangential restitution, friction work, and rigid-body theory.
+fn oblique(report: &Report, scales: &Scales) -> Option<Section> {
+    let o = report.oblique.as_ref()?;
+    let degrees = |value: f64| format!("{} deg", plain_digits(value, DIGITS));
+    let mut section = Section::new("oblique impact");
+    section.row("incidence from the normal", degrees(o.incidence_from_normal_deg));
+    section.row("rebound from the normal", maybe(o.rebound_from_normal_deg, degrees));
+    section.row("tangential restitution, centres", maybe(o.tangential_restitution_centre, plain));
+    section.row("tangential restitution, contact points", maybe(o.tangential_restitution_contact, plain));
+    let regime = match o.stick_duration {
+        Some(stick) if stick > 0.0 && o.regime == "sticking" => {
+            format!("sticking (for {} of the contact)", engineering(stick, "s"))
+        }
+        _ => o.regime.clone(),
+    };
+    section.row("regime", regime);
+    if let Some(work) = o.friction_work.filter(|_| o.regime != "smooth") {
+        section.row("work of friction", engineering(denoise(work, scales.energy), "J"));
+    }
+    if let Some(turn) = o.normal_turn_deg {
+        section.row("line of centres turned by", degrees(turn));
+    }
+    if let Some(rigid) = &o.rigid_body {
+        section.heading(format!("rigid-body theory with the simulated e ({})", rigid.regime));
+        for (i, body) in report.bodies.iter().enumerate().filter(|(_, body)| body.mass.is_finite()) {
+            section.row(format!("  velocity after, {}", body.name), velocity(&rigid.velocity_after[i], scales));
+            if body.inertia.is_finite() {
+                section.row(format!("  spin after, {}", body.name), spin(&rigid.angular_velocity_after[i], scales));
+            }
+        }
+        section.row("  largest velocity difference", difference(rigid.max_velocity_difference, "m/s"));
+        section.row("  largest spin difference", difference(rigid.max_angular_velocity_difference, "rad/s"));
+    }
+    Some(section)
 }
 
 /// Each body: mass, radius and its velocity before, at maximum compression and after, all in one unit.
@@ -229,13 +293,31 @@ fn bodies(report: &Report, scales: &Scales) -> Section {
         section.row("  velocity before", velocity(&body.velocity_before));
         section.row("  at maximum compression", velocity(&body.velocity_at_max_compression));
         section.row("  after", body.velocity_after.as_ref().map_or_else(|| "—".into(), velocity));
+        if report.oblique.is_some() {
+            let degrees = |value: f64| format!("{} deg", plain_digits(value, DIGITS));
+            section.row("  angle from the tangent plane, before", maybe(body.angle_from_tangent_before_deg, degrees));
+            section.row("  angle from the tangent plane, after", maybe(body.angle_from_tangent_after_deg, degrees));
+            if body.inertia.is_finite() {
+                section.row("  spin before", spin(&body.angular_velocity_before, scales));
+                section.row(
+                    "  spin after",
+                    body.angular_velocity_after.as_ref().map_or_else(|| "—".into(), |w| spin(w, scales)),
+                );
+            }
+        }
     }
     section
 }
 
 /// The idealised instantaneous impact with the simulated or the nominal e (`with`: which e, and its value).
 fn instantaneous(with: String, ideal: &InstantaneousReport, report: &Report, scales: &Scales) -> Section {
-    let mut section = Section::new(format!("instantaneous impact with {with}"));
+    // With an oblique section, say which idealisation this is (rigid-body friction comes in that section).
+    let kind = if report.oblique.is_some() {
+        "smooth instantaneous impact (the four equations)"
+    } else {
+        "instantaneous impact"
+    };
+    let mut section = Section::new(format!("{kind} with {with}"));
     section.row("common normal velocity V0", engineering(denoise(ideal.common_normal_velocity, scales.speed), "m/s"));
     // (An immovable body keeps its velocity: the bodies section gives it once.)
     for (body, after) in report.bodies.iter().zip(&ideal.velocity_after).filter(|(body, _)| body.mass.is_finite()) {
@@ -291,6 +373,12 @@ fn velocity(v: &Vec3, scales: &Scales) -> String {
     let (factor, prefix) = prefix_for(scales.speed);
     let parts = v.map(|c| plain_digits(denoise(c, scales.speed) / factor, DIGITS));
     format!("[{}, {}, {}] {prefix}m/s", parts[0], parts[1], parts[2])
+}
+
+/// An angular velocity vector in rad/s, six digits, components below the noise at the impact's scale 0.
+fn spin(w: &Vec3, scales: &Scales) -> String {
+    let parts = w.map(|c| plain_digits(denoise(c, scales.spin), DIGITS));
+    format!("[{}, {}, {}] rad/s", parts[0], parts[1], parts[2])
 }
 
 /// A difference between two results: its order is what matters (two significant digits).
