@@ -221,3 +221,61 @@ impl Phases {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The 3-D model, run on a central impact, must give what the 1-D model gives: the normal model is its special
+    /// case, not a different physics.
+    #[test]
+    fn the_full_model_reproduces_the_normal_model_on_central_impacts() {
+        let laws = [
+            "law = \"hertz\"",
+            "law = \"hunt-crossley\"\nrestitution = 0.6",
+            "law = \"gonthier\"\nrestitution = 0.3",
+            "law = \"kelvin-voigt\"\nrestitution = 0.5\nstiffness = 1e6\nexponent = 1.0",
+            "law = \"tsuji\"\nrestitution = 0.4",
+            "law = \"brilliantov\"\ndamping = 1e-6",
+        ];
+        for law in laws {
+            for separation in ["penetration", "force"] {
+                for second in [
+                    "radius = 0.02\nmass = 0.1\nvelocity = [-0.5, 0.0, 0.0]",
+                    "radius = inf\nmass = inf\nvelocity = [0.0, 0.0, 0.0]",
+                ] {
+                    let text = format!(
+                        "[[bodies]]\nradius = 0.01\nmass = 0.03\nvelocity = [1.5, 0.0, 0.0]\nyoung = 2e11\npoisson = 0.3\n\n\
+                         [[bodies]]\n{second}\nyoung = 7e10\npoisson = 0.33\n\n[contact]\n{law}\nseparation = \"{separation}\"\n"
+                    );
+                    let scene = Scene::parse(&text, std::path::Path::new("central.toml")).unwrap();
+                    let setup = Setup::new(&scene).unwrap();
+                    assert_eq!(setup.motion, Motion::Normal);
+                    let normal =
+                        run(&NormalContact::new(&scene.bodies, &setup), &scene, 0.0, Recording::Off).unwrap().0;
+                    let full = run(&PairContact::new(&scene.bodies, &setup), &scene, 0.0, Recording::Off).unwrap().0;
+                    assert_eq!(normal.separated, full.separated, "{text}");
+                    let close = |a: f64, b: f64, scale: f64| (a - b).abs() <= 1e-9 * scale;
+                    for (x, y) in [(&normal.max_compression, &full.max_compression), (&normal.end, &full.end)] {
+                        let what = format!("{law}, {separation}, {second}");
+                        assert!(close(x.time, y.time, normal.end.time), "time {} {} {what}", x.time, y.time);
+                        assert!(close(x.penetration, y.penetration, normal.max_compression.penetration), "d {what}");
+                        assert!(close(x.rate, y.rate, 1.5), "rate {what}");
+                        assert!(
+                            close(x.normal_impulse, y.normal_impulse, normal.max_compression.normal_impulse),
+                            "J {what}"
+                        );
+                        let energy = normal.max_compression.normal_work;
+                        assert!(close(x.dissipated_normal, y.dissipated_normal, energy), "D {what}");
+                        assert!(close(x.work_of_immovable_bodies, y.work_of_immovable_bodies, energy), "W {what}");
+                        for i in 0..2 {
+                            assert!((x.velocities[i] - y.velocities[i]).amax() <= 1e-9 * 1.5, "v {what}");
+                            assert!((x.positions[i] - y.positions[i]).amax() <= 1e-9 * 0.03, "x {what}");
+                        }
+                    }
+                    assert!(close(normal.peak_force.1, full.peak_force.1, normal.peak_force.1), "{law}");
+                }
+            }
+        }
+    }
+}

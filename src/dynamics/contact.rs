@@ -156,12 +156,14 @@ impl Tangential {
                 let force = if size > cap { trial * (cap / size) } else { trial };
                 TangentialForce { force, spring_rate: loading + turning }
             }
+            // No compression, no friction: the spring (at the cap, so near zero) is left as it is, rather than turned
+            // at a rate that grows without bound as its length vanishes.
+            Mode::Slip if normal_force <= 0.0 => TangentialForce { force: Vector3::zeros(), spring_rate: turning },
             Mode::Slip => {
                 let along = Tangential::direction(spring, &k.slip);
-                let cap_rate = if normal_force > 0.0 { self.friction * normal_force_rate } else { 0.0 };
+                let cap_rate = self.friction * normal_force_rate;
                 let spring_rate = loading - along * loading.dot(&along) + along * cap_rate + turning;
-                let force = if normal_force > 0.0 { *spring } else { Vector3::zeros() };
-                TangentialForce { force, spring_rate }
+                TangentialForce { force: *spring, spring_rate }
             }
         }
     }

@@ -1,0 +1,401 @@
+//! Oblique impact, friction and spin (issue 7): the time-resolved simulation against the lecture's four equations,
+//! rigid-body friction theory (physics.md §2), and the conservation laws of two free spheres. Every expected value is
+//! computed here from those formulas, never taken from the program.
+
+use impact::history::Recording;
+use impact::impact::simulate;
+use impact::report::Report;
+use impact::scene::Scene;
+use std::path::Path;
+
+fn run(text: &str) -> Report {
+    let scene = Scene::parse(text, Path::new("oblique.toml")).unwrap_or_else(|e| panic!("{e}\n{text}"));
+    simulate(&scene, Recording::Off).unwrap_or_else(|e| panic!("{e}\n{text}")).report
+}
+
+fn relative(simulated: f64, expected: f64) -> f64 {
+    ((simulated - expected) / expected).abs()
+}
+
+type V = [f64; 3];
+
+fn sub(a: V, b: V) -> V {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+fn add(a: V, b: V) -> V {
+    [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
+}
+fn scale(a: V, k: f64) -> V {
+    [a[0] * k, a[1] * k, a[2] * k]
+}
+fn dot(a: V, b: V) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+fn cross(a: V, b: V) -> V {
+    [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
+}
+fn norm(a: V) -> f64 {
+    dot(a, a).sqrt()
+}
+
+/// A small deterministic generator (xorshift64*), so that the random scenes are the same on every run.
+struct Random(u64);
+
+impl Random {
+    fn unit(&mut self) -> f64 {
+        self.0 ^= self.0 >> 12;
+        self.0 ^= self.0 << 25;
+        self.0 ^= self.0 >> 27;
+        (self.0.wrapping_mul(0x2545_f491_4f6c_dd1d) >> 11) as f64 / (1u64 << 53) as f64
+    }
+    fn between(&mut self, low: f64, high: f64) -> f64 {
+        low + (high - low) * self.unit()
+    }
+    fn log_between(&mut self, low: f64, high: f64) -> f64 {
+        (low.ln() + (high.ln() - low.ln()) * self.unit()).exp()
+    }
+}
+
+// ---------------------------------------------------------------------------------------------------------------
+// The lecture's worked example
+
+/// The lecture's two balls (equal masses, e = 0.8; normal components +5 and -7.071 m/s, tangential 0 and 7.071 m/s)
+/// with a numeric stiffness `k` (N/m^1.5): the stiffer the contact, the shorter it is and the less the line of
+/// centres turns while the balls slide past each other.
+fn lecture(k: f64) -> String {
+    let s = std::f64::consts::FRAC_1_SQRT_2 * 10.0;
+    format!(
+        "[[bodies]]\nradius = 0.05\nmass = 1.0\nvelocity = [5.0, 0.0, 0.0]\n\n[[bodies]]\nradius = 0.05\nmass = 1.0\n\
+         velocity = [{}, {s:?}, 0.0]\n\n[contact]\nlaw = \"carvalho-martins\"\nrestitution = 0.8\nstiffness = {k:e}\n",
+        -s
+    )
+}
+
+/// The lecture's two equations (physics.md §2): momentum u1' + u2' = u1 + u2 and restitution u2' - u1' = e (u1 - u2)
+/// for equal masses.
+fn four_equations(u1: f64, u2: f64, e: f64) -> (f64, f64) {
+    let (sum, difference) = (u1 + u2, e * (u1 - u2));
+    ((sum - difference) / 2.0, (sum + difference) / 2.0)
+}
+
+#[test]
+fn lecture_example_follows_the_four_equations_as_the_contact_stiffens() {
+    let v = std::f64::consts::FRAC_1_SQRT_2 * 10.0;
+    let (u1, u2) = four_equations(5.0, -v, 0.8);
+    // physics.md §2 (checked): -5.864 and +3.793 m/s.
+    assert!((u1 + 5.864).abs() < 5e-4 && (u2 - 3.793).abs() < 5e-4, "{u1} {u2}");
+    let mut previous = f64::INFINITY;
+    for k in [1e12, 1e14, 1e16, 1e18] {
+        let report = run(&lecture(k));
+        let [a, b] = &report.bodies;
+        let (after_a, after_b) = (a.velocity_after.unwrap(), b.velocity_after.unwrap());
+        // The idealised (instantaneous) answer is exactly the four equations with the nominal e.
+        let nominal = report.instantaneous_nominal.as_ref().unwrap();
+        assert!((nominal.velocity_after[0][0] - u1).abs() < 1e-12 && (nominal.velocity_after[1][0] - u2).abs() < 1e-12);
+        assert_eq!(nominal.velocity_after[1][1], v, "the tangential velocity is unchanged in the idealisation");
+        // The simulation approaches it as the line of centres turns less.
+        let error = [(after_a[0] - u1).abs(), (after_b[0] - u2).abs(), after_a[1].abs(), (after_b[1] - v).abs()]
+            .into_iter()
+            .fold(0.0, f64::max);
+        let turn = report.oblique.as_ref().unwrap().normal_turn_deg.unwrap();
+        assert!(error < previous / 2.0, "k = {k:e}: error {error} did not shrink from {previous}");
+        // Turning the relative velocity (12.07 m/s across) by the line's turn changes a component by at most this.
+        assert!(error < turn.to_radians() * 12.07, "k = {k:e}: error {error} beyond the turn's {turn} deg");
+        previous = error;
+    }
+    assert!(previous < 1e-4, "the stiffest contact is within 1e-4 m/s of the four equations: {previous}");
+}
+
+#[test]
+fn the_lecture_model_file_is_the_lecture_example() {
+    let text = std::fs::read_to_string("models/lecture-oblique.toml").expect("the model file");
+    let report = run(&text);
+    let [a, b] = &report.bodies;
+    let v = std::f64::consts::FRAC_1_SQRT_2 * 10.0;
+    assert_eq!(a.velocity_before, [5.0, 0.0, 0.0]);
+    assert!((b.velocity_before[0] + v).abs() < 1e-15 && (b.velocity_before[1] - v).abs() < 1e-15);
+    assert_eq!(a.angle_from_tangent_before_deg, Some(90.0), "A moves along the normal");
+    assert!((b.angle_from_tangent_before_deg.unwrap() + 45.0).abs() < 1e-12, "B at 45 degrees, towards A");
+    let (u1, u2) = four_equations(5.0, -v, 0.8);
+    let after = report.instantaneous_nominal.unwrap().velocity_after;
+    assert!((after[0][0] - u1).abs() < 1e-12 && (after[1][0] - u2).abs() < 1e-12);
+    // Steel balls of 5 cm: the line of centres turns by a fraction of a degree, and the simulation is within a few
+    // percent of a m/s of the idealisation (the README quotes both).
+    let turn = report.oblique.unwrap().normal_turn_deg.unwrap();
+    assert!(turn > 0.1 && turn < 2.0, "{turn}");
+}
+
+// ---------------------------------------------------------------------------------------------------------------
+// Smooth oblique impact on a wall
+
+/// A sphere (r = 2.5 mm, Al2O3 of Chung & Ooi) hitting a still wall at `speed` m/s and `angle` degrees from the
+/// normal, in the x-z plane, the wall's normal along -z (from the sphere down to the wall).
+fn sphere_on_wall(angle: f64, speed: f64, contact: &str) -> String {
+    let a = angle.to_radians();
+    format!(
+        "[[bodies]]\nname = \"sphere\"\nradius = 0.0025\ndensity = 4000\nvelocity = [{:?}, 0.0, {:?}]\nyoung = 3.8e11\n\
+         poisson = 0.23\n\n[[bodies]]\nname = \"wall\"\nradius = inf\nmass = inf\nvelocity = [0.0, 0.0, 0.0]\n\
+         young = inf\n\n[contact]\nnormal = [0.0, 0.0, -1.0]\n{contact}\n",
+        speed * a.sin(),
+        -speed * a.cos()
+    )
+}
+
+#[test]
+fn frictionless_reflection_keeps_the_tangential_velocity_and_rebounds_with_e() {
+    let laws = [
+        ("law = \"carvalho-martins\"\nrestitution = 0.3", 0.3),
+        ("law = \"carvalho-martins\"\nrestitution = 0.8", 0.8),
+        // Tsuji's and Kelvin–Voigt's maps are exact with separation at zero penetration (physics.md §3).
+        ("law = \"tsuji\"\nrestitution = 0.5", 0.5),
+        ("law = \"kelvin-voigt\"\nrestitution = 0.7\nstiffness = 1e6\nexponent = 1.0", 0.7),
+    ];
+    for (contact, e) in laws {
+        for angle in [10.0, 45.0, 80.0] {
+            let report = run(&sphere_on_wall(angle, 3.9, contact));
+            let after = report.bodies[0].velocity_after.unwrap();
+            let (vt, vn) = (3.9 * f64::to_radians(angle).sin(), 3.9 * f64::to_radians(angle).cos());
+            assert!(relative(after[0], vt) < 1e-12, "{contact} at {angle}: tangential {} vs {vt}", after[0]);
+            assert_eq!(after[1], 0.0);
+            assert!(relative(after[2], e * vn) < 1e-9, "{contact} at {angle}: rebound {} vs {}", after[2], e * vn);
+            let oblique = report.oblique.as_ref().unwrap();
+            assert!((oblique.incidence_from_normal_deg - angle).abs() < 1e-12);
+            // tan(rebound) = vt / (e vn).
+            let rebound = (vt / (e * vn)).atan().to_degrees();
+            assert!((oblique.rebound_from_normal_deg.unwrap() - rebound).abs() < 1e-8, "{contact} at {angle}");
+            assert_eq!(oblique.regime, "smooth");
+            assert!(relative(oblique.tangential_restitution_centre.unwrap(), 1.0) < 1e-12);
+        }
+    }
+}
+
+// ---------------------------------------------------------------------------------------------------------------
+// Friction: rigid-body sliding (Chung & Ooi test 4)
+
+const TEST_4: &str = "restitution = 0.98\nfriction = 0.092";
+
+/// Rigid-body sliding on a wall (physics.md §2): vt' = vt - mu (1+e) vn, |w'| = (5/2) mu (1+e) vn / r, with the
+/// simulated normal e.
+#[test]
+fn sliding_impacts_follow_rigid_body_theory_with_a_hertzian_exact_map() {
+    // Carvalho–Martins' exact Hunt–Crossley map: F ~ d^(3/2) from the first instant, so a contact whose spring would
+    // outgrow mu F from the start (tan(angle) > mu (1+x) E*/(4 G*), about 6 degrees here) slides throughout.
+    let (mu, r) = (0.092, 0.0025);
+    for angle in [40.0, 45.0, 50.0, 55.0, 60.0, 65.0, 70.0, 75.0, 80.0, 85.0] {
+        let report = run(&sphere_on_wall(angle, 3.9, &format!("law = \"carvalho-martins\"\n{TEST_4}")));
+        let e = report.contact.restitution_velocity_ratio.unwrap();
+        let (vt, vn) = (3.9 * f64::to_radians(angle).sin(), 3.9 * f64::to_radians(angle).cos());
+        let after = report.bodies[0].velocity_after.unwrap();
+        let spin = report.bodies[0].angular_velocity_after.unwrap();
+        let expected_vt = vt - mu * (1.0 + e) * vn;
+        let expected_spin = 2.5 * mu * (1.0 + e) * vn / r;
+        assert!(relative(after[0], expected_vt) < 1e-6, "{angle}: vt' {} vs {expected_vt}", after[0]);
+        assert!(relative(after[2], e * vn) < 1e-9, "{angle}: normal rebound");
+        // Rolling with +x velocity on a floor below (-z): the spin is about +y.
+        assert!(relative(spin[1], expected_spin) < 1e-6, "{angle}: spin {} vs {expected_spin}", spin[1]);
+        let oblique = report.oblique.unwrap();
+        assert_eq!(oblique.regime, "sliding", "{angle}");
+        assert_eq!(oblique.rigid_body.unwrap().regime, "sliding", "{angle}");
+        assert!(relative(oblique.tangential_restitution_centre.unwrap(), expected_vt / vt) < 1e-6);
+    }
+}
+
+#[test]
+fn tsujis_damping_term_makes_the_contact_stick_for_an_instant_before_it_slides() {
+    // F = K d^(3/2) + a sqrt(m* K) d^(1/4) d': the damping term dominates as d -> 0, so at first contact mu F
+    // outgrows the Mindlin spring and the contact sticks until, to leading order (d = v0 t),
+    // (2/3) 8 G* sqrt(R* v0 t) vt t = mu (K (v0 t)^(3/2) + a sqrt(m* K) (v0 t)^(1/4) v0). That instant is found
+    // here by bisection from the material constants; the deviation from rigid sliding it causes stays small.
+    let (mu, r, rho, young, nu) = (0.092, 0.0025, 4000.0, 3.8e11, 0.23);
+    let mass = rho * 4.0 / 3.0 * std::f64::consts::PI * r * r * r;
+    let e_star = young / (1.0 - nu * nu);
+    let g_star = young / (2.0 * (1.0 + nu)) / (2.0 - nu);
+    let k = 4.0 / 3.0 * e_star * r.sqrt();
+    let ln_e = 0.98f64.ln();
+    let a = -(5.0f64.sqrt()) * ln_e / (std::f64::consts::PI.powi(2) + ln_e * ln_e).sqrt();
+    for angle in [40.0, 60.0, 80.0] {
+        let (vt, vn) = (3.9 * f64::to_radians(angle).sin(), 3.9 * f64::to_radians(angle).cos());
+        let spring = |t: f64| 2.0 / 3.0 * 8.0 * g_star * (r * vn * t).sqrt() * vt * t;
+        let cap = |t: f64| mu * (k * (vn * t).powf(1.5) + a * (mass * k).sqrt() * (vn * t).powf(0.25) * vn);
+        let (mut low, mut high) = (1e-15_f64, 1e-6_f64);
+        for _ in 0..200 {
+            let middle = (low * high).sqrt();
+            if spring(middle) < cap(middle) { low = middle } else { high = middle }
+        }
+        let report = run(&sphere_on_wall(angle, 3.9, &format!("law = \"tsuji\"\n{TEST_4}")));
+        let oblique = report.oblique.unwrap();
+        let stick = oblique.stick_duration.unwrap();
+        assert!(relative(stick, low) < 0.02, "{angle}: stuck for {stick} s, leading order {low} s");
+        assert!(stick < 0.01 * report.contact.duration.unwrap(), "{angle}: an instant of the contact");
+        let e = report.contact.restitution_velocity_ratio.unwrap();
+        let after = report.bodies[0].velocity_after.unwrap();
+        assert!(relative(after[0], vt - mu * (1.0 + e) * vn) < 1e-4, "{angle}");
+    }
+}
+
+#[test]
+fn small_incidence_departs_from_rigid_theory_as_mindlin_compliance_predicts() {
+    // physics.md §2 (checked): with Mindlin's spring the centre's tangential restitution for test 4 is about 0.89 at
+    // 5 degrees, 0.71 at 10, 0.61 at 20 and 0.63 at 25 — not rigid theory's 5/7 = 0.714 of the sticking range.
+    for (angle, expected) in [(5.0, 0.89), (10.0, 0.71), (20.0, 0.61), (25.0, 0.63)] {
+        let report = run(&sphere_on_wall(angle, 3.9, &format!("law = \"tsuji\"\n{TEST_4}")));
+        let oblique = report.oblique.unwrap();
+        let restitution = oblique.tangential_restitution_centre.unwrap();
+        assert!((restitution - expected).abs() < 0.01, "{angle}: {restitution} vs about {expected}");
+        assert_eq!(oblique.rigid_body.unwrap().regime, "sticking", "{angle}: below the rigid threshold of 32.5");
+    }
+}
+
+#[test]
+fn a_stiff_damped_tangential_spring_ends_sticking_impacts_rolling_at_five_sevenths() {
+    // Rigid sticking of a solid sphere without spin: the slip stops, vt' = (5/7) vt (physics.md §2). A tangential
+    // spring far stiffer than Mindlin's with critical damping reaches that limit.
+    let mut previous = f64::INFINITY;
+    for stiffness in [1e8, 1e9, 1e10] {
+        let contact = format!(
+            "law = \"carvalho-martins\"\nrestitution = 0.9\nfriction = 1.0\ntangential_stiffness = {stiffness:e}\n\
+             tangential_damping = 1.0"
+        );
+        let report = run(&sphere_on_wall(30.0, 3.9, &contact));
+        let restitution = report.oblique.as_ref().unwrap().tangential_restitution_centre.unwrap();
+        let error = (restitution - 5.0 / 7.0).abs();
+        assert!(error <= previous, "{stiffness:e}: {error} not closer than {previous}");
+        previous = error;
+    }
+    assert!(previous < 1e-6, "{previous}");
+}
+
+// ---------------------------------------------------------------------------------------------------------------
+// Conservation
+
+/// Two free spheres at random, touching at t = 0 along a random normal and approaching along it: masses, radii,
+/// oblique velocities, spins, friction and laws.
+fn two_spheres(random: &mut Random) -> String {
+    let law = [
+        "law = \"hunt-crossley\"\nrestitution = 0.7",
+        "law = \"carvalho-martins\"\nrestitution = 0.4",
+        "law = \"tsuji\"\nrestitution = 0.6",
+        "law = \"hertz\"",
+        "law = \"kelvin-voigt\"\nrestitution = 0.5\nstiffness = 1e7\nexponent = 1.0",
+    ][(random.unit() * 5.0) as usize % 5];
+    let mu = if random.unit() < 0.25 { 0.0 } else { random.between(0.05, 1.0) };
+    let theta = random.between(0.0, std::f64::consts::TAU);
+    let phi = random.between(-1.2, 1.2);
+    let n = [phi.cos() * theta.cos(), phi.cos() * theta.sin(), phi.sin()];
+    let mut vector =
+        |size: f64| [random.between(-size, size), random.between(-size, size), random.between(-size, size)];
+    let (v1, across, w1, w2) = (vector(3.0), vector(3.0), vector(500.0), vector(500.0));
+    let across = sub(across, scale(n, dot(across, n)));
+    let approach = random.between(0.1, 3.0);
+    // v2 = v1 - approach n + a velocity across the normal: (v1 - v2)·n = approach > 0.
+    let v2 = add(sub(v1, scale(n, approach)), across);
+    let (r1, r2) = (random.log_between(1e-3, 0.1), random.log_between(1e-3, 0.1));
+    let (rho1, rho2) = (random.log_between(1e3, 2e4), random.log_between(1e3, 2e4));
+    let centre = scale(n, r1 + r2);
+    let body = |name: &str, r: f64, rho: f64, x: V, v: V, w: V| {
+        format!(
+            "name = \"{name}\"\nradius = {r:?}\ndensity = {rho:?}\nposition = [{:?}, {:?}, {:?}]\n\
+             velocity = [{:?}, {:?}, {:?}]\nangular_velocity = [{:?}, {:?}, {:?}]\nyoung = 2e11\npoisson = 0.3",
+            x[0], x[1], x[2], v[0], v[1], v[2], w[0], w[1], w[2]
+        )
+    };
+    format!(
+        "[[bodies]]\n{}\n\n[[bodies]]\n{}\n\n[contact]\n{law}\nfriction = {mu:?}\n",
+        body("A", r1, rho1, [0.0; 3], v1, w1),
+        body("B", r2, rho2, centre, v2, w2)
+    )
+}
+
+/// Linear and angular momentum (orbital about the origin plus spin) of the finite bodies, from the report.
+fn momenta(report: &Report, after: bool) -> (V, V, f64, f64) {
+    let (mut p, mut l, mut p_scale, mut l_scale) = ([0.0; 3], [0.0; 3], 0.0, 0.0);
+    for body in &report.bodies {
+        let (x, v, w) = if after {
+            (body.position_at_separation.unwrap(), body.velocity_after.unwrap(), body.angular_velocity_after.unwrap())
+        } else {
+            (body.position_at_first_contact, body.velocity_before, body.angular_velocity_before)
+        };
+        // A solid sphere: I = (2/5) m r².
+        let inertia = 0.4 * body.mass * body.radius * body.radius;
+        p = add(p, scale(v, body.mass));
+        l = add(l, add(scale(cross(x, v), body.mass), scale(w, inertia)));
+        p_scale += body.mass * norm(v);
+        l_scale += body.mass * norm(x) * norm(v) + inertia * norm(w);
+    }
+    (p, l, p_scale, l_scale)
+}
+
+#[test]
+fn two_free_spheres_conserve_linear_and_angular_momentum() {
+    let mut random = Random(0x5eed_1234_abcd_0001);
+    let mut checked = 0;
+    for _ in 0..60 {
+        let text = two_spheres(&mut random);
+        let report = run(&text);
+        assert!(report.contact.separated, "{text}");
+        let (p0, l0, ps, ls) = momenta(&report, false);
+        let (p1, l1, _, _) = momenta(&report, true);
+        assert!(norm(sub(p1, p0)) < 1e-12 * ps, "linear momentum {p0:?} -> {p1:?}\n{text}");
+        assert!(norm(sub(l1, l0)) < 1e-9 * ls, "angular momentum {l0:?} -> {l1:?}\n{text}");
+        checked += 1;
+    }
+    assert_eq!(checked, 60);
+}
+
+#[test]
+fn on_a_wall_the_spin_change_is_the_moment_of_the_tangential_impulse() {
+    // m dv = the impulse (normal plus tangential); I dw = a x (tangential impulse) with a = r (from the centre to the
+    // contact point, towards the wall): the normal part of m dv is along a and drops out of the cross product.
+    for (angle, spin) in [(20.0, [0.0, 0.0, 0.0]), (45.0, [0.0, -300.0, 50.0]), (70.0, [100.0, 800.0, 0.0])] {
+        let contact = "law = \"hunt-crossley\"\nrestitution = 0.6\nfriction = 0.3";
+        let text = sphere_on_wall(angle, 2.0, contact).replace(
+            "poisson = 0.23\n",
+            &format!("poisson = 0.23\nangular_velocity = [{:?}, {:?}, {:?}]\n", spin[0], spin[1], spin[2]),
+        );
+        let report = run(&text);
+        let sphere = &report.bodies[0];
+        let (r, m) = (sphere.radius, sphere.mass);
+        let inertia = 0.4 * m * r * r;
+        let dv = sub(sphere.velocity_after.unwrap(), sphere.velocity_before);
+        let dw = sub(sphere.angular_velocity_after.unwrap(), spin);
+        let arm = [0.0, 0.0, -r];
+        let moment = cross(arm, scale(dv, m));
+        assert!(norm(sub(scale(dw, inertia), moment)) < 1e-9 * norm(moment), "{angle}: {dw:?} vs {moment:?}");
+    }
+}
+
+#[test]
+fn the_energy_balance_closes_with_friction_spin_and_moving_walls() {
+    let mut random = Random(0x0b1e_c7ed_2026_0007);
+    for case in 0..24 {
+        let angle = random.between(2.0, 88.0);
+        let contact = [
+            "law = \"hunt-crossley\"\nrestitution = 0.6",
+            "law = \"tsuji\"\nrestitution = 0.4",
+            "law = \"tsuji\"\nrestitution = 0.4\nseparation = \"force\"",
+            "law = \"kelvin-voigt\"\nrestitution = 0.5\nstiffness = 1e6\nexponent = 1.0\nseparation = \"force\"",
+        ][case % 4];
+        let friction =
+            format!("friction = {:?}\ntangential_damping = {:?}", random.between(0.05, 0.8), random.between(0.0, 1.0));
+        let wall_speed = [random.between(-1.0, 1.0), random.between(-1.0, 1.0), random.between(0.0, 0.5)];
+        let spin = [random.between(-900.0, 900.0), random.between(-900.0, 900.0), random.between(-900.0, 900.0)];
+        let text = sphere_on_wall(angle, 3.0, &format!("{contact}\n{friction}"))
+            .replace(
+                "velocity = [0.0, 0.0, 0.0]",
+                &format!("velocity = [{:?}, {:?}, {:?}]", wall_speed[0], wall_speed[1], wall_speed[2]),
+            )
+            .replace(
+                "poisson = 0.23\n",
+                &format!("poisson = 0.23\nangular_velocity = [{:?}, {:?}, {:?}]\n", spin[0], spin[1], spin[2]),
+            );
+        let report = run(&text);
+        let e = &report.energy;
+        let (Some(after), Some(dissipated), Some(left), Some(work)) =
+            (e.kinetic_after, e.dissipated, e.elastic_left_at_separation, e.work_of_immovable_bodies)
+        else {
+            panic!("case {case} did not separate\n{text}")
+        };
+        let imbalance = (e.kinetic_before + work - after - dissipated - left) / e.kinetic_before;
+        assert!(imbalance.abs() < 1e-9, "case {case}: imbalance {imbalance:e}\n{text}");
+    }
+}
