@@ -95,32 +95,38 @@ fn run<const N: usize, M: ContactModel<N>>(
     let separation_force = |y: &State<N>| model.separation_force(y);
     let settled = |y: &State<N>| model.penetration(y).abs() + model.rate(y).abs() - SETTLED;
     let switch = |y: &State<N>| model.switch_function(y).unwrap_or(1.0);
-    let event = |function, terminal| Event { function, direction: Direction::Falling, terminal };
 
-    let compression = [event(&rate, true), event(&force_rate, false), event(&switch, true)];
-    let compressed = phases.run(&mut stepper, model, 0.0, start, &compression)?;
+    // Event lists: the phase's own events first, then (for a frictional model only) the stick–slip switch, last.
+    let frictional = model.switch_function(&start).is_some();
+    let mut compression = vec![event(&rate, true), event(&force_rate, false)];
+    if frictional {
+        compression.push(event(&switch, true));
+    }
+    let compressed = phases.run(&mut stepper, model, 0.0, start, &compression, frictional)?;
     if compressed.ending != Ending::Event(0) {
         return Err(SimulationError::Compression(match compressed.ending {
             Ending::GaveUp(reason) => reason,
             _ => format!("no maximum compression within {TIME_LIMIT} elastic time units"),
         }));
     }
-    // A force separation is located on the law's continued force, and never later than d = 0 (physics.md §5).
-    // Laws that never turn tensile end at d = 0 whichever criterion is named.
+    // A force separation is located on the law's continued force, and never later than d = 0 (physics.md §5):
+    // the penetration is a second separation event then. Laws that never turn tensile end at d = 0 whichever
+    // criterion is named.
     let law = &scene.contact;
     let on_force = law.separation == crate::law::Separation::Force && law.law.can_turn_tensile();
     let ending: &dyn Fn(&State<N>) -> f64 = if on_force { &separation_force } else { &penetration };
-    let restitution = [
-        event(ending, true),
-        event(&penetration, true),
-        event(&settled, true),
-        event(&force_rate, false),
-        event(&switch, true),
-    ];
-    let released = phases.run(&mut stepper, model, compressed.time, compressed.state, &restitution)?;
+    let mut restitution = vec![event(ending, true), event(&settled, true), event(&force_rate, false)];
+    if on_force {
+        restitution.push(event(&penetration, true));
+    }
+    if frictional {
+        restitution.push(event(&switch, true));
+    }
+    let released = phases.run(&mut stepper, model, compressed.time, compressed.state, &restitution, frictional)?;
+    // Events 0 and 3 (with a force criterion) are separations; 1 is the motion dying out.
+    let parted = matches!(released.ending, Ending::Event(0)) || (on_force && released.ending == Ending::Event(3));
     // A penetration that returns to zero without a separation speed (e = 0 to the integration's accuracy, e.g. a
     // critically damped contact under loose tolerances) has not separated: the bodies stay together.
-    let parted = matches!(released.ending, Ending::Event(0 | 1));
     let separated = parted && model.rate(&released.state) < 0.0;
 
     let mut candidates = vec![(0.0, start), (compressed.time, compressed.state), (released.time, released.state)];
@@ -131,7 +137,7 @@ fn run<const N: usize, M: ContactModel<N>>(
         .expect("candidates are never empty");
     let peak = model.snapshot(peak_time, &peak_state);
     let ending = match released.ending {
-        Ending::Event(0 | 1) => Ending::Event(0),
+        _ if parted => Ending::Event(0),
         Ending::Event(_) => Ending::Event(1),
         other => other,
     };
@@ -156,6 +162,11 @@ fn run<const N: usize, M: ContactModel<N>>(
         }
     };
     Ok((outcome, history))
+}
+
+/// An event where `function` falls through zero.
+fn event<'a, const N: usize>(function: &'a dyn Fn(&State<N>) -> f64, terminal: bool) -> Event<'a, N> {
+    Event { function, direction: Direction::Falling, terminal }
 }
 
 /// `count` evenly spaced times over [0, end], both ends included.
@@ -186,7 +197,7 @@ struct PhaseEnd<const N: usize> {
 
 impl Phases {
     /// Runs one phase from `(t, y)` until one of its terminal events other than the stick–slip switch (the last
-    /// event), switching the model's mode at each located switch on the way.
+    /// event when `switching`), switching the model's mode at each located switch on the way.
     fn run<const N: usize, M: ContactModel<N>>(
         &mut self,
         stepper: &mut Stepper<'_, M, N>,
@@ -194,8 +205,9 @@ impl Phases {
         t: f64,
         y: State<N>,
         events: &[Event<'_, N>],
+        switching: bool,
     ) -> Result<PhaseEnd<N>, SimulationError> {
-        let switch_event = events.len() - 1;
+        let switch_event = if switching { events.len() - 1 } else { usize::MAX };
         let (mut time, mut state, mut crossings) = (t, y, Vec::new());
         loop {
             let end = stepper.run(time, state, TIME_LIMIT, events)?;

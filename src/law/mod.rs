@@ -63,6 +63,7 @@ impl ContactLaw {
     /// Force parts at penetration `d` (m) and penetration rate `rate` (m/s). Zero when `d < 0`, so a step that
     /// overshoots separation never takes a fractional power of a negative number. At `d = 0` it is the limit from
     /// inside the contact: zero for every law but Kelvin–Voigt, whose force jumps to c d' at first contact.
+    #[inline]
     pub fn split_force(&self, d: f64, rate: f64) -> ForceParts {
         if d < 0.0 {
             return ForceParts { elastic: 0.0, dissipative: 0.0 };
