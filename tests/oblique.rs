@@ -2,6 +2,9 @@
 //! rigid-body friction theory (physics.md §2), and the conservation laws of two free spheres. Every expected value is
 //! computed here from those formulas, never taken from the program.
 
+mod common;
+
+use common::binary::{Scratch, impact as binary};
 use impact::history::Recording;
 use impact::impact::simulate;
 use impact::report::Report;
@@ -398,4 +401,33 @@ fn the_energy_balance_closes_with_friction_spin_and_moving_walls() {
         let imbalance = (e.kinetic_before + work - after - dissipated - left) / e.kinetic_before;
         assert!(imbalance.abs() < 1e-9, "case {case}: imbalance {imbalance:e}\n{text}");
     }
+}
+
+// ---------------------------------------------------------------------------------------------------------------
+// Sweeping the angle of incidence
+
+#[test]
+fn a_sweep_turns_the_velocity_to_each_angle_of_incidence_keeping_its_speed() {
+    let scratch = Scratch::new("incidence");
+    let scene = std::fs::read_to_string("models/chung-ooi-test4.toml").expect("the model");
+    let path = scratch.scene("test4.toml", &scene);
+    let output =
+        binary(scratch.path(), &["sweep", &path, "--vary", "bodies.0.incidence_deg=5,30,60,85", "--out", "t4.csv"]);
+    assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
+    let text = scratch.read("t4.csv");
+    let mut lines = text.lines();
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let column = |name: &str| header.iter().position(|c| *c == name).unwrap_or_else(|| panic!("no column {name}"));
+    for (line, angle) in lines.zip([5.0, 30.0, 60.0, 85.0]) {
+        let cells: Vec<&str> = line.split(',').collect();
+        let number = |name: &str| cells[column(name)].parse::<f64>().unwrap();
+        // 3.9 m/s at the angle from the wall's normal: the approach speed is its normal part.
+        assert!(relative(number("approach_speed"), 3.9 * f64::to_radians(angle).cos()) < 1e-14, "{line}");
+        assert_eq!(cells[column("status")], "ok");
+    }
+    // An angle outside [0, 90) is that point's error, not the sweep's.
+    let output =
+        binary(scratch.path(), &["sweep", &path, "--vary", "bodies.0.incidence_deg=45,95", "--out", "bad.csv"]);
+    assert!(output.status.success());
+    assert!(scratch.read("bad.csv").lines().nth(2).unwrap().contains("error: bodies.0.incidence_deg"));
 }

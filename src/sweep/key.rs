@@ -8,22 +8,28 @@
 //! - a number set on `contact.stiffness` replaces `"hertz"`;
 //! - a component of `contact.normal` or `bodies.I.angular_velocity` that the file leaves out starts from the
 //!   default vector (`[1, 0, 0]` and `[0, 0, 0]`); `bodies.I.velocity` and `bodies.I.position` have no default, so
-//!   the file must give the whole vector to vary one component.
+//!   the file must give the whole vector to vary one component;
+//! - `bodies.I.incidence_deg` is not a key of the file but a way to set `bodies.I.velocity`: the body keeps its speed
+//!   and moves at that angle (degrees) from the contact normal (`contact.normal`, default [1, 0, 0]), towards the
+//!   other body, in the plane of the normal and the velocity's part across it (the coordinate axis most
+//!   perpendicular to the normal when it has none). For a sphere on a wall at rest it is the angle of incidence.
 
 use super::SweepError;
 use std::fmt;
 use toml::{Table, Value};
 
-const BODY_NUMBERS: [&str; 5] = ["radius", "mass", "density", "young", "poisson"];
+const BODY_NUMBERS: [&str; 7] = ["radius", "mass", "density", "young", "poisson", "inertia", "incidence_deg"];
 const BODY_VECTORS: [&str; 3] = ["velocity", "position", "angular_velocity"];
-const CONTACT_NUMBERS: [&str; 5] = ["restitution", "damping", "stiffness", "exponent", "friction"];
+const CONTACT_NUMBERS: [&str; 7] =
+    ["restitution", "damping", "stiffness", "exponent", "friction", "tangential_stiffness", "tangential_damping"];
 const CONTACT_VECTORS: [&str; 1] = ["normal"];
 const SOLVER_NUMBERS: [&str; 2] = ["rtol", "atol"];
 
 /// The keys a sweep accepts, for error messages.
 pub const VALID_KEYS: &str = "bodies.I.radius, bodies.I.mass, bodies.I.density, bodies.I.young, bodies.I.poisson, \
-     bodies.I.velocity.J, bodies.I.position.J, bodies.I.angular_velocity.J, contact.restitution, contact.damping, \
-     contact.stiffness, contact.exponent, contact.friction, contact.normal.J, solver.rtol, solver.atol \
+     bodies.I.inertia, bodies.I.velocity.J, bodies.I.position.J, bodies.I.angular_velocity.J, bodies.I.incidence_deg, \
+     contact.restitution, contact.damping, contact.stiffness, contact.exponent, contact.friction, \
+     contact.tangential_stiffness, contact.tangential_damping, contact.normal.J, solver.rtol, solver.atol \
      (I = 0 or 1, the body; J = 0, 1 or 2, the component)";
 
 /// A number in the scene that a sweep sets.
@@ -128,6 +134,11 @@ impl SceneKey {
         self.table == "bodies" && self.field == "velocity"
     }
 
+    /// Whether this is a body's angle of incidence (which sets its velocity).
+    pub fn is_incidence(&self) -> bool {
+        self.table == "bodies" && self.field == "incidence_deg"
+    }
+
     /// The key this one removes when set (`restitution` <-> `damping`, `mass` <-> `density` of the same body).
     fn partner(&self) -> Option<&'static str> {
         match (self.table, self.field) {
@@ -141,7 +152,12 @@ impl SceneKey {
 
     /// Whether two keys cannot both be varied: the same number twice, or two numbers that exclude each other.
     pub fn conflicts_with(&self, other: &SceneKey) -> bool {
-        self == other || (self.table == other.table && self.body == other.body && self.partner() == Some(other.field))
+        let same_body = self.table == other.table && self.body == other.body;
+        // The incidence sets the whole velocity of its body.
+        let velocity = |a: &SceneKey, b: &SceneKey| a.is_incidence() && b.is_velocity();
+        self == other
+            || (same_body && self.partner() == Some(other.field))
+            || (same_body && (velocity(self, other) || velocity(other, self)))
     }
 
     /// Checks, before any work, that the scene file has what this key needs: the body it names, and the whole
@@ -155,6 +171,15 @@ impl SceneKey {
                 None => Ok(()),
             };
         };
+        if self.is_incidence() {
+            return match table.get("velocity") {
+                Some(Value::Array(items)) if items.len() == 3 => Ok(()),
+                _ => Err(SweepError::Usage(format!(
+                    "cannot vary `{self}`: it turns the body's velocity, so the scene must give `{}` as [x, y, z]",
+                    SceneKey { field: "velocity", ..self.clone() }
+                ))),
+            };
+        }
         let Some(component) = self.component else { return Ok(()) };
         match table.get(self.field) {
             Some(Value::Array(items)) if component < items.len() => Ok(()),
@@ -213,6 +238,9 @@ impl SceneKey {
 
     /// Sets this key to `value` in the scene document, applying the switching rules of the module doc.
     pub fn set(&self, scene: &mut Table, value: f64) -> Result<(), String> {
+        if self.is_incidence() {
+            return self.set_incidence(scene, value);
+        }
         let default = self.default_vector();
         let table = self.table_mut(scene)?;
         if let Some(partner) = self.partner() {
@@ -237,4 +265,64 @@ impl SceneKey {
         *slot = Value::Float(value);
         Ok(())
     }
+
+    /// Turns the body's velocity to `degrees` from the contact normal, keeping its speed (see the module doc).
+    fn set_incidence(&self, scene: &mut Table, degrees: f64) -> Result<(), String> {
+        if !(0.0..90.0).contains(&degrees) {
+            return Err(format!("an angle of incidence in [0, 90) degrees, got {degrees}"));
+        }
+        let normal = scene
+            .get("contact")
+            .and_then(|c| c.get("normal"))
+            .map(|n| numbers(n).ok_or("`contact.normal` is not [x, y, z]"))
+            .transpose()?
+            .unwrap_or([1.0, 0.0, 0.0]);
+        let length = norm(normal);
+        if !(length > 0.0 && length.is_finite()) {
+            return Err("`contact.normal` is not a direction".into());
+        }
+        let n = normal.map(|c| c / length);
+        let table = self.table_mut(scene)?;
+        let velocity = table.get("velocity").and_then(numbers).ok_or("the body's `velocity` is not [x, y, z]")?;
+        let speed = norm(velocity);
+        if speed == 0.0 || !speed.is_finite() {
+            return Err("the body is at rest: its speed sets the incidence's speed".into());
+        }
+        let along = dot(velocity, n);
+        let mut across = [velocity[0] - along * n[0], velocity[1] - along * n[1], velocity[2] - along * n[2]];
+        if norm(across) <= 1e-12 * speed {
+            // The coordinate axis most perpendicular to the normal, made perpendicular.
+            let axis = (0..3).min_by(|&i, &j| n[i].abs().total_cmp(&n[j].abs())).unwrap_or(0);
+            across = [0.0; 3];
+            across[axis] = 1.0;
+            let along = dot(across, n);
+            across = [across[0] - along * n[0], across[1] - along * n[1], across[2] - along * n[2]];
+        }
+        let across_length = norm(across);
+        let t = across.map(|c| c / across_length);
+        // Body 1 moves towards body 2 along +n, body 2 towards body 1 along -n.
+        let towards = if self.body == Some(0) { 1.0 } else { -1.0 };
+        let (c, s) = (degrees.to_radians().cos(), degrees.to_radians().sin());
+        let turned: Vec<Value> = (0..3).map(|i| Value::Float(speed * (towards * c * n[i] + s * t[i]))).collect();
+        table.insert("velocity".into(), Value::Array(turned));
+        Ok(())
+    }
+}
+
+/// A TOML array of three numbers.
+fn numbers(value: &Value) -> Option<[f64; 3]> {
+    let items = value.as_array()?;
+    let number = |v: &Value| v.as_float().or_else(|| v.as_integer().map(|i| i as f64));
+    match items.as_slice() {
+        [x, y, z] => Some([number(x)?, number(y)?, number(z)?]),
+        _ => None,
+    }
+}
+
+fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+fn norm(a: [f64; 3]) -> f64 {
+    dot(a, a).sqrt()
 }
