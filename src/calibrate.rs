@@ -328,8 +328,21 @@ fn check_target(law: LawKind, target: f64) -> Result<(), CalibrationError> {
             readable(target)
         )));
     }
+    if target < MIN_TARGET {
+        return Err(CalibrationError::Target(format!(
+            "e = {} is below the smallest e that can be simulated, about {MIN_TARGET:e}: the damping it needs makes \
+             the restitution creep for longer than any integration can follow (the scene limit on the damping is \
+             {:e} times the elastic force)",
+            readable(target),
+            crate::setup::MAX_DAMPING_RATIO
+        )));
+    }
     Ok(())
 }
+
+/// The smallest target e: below it the damping passes the scene limit [`crate::setup::MAX_DAMPING_RATIO`] (for the
+/// hysteresis family e(x) ~ ln(x)/x, about 2e-9 at x = 1e10).
+pub const MIN_TARGET: f64 = 1e-10;
 
 /// The scene with the asked law, separation and approach speed, and no damping yet.
 fn adapt_scene(scene: &Scene, request: &Request) -> Result<Scene, CalibrationError> {

@@ -338,7 +338,8 @@ fn placement(scene: &Scene) -> Result<Placement, SetupError> {
             if !contact.time.is_finite() {
                 return fail(
                     "bodies.1.position",
-                    format!("the first contact lies beyond double precision in time ({} s)", contact.time),
+                    "the time of first contact cannot be computed in double precision (the bodies are too far apart \
+                     for their speeds)",
                 );
             }
             let spheres = !a.is_flat() && !b.is_flat();

@@ -214,6 +214,10 @@ fn restitution(report: &Report) -> Section {
 fn energy(report: &Report, scales: &Scales) -> Section {
     let e = &report.energy;
     let joules = |value: f64| engineering(denoise(value, scales.energy), "J");
+    // What the contact itself takes or leaves is measured against the impact's own energy m* v0², not against a
+    // kinetic energy that a heavy body's motion may make far larger.
+    let impact_energy = report.effective_mass * report.approach_speed * report.approach_speed;
+    let contact_joules = |value: f64| engineering(denoise(value, impact_energy), "J");
     let mut section = Section::new("energy");
     section.row("kinetic energy before", joules(e.kinetic_before));
     if let Some(work) = e.work_of_immovable_bodies.filter(|w| denoise(*w, scales.energy) != 0.0) {
@@ -223,10 +227,10 @@ fn energy(report: &Report, scales: &Scales) -> Section {
     let frictional = report.oblique.as_ref().is_some_and(|o| o.friction_work.is_some_and(|w| w != 0.0));
     if family(report) != Some(Family::Elastic) || frictional {
         let what = if frictional { "dissipated (damping and friction)" } else { "dissipated by damping" };
-        section.row(what, maybe(e.dissipated, joules));
+        section.row(what, maybe(e.dissipated, contact_joules));
     }
-    if let Some(left) = e.elastic_left_at_separation.filter(|l| denoise(*l, scales.energy) != 0.0) {
-        section.row("elastic energy left at separation", joules(left));
+    if let Some(left) = e.elastic_left_at_separation.filter(|l| denoise(*l, impact_energy) != 0.0) {
+        section.row("elastic energy left at separation", contact_joules(left));
     }
     if let (Some(after), Some(dissipated), Some(left), Some(work)) =
         (e.kinetic_after, e.dissipated, e.elastic_left_at_separation, e.work_of_immovable_bodies)

@@ -118,6 +118,10 @@ pub fn prefix_for(scale: f64) -> (f64, &'static str) {
 /// form above.
 fn mass(kg: f64, digits: usize) -> String {
     let grams = kg * 1e3;
+    if !grams.is_finite() {
+        // (A mass near the top of double precision: 1e3 times it overflows.)
+        return with_unit(plain_digits(kg, digits), "kg");
+    }
     let (_, _, exponent) = decompose(grams, digits);
     // 0.99999996 kg rounds to 1000.00 g: exponent 3, so it is written in kg ("1.00000 kg").
     if exponent < 3
@@ -130,10 +134,13 @@ fn mass(kg: f64, digits: usize) -> String {
 
 /// Sign, the `digits` significant digits and the decimal exponent of `value` after rounding to those digits:
 /// -1005.38 with 6 digits -> (true, "100538", 3).
+/// (Callers pass finite values; a non-finite one comes back as zero digits at exponent 0 rather than a panic.)
 fn decompose(value: f64, digits: usize) -> (bool, String, i32) {
     let text = format!("{:.*e}", digits - 1, value.abs());
-    let (mantissa, exponent) = text.split_once('e').expect("exponent form");
-    (value < 0.0, mantissa.replace('.', ""), exponent.parse().expect("an integer exponent"))
+    match text.split_once('e') {
+        Some((mantissa, exponent)) => (value < 0.0, mantissa.replace('.', ""), exponent.parse().unwrap_or(0)),
+        None => (value < 0.0, "0".repeat(digits), 0),
+    }
 }
 
 /// Digits with the decimal point after the first `1 + shift` of them ("100538", 0 -> "1.00538").
@@ -163,6 +170,13 @@ fn with_unit(number: String, unit: &str) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn masses_at_the_top_of_double_precision_do_not_overflow_into_grams() {
+        // 1e308 kg in grams would be 1e311: past f64::MAX (1.8e308), so it stays in kg.
+        assert_eq!(engineering(1e308, "kg"), "1.00000e308 kg");
+        assert_eq!(engineering(5e307, "J"), "5.00000e307 J");
+    }
 
     #[test]
     fn prefixes_put_the_mantissa_between_1_and_1000() {
