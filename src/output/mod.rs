@@ -6,3 +6,4 @@ pub mod files;
 pub mod json;
 pub mod sweep_figure;
 pub mod table;
+pub mod text;
