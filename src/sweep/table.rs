@@ -204,6 +204,21 @@ pub fn render(keys: &[String], rows: &[Row], shard: Option<(Shard, usize, u64)>)
     text
 }
 
+/// Number of cells of a CSV line (RFC 4180 quoting), without splitting it.
+pub fn cell_count(line: &str) -> usize {
+    let mut quoted = false;
+    let mut cells = 1;
+    for c in line.chars() {
+        match c {
+            // A doubled quote inside a quoted cell toggles twice.
+            '"' => quoted = !quoted,
+            ',' if !quoted => cells += 1,
+            _ => {}
+        }
+    }
+    cells
+}
+
 /// Splits a CSV line into cells, undoing RFC 4180 quoting.
 pub fn split(line: &str) -> Vec<String> {
     let mut cells = Vec::new();
