@@ -282,7 +282,7 @@ pub fn remove_temporaries_on_signal() -> io::Result<()> {
             for entry in registry.iter() {
                 remove(&entry.path, entry.folder);
             }
-            eprintln!("\nimpact: interrupted; no output was written");
+            eprintln!("\nimpact: interrupted; unfinished outputs removed");
             std::process::exit(128 + signal);
         }
     })?;
