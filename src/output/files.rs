@@ -436,3 +436,37 @@ pub fn figure_folder_problem(path: &Path) -> Option<&'static str> {
     }
     None
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn names_of_folders_are_not_file_names() {
+        for folder in ["", "out/", ".", "out/.", "out/..", "/"] {
+            assert!(file_name_problem(Path::new(folder)).is_some(), "`{folder}` names no file");
+        }
+        for file in ["-", "s.csv", "out/s.csv", "../s.csv", ".hidden"] {
+            assert_eq!(file_name_problem(Path::new(file)), None, "`{file}` names a file");
+        }
+    }
+
+    #[test]
+    fn a_figure_folder_is_not_a_figure() {
+        for bad in ["", "-", "fig.png", "out/Fig.SVG"] {
+            assert!(figure_folder_problem(Path::new(bad)).is_some(), "`{bad}` is no folder for figures");
+        }
+        assert_eq!(figure_folder_problem(Path::new("out/figures")), None);
+    }
+
+    #[test]
+    fn paths_to_files_not_yet_written_resolve_as_written() {
+        let missing = Path::new("/no-such-folder-for-impact/a/../b/./c.csv");
+        assert_eq!(resolved(missing, 0), Path::new("/no-such-folder-for-impact/b/c.csv"));
+        let a = Identity::File { path: "/x/figs".into(), node: None };
+        let b = Identity::File { path: "/x/figs/force_time.png".into(), node: None };
+        assert!(b.is_inside(&a) && !a.is_inside(&b) && !a.is_inside(&a));
+        let c = Identity::File { path: "/x/figs2".into(), node: None };
+        assert!(!c.is_inside(&a), "a path component, not a string prefix");
+    }
+}

@@ -279,3 +279,38 @@ impl Grid {
         values
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_range_keeps_its_ends_and_tidies_the_values_between() {
+        let axis = Axis::parse("contact.restitution=0.1:0.9:5", Spacing::Linear).expect("a range");
+        assert_eq!(axis.values().collect::<Vec<_>>(), [0.1, 0.3, 0.5, 0.7, 0.9]);
+        let axis = Axis::parse("contact.damping=1:100:3:log", Spacing::Linear).expect("a range");
+        assert_eq!(axis.values().collect::<Vec<_>>(), [1.0, 10.0, 100.0]);
+    }
+
+    #[test]
+    fn a_span_beyond_double_precision_is_split_between_the_ends() {
+        // stop - start = 2e308 overflows; (1 - t) start + t stop does not.
+        assert_eq!(range_value(-1e308, 1e308, 5, Spacing::Linear, 2), 0.0);
+        assert_eq!(range_value(-1e308, 1e308, 5, Spacing::Linear, 1), -5e307);
+    }
+
+    #[test]
+    fn only_crowded_or_extreme_ranges_are_checked_value_by_value() {
+        assert!(well_spaced(0.01, 1.0, 100_000_000, Spacing::Linear));
+        assert!(well_spaced(1e-3, 1e3, 1000, Spacing::Geometric));
+        assert!(!well_spaced(0.1, 0.10000000000000002, 4, Spacing::Linear));
+        assert!(!well_spaced(-1e308, 1e308, 3, Spacing::Linear));
+    }
+
+    #[test]
+    fn the_size_of_a_grid_is_checked_before_its_values() {
+        let huge = |key: &str| Axis::parse(&format!("{key}=0:1:100000000"), Spacing::Linear).expect("an axis");
+        let error = Grid::new(vec![huge("contact.restitution"), huge("bodies.0.velocity.0")]).expect_err("too big");
+        assert!(error.to_string().contains("more than 100000000 points"), "{error}");
+    }
+}

@@ -240,3 +240,16 @@ pub fn split(line: &str) -> Vec<String> {
     cells.push(cell);
     cells
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn cells_are_counted_outside_quotes() {
+        assert_eq!(cell_count("0,ok,hertz"), 3);
+        assert_eq!(cell_count("1,\"error: a, b\",hertz,"), 4);
+        assert_eq!(cell_count("2,\"say \"\"x, y\"\"\",z"), 3);
+        assert_eq!(cell_count(""), 1);
+    }
+}
