@@ -1,11 +1,15 @@
 //! The `impact` command: parse arguments, dispatch to a verb, turn errors into messages and exit codes
-//! (2 for a bad scene or bad arguments, 1 for anything else).
+//! (2 for a bad scene or bad arguments, 1 for anything else; 130 after Ctrl-C, which removes any half-written file).
 
 use clap::Parser;
 use impact::cli::{self, Cli};
 use std::process::ExitCode;
 
 fn main() -> ExitCode {
+    if let Err(error) = impact::output::files::remove_temporaries_on_signal() {
+        // Outputs are still complete or absent; only an interrupted run could leave a temporary file behind.
+        eprintln!("impact: warning: cannot watch for Ctrl-C ({error})");
+    }
     let arguments = match Cli::try_parse() {
         Ok(arguments) => arguments,
         Err(error) => {

@@ -5,6 +5,7 @@
 use super::BadInput;
 use crate::calibrate::{Calibration, CalibrationError, Request, calibrate, readable};
 use crate::law::{LawKind, Separation};
+use crate::output::text::{MESSAGE_CHARS, cut};
 use crate::scene::Scene;
 use clap::Args;
 use std::fmt::Write as _;
@@ -58,6 +59,7 @@ Examples:
 pub fn run(args: &CalibrateArgs) -> anyhow::Result<()> {
     let law = match &args.law {
         Some(name) => Some(LawKind::from_name(name).ok_or_else(|| {
+            let name = cut(name, MESSAGE_CHARS);
             BadInput(format!("unknown law `{name}` for --law; expected one of {}", LawKind::names().join(", ")))
         })?),
         None => None,
@@ -67,6 +69,7 @@ pub fn run(args: &CalibrateArgs) -> anyhow::Result<()> {
         Some("penetration") => Some(Separation::Penetration),
         Some("force") => Some(Separation::Force),
         Some(other) => {
+            let other = cut(other, MESSAGE_CHARS);
             return Err(BadInput(format!("--separation must be \"penetration\" or \"force\", got \"{other}\"")).into());
         }
     };

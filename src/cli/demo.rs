@@ -1,7 +1,7 @@
 //! `impact` with no argument: a built-in demonstration scene, its report printed, its figures, series and JSON
 //! report written under `out/demo/` (untracked).
 
-use super::run::write_outputs;
+use super::run::{Plan, write_outputs};
 use crate::history::Recording;
 use crate::impact::simulate;
 use crate::output;
@@ -19,13 +19,13 @@ pub fn run() -> anyhow::Result<()> {
     let simulation = simulate(&scene, Recording::Steps)?;
     print!("{}", output::table::render(&simulation.report));
     let folder = Path::new(FOLDER);
-    let mut written = write_outputs(&scene, &simulation, Some(&folder.join("series.csv")), Some(folder))?;
+    let mut written = write_outputs(&scene, &simulation, &Plan::demonstration(folder)?)?;
     let json = folder.join("report.json");
     output::files::write_atomically(&json, output::json::render(&simulation.report)?.as_bytes())?;
-    written.push(json);
+    written.push(json.display().to_string());
     println!("\nThe demonstration wrote into {FOLDER}/:");
     for path in written {
-        println!("  {}", path.display());
+        println!("  {path}");
     }
     println!("Simulate your own scene with `impact run SCENE.toml` (see models/ and the README).");
     Ok(())

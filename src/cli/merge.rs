@@ -2,17 +2,16 @@
 //! sweep would have written, byte for byte (see [`crate::sweep::merge`]).
 
 use super::BadInput;
-use super::sweep::bad;
-use crate::output::files::write_atomically;
-use crate::output::sweep_figure;
-use crate::sweep::figure;
+use super::paths::{Origin, Paths};
+use super::sweep::{bad, check_names, figure_output};
+use crate::output::files::OutputFile;
 use crate::sweep::merge::{ShardFile, merge};
 use clap::Args;
 use std::path::PathBuf;
 
 #[derive(Debug, Args)]
 pub struct MergeArgs {
-    /// The merged CSV to write (written completely or not at all).
+    /// The merged CSV to write (written completely or not at all); `-` writes it to stdout.
     pub out: PathBuf,
     /// The shard files of one sweep, in any order: every shard 1/N ... N/N exactly once.
     #[arg(required = true, value_name = "SHARD")]
@@ -23,27 +22,40 @@ pub struct MergeArgs {
 }
 
 pub fn run(args: &MergeArgs) -> anyhow::Result<()> {
-    if let Some(plot) = &args.plot
-        && sweep_figure::format_of(plot).is_none()
-    {
-        return Err(BadInput(format!("--plot {}: the figure's name must end in .png or .svg", plot.display())).into());
+    check_names(&args.out, "OUT", args.plot.as_deref())?;
+    let mut paths = Paths::default();
+    for path in &args.shards {
+        paths.input(format!("the shard {} being merged", path.display()), path);
     }
+    let out = paths.output(format!("OUT {}", args.out.display()), Origin::CommandLine, &args.out)?;
+    let plot = match &args.plot {
+        Some(path) => Some((path, paths.output(format!("--plot {}", path.display()), Origin::CommandLine, path)?)),
+        None => None,
+    };
     let mut shards = Vec::new();
     for path in &args.shards {
         let text = std::fs::read_to_string(path)
             .map_err(|error| BadInput(format!("cannot read the shard {}: {error}", path.display())))?;
         shards.push(ShardFile { name: path.display().to_string(), text });
     }
-    let csv = merge(&shards).map_err(bad)?;
-    let staged = match &args.plot {
-        Some(path) => Some(sweep_figure::stage(&figure::from_csv(&csv).map_err(bad)?, path)?),
+    let merged = merge(&shards).map_err(bad)?;
+    let figure = match &plot {
+        Some((path, destination)) => Some(figure_output(&merged.text(), path, destination)?),
         None => None,
     };
-    write_atomically(&args.out, csv.as_bytes())?;
-    let plotted = staged.map(|f| f.commit()).transpose()?;
-    eprintln!("wrote {} ({} rows from {} shards)", args.out.display(), csv.lines().count() - 1, shards.len());
-    if let Some(path) = plotted {
-        eprintln!("wrote {}", path.display());
+    let mut csv = OutputFile::create(&out)?;
+    csv.write_bytes(merged.header.as_bytes())?;
+    csv.write_bytes(b"\n")?;
+    for row in &merged.rows {
+        csv.write_bytes(row.as_bytes())?;
+        csv.write_bytes(b"\n")?;
+    }
+    csv.finish()?;
+    eprintln!("wrote {} ({} rows from {} shards)", out.shown(), merged.rows.len(), shards.len());
+    if let Some(figure) = figure {
+        let name = figure.shown().to_string();
+        figure.finish()?;
+        eprintln!("wrote {name}");
     }
     Ok(())
 }

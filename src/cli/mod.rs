@@ -5,6 +5,7 @@ mod demo;
 mod gallery;
 mod merge;
 mod models;
+pub mod paths;
 pub mod run;
 pub mod sweep;
 

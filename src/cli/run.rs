@@ -1,9 +1,11 @@
 //! `impact run SCENE.toml`: simulate one scene, print its report, write the series and figures it asks for.
 
 use super::BadInput;
+use super::paths::{Origin, Paths};
 use crate::history::Recording;
 use crate::impact::{Simulation, simulate};
 use crate::output;
+use crate::output::files::{self, Destination, OutputFile, Staging};
 use crate::scene::Scene;
 use clap::Args;
 use std::path::{Path, PathBuf};
@@ -15,13 +17,14 @@ pub struct RunArgs {
     /// Print the JSON report on stdout instead of the readable one.
     #[arg(long)]
     pub json: bool,
-    /// Write the contact history as CSV to FILE (overrides the scene's [output] series).
+    /// Write the contact history as CSV to FILE (overrides the scene's [output] series); `-` writes it to stdout
+    /// (the readable report then goes to stderr).
     #[arg(long, value_name = "FILE")]
     pub csv: Option<PathBuf>,
     /// Resample the history at N instants evenly spaced over the contact (on the integrator's solution) instead
-    /// of writing the integrator's own steps and events.
+    /// of writing the integrator's own steps and events; at most 1000000.
     #[arg(long, value_name = "N")]
-    pub samples: Option<usize>,
+    pub samples: Option<u64>,
     /// Write the figures (PNG and SVG) into folder DIR (overrides the scene's [output] plots).
     #[arg(long, value_name = "DIR")]
     pub plot: Option<PathBuf>,
@@ -30,57 +33,173 @@ pub struct RunArgs {
 /// Instants per figure curve: enough for a smooth line at the figure's width.
 pub const FIGURE_SAMPLES: usize = 600;
 
+/// Most instants `--samples` may ask for. A million is far beyond what a figure or a quadrature of one contact
+/// needs (the integrator itself takes a few hundred steps), and each instant costs about 0.3 kB while the series
+/// is built and written (a million: 290 MB at the peak, a 185 MB file), so the limit keeps a run within reach of
+/// any machine.
+pub const MAX_SAMPLES: u64 = 1_000_000;
+
 pub fn run(args: &RunArgs) -> anyhow::Result<()> {
-    if args.samples.is_some_and(|n| n < 2) {
-        return Err(BadInput("--samples needs at least 2 instants".into()).into());
+    // Checked before anything is read or allocated.
+    let samples = match args.samples {
+        Some(n) if n < 2 => return Err(BadInput("--samples needs at least 2 instants".into()).into()),
+        Some(n) if n > MAX_SAMPLES => {
+            return Err(BadInput(format!("--samples {n}: at most {MAX_SAMPLES} instants")).into());
+        }
+        // At most MAX_SAMPLES, so it fits a usize.
+        Some(n) => Some(n as usize),
+        None => None,
+    };
+    if let Some(path) = &args.csv
+        && let Some(why) = files::file_name_problem(path)
+    {
+        return Err(BadInput(format!("--csv {}: {why}", path.display())).into());
+    }
+    if let Some(path) = &args.plot
+        && let Some(why) = files::figure_folder_problem(path)
+    {
+        return Err(BadInput(format!("--plot {}: {why}", path.display())).into());
     }
     let scene = Scene::load(&args.scene)?;
-    let series = args.csv.clone().or_else(|| scene.output.series.clone());
-    let plots = args.plot.clone().or_else(|| scene.output.plots.clone());
-    if args.samples.is_some() && series.is_none() {
+    if samples.is_some() && args.csv.is_none() && scene.output.series.is_none() {
         return Err(BadInput("--samples applies to the series: give --csv FILE (or [output] series)".into()).into());
     }
+    let plan = Plan::new(args, &scene)?;
     // One simulation serves both views when it can: figures alone take a uniform history of their own size.
-    let recording = match (&series, args.samples, &plots) {
+    let recording = match (&plan.series, samples, &plan.figures) {
         (Some(_), Some(n), _) => Recording::Uniform(n),
         (Some(_), None, _) => Recording::Steps,
         (None, _, Some(_)) => Recording::Uniform(FIGURE_SAMPLES),
         (None, _, None) => Recording::Off,
     };
     let simulation = simulate(&scene, recording)?;
-    let written = write_outputs(&scene, &simulation, series.as_deref(), plots.as_deref())?;
+    let written = write_outputs(&scene, &simulation, &plan)?;
     let text =
         if args.json { output::json::render(&simulation.report)? } else { output::table::render(&simulation.report) };
-    print!("{text}");
-    for path in written {
-        eprintln!("wrote {}", path.display());
+    // With the series on standard output, the readable report goes to standard error, so stdout is pure CSV.
+    if plan.series.as_ref().is_some_and(Destination::is_standard_output) {
+        eprint!("{text}");
+    } else {
+        print!("{text}");
+    }
+    for name in written {
+        eprintln!("wrote {name}");
     }
     Ok(())
 }
 
-/// Writes the series and figures a run asks for; returns the files written.
-pub fn write_outputs(
-    scene: &Scene,
-    simulation: &Simulation,
-    series: Option<&Path>,
-    plots: Option<&Path>,
-) -> anyhow::Result<Vec<PathBuf>> {
-    let mut written = Vec::new();
-    if let (Some(path), Some(history)) = (series, &simulation.history) {
-        // (The caller records a history whenever a series is asked for.)
-        output::files::write_atomically(path, output::csv::render(history).as_bytes())?;
-        written.push(path.to_path_buf());
+/// Where a run writes, resolved and checked before it simulates.
+pub struct Plan {
+    pub series: Option<Destination>,
+    pub figures: Option<Figures>,
+}
+
+/// The figure files of a run: the folder, and each figure's destination by file name.
+pub struct Figures {
+    pub folder: PathBuf,
+    pub files: Vec<(String, Destination)>,
+}
+
+impl Plan {
+    /// The series and figures of `impact run`: from the options, else from the scene's `[output]`, checked against
+    /// the scene file and each other (see [`super::paths`]).
+    fn new(args: &RunArgs, scene: &Scene) -> anyhow::Result<Plan> {
+        let at = |key, line| Origin::Scene { file: args.scene.clone(), key, line };
+        let series = match (&args.csv, &scene.output.series) {
+            (Some(path), _) => Some((path.clone(), Origin::CommandLine, format!("--csv {}", path.display()))),
+            (None, Some(path)) => Some((
+                path.clone(),
+                at("output.series", scene.output.series_line),
+                format!("the series {}", path.display()),
+            )),
+            (None, None) => None,
+        };
+        let plots = match (&args.plot, &scene.output.plots) {
+            (Some(path), _) => Some((path.clone(), Origin::CommandLine, "--plot")),
+            (None, Some(path)) => Some((path.clone(), at("output.plots", scene.output.plots_line), "the plots folder")),
+            (None, None) => None,
+        };
+        let mut paths = Paths::default();
+        paths.input(format!("the scene file {} being read", args.scene.display()), &args.scene);
+        if args.json {
+            paths.standard_output("the JSON report (--json)".into())?;
+        }
+        let figures = plots.map(|(folder, origin, option)| figures(&mut paths, folder, origin, option)).transpose()?;
+        let series = series.map(|(path, origin, label)| paths.output(label, origin, &path)).transpose()?;
+        Ok(Plan { series, figures })
     }
-    if let Some(folder) = plots {
+
+    /// The outputs of the demonstration, which reads no file: the series and the figures in `folder`.
+    pub fn demonstration(folder: &Path) -> anyhow::Result<Plan> {
+        let mut paths = Paths::default();
+        let figures = figures(&mut paths, folder.to_path_buf(), Origin::CommandLine, "the demonstration's folder")?;
+        let series = folder.join("series.csv");
+        let series = paths.output(series.display().to_string(), Origin::CommandLine, &series)?;
+        Ok(Plan { series: Some(series), figures: Some(figures) })
+    }
+}
+
+/// The figure files of the folder `folder` (which must be a folder, or not exist yet), each added to `paths`.
+fn figures(paths: &mut Paths, folder: PathBuf, origin: Origin, option: &str) -> anyhow::Result<Figures> {
+    let shown = folder.display();
+    if let Ok(meta) = std::fs::metadata(&folder)
+        && !meta.is_dir()
+    {
+        return Err(origin.bad(format!(
+            "{option} {shown} is an existing file, not a folder: the figures need a folder to be written into"
+        )));
+    }
+    let mut files = Vec::new();
+    for stem in output::figures::FIGURES {
+        for extension in ["png", "svg"] {
+            let name = format!("{stem}.{extension}");
+            let path = folder.join(&name);
+            let label = format!("{option} {shown} (figure {})", path.display());
+            files.push((name, paths.output(label, origin.clone(), &path)?));
+        }
+    }
+    Ok(Figures { folder, files })
+}
+
+/// Writes the series and figures of `plan`, all or (on error) none of the regular files; returns the names written.
+/// The figures are rendered first, in a staging folder, so that a figure that fails leaves no series either.
+pub fn write_outputs(scene: &Scene, simulation: &Simulation, plan: &Plan) -> anyhow::Result<Vec<String>> {
+    let mut pending: Vec<OutputFile> = Vec::new();
+    if let Some(figures) = &plan.figures {
         let smooth = matches!(simulation.history.as_ref().map(|h| h.samples.len()), Some(n) if n >= FIGURE_SAMPLES);
         let resampled;
-        let history = if smooth {
-            simulation.history.as_ref().expect("checked above")
-        } else {
-            resampled = simulate(scene, Recording::Uniform(FIGURE_SAMPLES))?.history.expect("a uniform history");
-            &resampled
+        let history = match (&simulation.history, smooth) {
+            (Some(history), true) => history,
+            _ => {
+                resampled = simulate(scene, Recording::Uniform(FIGURE_SAMPLES))?.history;
+                resampled.as_ref().ok_or_else(|| anyhow::anyhow!("no history was recorded for the figures"))?
+            }
         };
-        written.extend(output::figures::write_all(&simulation.report, history, folder)?);
+        let staging = Staging::inside(&figures.folder)?;
+        for staged in output::figures::write_all(&simulation.report, history, staging.path())? {
+            let name = staged.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
+            let destination = match figures.files.iter().find(|(planned, _)| *planned == name) {
+                Some((_, destination)) => destination.clone(),
+                // A figure this plan does not know of yet still goes by the same rules.
+                None => Destination::resolve(&figures.folder.join(&name))?,
+            };
+            pending.push(staging.publish(&staged, &destination)?);
+        }
+    }
+    if let (Some(destination), Some(history)) = (&plan.series, &simulation.history) {
+        // (The caller records a history whenever a series is asked for.)
+        let mut series = OutputFile::create(destination)?;
+        series.write_bytes(output::csv::render(history).as_bytes())?;
+        pending.push(series);
+    }
+    let mut written = Vec::new();
+    for output in pending {
+        let name = output.shown().to_string();
+        let to_standard_output = plan.series.as_ref().is_some_and(|s| s.is_standard_output() && name == s.shown());
+        output.finish()?;
+        if !to_standard_output {
+            written.push(name);
+        }
     }
     Ok(written)
 }

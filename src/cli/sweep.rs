@@ -2,7 +2,8 @@
 //! over a grid of values (and laws), in parallel, one CSV row per point and law (see [`crate::sweep`]).
 
 use super::BadInput;
-use crate::output::files::write_atomically;
+use super::paths::{Origin, Paths};
+use crate::output::files::{self, Destination, OutputFile, Staging};
 use crate::output::sweep_figure;
 use crate::scene::SceneError;
 use crate::sweep::grid::{Axis, Grid, Spacing};
@@ -11,7 +12,7 @@ use crate::sweep::table::{self, Status};
 use crate::sweep::{self as sweeps, Sweep, SweepError};
 use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 #[derive(Debug, Args)]
 #[command(after_help = "Rows come in a fixed order: points in lexicographic order of the grid (the first --vary \
@@ -35,7 +36,7 @@ pub struct SweepArgs {
     /// without it, the scene's own law.
     #[arg(long, value_name = "LAW,LAW,...", value_delimiter = ',')]
     pub law: Vec<String>,
-    /// The CSV file to write (written completely or not at all).
+    /// The CSV file to write (written completely or not at all); `-` writes it to stdout.
     #[arg(long, value_name = "FILE.csv")]
     pub out: PathBuf,
     /// Also draw effective e against the first varied key, one line per law (PNG or SVG by the extension).
@@ -68,61 +69,142 @@ pub fn run(args: &SweepArgs) -> anyhow::Result<()> {
     {
         return Err(BadInput(format!("--threads must be between 1 and {MAX_THREADS}, got {threads}")).into());
     }
-    if let Some(plot) = &args.plot {
-        if sweep_figure::format_of(plot).is_none() {
-            return Err(
-                BadInput(format!("--plot {}: the figure's name must end in .png or .svg", plot.display())).into()
-            );
-        }
-        if shard.is_some() {
-            return Err(BadInput(
-                "--plot draws the whole sweep: leave it out of the shards and give it to `impact merge`".into(),
-            )
-            .into());
-        }
+    check_names(&args.out, "--out", args.plot.as_deref())?;
+    if args.plot.is_some() && shard.is_some() {
+        return Err(BadInput(
+            "--plot draws the whole sweep: leave it out of the shards and give it to `impact merge`".into(),
+        )
+        .into());
     }
     let laws = sweeps::parse_laws(&args.law).map_err(bad)?;
     let spacing = if args.log { Spacing::Geometric } else { Spacing::Linear };
     let axes = args.vary.iter().map(|spec| Axis::parse(spec, spacing)).collect::<Result<Vec<_>, _>>().map_err(bad)?;
     let grid = Grid::new(axes).map_err(bad)?;
+    let mut paths = Paths::default();
+    paths.input(format!("the scene file {} being read", args.scene.display()), &args.scene);
+    let out = paths.output(format!("--out {}", args.out.display()), Origin::CommandLine, &args.out)?;
+    let plot = match &args.plot {
+        Some(path) => Some((path, paths.output(format!("--plot {}", path.display()), Origin::CommandLine, path)?)),
+        None => None,
+    };
     let text = std::fs::read_to_string(&args.scene)
         .map_err(|error| SceneError::file(&args.scene, format!("cannot read the scene: {error}")))?;
     let sweep = Sweep::new(&args.scene, text, grid, laws).map_err(bad)?;
+    let pool = rayon::ThreadPoolBuilder::new().num_threads(args.threads.unwrap_or(0)).build()?;
 
     let total = sweep.rows();
-    let indices: Vec<usize> = (0..total).filter(|&i| shard.is_none_or(|s| s.takes(i))).collect();
+    let indices = sweep.indices(shard);
     let bar = ProgressBar::new(indices.len() as u64);
     if let Ok(style) = ProgressStyle::with_template("{wide_bar} {pos}/{len} rows, {elapsed} elapsed, ETA {eta}") {
         bar.set_style(style);
     }
-    let rows = sweep.run(&indices, args.threads, || bar.inc(1))?;
+    // Rows stream into the output (a temporary file for a regular file) in index order as they are computed; the
+    // figure needs the whole table, so only then is the CSV kept in memory too.
+    let mut csv = OutputFile::create(&out)?;
+    let mut kept = plot.as_ref().map(|_| String::new());
+    let mut put = |text: &str| {
+        if let Some(kept) = &mut kept {
+            kept.push_str(text);
+        }
+        csv.write_bytes(text.as_bytes())
+    };
+    if let Some(shard) = shard {
+        put(&table::shard_comment(shard, total, sweep.fingerprint()))?;
+    }
+    put(&(table::header(&sweep.keys()) + "\n"))?;
+    let mut tally = Tally::default();
+    sweep.stream(
+        indices,
+        &pool,
+        || bar.inc(1),
+        |row| {
+            tally.add(&row.status);
+            put(&table::line(&row))
+        },
+    )?;
     bar.finish_and_clear();
 
-    let csv = table::render(&sweep.keys(), &rows, shard.map(|s| (s, total, sweep.fingerprint())));
-    // The figure is staged first, so that a failure to draw it leaves no CSV either.
-    let figure = match &args.plot {
-        Some(path) => Some(sweep_figure::stage(&sweeps::figure::from_csv(&csv).map_err(bad)?, path)?),
+    // The figure is drawn before the CSV is moved into place, so that a failure to draw it leaves no CSV either.
+    let figure = match (&plot, &kept) {
+        (Some((path, destination)), Some(text)) => Some(figure_output(text, path, destination)?),
+        _ => None,
+    };
+    csv.finish()?;
+    let plotted = match figure {
+        Some(figure) => {
+            let name = figure.shown().to_string();
+            figure.finish()?;
+            Some(name)
+        }
         None => None,
     };
-    write_atomically(&args.out, csv.as_bytes())?;
-    let plotted = figure.map(|f| f.commit()).transpose()?;
 
-    let count = |wanted: fn(&Status) -> bool| rows.iter().filter(|row| wanted(&row.status)).count();
-    let (ok, stuck) = (count(|s| *s == Status::Ok), count(|s| *s == Status::NotSeparated));
     let part = shard.map(|s| format!(", shard {s} of {total} rows")).unwrap_or_default();
+    let Tally { rows, ok, stuck, first } = tally;
     eprintln!(
-        "wrote {} ({} rows{part}: {ok} ok, {stuck} not separated, {} errors)",
-        args.out.display(),
-        rows.len(),
-        rows.len() - ok - stuck
+        "wrote {} ({rows} rows{part}: {ok} ok, {stuck} not separated, {} errors)",
+        out.shown(),
+        rows - ok - stuck
     );
-    if let Some(path) = plotted {
-        eprintln!("wrote {}", path.display());
+    if let Some(name) = plotted {
+        eprintln!("wrote {name}");
     }
-    if let Some(first) = rows.first()
+    if let Some(first) = first
         && ok + stuck == 0
     {
-        eprintln!("note: no row ran; the first says: {}", first.status.text());
+        eprintln!("note: no row ran; the first says: {first}");
     }
     Ok(())
+}
+
+/// How the rows of a sweep ended, counted as they stream past.
+#[derive(Default)]
+struct Tally {
+    rows: usize,
+    ok: usize,
+    stuck: usize,
+    /// The first row's status.
+    first: Option<String>,
+}
+
+impl Tally {
+    fn add(&mut self, status: &Status) {
+        self.rows += 1;
+        self.ok += usize::from(*status == Status::Ok);
+        self.stuck += usize::from(*status == Status::NotSeparated);
+        self.first.get_or_insert_with(|| status.text());
+    }
+}
+
+/// Checks the names of a CSV output (option `option`) and of a sweep figure before any work: the CSV must name a
+/// file (or `-`), the figure a `.png` or `.svg` file (not standard output).
+pub(super) fn check_names(csv: &Path, option: &str, plot: Option<&Path>) -> anyhow::Result<()> {
+    if let Some(why) = files::file_name_problem(csv) {
+        return Err(BadInput(format!("{option} {}: {why}", csv.display())).into());
+    }
+    if let Some(plot) = plot {
+        if plot.as_os_str() == "-" {
+            return Err(
+                BadInput("--plot -: a figure cannot go to standard output; give FILE.png or FILE.svg".into()).into()
+            );
+        }
+        if sweep_figure::format_of(plot).is_none() || files::file_name_problem(plot).is_some() {
+            return Err(
+                BadInput(format!("--plot {}: the figure's name must end in .png or .svg", plot.display())).into()
+            );
+        }
+    }
+    Ok(())
+}
+
+/// The sweep's figure, drawn from its CSV `text` in a staging folder beside `path` and copied to `destination`;
+/// unfinished, so that the caller shows it only with its CSV.
+pub(super) fn figure_output(text: &str, path: &Path, destination: &Destination) -> anyhow::Result<OutputFile> {
+    let figure = sweeps::figure::from_csv(text).map_err(bad)?;
+    let folder = path.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));
+    let staging = Staging::inside(folder)?;
+    // The staged file keeps the figure's name: its extension picks the format.
+    let name = path.file_name().unwrap_or_default();
+    let staged = sweep_figure::stage(&figure, &staging.path().join(name))?.commit()?;
+    Ok(staging.publish(&staged, destination)?)
 }

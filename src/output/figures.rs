@@ -108,7 +108,7 @@ fn fixed(value: f64) -> String {
 }
 
 fn caption(report: &Report, what: &str) -> String {
-    format!("{} — {what}", report.title)
+    format!("{} — {what}", super::text::cut(&report.title, super::text::TITLE_CHARS))
 }
 
 fn force_time<DB: DrawingBackend<ErrorType: 'static>>(

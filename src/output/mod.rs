@@ -6,4 +6,5 @@ pub mod files;
 pub mod json;
 pub mod sweep_figure;
 pub mod table;
+pub mod text;
 pub mod units;

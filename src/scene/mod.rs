@@ -112,6 +112,10 @@ pub struct OutputSpec {
     pub series: Option<PathBuf>,
     /// Folder for the figures.
     pub plots: Option<PathBuf>,
+    /// The lines of `series` and `plots` in the scene file, for errors found when the paths are resolved (an
+    /// output that would replace the scene file itself, a plots folder that is a file).
+    pub series_line: Option<usize>,
+    pub plots_line: Option<usize>,
 }
 
 impl Scene {

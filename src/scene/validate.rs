@@ -8,6 +8,7 @@ use crate::body::Body;
 use crate::integrate::Tolerances;
 use crate::law::damping::{MapError, check_restitution};
 use crate::law::{Family, LawKind, Separation};
+use crate::output::{files, text};
 use crate::setup::Setup;
 use nalgebra::Vector3;
 use std::ops::Range;
@@ -33,8 +34,9 @@ impl Source<'_> {
             key: Some(key.to_string()),
             line: span.map(|s| self.line(s)),
             message: message.into(),
-            // Missing tables, a wrong number of bodies, a bad separation word: nothing a sweep's numbers can set.
-            form: matches!(key, "bodies" | "contact" | "contact.separation"),
+            // Missing tables, a wrong number of bodies, a bad separation word or output path: nothing a sweep's
+            // numbers can set.
+            form: matches!(key, "bodies" | "contact" | "contact.separation" | "output.series" | "output.plots"),
         }
     }
 
@@ -111,15 +113,6 @@ fn split_key(key: &str) -> (&str, Option<usize>, &str) {
         [table, leaf] => (table, None, leaf),
         [leaf] => ("", None, leaf),
         _ => ("", None, key),
-    }
-}
-
-/// A user's string as echoed in a message: cut to a readable length.
-fn cut(text: &str) -> String {
-    const MAX: usize = 60;
-    match text.char_indices().nth(MAX) {
-        None => text.to_string(),
-        Some((end, _)) => format!("{}… ({} characters)", &text[..end], text.chars().count()),
     }
 }
 
@@ -213,7 +206,7 @@ pub fn scene(text: &str, path: &Path) -> Checked<Scene> {
     };
     let contact = contact_spec(&src, contact)?;
     let solver = raw.solver.as_ref().map_or(Ok(SolverSpec::default()), |s| solver(&src, s.get_ref()))?;
-    let output = raw.output.as_ref().map_or(OutputSpec::default(), |o| output(o.get_ref()));
+    let output = raw.output.as_ref().map_or(Ok(OutputSpec::default()), |o| output(&src, o.get_ref()))?;
     let scene = Scene { title, bodies: [first, second], contact, solver, output };
     Setup::new(&scene).map_err(|error| {
         let line = src.line_of_key(&error.key);
@@ -225,8 +218,9 @@ pub fn scene(text: &str, path: &Path) -> Checked<Scene> {
 fn parse_error(src: &Source, error: &toml::de::Error) -> SceneError {
     let span = error.span();
     let line = span.as_ref().map(|s| src.line(s));
-    let key = line.and_then(|n| src.key_on_line(n));
-    let message = error.message().trim().replace('\n', " ");
+    // The parser echoes what it was given (an unknown key, a bad value) whatever its length: cut it.
+    let key = line.and_then(|n| src.key_on_line(n)).map(|key| cut(&key));
+    let message = text::cut_quoted(&error.message().trim().replace('\n', " "));
     SceneError { file: src.file.clone(), key, line, message, form: true }
 }
 
@@ -329,7 +323,7 @@ fn contact_spec(src: &Source, raw: &At<RawContact>) -> Checked<ContactSpec> {
         return Err(src.error(
             "contact.law",
             Some(&law_name.span()),
-            format!("unknown law `{}`; expected one of {}", law_name.get_ref(), LawKind::names().join(", ")),
+            format!("unknown law `{}`; expected one of {}", cut(law_name.get_ref()), LawKind::names().join(", ")),
         ));
     };
     let damping = damping_spec(src, law, raw, &table)?;
@@ -343,7 +337,7 @@ fn contact_spec(src: &Source, raw: &At<RawContact>) -> Checked<ContactSpec> {
                 return Err(src.error(
                     "contact.separation",
                     Some(&s.span()),
-                    format!("expected \"penetration\" or \"force\", got \"{other}\""),
+                    format!("expected \"penetration\" or \"force\", got \"{}\"", cut(other)),
                 ));
             }
         },
@@ -462,7 +456,7 @@ fn stiffness_and_exponent(
                 return Err(src.error(
                     "contact.stiffness",
                     Some(&value.span()),
-                    format!("expected \"hertz\" or a number in N/m^n, got {other}"),
+                    format!("expected \"hertz\" or a number in N/m^n, got {}", cut(&other.to_string())),
                 ));
             }
         },
@@ -532,9 +526,26 @@ fn tolerances(src: &Source, raw: &RawSolver) -> Checked<Tolerances> {
     })
 }
 
-fn output(raw: &RawOutput) -> OutputSpec {
-    OutputSpec {
-        series: raw.series.as_ref().map(|s| s.get_ref().into()),
-        plots: raw.plots.as_ref().map(|p| p.get_ref().into()),
-    }
+/// The `[output]` paths: a series must name a file (`-` is standard output), plots a folder.
+fn output(src: &Source, raw: &RawOutput) -> Checked<OutputSpec> {
+    let check = |key: &str, value: &At<String>, problem: fn(&Path) -> Option<&'static str>| {
+        let path = Path::new(value.get_ref());
+        match problem(path) {
+            Some(why) => Err(src.error(key, Some(&value.span()), format!("\"{}\": {why}", cut(value.get_ref())))),
+            None => Ok((path.to_path_buf(), src.line(&value.span()))),
+        }
+    };
+    let series = raw.series.as_ref().map(|s| check("output.series", s, files::file_name_problem)).transpose()?;
+    let plots = raw.plots.as_ref().map(|p| check("output.plots", p, files::figure_folder_problem)).transpose()?;
+    Ok(OutputSpec {
+        series_line: series.as_ref().map(|s| s.1),
+        plots_line: plots.as_ref().map(|p| p.1),
+        series: series.map(|s| s.0),
+        plots: plots.map(|p| p.0),
+    })
+}
+
+/// A user's string as echoed in a message: cut to [`text::MESSAGE_CHARS`].
+fn cut(text: &str) -> String {
+    text::cut(text, text::MESSAGE_CHARS)
 }

@@ -15,6 +15,7 @@ use super::SweepError;
 use super::key::SceneKey;
 use super::table::split;
 use crate::output::sweep_figure::{Curve, SweepFigure};
+use crate::output::text::{TITLE_CHARS, cut};
 
 /// The figure of the sweep whose CSV is `text` (the whole sweep or one shard).
 pub fn from_csv(text: &str) -> Result<SweepFigure, SweepError> {
@@ -51,7 +52,7 @@ pub fn from_csv(text: &str) -> Result<SweepFigure, SweepError> {
                 for (&k, value) in keys[1..].iter().zip(&group[1..]) {
                     label += &format!(", {} = {value}", header[k]);
                 }
-                curves.push((group, Curve { label, points: vec![point] }));
+                curves.push((group, Curve { label: cut(&label, TITLE_CHARS), points: vec![point] }));
             }
         }
     }
@@ -64,7 +65,8 @@ pub fn from_csv(text: &str) -> Result<SweepFigure, SweepError> {
         "contact.restitution" => ("Effective against nominal restitution".to_string(), "nominal e".to_string()),
         "contact.damping" => ("Effective restitution against damping".into(), "damping (law units)".into()),
         _ if velocity => ("Effective restitution against approach speed".into(), "approach speed (m/s)".into()),
-        other => (format!("Effective restitution against {other}"), other.to_string()),
+        // A column name comes from a file that may be forged: cut, so that the figure renders at once.
+        other => (format!("Effective restitution against {}", cut(other, TITLE_CHARS)), cut(other, TITLE_CHARS)),
     };
     Ok(SweepFigure {
         title,

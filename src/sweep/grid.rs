@@ -3,6 +3,7 @@
 
 use super::SweepError;
 use super::key::SceneKey;
+use crate::output::text::{MESSAGE_CHARS, cut};
 
 /// How a range `START:STOP:COUNT` is filled.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -13,11 +14,22 @@ pub enum Spacing {
     Geometric,
 }
 
-/// One varied key and its values, in sweep order.
+/// One varied key and its values, in sweep order. A range's values are computed when asked for, so an axis takes
+/// the same memory whatever its count.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Axis {
     pub key: SceneKey,
-    pub values: Vec<f64>,
+    /// The `--vary` argument (cut to a readable length), for messages.
+    spec: String,
+    values: Values,
+}
+
+#[derive(Debug, Clone, PartialEq)]
+enum Values {
+    /// `KEY=V1,V2,...`: as written, in that order.
+    List(Vec<f64>),
+    /// `KEY=START:STOP:COUNT`: both ends exact, the values between [`tidy`].
+    Range { start: f64, stop: f64, count: usize, spacing: Spacing },
 }
 
 fn usage(message: String) -> SweepError {
@@ -28,44 +40,112 @@ fn usage(message: String) -> SweepError {
 fn number(text: &str, what: &str, spec: &str) -> Result<f64, SweepError> {
     match text.trim().parse::<f64>() {
         Ok(x) if x.is_finite() => Ok(x),
-        _ => Err(usage(format!("--vary {spec}: {what} `{text}` is not a finite number"))),
+        _ => Err(usage(format!("--vary {spec}: {what} `{}` is not a finite number", cut(text, MESSAGE_CHARS)))),
     }
 }
 
 impl Axis {
     /// Parses one `--vary`: `KEY=START:STOP:COUNT`, optionally followed by `:log` or `:lin` to choose the spacing
     /// of this range (otherwise `default` applies: geometric under `--log`), or `KEY=V1,V2,...`, an explicit list
-    /// (taken as written, in that order). Every value must be finite.
+    /// (taken as written, in that order). The values of a range are checked by [`Grid::new`], once the size of the
+    /// whole grid is known to be sane.
     pub fn parse(spec: &str, default: Spacing) -> Result<Axis, SweepError> {
+        let shown = cut(spec, MESSAGE_CHARS);
         let Some((key, range)) = spec.split_once('=') else {
             return Err(usage(format!(
-                "--vary `{spec}`: expected KEY=START:STOP:COUNT (e.g. contact.restitution=0.1:0.9:9) or KEY=V1,V2,..."
+                "--vary `{shown}`: expected KEY=START:STOP:COUNT (e.g. contact.restitution=0.1:0.9:9) or KEY=V1,V2,..."
             )));
         };
+        // Scene keys are short; a long one is echoed cut rather than in full.
+        if key.trim().chars().count() > MESSAGE_CHARS {
+            return Err(usage(format!("--vary {shown}: `{}` is not a scene key", cut(key.trim(), MESSAGE_CHARS))));
+        }
         let key = SceneKey::parse(key.trim())?;
-        let values = if range.contains(':') { parse_range(spec, range, default)? } else { parse_list(spec, range)? };
-        Ok(Axis { key, values })
+        let values = if range.contains(':') {
+            parse_range(&shown, range, default)?
+        } else {
+            Values::List(parse_list(&shown, range)?)
+        };
+        Ok(Axis { key, spec: shown, values })
+    }
+
+    /// Number of values.
+    pub fn count(&self) -> usize {
+        match &self.values {
+            Values::List(values) => values.len(),
+            Values::Range { count, .. } => *count,
+        }
+    }
+
+    /// Value `i` (0-based, `i < count`).
+    pub fn value(&self, i: usize) -> f64 {
+        match &self.values {
+            Values::List(values) => values[i],
+            Values::Range { start, stop, count, spacing } => range_value(*start, *stop, *count, *spacing, i),
+        }
+    }
+
+    /// The values in order.
+    pub fn values(&self) -> impl Iterator<Item = f64> + '_ {
+        (0..self.count()).map(|i| self.value(i))
+    }
+
+    /// Checks that a range's values are finite and distinct once rounded (`-1e308:1e308:3` would reach inf on the
+    /// way, `0.1:0.10000000000000002:4` repeat 0.1). A list was checked as it was read.
+    fn check_values(&self) -> Result<(), SweepError> {
+        let Values::Range { start, stop, count, spacing } = self.values else { return Ok(()) };
+        if well_spaced(start, stop, count, spacing) {
+            return Ok(());
+        }
+        // Near the ends of double precision or with values a few ulps apart: look at each value (a range is
+        // monotonic, so equal values are neighbours).
+        let mut previous: Option<f64> = None;
+        for i in 0..count {
+            let x = self.value(i);
+            if !x.is_finite() {
+                return Err(usage(format!(
+                    "--vary {}: value {} of the range is {x}: keep START and STOP within double precision",
+                    self.spec,
+                    i + 1
+                )));
+            }
+            if previous == Some(x) {
+                return Err(usage(format!(
+                    "--vary {}: values {} and {} of the range are both {x} at 15 significant digits: widen the \
+                     range or give fewer values",
+                    self.spec,
+                    i,
+                    i + 1
+                )));
+            }
+            previous = Some(x);
+        }
+        Ok(())
     }
 }
 
 fn parse_list(spec: &str, list: &str) -> Result<Vec<f64>, SweepError> {
     let values = list.split(',').map(|item| number(item, "value", spec)).collect::<Result<Vec<_>, _>>()?;
-    for (i, a) in values.iter().enumerate() {
-        if values[..i].contains(a) {
-            return Err(usage(format!("--vary {spec}: the value {a} is listed twice")));
-        }
+    // Sorted, so that a list as long as a command line allows is checked at once.
+    let mut sorted = values.clone();
+    sorted.sort_by(f64::total_cmp);
+    if let Some(pair) = sorted.windows(2).find(|pair| pair[0] == pair[1]) {
+        return Err(usage(format!("--vary {spec}: the value {} is listed twice", pair[0])));
     }
     Ok(values)
 }
 
-fn parse_range(spec: &str, range: &str, default: Spacing) -> Result<Vec<f64>, SweepError> {
+fn parse_range(spec: &str, range: &str, default: Spacing) -> Result<Values, SweepError> {
     let parts: Vec<&str> = range.split(':').collect();
     let (bounds, spacing) = match parts.as_slice() {
         [start, stop, count] => ([*start, *stop, *count], default),
         [start, stop, count, "log"] => ([*start, *stop, *count], Spacing::Geometric),
         [start, stop, count, "lin"] => ([*start, *stop, *count], Spacing::Linear),
         [_, _, _, other] => {
-            return Err(usage(format!("--vary {spec}: the spacing `{other}` is not `log` or `lin`")));
+            return Err(usage(format!(
+                "--vary {spec}: the spacing `{}` is not `log` or `lin`",
+                cut(other, MESSAGE_CHARS)
+            )));
         }
         _ => {
             return Err(usage(format!(
@@ -83,7 +163,12 @@ fn parse_range(spec: &str, range: &str, default: Spacing) -> Result<Vec<f64>, Sw
                 super::MAX_ROWS
             )));
         }
-        _ => return Err(usage(format!("--vary {spec}: COUNT `{}` is not a whole number >= 1", bounds[2]))),
+        _ => {
+            return Err(usage(format!(
+                "--vary {spec}: COUNT `{}` is not a whole number >= 1",
+                cut(bounds[2], MESSAGE_CHARS)
+            )));
+        }
     };
     if count == 1 && start != stop {
         return Err(usage(format!(
@@ -95,17 +180,12 @@ fn parse_range(spec: &str, range: &str, default: Spacing) -> Result<Vec<f64>, Sw
             "--vary {spec}: START and STOP are equal, so the {count} values would all be {start}"
         )));
     }
-    match spacing {
-        Spacing::Linear => Ok(linear(start, stop, count)),
-        Spacing::Geometric => {
-            if start == 0.0 || stop == 0.0 || (start < 0.0) != (stop < 0.0) {
-                return Err(usage(format!(
-                    "--vary {spec}: geometric spacing (--log or :log) needs START and STOP non-zero and of the same sign"
-                )));
-            }
-            Ok(geometric(start, stop, count))
-        }
+    if spacing == Spacing::Geometric && (start == 0.0 || stop == 0.0 || (start < 0.0) != (stop < 0.0)) {
+        return Err(usage(format!(
+            "--vary {spec}: geometric spacing (--log or :log) needs START and STOP non-zero and of the same sign"
+        )));
     }
+    Ok(Values::Range { start, stop, count, spacing })
 }
 
 /// Rounds to 15 significant digits, so that a grid lands on the decimals a user expects (0.1:0.9:5 gives 0.3, not
@@ -114,25 +194,41 @@ fn tidy(x: f64) -> f64 {
     format!("{x:.14e}").parse().unwrap_or(x)
 }
 
-/// `count` evenly spaced values from `start` to `stop`, both included exactly (interior values [`tidy`]).
-pub fn linear(start: f64, stop: f64, count: usize) -> Vec<f64> {
-    fill(start, stop, count, |t| start + (stop - start) * t)
+/// Value `i` of `count` from `start` to `stop`: both ends exact, the values between evenly spaced (or with a
+/// constant ratio) and [`tidy`].
+fn range_value(start: f64, stop: f64, count: usize, spacing: Spacing, i: usize) -> f64 {
+    if i == 0 {
+        return start;
+    }
+    if i + 1 == count {
+        return stop;
+    }
+    let t = i as f64 / (count - 1) as f64;
+    tidy(match spacing {
+        Spacing::Linear => {
+            let span = stop - start;
+            // start + span t is what the sweeps have always used; when the span overflows (-1e308:1e308), the
+            // weighted mean stays finite.
+            if span.is_finite() { start + span * t } else { start * (1.0 - t) + stop * t }
+        }
+        Spacing::Geometric => {
+            let (from, to) = (start.abs().ln(), stop.abs().ln());
+            start.signum() * (from + (to - from) * t).exp()
+        }
+    })
 }
 
-/// `count` values with a constant ratio from `start` to `stop` (same sign, non-zero), ends exact.
-pub fn geometric(start: f64, stop: f64, count: usize) -> Vec<f64> {
-    let (from, to) = (start.abs().ln(), stop.abs().ln());
-    fill(start, stop, count, |t| start.signum() * (from + (to - from) * t).exp())
-}
-
-fn fill(start: f64, stop: f64, count: usize, at: impl Fn(f64) -> f64) -> Vec<f64> {
-    (0..count)
-        .map(|i| match i {
-            0 => start,
-            _ if i + 1 == count => stop,
-            _ => tidy(at(i as f64 / (count - 1) as f64)),
-        })
-        .collect()
+/// Whether a range's values are surely finite and distinct without computing them: its ends are far from the
+/// largest double, so no value rounds to inf, and neighbours differ by more than 1e-12 relative, far more than the
+/// 5e-15 by which [`tidy`] moves a value.
+fn well_spaced(start: f64, stop: f64, count: usize, spacing: Spacing) -> bool {
+    let magnitude = start.abs().max(stop.abs());
+    let steps = count.saturating_sub(1).max(1) as f64;
+    let relative_step = match spacing {
+        Spacing::Linear => (stop - start).abs() / steps / magnitude,
+        Spacing::Geometric => ((stop.abs().ln() - start.abs().ln()) / steps).abs(),
+    };
+    magnitude < 1e300 && relative_step > 1e-12
 }
 
 /// The product of the axes.
@@ -142,7 +238,8 @@ pub struct Grid {
 }
 
 impl Grid {
-    /// Checks that no key is varied twice and that no two varied keys exclude each other.
+    /// Checks that no key is varied twice, that no two varied keys exclude each other, that the grid has at most
+    /// [`super::MAX_ROWS`] points (before any value is computed), and that every value is finite and distinct.
     pub fn new(axes: Vec<Axis>) -> Result<Grid, SweepError> {
         for (i, a) in axes.iter().enumerate() {
             if let Some(b) = axes[..i].iter().find(|b| b.key.conflicts_with(&a.key)) {
@@ -153,22 +250,67 @@ impl Grid {
                 }));
             }
         }
-        Ok(Grid { axes })
+        let grid = Grid { axes };
+        if grid.points().is_none_or(|points| points > super::MAX_ROWS) {
+            return Err(usage(format!(
+                "the grid has more than {} points: split the sweep into several",
+                super::MAX_ROWS
+            )));
+        }
+        for axis in &grid.axes {
+            axis.check_values()?;
+        }
+        Ok(grid)
     }
 
     /// Number of points, or `None` if it does not fit in a `usize`.
     pub fn points(&self) -> Option<usize> {
-        self.axes.iter().try_fold(1usize, |n, axis| n.checked_mul(axis.values.len()))
+        self.axes.iter().try_fold(1usize, |n, axis| n.checked_mul(axis.count()))
     }
 
     /// The values at point `point` (lexicographic order: the first axis slowest).
     pub fn values(&self, mut point: usize) -> Vec<f64> {
         let mut values = vec![0.0; self.axes.len()];
         for (slot, axis) in values.iter_mut().zip(&self.axes).rev() {
-            let count = axis.values.len();
-            *slot = axis.values[point % count];
+            let count = axis.count();
+            *slot = axis.value(point % count);
             point /= count;
         }
         values
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_range_keeps_its_ends_and_tidies_the_values_between() {
+        let axis = Axis::parse("contact.restitution=0.1:0.9:5", Spacing::Linear).expect("a range");
+        assert_eq!(axis.values().collect::<Vec<_>>(), [0.1, 0.3, 0.5, 0.7, 0.9]);
+        let axis = Axis::parse("contact.damping=1:100:3:log", Spacing::Linear).expect("a range");
+        assert_eq!(axis.values().collect::<Vec<_>>(), [1.0, 10.0, 100.0]);
+    }
+
+    #[test]
+    fn a_span_beyond_double_precision_is_split_between_the_ends() {
+        // stop - start = 2e308 overflows; (1 - t) start + t stop does not.
+        assert_eq!(range_value(-1e308, 1e308, 5, Spacing::Linear, 2), 0.0);
+        assert_eq!(range_value(-1e308, 1e308, 5, Spacing::Linear, 1), -5e307);
+    }
+
+    #[test]
+    fn only_crowded_or_extreme_ranges_are_checked_value_by_value() {
+        assert!(well_spaced(0.01, 1.0, 100_000_000, Spacing::Linear));
+        assert!(well_spaced(1e-3, 1e3, 1000, Spacing::Geometric));
+        assert!(!well_spaced(0.1, 0.10000000000000002, 4, Spacing::Linear));
+        assert!(!well_spaced(-1e308, 1e308, 3, Spacing::Linear));
+    }
+
+    #[test]
+    fn the_size_of_a_grid_is_checked_before_its_values() {
+        let huge = |key: &str| Axis::parse(&format!("{key}=0:1:100000000"), Spacing::Linear).expect("an axis");
+        let error = Grid::new(vec![huge("contact.restitution"), huge("bodies.0.velocity.0")]).expect_err("too big");
+        assert!(error.to_string().contains("more than 100000000 points"), "{error}");
     }
 }

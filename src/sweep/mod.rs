@@ -19,9 +19,11 @@ pub mod table;
 use crate::history::Recording;
 use crate::impact::simulate;
 use crate::law::LawKind;
+use crate::output::text::{MESSAGE_CHARS, cut};
 use crate::scene::{Scene, SceneError};
 use grid::Grid;
 use rayon::prelude::*;
+use shard::Shard;
 use std::path::{Path, PathBuf};
 use table::{Cell, Row, Status};
 
@@ -36,8 +38,14 @@ pub enum SweepError {
     Scene(#[from] SceneError),
 }
 
-/// Largest number of rows a sweep accepts (its rows are held in memory until the CSV is written).
+/// Largest number of rows a sweep accepts, and of shards it may be split into (`impact merge` accepts the same). Rows
+/// stream to the file as they are computed, so memory does not limit a sweep; this bounds what a file's header may
+/// claim and keeps a sweep's file (about 0.5 kB a row) and its merge within one machine's disk and memory.
 pub const MAX_ROWS: usize = 100_000_000;
+
+/// Rows computed together by [`Sweep::stream`]: enough to keep every core busy past the slowest row of a chunk, few
+/// enough that a chunk's rows (under 1 kB each) stay a small, fixed amount of memory whatever the sweep's size.
+pub const CHUNK: usize = 1024;
 
 /// A sweep: the scene document, the grid, the laws.
 #[derive(Debug, Clone)]
@@ -60,7 +68,7 @@ pub fn parse_laws(names: &[String]) -> Result<Vec<LawKind>, SweepError> {
         let Some(law) = LawKind::from_name(name.trim()) else {
             return Err(SweepError::Usage(format!(
                 "--law: unknown law `{}`; expected one of {}",
-                name.trim(),
+                cut(name.trim(), MESSAGE_CHARS),
                 LawKind::names().join(", ")
             )));
         };
@@ -168,20 +176,54 @@ impl Sweep {
         Row { index, status, law, values, results }
     }
 
-    /// Runs the rows `indices` on `threads` threads (`None`: one per core), calling `done` after each row. The
-    /// rows come back in the order of `indices`, so the result does not depend on the number of threads.
+    /// The global indices of the rows of `shard` (all rows without one), in increasing order.
+    pub fn indices(&self, shard: Option<Shard>) -> std::iter::StepBy<std::ops::Range<usize>> {
+        let (first, step) = shard.map_or((0, 1), |s| (s.number - 1, s.count));
+        (first.min(self.rows())..self.rows()).step_by(step)
+    }
+
+    /// Runs the rows `indices` on `pool`, [`CHUNK`] rows at a time in parallel, calling `done` after each row and
+    /// passing the rows to `write` in the order of `indices` as soon as their chunk is done. So the output does not
+    /// depend on the number of threads, and memory holds one chunk whatever the number of rows.
+    pub fn stream<E>(
+        &self,
+        indices: impl Iterator<Item = usize>,
+        pool: &rayon::ThreadPool,
+        done: impl Fn() + Sync,
+        mut write: impl FnMut(Row) -> Result<(), E>,
+    ) -> Result<(), E> {
+        let mut indices = indices.peekable();
+        let mut chunk = Vec::with_capacity(CHUNK);
+        while indices.peek().is_some() {
+            chunk.clear();
+            chunk.extend(indices.by_ref().take(CHUNK));
+            let rows: Vec<Row> = pool.install(|| {
+                chunk
+                    .par_iter()
+                    .map(|&index| {
+                        let row = self.evaluate(index);
+                        done();
+                        row
+                    })
+                    .collect()
+            });
+            for row in rows {
+                write(row)?;
+            }
+        }
+        Ok(())
+    }
+
+    /// Runs the rows `indices` on `threads` threads (`None`: one per core), calling `done` after each row; the rows
+    /// come back in the order of `indices`. (All in memory: [`Sweep::stream`] writes a large sweep as it goes.)
     pub fn run(&self, indices: &[usize], threads: Option<usize>, done: impl Fn() + Sync) -> anyhow::Result<Vec<Row>> {
         let pool = rayon::ThreadPoolBuilder::new().num_threads(threads.unwrap_or(0)).build()?;
-        Ok(pool.install(|| {
-            indices
-                .par_iter()
-                .map(|&index| {
-                    let row = self.evaluate(index);
-                    done();
-                    row
-                })
-                .collect()
-        }))
+        let mut rows = Vec::with_capacity(indices.len());
+        self.stream(indices.iter().copied(), &pool, done, |row| {
+            rows.push(row);
+            Ok::<(), std::convert::Infallible>(())
+        })?;
+        Ok(rows)
     }
 
     /// A fingerprint of what the rows depend on (scene text, grid, laws), so that shards of different sweeps are
@@ -191,7 +233,7 @@ impl Sweep {
         hash.write(self.text.as_bytes());
         for axis in &self.grid.axes {
             hash.write(axis.key.to_string().as_bytes());
-            for value in &axis.values {
+            for value in axis.values() {
                 hash.write(&value.to_bits().to_le_bytes());
             }
         }

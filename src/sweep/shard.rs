@@ -6,6 +6,7 @@
 //! that the shards make up the whole sweep and put the rows back in order.
 
 use super::SweepError;
+use crate::output::text::{MESSAGE_CHARS, cut};
 use std::fmt;
 
 /// Shard `number` of `count` (1-based).
@@ -25,6 +26,7 @@ impl Shard {
     /// Parses `I/N` with 1 <= I <= N.
     pub fn parse(spec: &str) -> Result<Shard, SweepError> {
         let bad = |why: &str| {
+            let spec = cut(spec, MESSAGE_CHARS);
             SweepError::Usage(format!("--shard `{spec}`: {why}; expected I/N with 1 <= I <= N, e.g. --shard 2/8"))
         };
         let (number, count) = spec.split_once('/').ok_or_else(|| bad("no `/`"))?;
@@ -34,6 +36,10 @@ impl Shard {
         };
         if count == 0 {
             return Err(bad("N must be at least 1"));
+        }
+        // A sweep has at most MAX_ROWS rows, and `impact merge` reads no more shards than that.
+        if count > super::MAX_ROWS {
+            return Err(bad(&format!("N must be at most {}, the most rows a sweep may have", super::MAX_ROWS)));
         }
         if number == 0 || number > count {
             return Err(bad(&format!("I must be between 1 and {count} (shards count from 1)")));

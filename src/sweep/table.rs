@@ -204,6 +204,21 @@ pub fn render(keys: &[String], rows: &[Row], shard: Option<(Shard, usize, u64)>)
     text
 }
 
+/// Number of cells of a CSV line (RFC 4180 quoting), without splitting it.
+pub fn cell_count(line: &str) -> usize {
+    let mut quoted = false;
+    let mut cells = 1;
+    for c in line.chars() {
+        match c {
+            // A doubled quote inside a quoted cell toggles twice.
+            '"' => quoted = !quoted,
+            ',' if !quoted => cells += 1,
+            _ => {}
+        }
+    }
+    cells
+}
+
 /// Splits a CSV line into cells, undoing RFC 4180 quoting.
 pub fn split(line: &str) -> Vec<String> {
     let mut cells = Vec::new();
@@ -224,4 +239,17 @@ pub fn split(line: &str) -> Vec<String> {
     }
     cells.push(cell);
     cells
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn cells_are_counted_outside_quotes() {
+        assert_eq!(cell_count("0,ok,hertz"), 3);
+        assert_eq!(cell_count("1,\"error: a, b\",hertz,"), 4);
+        assert_eq!(cell_count("2,\"say \"\"x, y\"\"\",z"), 3);
+        assert_eq!(cell_count(""), 1);
+    }
 }
