@@ -173,7 +173,16 @@ fn oblique(scene: &Scene, setup: &Setup, outcome: &Outcome, e: f64, friction_wor
         let largest = |simulated: &[Vector3<f64>; 2], ideal: &[Vector3<f64>; 2]| {
             (0..2).map(|i| (simulated[i] - ideal[i]).amax()).fold(0.0, f64::max)
         };
+        // The rigid contact points' relative velocity after, with arms r_i along the first normal.
+        let arms = Setup::lever_arms(bodies, &n);
+        let point = |i: usize| rigid.velocity_after[i] + rigid.angular_velocity_after[i].cross(&arms[i]);
+        let relative = point(0) - point(1);
+        let rigid_slip = relative - n * relative.dot(&n);
+        let rigid_centres = rigid.velocity_after[1] - rigid.velocity_after[0];
+        let rigid_centres = rigid_centres - n * rigid_centres.dot(&n);
         RigidBodyReport {
+            rebound_from_normal_deg: degrees(along(&rigid_slip, &slip).atan2(e * v0)),
+            tangential_restitution_centre: ratio(&rigid_centres, &setup.tangential_velocity),
             regime: rigid.regime.name().into(),
             velocity_after: [vec3(&rigid.velocity_after[0]), vec3(&rigid.velocity_after[1])],
             angular_velocity_after: [vec3(&rigid.angular_velocity_after[0]), vec3(&rigid.angular_velocity_after[1])],

@@ -158,6 +158,10 @@ pub struct RigidBodyReport {
     pub velocity_after: [Vec3; 2],
     /// rad/s, [body 1, body 2].
     pub angular_velocity_after: [Vec3; 2],
+    /// The rebound angle of the contact points from the normal, degrees, signed along the initial slip.
+    pub rebound_from_normal_deg: f64,
+    /// Tangential relative velocity of the centres after / before; null without one.
+    pub tangential_restitution_centre: Option<f64>,
     /// Largest |simulated - rigid| velocity component, m/s.
     pub max_velocity_difference: f64,
     /// Largest |simulated - rigid| angular velocity component, rad/s (an addition).

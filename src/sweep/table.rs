@@ -16,7 +16,7 @@ use crate::report::Report;
 use std::fmt::Write;
 
 /// The report's scalar results, after the varied keys.
-pub const RESULT_COLUMNS: [&str; 25] = [
+pub const RESULT_COLUMNS: [&str; 40] = [
     "approach_speed",
     "effective_mass",
     "stiffness",
@@ -42,6 +42,23 @@ pub const RESULT_COLUMNS: [&str; 25] = [
     "max_velocity_difference",
     "steps",
     "force_evaluations",
+    "elastic_left_at_separation",
+    "work_of_immovable_bodies",
+    // The oblique section (empty for a direct central impact without spin); spins are magnitudes, rad/s.
+    "incidence_from_normal_deg",
+    "rebound_from_normal_deg",
+    "tangential_restitution_centre",
+    "tangential_restitution_contact",
+    "friction_work",
+    "stick_duration",
+    "normal_turn_deg",
+    "spin_after_1",
+    "spin_after_2",
+    // Rigid-body theory with the simulated e.
+    "rigid_rebound_from_normal_deg",
+    "rigid_tangential_restitution_centre",
+    "rigid_spin_after_1",
+    "rigid_spin_after_2",
 ];
 
 /// One cell of a result column.
@@ -99,7 +116,7 @@ pub fn results(report: &Report) -> Vec<Cell> {
     let c = &report.contact;
     let law = &report.law;
     let number = Cell::Number;
-    vec![
+    let mut cells = vec![
         number(report.approach_speed),
         number(report.effective_mass),
         number(law.stiffness),
@@ -125,7 +142,29 @@ pub fn results(report: &Report) -> Vec<Cell> {
         report.instantaneous.as_ref().and_then(|i| i.max_velocity_difference).into(),
         Cell::Count(report.solver.steps),
         Cell::Count(report.solver.force_evaluations),
-    ]
+        report.energy.elastic_left_at_separation.into(),
+        report.energy.work_of_immovable_bodies.into(),
+    ];
+    let oblique = report.oblique.as_ref();
+    let rigid = oblique.and_then(|o| o.rigid_body.as_ref());
+    let size = |v: &[f64; 3]| (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+    let spin = |i: usize| report.bodies[i].angular_velocity_after.as_ref().map(size);
+    cells.extend::<[Cell; 13]>([
+        oblique.map(|o| o.incidence_from_normal_deg).into(),
+        oblique.and_then(|o| o.rebound_from_normal_deg).into(),
+        oblique.and_then(|o| o.tangential_restitution_centre).into(),
+        oblique.and_then(|o| o.tangential_restitution_contact).into(),
+        oblique.and_then(|o| o.friction_work).into(),
+        oblique.and_then(|o| o.stick_duration).into(),
+        oblique.and_then(|o| o.normal_turn_deg).into(),
+        oblique.and(spin(0)).into(),
+        oblique.and(spin(1)).into(),
+        rigid.map(|r| r.rebound_from_normal_deg).into(),
+        rigid.and_then(|r| r.tangential_restitution_centre).into(),
+        rigid.map(|r| size(&r.angular_velocity_after[0])).into(),
+        rigid.map(|r| size(&r.angular_velocity_after[1])).into(),
+    ]);
+    cells
 }
 
 /// Shortest round-trip text of a number: plain for magnitudes in [1e-4, 1e6), exponent form otherwise.
