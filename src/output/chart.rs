@@ -882,9 +882,9 @@ fn entry(svg: &mut String, entry: &Entry, x: f64, y: f64) {
             );
         }
     }
-    let _ = write!(
+    let _ = writeln!(
         svg,
-        "<text x=\"{}\" y=\"{}\" font-size=\"{LEGEND_SIZE}\" fill=\"{INK}\">{}</text></g>\n",
+        "<text x=\"{}\" y=\"{}\" font-size=\"{LEGEND_SIZE}\" fill=\"{INK}\">{}</text></g>",
         number(x + SYMBOL + SYMBOL_GAP),
         number(y + MIDLINE * LEGEND_SIZE),
         escape(entry.text)

@@ -201,7 +201,13 @@ fn velocities(report: &Report, history: &History) -> Chart {
         Axis::linear(format!("time since first contact t ({tp}s)"), 0.0, x_max),
         Axis::linear(format!("normal velocity v·n ({vp}m/s)"), low / vf - pad, high / vf + pad),
     );
-    // Reference lines under the curves: dotted before, dashed after; V0 dashed black.
+    for body in 0..2 {
+        let points = history.samples.iter().map(|s| ((s.time - start) / tf, s.velocities[body].dot(&n) / vf)).collect();
+        let curve = Mark::Line { points, stroke: Stroke::solid(BODIES[body], CURVE), marker: None };
+        chart.push(Layer::new("curve", curve).label(names[body]).rank(4 * body as i32));
+    }
+    // Reference lines over the curves, thin, so that they stay visible where a curve meets them: dotted before,
+    // dashed after, V0 dashed black.
     for body in 0..2 {
         let stroke = Stroke::dashed(BODIES[body], 1.3, 1.5, 3.0);
         chart.push(
@@ -231,11 +237,6 @@ fn velocities(report: &Report, history: &History) -> Chart {
             .label(format!("common normal velocity V0 = {}", speed(c.common_normal_velocity)))
             .rank(3),
     );
-    for body in 0..2 {
-        let points = history.samples.iter().map(|s| ((s.time - start) / tf, s.velocities[body].dot(&n) / vf)).collect();
-        let curve = Mark::Line { points, stroke: Stroke::solid(BODIES[body], CURVE), marker: None };
-        chart.push(Layer::new("curve", curve).label(names[body]).rank(4 * body as i32));
-    }
     let t0 = (c.max_compression_time - start) / tf;
     let marker = Marker::new(Shape::Circle, 4.5, Colour::BLACK);
     chart.push(
