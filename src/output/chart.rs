@@ -27,9 +27,9 @@ const PAD: f64 = 14.0;
 /// Major and minor tick lengths, px (ticks point outwards).
 const TICK_LENGTH: f64 = 5.0;
 const MINOR_TICK_LENGTH: f64 = 3.0;
-/// Wished-for distance between major ticks on a linear x and y axis, px.
-const X_SPACING: f64 = 110.0;
-const Y_SPACING: f64 = 90.0;
+/// Least distance between major ticks on a linear x and y axis, px.
+const X_SPACING: f64 = 80.0;
+const Y_SPACING: f64 = 60.0;
 /// Gap between a tick and its label, px.
 const TICK_GAP: f64 = 4.0;
 /// Ascent of DejaVu Sans (0.928 em) and the shift that centres digits on a line (half the cap height, 0.36 em).
@@ -255,10 +255,10 @@ impl Axis {
         }
     }
 
-    /// The ticks for an axis `length` px long, major ticks about `spacing` px apart on a linear axis.
+    /// The ticks for an axis `length` px long, major ticks at least `spacing` px apart on a linear axis.
     fn ticks(&self, length: f64, spacing: f64) -> Ticks {
         let (low, high) = self.span();
-        if self.log { log_ticks(low, high) } else { linear_ticks(low, high, (length / spacing).clamp(3.0, 12.0)) }
+        if self.log { log_ticks(low, high) } else { linear_ticks(low, high, (length / spacing).clamp(2.0, 12.0)) }
     }
 }
 
@@ -338,17 +338,13 @@ pub fn prefix(max: f64) -> (f64, &'static str) {
     steps.iter().rev().find(|(factor, _)| magnitude >= *factor).map_or((1e-9, "n"), |&(f, p)| (f, p))
 }
 
-/// Linear ticks over [low, high]: about `target` intervals at 1, 2, 2.5 or 5 times a power of ten, every label
-/// with the same number of decimals (the step's).
-fn linear_ticks(low: f64, high: f64, target: f64) -> Ticks {
-    let raw = (high - low) / target;
+/// Linear ticks over [low, high]: the finest step of 1, 2, 2.5 or 5 times a power of ten that makes at most
+/// `most` intervals, every label with the same number of decimals (the step's).
+fn linear_ticks(low: f64, high: f64, most: f64) -> Ticks {
+    let raw = (high - low) / most;
     let power = 10f64.powf(raw.log10().floor());
-    // The candidate nearest to the raw step on a log scale.
-    let distance = |m: f64| (m * power / raw).ln().abs();
-    let step = power
-        * [1.0, 2.0, 2.5, 5.0, 10.0]
-            .into_iter()
-            .fold(1.0, |best, m| if distance(m) < distance(best) { m } else { best });
+    let step = [1.0, 2.0, 2.5, 5.0, 10.0].map(|m| m * power).into_iter().find(|s| *s >= raw * (1.0 - 1e-9));
+    let step = step.unwrap_or(10.0 * power);
     let decimals = (0..=15)
         .find(|&d| {
             let scaled = step * 10f64.powi(d);

@@ -175,7 +175,7 @@ pub fn chart(figure: &SweepFigure) -> Chart {
                 (x, x)
             })
             .collect();
-        let diagonal = Mark::Line { points: line, stroke: Stroke::dashed(Colour::BLACK, 1.4, 7.0, 4.0), marker: None };
+        let diagonal = Mark::Line { points: line, stroke: Stroke::dashed(Colour::BLACK, 1.3, 6.0, 5.0), marker: None };
         chart.push(Layer::new("diagonal", diagonal).label("ideal: effective e = nominal e").rank(-1));
     }
     chart
