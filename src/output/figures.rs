@@ -65,6 +65,11 @@ fn contact_span(report: &Report, history: &History) -> f64 {
     history.samples.last().map_or(0.0, |s| s.time - report.contact.start_time).max(0.0)
 }
 
+/// Decimals that give event times three significant digits on an axis reaching `x_max` (in its own unit).
+fn time_decimals(x_max: f64) -> usize {
+    if x_max > 0.0 { (2.0 - x_max.log10().floor()).clamp(0.0, 6.0) as usize } else { 1 }
+}
+
 /// The force axis: lowest and highest force (N) with the compressive peak, its SI scale, and the range drawn in
 /// scaled units (0 at the bottom unless the force turns tensile).
 fn force_axis(report: &Report, history: &History) -> ((f64, &'static str), (f64, f64)) {
@@ -106,7 +111,7 @@ fn force_time(report: &Report, history: &History) -> Chart {
     let dashed = Stroke::dashed(Colour::BLACK, 1.2, 6.0, 4.0);
     chart.push(
         Layer::new("reference", Mark::VLine { x: t0, stroke: dashed })
-            .label(format!("maximum compression (d′ = 0), t = {} {tp}s", fixed(t0, 1)))
+            .label(format!("maximum compression (d′ = 0), t = {} {tp}s", fixed(t0, time_decimals(x_max))))
             .rank(1),
     );
     let force = history.samples.iter().map(|s| ((s.time - start) / tf, s.force / ff)).collect();
@@ -116,7 +121,11 @@ fn force_time(report: &Report, history: &History) -> Chart {
     let marker = Marker::new(Shape::Circle, 5.0, RESTITUTION);
     chart.push(
         Layer::new("peak", Mark::Points { points: vec![peak], marker })
-            .label(format!("peak force {} at t = {} {tp}s", si(c.max_force, "N", 4), fixed(peak.0, 1)))
+            .label(format!(
+                "peak force {} at t = {} {tp}s",
+                si(c.max_force, "N", 4),
+                fixed(peak.0, time_decimals(x_max))
+            ))
             .rank(2),
     );
     chart
@@ -153,7 +162,13 @@ fn force_penetration(report: &Report, history: &History) -> Chart {
     );
     let point = |s: &crate::history::Sample| (s.penetration / df, s.force / ff);
     if let Some(label) = loop_label(report) {
-        let area = Mark::Area { points: history.samples.iter().map(point).collect(), fill: LOOP, opacity: 0.2 };
+        // Closed along F = 0 back to d = 0 and up the force axis: neither leg adds to the integral of F dd, so the
+        // area is the work of the force over the contact.
+        let mut outline: Vec<(f64, f64)> = history.samples.iter().map(point).collect();
+        if let Some(&(d_end, _)) = outline.last() {
+            outline.extend([(d_end, 0.0), (0.0, 0.0)]);
+        }
+        let area = Mark::Area { points: outline, fill: LOOP, opacity: 0.2 };
         chart.push(Layer::new("loop-fill", area).label(label).rank(2));
     }
     zero_line(&mut chart);
@@ -165,7 +180,12 @@ fn force_penetration(report: &Report, history: &History) -> Chart {
                 line.insert(0, point(last));
             }
         }
-        let curve = Mark::Line { points: line, stroke: Stroke::solid(colour, CURVE), marker: None };
+        // Unloading dashed over loading, so that both show where they coincide (an elastic contact).
+        let stroke = match phase {
+            Phase::Compression => Stroke::solid(colour, CURVE),
+            Phase::Restitution => Stroke::dashed(colour, CURVE, 8.0, 4.0),
+        };
+        let curve = Mark::Line { points: line, stroke, marker: None };
         chart.push(Layer::new("curve", curve).label(phase.name()).rank(rank));
     }
     chart
@@ -241,7 +261,7 @@ fn velocities(report: &Report, history: &History) -> Chart {
     let marker = Marker::new(Shape::Circle, 4.5, Colour::BLACK);
     chart.push(
         Layer::new("event", Mark::Points { points: vec![(t0, v0)], marker })
-            .label(format!("maximum compression, t = {} {tp}s", fixed(t0, 1)))
+            .label(format!("maximum compression, t = {} {tp}s", fixed(t0, time_decimals(x_max))))
             .rank(7),
     );
     chart
