@@ -1,291 +1,270 @@
-//! Figures of one impact (plotters, PNG and SVG, with an embedded font so no system fonts are needed):
-//! force against time with the phases shaded, the force–penetration hysteresis loop, and the normal velocities
-//! of both bodies with V0 and the instantaneous before/after values as reference lines.
+//! Figures of one impact, each drawn once as SVG (see [`super::chart`]) and rasterised from that same SVG into an
+//! anti-aliased PNG (see [`super::render`]): force against time with the phases shaded, the force–penetration
+//! loop with its area (the energy dissipated) filled, and the normal velocities of both bodies with V0 and the
+//! instantaneous before/after values as reference lines. Bodies are called by their names in the report.
 
+use super::chart::{self, Axis, Chart, Colour, Layer, Mark, Marker, Shape, Stroke, fixed, prefix, si};
+use super::files::write_atomically;
+use super::render;
 use crate::history::{History, Phase};
 use crate::report::Report;
-use anyhow::{Context, anyhow};
-use plotters::coord::Shift;
-use plotters::prelude::*;
+use anyhow::Context;
 use std::path::{Path, PathBuf};
-use std::sync::Once;
-
-/// Figure size in pixels.
-const SIZE: (u32, u32) = (960, 640);
-const COMPRESSION: RGBColor = RGBColor(31, 119, 180);
-const RESTITUTION: RGBColor = RGBColor(214, 39, 40);
-const BODY_2: RGBColor = RGBColor(44, 160, 44);
-pub const FONT: &str = "sans-serif";
 
 /// The figures one impact gives, by file stem.
 pub const FIGURES: [&str; 3] = ["force_time", "force_penetration", "velocities"];
 
-pub fn register_font() {
-    static REGISTER: Once = Once::new();
-    REGISTER.call_once(|| {
-        // The embedded DejaVu Sans is a valid font, so registration cannot fail.
-        let _ = plotters::style::register_font(FONT, FontStyle::Normal, dejavu::sans::regular());
-        let _ = plotters::style::register_font(FONT, FontStyle::Bold, dejavu::sans::bold());
-    });
+const COMPRESSION: Colour = chart::PALETTE[0];
+const RESTITUTION: Colour = chart::PALETTE[3];
+/// The two bodies' colours in the velocity figure.
+const BODIES: [Colour; 2] = [chart::PALETTE[0], chart::PALETTE[1]];
+/// The fill of the dissipated-energy loop.
+const LOOP: Colour = chart::PALETTE[4];
+/// Stroke width of a measured curve, px.
+const CURVE: f64 = 2.2;
+
+/// A figure's title: the scene's (or sweep's) title, then what the figure shows (if anything). Every figure's title
+/// is made here.
+pub fn caption(title: &str, what: &str) -> String {
+    // A title is the user's string, whatever its length: cut, so that the figure renders at once.
+    let title = super::text::cut(title, super::text::TITLE_CHARS);
+    if what.is_empty() { title } else { format!("{title} — {what}") }
 }
 
-/// A scale for an axis: a factor and its SI prefix, chosen so that `max` reads between 1 and 1000.
-fn prefix(max: f64) -> (f64, &'static str) {
-    let steps = [(1e-9, "n"), (1e-6, "µ"), (1e-3, "m"), (1.0, ""), (1e3, "k"), (1e6, "M"), (1e9, "G")];
-    let magnitude = max.abs();
-    steps.iter().rev().find(|(factor, _)| magnitude >= *factor).map_or((1e-9, "n"), |&(f, p)| (f, p))
-}
-
-/// Writes the three figures as PNG and SVG into `folder`: all of them, or (on error) none new.
+/// Writes the three figures as SVG and PNG into `folder` (created if missing); returns the files written. Every
+/// figure is rendered before any file is written, so a failure to draw writes nothing.
 pub fn write_all(report: &Report, history: &History, folder: &Path) -> anyhow::Result<Vec<PathBuf>> {
-    register_font();
+    let mut files: Vec<(PathBuf, Vec<u8>)> = Vec::new();
+    for name in FIGURES {
+        let svg = svg(name, report, history);
+        let png = render::png(&svg).with_context(|| format!("cannot render {name}.png"))?;
+        files.push((folder.join(format!("{name}.png")), png));
+        files.push((folder.join(format!("{name}.svg")), svg.into_bytes()));
+    }
     std::fs::create_dir_all(folder).with_context(|| format!("cannot create the folder {}", folder.display()))?;
-    let mut staged: Vec<(PathBuf, PathBuf)> = Vec::new();
-    let result = (|| -> anyhow::Result<()> {
-        for name in FIGURES {
-            for extension in ["png", "svg"] {
-                let target = folder.join(format!("{name}.{extension}"));
-                let temporary = folder.join(format!(".{name}.partial-{}.{extension}", std::process::id()));
-                staged.push((temporary.clone(), target));
-                if extension == "png" {
-                    let root = BitMapBackend::new(&temporary, SIZE).into_drawing_area();
-                    draw(name, report, history, &root)?;
-                    root.present().map_err(|e| anyhow!("cannot render {name}.png: {e}"))?;
-                } else {
-                    let root = SVGBackend::new(&temporary, SIZE).into_drawing_area();
-                    draw(name, report, history, &root)?;
-                    root.present().map_err(|e| anyhow!("cannot render {name}.svg: {e}"))?;
-                }
-            }
-        }
-        Ok(())
-    })();
-    if let Err(error) = result {
-        for (temporary, _) in &staged {
-            let _ = std::fs::remove_file(temporary);
-        }
-        return Err(error);
+    for (path, bytes) in &files {
+        write_atomically(path, bytes)?;
     }
-    for (temporary, target) in &staged {
-        std::fs::rename(temporary, target).with_context(|| format!("cannot write {}", target.display()))?;
+    Ok(files.into_iter().map(|(path, _)| path).collect())
+}
+
+/// The SVG document of the figure `name` (one of [`FIGURES`]; anything else gives the velocity figure).
+pub fn svg(name: &str, report: &Report, history: &History) -> String {
+    figure(name, report, history).svg()
+}
+
+/// The chart of the figure `name` (one of [`FIGURES`]; anything else gives the velocity figure).
+pub fn figure(name: &str, report: &Report, history: &History) -> Chart {
+    match name {
+        "force_time" => force_time(report, history),
+        "force_penetration" => force_penetration(report, history),
+        _ => velocities(report, history),
     }
-    Ok(staged.into_iter().map(|(_, target)| target).collect())
 }
 
-fn draw<DB: DrawingBackend<ErrorType: 'static>>(
-    name: &str,
-    report: &Report,
-    history: &History,
-    root: &DrawingArea<DB, Shift>,
-) -> anyhow::Result<()> {
-    root.fill(&WHITE).map_err(|e| anyhow!("{e:?}"))?;
-    let drawn = match name {
-        "force_time" => force_time(report, history, root),
-        "force_penetration" => force_penetration(report, history, root),
-        _ => velocities(report, history, root),
-    };
-    drawn.map_err(|e| anyhow!("cannot draw {name}: {e}"))
+/// Seconds since first contact of the last sample (0 without samples).
+fn contact_span(report: &Report, history: &History) -> f64 {
+    history.samples.last().map_or(0.0, |s| s.time - report.contact.start_time).max(0.0)
 }
 
-/// What drawing a figure gives: nothing, or plotters' error.
-pub type Drawn = Result<(), Box<dyn std::error::Error>>;
-
-/// A chart builder with the project's title, margins and axis areas; the caller picks the axes.
-pub fn frame<'a, 'b, DB: DrawingBackend>(
-    root: &'a DrawingArea<DB, Shift>,
-    title: &str,
-    title_size: u32,
-) -> ChartBuilder<'a, 'b, DB> {
-    let mut builder = ChartBuilder::on(root);
-    builder.caption(title, (FONT, title_size)).margin(20).x_label_area_size(55).y_label_area_size(80);
-    builder
+/// Decimals that give event times three significant digits on an axis reaching `x_max` (in its own unit).
+fn time_decimals(x_max: f64) -> usize {
+    if x_max > 0.0 { (2.0 - x_max.log10().floor()).clamp(0.0, 6.0) as usize } else { 1 }
 }
 
-/// Four decimals, without a minus sign on a value that rounds to zero.
-fn fixed(value: f64) -> String {
-    let text = format!("{value:.4}");
-    if text == "-0.0000" { "0.0000".into() } else { text }
+/// The force axis: lowest and highest force (N) with the compressive peak, its SI scale, and the range drawn in
+/// scaled units (0 at the bottom unless the force turns tensile).
+fn force_axis(report: &Report, history: &History) -> ((f64, &'static str), (f64, f64)) {
+    let low = history.samples.iter().map(|s| s.force).fold(0.0, f64::min);
+    let high = history.samples.iter().map(|s| s.force).fold(report.contact.max_force, f64::max);
+    let (factor, unit) = prefix(high.max(-low));
+    let pad = 0.06 * (high - low) / factor;
+    let bottom = if low < 0.0 { low / factor - pad } else { 0.0 };
+    ((factor, unit), (bottom, high / factor + pad))
 }
 
-fn caption(report: &Report, what: &str) -> String {
-    format!("{} — {what}", super::text::cut(&report.title, super::text::TITLE_CHARS))
+/// A thin line at zero force when the force turns tensile.
+fn zero_line(chart: &mut Chart) {
+    if chart.y.low < 0.0 {
+        chart.push(Layer::new("zero", Mark::HLine { y: 0.0, stroke: Stroke::solid(Colour::GREY, 0.8) }));
+    }
 }
 
-fn force_time<DB: DrawingBackend<ErrorType: 'static>>(
-    report: &Report,
-    history: &History,
-    root: &DrawingArea<DB, Shift>,
-) -> Drawn {
+fn force_time(report: &Report, history: &History) -> Chart {
     let c = &report.contact;
     let start = c.start_time;
-    let end = history.samples.last().map_or(start, |s| s.time);
-    let (tf, tp) = prefix(end - start);
-    let (ff, fp) = prefix(c.max_force);
-    let low = history.samples.iter().map(|s| s.force).fold(0.0, f64::min);
-    let (x_max, y_max, y_min) = ((end - start) / tf, c.max_force / ff * 1.08, (low / ff * 1.08).min(0.0));
-    let mut chart = frame(root, &caption(report, "contact force"), 22).build_cartesian_2d(0.0..x_max, y_min..y_max)?;
-    chart
-        .configure_mesh()
-        .x_desc(format!("time since first contact ({tp}s)"))
-        .y_desc(format!("contact force ({fp}N)"))
-        .light_line_style(BLACK.mix(0.04))
-        .axis_desc_style((FONT, 20))
-        .label_style((FONT, 16))
-        .draw()?;
+    let (tf, tp) = prefix(contact_span(report, history));
+    let ((ff, fp), (y0, y1)) = force_axis(report, history);
+    let x_max = contact_span(report, history) / tf;
+    let mut chart = Chart::new(
+        caption(&report.title, "contact force"),
+        Axis::linear(format!("time since first contact t ({tp}s)"), 0.0, x_max),
+        Axis::linear(format!("contact force F ({fp}N)"), y0, y1),
+    );
     let t0 = (c.max_compression_time - start) / tf;
-    for (from, to, color, label) in [(0.0, t0, COMPRESSION, "compression"), (t0, x_max, RESTITUTION, "restitution")] {
-        chart
-            .draw_series(std::iter::once(Rectangle::new([(from, y_min), (to, y_max)], color.mix(0.12).filled())))?
-            .label(label)
-            .legend(move |(x, y)| Rectangle::new([(x, y - 6), (x + 18, y + 6)], color.mix(0.3).filled()));
+    // The phases shaded and named in place, at the foot of each band (where the pulse is low).
+    for (from, to, colour, name) in [(0.0, t0, COMPRESSION, "compression"), (t0, x_max, RESTITUTION, "restitution")] {
+        chart.push(Layer::new("phase", Mark::Span { from, to, fill: colour, opacity: 0.1 }));
+        let text = name.to_string();
+        let note = Mark::Note { at: ((from + to) / 2.0, y0), offset: (0.0, -10.0), text, anchor: "middle", colour };
+        chart.push(Layer::new("phase-name", note));
     }
-    chart
-        .draw_series(LineSeries::new(
-            history.samples.iter().map(|s| ((s.time - start) / tf, s.force / ff)),
-            BLACK.stroke_width(3),
-        ))?
-        .label("F(t)")
-        .legend(|(x, y)| PathElement::new([(x, y), (x + 18, y)], BLACK.stroke_width(3)));
-    chart
-        .draw_series(DashedLineSeries::new([(t0, y_min), (t0, y_max)], 8, 5, BLACK.stroke_width(1)))?
-        .label("maximum compression (d' = 0, V0)")
-        .legend(|(x, y)| PathElement::new([(x, y), (x + 18, y)], BLACK.stroke_width(1)));
+    zero_line(&mut chart);
+    let dashed = Stroke::dashed(Colour::BLACK, 1.2, 6.0, 4.0);
+    chart.push(
+        Layer::new("reference", Mark::VLine { x: t0, stroke: dashed })
+            .label(format!("maximum compression (d′ = 0), t = {} {tp}s", fixed(t0, time_decimals(x_max))))
+            .rank(1),
+    );
+    let force = history.samples.iter().map(|s| ((s.time - start) / tf, s.force / ff)).collect();
+    let curve = Mark::Line { points: force, stroke: Stroke::solid(Colour::BLACK, CURVE), marker: None };
+    chart.push(Layer::new("curve", curve).label("contact force F(t)").rank(0));
     let peak = ((c.max_force_time - start) / tf, c.max_force / ff);
+    let marker = Marker::new(Shape::Circle, 5.0, RESTITUTION);
+    chart.push(
+        Layer::new("peak", Mark::Points { points: vec![peak], marker })
+            .label(format!(
+                "peak force {} at t = {} {tp}s",
+                si(c.max_force, "N", 4),
+                fixed(peak.0, time_decimals(x_max))
+            ))
+            .rank(2),
+    );
     chart
-        .draw_series(std::iter::once(Circle::new(peak, 6, RESTITUTION.filled())))?
-        .label("peak force")
-        .legend(|(x, y)| Circle::new((x + 9, y), 5, RESTITUTION.filled()));
-    legend(&mut chart, SeriesLabelPosition::UpperRight)
 }
 
-fn force_penetration<DB: DrawingBackend<ErrorType: 'static>>(
-    report: &Report,
-    history: &History,
-    root: &DrawingArea<DB, Shift>,
-) -> Drawn {
+/// What the shaded loop's area is, in words, with its value from the report; `None` when there is nothing to
+/// shade (no dissipation, or the bodies never parted).
+fn loop_label(report: &Report) -> Option<String> {
+    if !report.contact.separated {
+        return None;
+    }
+    let e = &report.energy;
+    if report.law.separation == "penetration" {
+        // A closed loop in d: the elastic force's work cancels, the area is the damping force's work.
+        let work = e.dissipated?;
+        (work > 1e-9 * e.kinetic_before).then(|| format!("loop area = energy dissipated = {}", si(work, "J", 4)))
+    } else {
+        // Separation at zero force leaves the loop open at d > 0: closed along F = 0, the area is the work of the
+        // force over the contact, the kinetic energy lost (dissipated plus the elastic energy left behind).
+        let lost = e.kinetic_before - e.kinetic_after?;
+        (lost > 1e-9 * e.kinetic_before).then(|| format!("shaded area = kinetic energy lost = {}", si(lost, "J", 4)))
+    }
+}
+
+fn force_penetration(report: &Report, history: &History) -> Chart {
     let c = &report.contact;
-    let (df, dp) = prefix(c.max_penetration);
-    let (ff, fp) = prefix(c.max_force);
-    let low = history.samples.iter().map(|s| s.force).fold(0.0, f64::min);
-    let mut chart = frame(root, &caption(report, "force against penetration"), 22)
-        .build_cartesian_2d(0.0..c.max_penetration / df * 1.05, (low / ff * 1.08).min(0.0)..c.max_force / ff * 1.08)?;
-    chart
-        .configure_mesh()
-        .x_desc(format!("penetration ({dp}m)"))
-        .y_desc(format!("contact force ({fp}N)"))
-        .light_line_style(BLACK.mix(0.04))
-        .axis_desc_style((FONT, 20))
-        .label_style((FONT, 16))
-        .draw()?;
-    for (phase, color) in [(Phase::Compression, COMPRESSION), (Phase::Restitution, RESTITUTION)] {
-        let points = history.samples.iter().filter(|s| s.phase == phase);
-        let mut line: Vec<(f64, f64)> = points.map(|s| (s.penetration / df, s.force / ff)).collect();
+    let d_max = history.samples.iter().map(|s| s.penetration).fold(c.max_penetration, f64::max);
+    let (df, dp) = prefix(d_max);
+    let ((ff, fp), (y0, y1)) = force_axis(report, history);
+    let mut chart = Chart::new(
+        caption(&report.title, "force against penetration"),
+        Axis::linear(format!("penetration d ({dp}m)"), 0.0, d_max / df * 1.04),
+        Axis::linear(format!("contact force F ({fp}N)"), y0, y1),
+    );
+    let point = |s: &crate::history::Sample| (s.penetration / df, s.force / ff);
+    if let Some(label) = loop_label(report) {
+        // Closed along F = 0 back to d = 0 and up the force axis: neither leg adds to the integral of F dd, so the
+        // area is the work of the force over the contact.
+        let mut outline: Vec<(f64, f64)> = history.samples.iter().map(point).collect();
+        if let Some(&(d_end, _)) = outline.last() {
+            outline.extend([(d_end, 0.0), (0.0, 0.0)]);
+        }
+        let area = Mark::Area { points: outline, fill: LOOP, opacity: 0.2 };
+        chart.push(Layer::new("loop-fill", area).label(label).rank(2));
+    }
+    zero_line(&mut chart);
+    for (phase, colour, rank) in [(Phase::Compression, COMPRESSION, 0), (Phase::Restitution, RESTITUTION, 1)] {
+        let mut line: Vec<(f64, f64)> = history.samples.iter().filter(|s| s.phase == phase).map(point).collect();
         if phase == Phase::Restitution {
             // Join the loop at maximum compression.
             if let Some(last) = history.samples.iter().rfind(|s| s.phase == Phase::Compression) {
-                line.insert(0, (last.penetration / df, last.force / ff));
+                line.insert(0, point(last));
             }
         }
-        chart
-            .draw_series(LineSeries::new(line, color.stroke_width(3)))?
-            .label(phase.name())
-            .legend(move |(x, y)| PathElement::new([(x, y), (x + 18, y)], color.stroke_width(3)));
+        // Unloading dashed over loading, so that both show where they coincide (an elastic contact).
+        let stroke = match phase {
+            Phase::Compression => Stroke::solid(colour, CURVE),
+            Phase::Restitution => Stroke::dashed(colour, CURVE, 8.0, 4.0),
+        };
+        let curve = Mark::Line { points: line, stroke, marker: None };
+        chart.push(Layer::new("curve", curve).label(phase.name()).rank(rank));
     }
-    if let Some(work) = report.energy.dissipated {
-        // An empty series only to put the loop's meaning in the legend.
-        chart
-            .draw_series(std::iter::empty::<Circle<(f64, f64), i32>>())?
-            .label(format!("loop area = energy dissipated = {work:.4e} J"))
-            .legend(|(x, y)| Rectangle::new([(x, y - 6), (x + 18, y + 6)], RESTITUTION.mix(0.15).filled()));
-    }
-    legend(&mut chart, SeriesLabelPosition::UpperLeft)
+    chart
 }
 
-fn velocities<DB: DrawingBackend<ErrorType: 'static>>(
-    report: &Report,
-    history: &History,
-    root: &DrawingArea<DB, Shift>,
-) -> Drawn {
+fn velocities(report: &Report, history: &History) -> Chart {
     let c = &report.contact;
     let n = history.normal;
     let start = c.start_time;
-    let end = history.samples.last().map_or(start, |s| s.time);
-    let (tf, tp) = prefix(end - start);
     let normal = |v: &[f64; 3]| v[0] * n.x + v[1] * n.y + v[2] * n.z;
-    // (label, value, colour, dash length): long dashes for V0 and the instantaneous values after, short for before.
-    let mut references: Vec<(String, f64, RGBColor, u32)> =
-        vec![(format!("V0 = {} m/s", fixed(c.common_normal_velocity)), c.common_normal_velocity, BLACK, 8)];
-    for (i, color) in [(0, COMPRESSION), (1, BODY_2)] {
-        let value = normal(&report.bodies[i].velocity_before);
-        references.push((format!("body {} before: {} m/s", i + 1, fixed(value)), value, color, 2));
-    }
-    if let Some(ideal) = &report.instantaneous {
-        for (i, color) in [(0, COMPRESSION), (1, BODY_2)] {
-            let value = normal(&ideal.velocity_after[i]);
-            let label =
-                format!("body {} after, instantaneous (e = {:.4}): {} m/s", i + 1, ideal.restitution, fixed(value));
-            references.push((label, value, color, 8));
-        }
-    }
+    let names = [report.bodies[0].name.as_str(), report.bodies[1].name.as_str()];
+    let before = [normal(&report.bodies[0].velocity_before), normal(&report.bodies[1].velocity_before)];
+    let after = report.instantaneous.as_ref().map(|i| (i.restitution, [0, 1].map(|b| normal(&i.velocity_after[b]))));
+
     let mut values: Vec<f64> =
         history.samples.iter().flat_map(|s| [s.velocities[0].dot(&n), s.velocities[1].dot(&n)]).collect();
-    values.extend(references.iter().map(|r| r.1));
+    values.extend(before);
+    values.push(c.common_normal_velocity);
+    values.extend(after.iter().flat_map(|a| a.1));
     let (low, high) = values.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &v| (a.min(v), b.max(v)));
-    let pad = 0.08 * (high - low).max(1e-12);
-    // Headroom above the curves for the legend, so it never hides the crossing at V0.
-    let headroom = 0.6 * (high - low).max(1e-12);
-    let mut chart = frame(root, &caption(report, "normal velocities"), 22)
-        .build_cartesian_2d(0.0..(end - start) / tf, (low - pad)..(high + headroom))?;
-    chart
-        .configure_mesh()
-        .x_desc(format!("time since first contact ({tp}s)"))
-        .y_desc("normal velocity (m/s)")
-        .y_label_formatter(&|v| {
-            let text = format!("{v:.2}");
-            if text.trim_start_matches('-').chars().all(|c| c == '0' || c == '.') { "0".into() } else { text }
-        })
-        .light_line_style(BLACK.mix(0.04))
-        .axis_desc_style((FONT, 20))
-        .label_style((FONT, 16))
-        .draw()?;
-    let x_max = (end - start) / tf;
-    for (label, value, color, dash) in references {
-        chart
-            .draw_series(DashedLineSeries::new([(0.0, value), (x_max, value)], dash, 5, color.stroke_width(1)))?
-            .label(label)
-            .legend(move |(x, y)| {
-                // Three dashes of the line's own length (capped to fit the 18-pixel key).
-                let length = dash.min(5) as i32;
-                EmptyElement::at((x, y))
-                    + PathElement::new([(0, 0), (length, 0)], color.stroke_width(1))
-                    + PathElement::new([(7, 0), (7 + length, 0)], color.stroke_width(1))
-                    + PathElement::new([(14, 0), (14 + length, 0)], color.stroke_width(1))
-            });
-    }
-    for (i, color) in [(0usize, COMPRESSION), (1, BODY_2)] {
-        let name = report.bodies[i].name.clone();
-        chart
-            .draw_series(LineSeries::new(
-                history.samples.iter().map(|s| ((s.time - start) / tf, s.velocities[i].dot(&n))),
-                color.stroke_width(3),
-            ))?
-            .label(name)
-            .legend(move |(x, y)| PathElement::new([(x, y), (x + 18, y)], color.stroke_width(3)));
-    }
-    legend(&mut chart, SeriesLabelPosition::UpperRight)
-}
+    let (low, high) = if low.is_finite() { (low, high) } else { (0.0, 0.0) };
+    let (vf, vp) = prefix(low.abs().max(high.abs()));
+    let pad = 0.05 * (high - low) / vf;
+    // Every speed in the legend with the same decimals: four significant digits of the largest.
+    let largest = low.abs().max(high.abs()) / vf;
+    let decimals = (3 - largest.log10().floor().max(0.0) as usize).min(3);
+    let speed = |v: f64| format!("{} {vp}m/s", fixed(v / vf, decimals));
 
-/// The legend box every figure of the project uses, at `position`.
-pub fn legend<'a, DB: DrawingBackend<ErrorType: 'static> + 'a, X: Ranged, Y: Ranged>(
-    chart: &mut ChartContext<'a, DB, Cartesian2d<X, Y>>,
-    position: SeriesLabelPosition,
-) -> Drawn {
+    let (tf, tp) = prefix(contact_span(report, history));
+    let x_max = contact_span(report, history) / tf;
+    let mut chart = Chart::new(
+        caption(&report.title, "normal velocities"),
+        Axis::linear(format!("time since first contact t ({tp}s)"), 0.0, x_max),
+        Axis::linear(format!("normal velocity v·n ({vp}m/s)"), low / vf - pad, high / vf + pad),
+    );
+    for body in 0..2 {
+        let points = history.samples.iter().map(|s| ((s.time - start) / tf, s.velocities[body].dot(&n) / vf)).collect();
+        let curve = Mark::Line { points, stroke: Stroke::solid(BODIES[body], CURVE), marker: None };
+        chart.push(Layer::new("curve", curve).label(names[body]).rank(4 * body as i32));
+    }
+    // Reference lines over the curves, thin, so that they stay visible where a curve meets them: dotted before,
+    // dashed after, V0 dashed black.
+    for body in 0..2 {
+        let stroke = Stroke::dashed(BODIES[body], 1.3, 1.5, 3.0);
+        chart.push(
+            Layer::new("reference", Mark::HLine { y: before[body] / vf, stroke })
+                .label(format!("{} before: {}", names[body], speed(before[body])))
+                .rank(4 * body as i32 + 1),
+        );
+    }
+    if let Some((e, values)) = after {
+        for body in 0..2 {
+            let stroke = Stroke::dashed(BODIES[body], 1.3, 7.0, 4.0);
+            chart.push(
+                Layer::new("reference", Mark::HLine { y: values[body] / vf, stroke })
+                    .label(format!(
+                        "{} after, instantaneous (e = {}): {}",
+                        names[body],
+                        fixed(e, 3),
+                        speed(values[body])
+                    ))
+                    .rank(4 * body as i32 + 2),
+            );
+        }
+    }
+    let v0 = c.common_normal_velocity / vf;
+    chart.push(
+        Layer::new("reference", Mark::HLine { y: v0, stroke: Stroke::dashed(Colour::BLACK, 1.2, 7.0, 4.0) })
+            .label(format!("common normal velocity V0 = {}", speed(c.common_normal_velocity)))
+            .rank(3),
+    );
+    let t0 = (c.max_compression_time - start) / tf;
+    let marker = Marker::new(Shape::Circle, 4.5, Colour::BLACK);
+    chart.push(
+        Layer::new("event", Mark::Points { points: vec![(t0, v0)], marker })
+            .label(format!("maximum compression, t = {} {tp}s", fixed(t0, time_decimals(x_max))))
+            .rank(7),
+    );
     chart
-        .configure_series_labels()
-        .background_style(WHITE.mix(0.85))
-        .border_style(BLACK)
-        .label_font((FONT, 16))
-        .position(position)
-        .draw()?;
-    Ok(())
 }

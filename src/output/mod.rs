@@ -1,9 +1,11 @@
 //! Views of the report: each a function of the [`crate::report::Report`] (or the history), none recomputing physics.
 
+pub mod chart;
 pub mod csv;
 pub mod figures;
 pub mod files;
 pub mod json;
+pub mod render;
 pub mod sweep_figure;
 pub mod table;
 pub mod text;

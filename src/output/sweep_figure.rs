@@ -1,31 +1,20 @@
-//! The figure of a sweep (plotters, PNG or SVG by the file's extension, with the embedded font of
-//! [`super::figures`]): effective e against the first varied quantity, one line per law (and per value of the
-//! other varied keys), with the ideal diagonal e_eff = e_nominal when the x axis is the nominal e — the comparison
-//! figure of the contact-mechanics literature.
+//! The figure of a sweep, PNG or SVG by the file's extension (the PNG rasterised from the SVG, see
+//! [`super::chart`]): effective e against the first varied quantity, one line per law (and per value of the other
+//! varied keys), with the ideal diagonal e_eff = e_nominal when the x axis is the nominal e — the comparison figure
+//! of the contact-mechanics literature. The diagonal is drawn over the curves, so that it stays visible where a map
+//! is exact.
 
-use super::figures::{FONT, register_font};
+use super::chart::{self, Axis, Chart, Colour, Layer, Mark, Marker, Stroke};
+use super::figures::caption;
+use super::render;
 use anyhow::{Context, anyhow};
-use plotters::coord::Shift;
-use plotters::coord::ranged1d::{AsRangedCoord, ValueFormatter};
-use plotters::prelude::*;
 use std::path::{Path, PathBuf};
 
 /// Figure size in pixels.
-pub const SIZE: (u32, u32) = (960, 640);
+pub const SIZE: (u32, u32) = (chart::WIDTH as u32, chart::HEIGHT as u32);
 
-/// Line colours, in curve order (the tab10 palette).
-const PALETTE: [RGBColor; 10] = [
-    RGBColor(31, 119, 180),
-    RGBColor(255, 127, 14),
-    RGBColor(44, 160, 44),
-    RGBColor(214, 39, 40),
-    RGBColor(148, 103, 189),
-    RGBColor(140, 86, 75),
-    RGBColor(227, 119, 194),
-    RGBColor(127, 127, 127),
-    RGBColor(188, 189, 34),
-    RGBColor(23, 190, 207),
-];
+/// Curves with at most this many points show a marker at every point (more would hide the lines).
+const MARKED: usize = 25;
 
 /// What a sweep figure shows: a function of the sweep's table, nothing else.
 #[derive(Debug, Clone, PartialEq)]
@@ -52,8 +41,14 @@ impl SweepFigure {
         self.curves.iter().flat_map(|c| c.points.iter().flatten().copied())
     }
 
-    /// The x range (positive for a log axis), padded when it is a single value.
+    /// The x range (positive for a log axis), padded when it is a single value; the whole of [0, 1] against the
+    /// nominal e.
     fn x_range(&self) -> (f64, f64) {
+        let (low, high) = self.data_x_range();
+        if self.diagonal && !self.log_x { (low.min(0.0), high.max(1.0)) } else { (low, high) }
+    }
+
+    fn data_x_range(&self) -> (f64, f64) {
         let xs = self.known().map(|p| p.0).filter(|x| !self.log_x || *x > 0.0);
         let (low, high) = xs.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| (a.min(x), b.max(x)));
         match (low.is_finite(), self.log_x) {
@@ -112,101 +107,76 @@ pub fn format_of(path: &Path) -> Option<&'static str> {
 /// Renders `figure` to a temporary file in `target`'s folder (created if missing), PNG or SVG by `target`'s
 /// extension.
 pub fn stage(figure: &SweepFigure, target: &Path) -> anyhow::Result<Staged> {
-    register_font();
     let format = format_of(target).ok_or_else(|| anyhow!("{}: a figure must end in .png or .svg", target.display()))?;
+    let svg = svg(figure);
+    let bytes = if format == "png" {
+        render::png(&svg).with_context(|| format!("cannot render {}", target.display()))?
+    } else {
+        svg.into_bytes()
+    };
     let folder = target.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));
     std::fs::create_dir_all(folder).with_context(|| format!("cannot create the folder {}", folder.display()))?;
     let name = target.file_name().with_context(|| format!("{} is not a file path", target.display()))?;
-    // The extension stays last: the PNG encoder picks the format from it.
     let temporary = folder.join(format!(".{}.partial-{}.{format}", name.to_string_lossy(), std::process::id()));
     let staged = Staged { temporary: temporary.clone(), target: target.to_path_buf(), committed: false };
-    let rendered = if format == "png" {
-        let root = BitMapBackend::new(&temporary, SIZE).into_drawing_area();
-        draw(figure, &root).and_then(|()| root.present().map_err(|e| anyhow!("{e}")))
-    } else {
-        let root = SVGBackend::new(&temporary, SIZE).into_drawing_area();
-        draw(figure, &root).and_then(|()| root.present().map_err(|e| anyhow!("{e}")))
-    };
-    rendered.with_context(|| format!("cannot render {}", target.display()))?;
+    std::fs::write(&temporary, bytes).with_context(|| format!("cannot write {}", target.display()))?;
     Ok(staged)
 }
 
 /// Renders `figure` into an RGB pixel buffer of [`SIZE`] (row-major, 3 bytes a pixel): for checks of the image.
 pub fn render_rgb(figure: &SweepFigure) -> anyhow::Result<Vec<u8>> {
-    register_font();
-    let mut pixels = vec![0u8; (SIZE.0 * SIZE.1 * 3) as usize];
-    {
-        let root = BitMapBackend::with_buffer(&mut pixels, SIZE).into_drawing_area();
-        draw(figure, &root)?;
-        root.present().map_err(|e| anyhow!("{e}"))?;
-    }
-    Ok(pixels)
+    render::rgb(&svg(figure))
 }
 
-/// Draws the whole figure on `root`.
-pub fn draw<DB: DrawingBackend<ErrorType: 'static>>(
-    figure: &SweepFigure,
-    root: &DrawingArea<DB, Shift>,
-) -> anyhow::Result<()> {
-    root.fill(&WHITE).map_err(|e| anyhow!("{e:?}"))?;
-    let (x0, x1) = figure.x_range();
-    let drawn = if figure.log_x { chart(figure, root, (x0..x1).log_scale()) } else { chart(figure, root, x0..x1) };
-    drawn.map_err(|e| anyhow!("cannot draw the sweep figure: {e}"))
+/// The figure as an SVG document.
+pub fn svg(figure: &SweepFigure) -> String {
+    chart(figure).svg()
 }
 
-type Drawn = Result<(), Box<dyn std::error::Error>>;
-
-fn chart<DB, X>(figure: &SweepFigure, root: &DrawingArea<DB, Shift>, x_axis: X) -> Drawn
-where
-    DB: DrawingBackend<ErrorType: 'static>,
-    X: AsRangedCoord<Value = f64>,
-    X::CoordDescType: Ranged<ValueType = f64> + ValueFormatter<f64>,
-{
+/// The chart of the figure.
+pub fn chart(figure: &SweepFigure) -> Chart {
     let (x0, x1) = figure.x_range();
     let (y0, y1) = figure.y_range();
-    let mut chart = super::figures::frame(root, &figure.title, 26).build_cartesian_2d(x_axis, y0..y1)?;
-    chart
-        .configure_mesh()
-        .x_desc(figure.x_label.as_str())
-        .y_desc(figure.y_label.as_str())
-        .axis_desc_style((FONT, 20))
-        .label_style((FONT, 16))
-        .draw()?;
-    if figure.diagonal {
-        // Sampled, so that it stays the line y = x on a log axis too.
-        let line = (0..=200).map(|i| {
-            let t = f64::from(i) / 200.0;
-            let x = if figure.log_x { x0 * (x1 / x0).powf(t) } else { x0 + (x1 - x0) * t };
-            (x, x)
-        });
-        chart
-            .draw_series(DashedLineSeries::new(line.filter(|p| p.1 >= y0 && p.1 <= y1), 10, 6, BLACK.stroke_width(2)))?
-            .label("ideal: effective e = nominal e")
-            .legend(|(x, y)| PathElement::new([(x, y), (x + 18, y)], BLACK.stroke_width(2)));
-    }
+    let x = if figure.log_x {
+        Axis::log(figure.x_label.as_str(), x0, x1)
+    } else {
+        Axis::linear(figure.x_label.as_str(), x0, x1)
+    };
+    let mut chart = Chart::new(caption(&figure.title, ""), x, Axis::linear(figure.y_label.as_str(), y0, y1));
     for (i, curve) in figure.curves.iter().enumerate() {
-        let color = PALETTE[i % PALETTE.len()];
-        let style = color.stroke_width(3);
+        let colour = chart::PALETTE[i % chart::PALETTE.len()];
+        let shape = chart::SHAPES[i % chart::SHAPES.len()];
+        let rank = i as i32;
         if curve.points.iter().all(Option::is_none) {
             // Still in the legend, so that a law whose every row failed is not silently missing.
-            chart
-                .draw_series(std::iter::empty::<Circle<(f64, f64), i32>>())?
-                .label(format!("{} (no value: see the status column)", curve.label))
-                .legend(move |(x, y)| PathElement::new([(x, y), (x + 18, y)], color.stroke_width(1)));
+            let empty = Mark::Line { points: Vec::new(), stroke: Stroke::solid(colour, 1.0), marker: None };
+            let label = format!("{} (no value: see the status column)", curve.label);
+            chart.push(Layer::new("curve", empty).label(label).rank(rank));
             continue;
         }
-        // A gap (a row without a value) breaks the line.
-        for (j, run) in curve.points.split(Option::is_none).filter(|run| !run.is_empty()).enumerate() {
-            let run: Vec<(f64, f64)> = run.iter().flatten().copied().collect();
-            let marks = chart.draw_series(run.iter().map(|&p| Circle::new(p, 3, color.filled())))?;
-            if j == 0 {
-                marks
-                    .label(curve.label.as_str())
-                    .legend(move |(x, y)| PathElement::new([(x, y), (x + 18, y)], color.stroke_width(3)));
-            }
-            chart.draw_series(LineSeries::new(run, style))?;
+        let marked = curve.points.iter().flatten().count() <= MARKED;
+        // A gap (a row without a value) breaks the line; a lone point keeps a marker so that it shows.
+        let runs = curve.points.split(Option::is_none).filter(|run| !run.is_empty());
+        for (j, run) in runs.enumerate() {
+            let points: Vec<(f64, f64)> = run.iter().flatten().copied().collect();
+            let marker = (marked || points.len() == 1).then(|| Marker::new(shape, 3.5, colour));
+            let line = Mark::Line { points, stroke: Stroke::solid(colour, 2.0), marker };
+            let layer = Layer::new("curve", line);
+            chart.push(if j == 0 { layer.label(curve.label.as_str()).rank(rank) } else { layer });
         }
     }
-    let position = if figure.diagonal { SeriesLabelPosition::LowerRight } else { SeriesLabelPosition::UpperRight };
-    super::figures::legend(&mut chart, position)
+    if figure.diagonal {
+        // Over the curves, so that it stays visible where a map is exact. Sampled, so that it stays the line y = x
+        // on a log axis too.
+        let line: Vec<(f64, f64)> = (0..=200)
+            .map(|i| {
+                let t = f64::from(i) / 200.0;
+                let x = if figure.log_x { x0 * (x1 / x0).powf(t) } else { x0 + (x1 - x0) * t };
+                (x, x)
+            })
+            .collect();
+        let diagonal = Mark::Line { points: line, stroke: Stroke::dashed(Colour::BLACK, 1.3, 6.0, 5.0), marker: None };
+        chart.push(Layer::new("diagonal", diagonal).label("ideal: effective e = nominal e").rank(-1));
+    }
+    chart
 }
