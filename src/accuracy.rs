@@ -26,6 +26,39 @@ pub struct Measured {
     pub common_normal_velocity: f64,
 }
 
+/// How much of the exact reference a run computes: all of it for a report someone reads, only the restitution for
+/// a sweep's row (its one reference column), nothing when no one looks (a benchmark). The quadratures of t0, tc and
+/// Fmax cost more than a fast impact itself.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum ReferenceDetail {
+    #[default]
+    Full,
+    Restitution,
+    Off,
+}
+
+/// The exact restitution alone, by the cheapest exact route: the Lambert W closed form for the hysteresis family,
+/// the oscillator's closed forms for Kelvin–Voigt and Tsuji (Tsuji's e is the Kelvin–Voigt one at zeta = a/sqrt(5)).
+fn exact_restitution(setup: &Setup, separation: Separation) -> Option<(f64, &'static str)> {
+    let law = &setup.law;
+    match law.kind.family() {
+        Family::Elastic => Some((1.0, "elastic: e = 1")),
+        Family::Hysteresis => {
+            let x = law.damping * setup.approach_speed;
+            (x <= MAX_HYSTERESIS_X).then(|| (reference::hunt_crossley_restitution(x), "exact Hunt–Crossley relation"))
+        }
+        Family::Linear => {
+            let zeta = law.damping / (2.0 * (law.stiffness * setup.effective_mass).sqrt());
+            Some((reference::kelvin_voigt(zeta, separation)?.restitution, "Kelvin–Voigt closed form"))
+        }
+        Family::Tsuji => Some((
+            reference::kelvin_voigt(law.damping / 5f64.sqrt(), separation)?.restitution,
+            "Tsuji law mapped to a linear oscillator",
+        )),
+        Family::Viscoelastic => None,
+    }
+}
+
 /// Largest alpha v0 for which the hysteresis-family reference is reported.
 const MAX_HYSTERESIS_X: f64 = 1e8;
 
@@ -58,8 +91,20 @@ fn exact(setup: &Setup, separation: Separation) -> Option<(ContactReference, &'s
 }
 
 /// Exact values for this contact (SI units) and the relative errors of `measured` against them.
-pub fn reference(scene: &Scene, setup: &Setup, measured: Measured) -> Option<ReferenceReport> {
-    let (exact, source) = exact(setup, scene.contact.separation)?;
+pub fn reference(
+    scene: &Scene,
+    setup: &Setup,
+    measured: Measured,
+    detail: ReferenceDetail,
+) -> Option<ReferenceReport> {
+    let (exact, source) = match detail {
+        ReferenceDetail::Off => return None,
+        ReferenceDetail::Full => exact(setup, scene.contact.separation)?,
+        ReferenceDetail::Restitution => {
+            let (restitution, source) = exact_restitution(setup, scene.contact.separation)?;
+            (ContactReference { restitution, ..ContactReference::UNDEFINED }, source)
+        }
+    };
     let s = &setup.scales;
     let finite = |value: f64| value.is_finite().then_some(value);
     let restitution = finite(exact.restitution);

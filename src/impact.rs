@@ -6,6 +6,7 @@
 //! the force rate does; a frictional contact adds the switches between sticking and sliding. Every event is located
 //! on the integrator's solution.
 
+use crate::accuracy::ReferenceDetail;
 use crate::dynamics::normal::NormalContact;
 use crate::dynamics::pair::PairContact;
 use crate::dynamics::{ContactModel, Snapshot};
@@ -63,15 +64,31 @@ pub struct Outcome {
     pub method: &'static str,
 }
 
-/// Simulates the scene's impact; `recording` says whether (and how) to keep the contact history.
+/// What a run computes beyond the impact itself.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct Options {
+    /// Whether (and how) to keep the contact history.
+    pub recording: Recording,
+    /// How much of the exact reference to compute.
+    pub reference: ReferenceDetail,
+}
+
+/// Simulates the scene's impact with the full report; `recording` says whether (and how) to keep the contact
+/// history.
 pub fn simulate(scene: &Scene, recording: Recording) -> Result<Simulation, SimulationError> {
+    simulate_with(scene, Options { recording, reference: ReferenceDetail::Full })
+}
+
+/// Simulates the scene's impact, computing what `options` ask for.
+pub fn simulate_with(scene: &Scene, options: Options) -> Result<Simulation, SimulationError> {
+    let recording = options.recording;
     let clock = Instant::now();
     let setup = Setup::new(scene).map_err(SimulationError::Setup)?;
     let (outcome, history) = match setup.motion {
         Motion::Normal => run(&NormalContact::new(&scene.bodies, &setup), scene, setup.contact_time, recording)?,
         Motion::Full => run(&PairContact::new(&scene.bodies, &setup), scene, setup.contact_time, recording)?,
     };
-    let report = crate::report::build(scene, &setup, &outcome, clock.elapsed().as_secs_f64());
+    let report = crate::report::build(scene, &setup, &outcome, options.reference, clock.elapsed().as_secs_f64());
     Ok(Simulation { report, history })
 }
 

@@ -5,7 +5,7 @@ use super::{
     BodyReport, ContactReport, EnergyReport, InstantaneousReport, LawReport, ObliqueReport, Report, RigidBodyReport,
     SolverReport, Vec3,
 };
-use crate::accuracy::{self, Measured};
+use crate::accuracy::{self, Measured, ReferenceDetail};
 use crate::body::Body;
 use crate::impact::{Outcome, TIME_LIMIT};
 use crate::instantaneous::{Instantaneous, direct_impact, rigid_body_impact};
@@ -15,7 +15,7 @@ use crate::setup::{Motion, Setup};
 use nalgebra::Vector3;
 
 /// The report of one impact.
-pub fn build(scene: &Scene, setup: &Setup, outcome: &Outcome, wall_time: f64) -> Report {
+pub fn build(scene: &Scene, setup: &Setup, outcome: &Outcome, detail: ReferenceDetail, wall_time: f64) -> Report {
     let [a, b] = &scene.bodies;
     let n = setup.normal;
     let (max, end) = (&outcome.max_compression, &outcome.end);
@@ -121,7 +121,7 @@ pub fn build(scene: &Scene, setup: &Setup, outcome: &Outcome, wall_time: f64) ->
         oblique,
         instantaneous: when(e_velocity).map(compare),
         instantaneous_nominal: nominal.map(compare),
-        reference: if fixed_normal { accuracy::reference(scene, setup, measured) } else { None },
+        reference: if fixed_normal { accuracy::reference(scene, setup, measured, detail) } else { None },
         solver: SolverReport {
             method: outcome.method.into(),
             rtol: scene.solver.tolerances.rtol,

@@ -17,7 +17,8 @@ pub mod shard;
 pub mod table;
 
 use crate::history::Recording;
-use crate::impact::simulate;
+use crate::accuracy::ReferenceDetail;
+use crate::impact::{Options, simulate_with};
 use crate::law::LawKind;
 use crate::output::text::{MESSAGE_CHARS, cut};
 use crate::scene::{Scene, SceneError};
@@ -165,7 +166,9 @@ impl Sweep {
         let (values, law) = self.point(index);
         let law = self.law_name(law);
         let scene = self.scene_text(index).and_then(|text| Scene::parse(&text, &self.path).map_err(scene_message));
-        let simulation = scene.and_then(|scene| simulate(&scene, Recording::Off).map_err(|error| error.to_string()));
+        // A row shows one reference value, the exact restitution: the quadratures of the others are not computed.
+        let options = Options { recording: Recording::Off, reference: ReferenceDetail::Restitution };
+        let simulation = scene.and_then(|scene| simulate_with(&scene, options).map_err(|error| error.to_string()));
         let (status, results) = match simulation {
             Ok(simulation) => {
                 let status = if simulation.report.contact.separated { Status::Ok } else { Status::NotSeparated };
