@@ -91,12 +91,7 @@ fn exact(setup: &Setup, separation: Separation) -> Option<(ContactReference, &'s
 }
 
 /// Exact values for this contact (SI units) and the relative errors of `measured` against them.
-pub fn reference(
-    scene: &Scene,
-    setup: &Setup,
-    measured: Measured,
-    detail: ReferenceDetail,
-) -> Option<ReferenceReport> {
+pub fn reference(scene: &Scene, setup: &Setup, measured: Measured, detail: ReferenceDetail) -> Option<ReferenceReport> {
     let (exact, source) = match detail {
         ReferenceDetail::Off => return None,
         ReferenceDetail::Full => exact(setup, scene.contact.separation)?,

@@ -10,8 +10,10 @@ use nalgebra::Vector3;
 pub struct Body {
     /// Display name ("body 1" by default).
     pub name: String,
-    /// Mass in kg; `f64::INFINITY` for an immovable body.
+    /// Mass in kg; `f64::INFINITY` for an immovable body (derived from `density` when the scene gives that).
     pub mass: f64,
+    /// The scene's `density` in kg/m^3, when the mass comes from it ((4/3) pi r^3 density).
+    pub density: Option<f64>,
     /// Radius in m; `f64::INFINITY` for a flat wall.
     pub radius: f64,
     /// Velocity of the centre of mass before contact, m/s.
@@ -23,6 +25,8 @@ pub struct Body {
     /// Moment of inertia about any axis through the centre, kg m²: the scene's `inertia`, or (2/5) m r² for a solid
     /// sphere; infinite for an immovable body and for a flat body (a wall translates but does not rotate).
     pub inertia: f64,
+    /// The scene's `inertia`, when given (otherwise `inertia` is the solid sphere's).
+    pub inertia_given: Option<f64>,
     /// Young's modulus in Pa (`f64::INFINITY` for a rigid body); needed only for Hertz stiffness.
     pub young: Option<f64>,
     /// Poisson's ratio; needed only for Hertz stiffness.
@@ -30,6 +34,15 @@ pub struct Body {
 }
 
 impl Body {
+    /// Re-derives what follows from the written values: the mass from `density` and the radius, the inertia of a
+    /// solid sphere unless one was given. (A sweep that changes a radius or a mass calls this.)
+    pub fn resolve(&mut self) {
+        if let Some(density) = self.density {
+            self.mass = density * 4.0 / 3.0 * std::f64::consts::PI * self.radius.powi(3);
+        }
+        self.inertia = self.inertia_given.unwrap_or_else(|| Body::solid_sphere_inertia(self.mass, self.radius));
+    }
+
     /// 1/m in 1/kg: zero for an immovable body.
     pub fn inverse_mass(&self) -> f64 {
         1.0 / self.mass

@@ -81,9 +81,21 @@ pub fn simulate(scene: &Scene, recording: Recording) -> Result<Simulation, Simul
 
 /// Simulates the scene's impact, computing what `options` ask for.
 pub fn simulate_with(scene: &Scene, options: Options) -> Result<Simulation, SimulationError> {
-    let recording = options.recording;
     let clock = Instant::now();
     let setup = Setup::new(scene).map_err(SimulationError::Setup)?;
+    simulate_prepared(scene, &setup, options, clock)
+}
+
+/// Simulates the impact of a scene whose [`Setup`] is already resolved (a sweep's checked point); `clock` started
+/// when the run did, for the report's wall time.
+pub fn simulate_prepared(
+    scene: &Scene,
+    setup: &Setup,
+    options: Options,
+    clock: Instant,
+) -> Result<Simulation, SimulationError> {
+    let recording = options.recording;
+    let setup = *setup;
     let (outcome, history) = match setup.motion {
         Motion::Normal => run(&NormalContact::new(&scene.bodies, &setup), scene, setup.contact_time, recording)?,
         Motion::Full => run(&PairContact::new(&scene.bodies, &setup), scene, setup.contact_time, recording)?,

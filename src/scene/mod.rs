@@ -5,6 +5,7 @@
 
 mod error;
 mod file;
+mod rules;
 mod validate;
 
 pub use error::SceneError;
@@ -46,6 +47,18 @@ pub enum StiffnessSpec {
     Hertz,
     /// A given K in N/m^n.
     Value(f64),
+}
+
+impl StiffnessSpec {
+    /// The spec a scene's `stiffness` value writes: `"hertz"` or a number; `Err` gives what was written instead.
+    pub fn written(value: &toml::Value) -> Result<StiffnessSpec, String> {
+        match value {
+            toml::Value::String(s) if s == "hertz" => Ok(StiffnessSpec::Hertz),
+            toml::Value::Float(k) => Ok(StiffnessSpec::Value(*k)),
+            toml::Value::Integer(k) => Ok(StiffnessSpec::Value(*k as f64)),
+            other => Err(other.to_string()),
+        }
+    }
 }
 
 /// The `[solver]` table.
@@ -92,8 +105,10 @@ pub struct ContactSpec {
     pub law: LawKind,
     pub damping: DampingSpec,
     pub stiffness: StiffnessSpec,
-    /// n in K d^n.
+    /// n in K d^n, resolved: the written one, or the law's (1 for Kelvin–Voigt, 3/2 otherwise).
     pub exponent: f64,
+    /// The scene's `exponent`, when written.
+    pub exponent_given: Option<f64>,
     pub separation: Separation,
     /// Coulomb friction coefficient mu (0: smooth).
     pub friction: f64,
@@ -101,8 +116,10 @@ pub struct ContactSpec {
     pub tangential_stiffness: TangentialStiffnessSpec,
     /// Damping ratio of the tangential spring (0: none): c_t = 2 ratio sqrt(k_t m_t).
     pub tangential_damping: f64,
-    /// The scene's unit normal (body 1 -> body 2), if it gave one.
+    /// The scene's unit normal (body 1 -> body 2), if it gave one (`normal_given` normalised).
     pub normal: Option<Vector3<f64>>,
+    /// The scene's `normal` as written.
+    pub normal_given: Option<Vector3<f64>>,
 }
 
 /// The `[output]` table: files a run writes, relative to the current folder.
@@ -118,7 +135,35 @@ pub struct OutputSpec {
     pub plots_line: Option<usize>,
 }
 
+impl ContactSpec {
+    /// Re-derives the exponent and the unit normal from the written values.
+    pub fn resolve(&mut self) {
+        self.exponent = match self.law.family() {
+            crate::law::Family::Linear => 1.0,
+            _ => self.exponent_given.unwrap_or(1.5),
+        };
+        self.normal = self.normal_given.map(|n| n / n.norm());
+    }
+}
+
 impl Scene {
+    /// Re-derives every value that follows from written ones (masses from densities, inertias, the exponent, the
+    /// unit normal), after a sweep has set some of them.
+    pub fn resolve(&mut self) {
+        for body in &mut self.bodies {
+            body.resolve();
+        }
+        self.contact.resolve();
+    }
+
+    /// Checks every value rule of a scene (ranges, and the rules between keys) and the physics-level rules of
+    /// [`crate::setup::Setup`]: the same rules [`Scene::parse`] applies, on a scene already typed (a sweep's point).
+    /// The error names the key; it has no file or line.
+    pub fn check(&self) -> Result<crate::setup::Setup, crate::setup::SetupError> {
+        rules::check(self)?;
+        crate::setup::Setup::new(self)
+    }
+
     /// Reads and validates a scene file.
     pub fn load(path: &Path) -> Result<Scene, SceneError> {
         let text = std::fs::read_to_string(path)
@@ -129,5 +174,11 @@ impl Scene {
     /// Validates scene text; `path` names the source in errors and gives the default title.
     pub fn parse(text: &str, path: &Path) -> Result<Scene, SceneError> {
         validate::scene(text, path)
+    }
+
+    /// Reads scene text into a typed scene without checking its values (only its form: TOML syntax, known keys,
+    /// types, what must be there): what a sweep applies its points to before [`Scene::check`] checks each one.
+    pub fn convert(text: &str, path: &Path) -> Result<Scene, SceneError> {
+        validate::convert(text, path).map(|(scene, _)| scene)
     }
 }

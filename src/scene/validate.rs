@@ -1,4 +1,7 @@
-//! From the raw file to a checked [`Scene`]: every rule of interface.md, each failure naming key and line.
+//! From the raw file to a checked [`Scene`], each failure naming file, key and line: first the file's form is
+//! converted (TOML syntax, known keys, value types, what must be there) into a typed scene, then every value rule is
+//! checked on it ([`super::rules`], the same rules a sweep's points obey), then the physics-level rules of
+//! [`Setup`]. Lines come from the spans the conversion records for every key.
 
 use super::file::{At, RawBody, RawContact, RawOutput, RawScene, RawSolver};
 use super::{
@@ -6,18 +9,19 @@ use super::{
 };
 use crate::body::Body;
 use crate::integrate::Tolerances;
-use crate::law::damping::{MapError, check_restitution};
-use crate::law::{Family, LawKind, Separation};
+use crate::law::{LawKind, Separation};
 use crate::output::{files, text};
 use crate::setup::Setup;
 use nalgebra::Vector3;
+use std::collections::HashMap;
 use std::ops::Range;
 use std::path::Path;
 
-/// Where errors point: the file and its text (for lines).
+/// Where errors point: the file and its text (for lines), and the line of every key the conversion met.
 struct Source<'a> {
     text: &'a str,
     file: String,
+    lines: std::cell::RefCell<HashMap<String, usize>>,
 }
 
 type Checked<T> = Result<T, SceneError>;
@@ -26,6 +30,18 @@ impl Source<'_> {
     fn line(&self, span: &Range<usize>) -> usize {
         let start = span.start.min(self.text.len());
         self.text[..start].matches('\n').count() + 1
+    }
+
+    /// Records where `key` is written, for the rules' errors.
+    fn note(&self, key: &str, span: &Range<usize>) {
+        self.lines.borrow_mut().insert(key.to_string(), self.line(span));
+    }
+
+    /// A broken rule, located: the key's recorded line, or the line its name is found on (for a key not written, its
+    /// table's header).
+    fn located(&self, error: crate::setup::SetupError) -> SceneError {
+        let line = self.lines.borrow().get(&error.key).copied().or_else(|| self.line_of_key(&error.key));
+        SceneError { file: self.file.clone(), key: Some(error.key), line, message: error.message, form: false }
     }
 
     fn error(&self, key: &str, span: Option<&Range<usize>>, message: impl Into<String>) -> SceneError {
@@ -116,54 +132,16 @@ fn split_key(key: &str) -> (&str, Option<usize>, &str) {
     }
 }
 
-/// What a number may be.
-#[derive(Clone, Copy)]
-enum Allowed {
-    /// Finite and > 0.
-    Positive,
-    /// > 0, `+inf` allowed (mass, radius, young).
-    PositiveOrInfinite,
-    /// Finite and >= 0.
-    NonNegative,
-    /// In [0, 1].
-    Fraction,
-    /// Finite.
-    Any,
+/// A number as written, its line recorded.
+fn number(src: &Source, key: &str, value: &At<f64>) -> f64 {
+    src.note(key, &value.span());
+    *value.get_ref()
 }
 
-fn number(src: &Source, key: &str, value: &At<f64>, range: Allowed) -> Checked<f64> {
-    let x = *value.get_ref();
-    let span = Some(value.span());
-    let span = span.as_ref();
-    if x.is_nan() {
-        return Err(src.error(key, span, "NaN is not a valid value"));
-    }
-    if x == f64::NEG_INFINITY {
-        return Err(src.error(key, span, "-inf is not a valid value"));
-    }
-    let ok = match range {
-        Allowed::Positive => x.is_finite() && x > 0.0,
-        Allowed::PositiveOrInfinite => x > 0.0,
-        Allowed::NonNegative => x.is_finite() && x >= 0.0,
-        Allowed::Fraction => (0.0..=1.0).contains(&x),
-        Allowed::Any => x.is_finite(),
-    };
-    if ok {
-        return Ok(x);
-    }
-    let expected = match range {
-        Allowed::Positive => "a finite number > 0",
-        Allowed::PositiveOrInfinite => "a number > 0 (or inf)",
-        Allowed::NonNegative => "a finite number >= 0",
-        Allowed::Fraction => "a number in [0, 1]",
-        Allowed::Any => "a finite number",
-    };
-    let got = if x.is_infinite() { "inf".to_string() } else { x.to_string() };
-    Err(src.error(key, span, format!("expected {expected}, got {got}")))
-}
-
+/// A vector as written: three numbers (their values are the rules' business), its line recorded.
 fn vector(src: &Source, key: &str, value: &At<Vec<f64>>) -> Checked<Vector3<f64>> {
     let span = value.span();
+    src.note(key, &span);
     let items = value.get_ref();
     if items.len() != 3 {
         return Err(src.error(
@@ -172,18 +150,33 @@ fn vector(src: &Source, key: &str, value: &At<Vec<f64>>) -> Checked<Vector3<f64>
             format!("expected [x, y, z] (3 numbers), got {} numbers", items.len()),
         ));
     }
-    for (i, x) in items.iter().enumerate() {
-        if !x.is_finite() {
-            return Err(src.error(key, Some(&span), format!("component {i} must be a finite number, got {x}")));
-        }
-    }
     Ok(Vector3::new(items[0], items[1], items[2]))
 }
 
 /// Parses and checks a whole scene.
 pub fn scene(text: &str, path: &Path) -> Checked<Scene> {
-    let src = Source { text, file: path.display().to_string() };
-    let raw: RawScene = toml::from_str(text).map_err(|error| parse_error(&src, &error))?;
+    let src = source(text, path);
+    let scene = convert_in(&src)?;
+    super::rules::check(&scene).map_err(|error| src.located(error))?;
+    Setup::new(&scene).map_err(|error| src.located(error))?;
+    Ok(scene)
+}
+
+/// The typed scene of `text` with its form checked and its values not (see [`Scene::convert`]), and the line of
+/// every key written.
+pub fn convert(text: &str, path: &Path) -> Checked<(Scene, HashMap<String, usize>)> {
+    let src = source(text, path);
+    let scene = convert_in(&src)?;
+    Ok((scene, src.lines.into_inner()))
+}
+
+fn source<'a>(text: &'a str, path: &Path) -> Source<'a> {
+    Source { text, file: path.display().to_string(), lines: Default::default() }
+}
+
+fn convert_in(src: &Source) -> Checked<Scene> {
+    let path = Path::new(&src.file);
+    let raw: RawScene = toml::from_str(src.text).map_err(|error| parse_error(src, &error))?;
     let title = match &raw.title {
         Some(title) => title.get_ref().clone(),
         None => path.file_stem().map_or_else(|| "scene".into(), |s| s.to_string_lossy().into_owned()),
@@ -199,19 +192,16 @@ pub fn scene(text: &str, path: &Path) -> Checked<Scene> {
             format!("expected exactly two [[bodies]] (chains of more are not supported yet), got {n}"),
         ));
     }
-    let first = body(&src, 0, &bodies.get_ref()[0])?;
-    let second = body(&src, 1, &bodies.get_ref()[1])?;
+    let first = body(src, 0, &bodies.get_ref()[0])?;
+    let second = body(src, 1, &bodies.get_ref()[1])?;
     let Some(contact) = &raw.contact else {
         return Err(src.error("contact", None, "missing: give a [contact] table with at least `law`"));
     };
-    let contact = contact_spec(&src, contact)?;
-    let solver = raw.solver.as_ref().map_or(Ok(SolverSpec::default()), |s| solver(&src, s.get_ref()))?;
-    let output = raw.output.as_ref().map_or(Ok(OutputSpec::default()), |o| output(&src, o.get_ref()))?;
-    let scene = Scene { title, bodies: [first, second], contact, solver, output };
-    Setup::new(&scene).map_err(|error| {
-        let line = src.line_of_key(&error.key);
-        SceneError { file: src.file.clone(), key: Some(error.key), line, message: error.message, form: false }
-    })?;
+    let contact = contact_spec(src, contact)?;
+    let solver = raw.solver.as_ref().map_or(Ok(SolverSpec::default()), |s| solver(src, s.get_ref()))?;
+    let output = raw.output.as_ref().map_or(Ok(OutputSpec::default()), |o| output(src, o.get_ref()))?;
+    let mut scene = Scene { title, bodies: [first, second], contact, solver, output };
+    scene.resolve();
     Ok(scene)
 }
 
@@ -230,36 +220,16 @@ fn body(src: &Source, i: usize, raw: &At<RawBody>) -> Checked<Body> {
     let raw = raw.get_ref();
     let missing = |leaf: &str, what: &str| src.error(&key(leaf), Some(&table), format!("missing: {what}"));
     let radius = match &raw.radius {
-        Some(r) => number(src, &key("radius"), r, Allowed::PositiveOrInfinite)?,
+        Some(r) => number(src, &key("radius"), r),
         None => return Err(missing("radius", "give `radius` in m (inf for a flat wall)")),
     };
-    let mass = match (&raw.mass, &raw.density) {
+    let (mass, density) = match (&raw.mass, &raw.density) {
         (Some(_), Some(d)) => {
             return Err(src.error(&key("density"), Some(&d.span()), "give `mass` or `density`, not both"));
         }
-        (Some(m), None) => number(src, &key("mass"), m, Allowed::PositiveOrInfinite)?,
-        (None, Some(d)) => {
-            let density = number(src, &key("density"), d, Allowed::Positive)?;
-            if radius.is_infinite() {
-                return Err(src.error(
-                    &key("density"),
-                    Some(&d.span()),
-                    "`density` needs a finite radius: a flat body's mass would be infinite (give `mass`)",
-                ));
-            }
-            let mass = density * 4.0 / 3.0 * std::f64::consts::PI * radius.powi(3);
-            if !(mass.is_finite() && mass > 0.0) {
-                return Err(src.error(
-                    &key("density"),
-                    Some(&d.span()),
-                    format!(
-                        "the mass (4/3) pi r^3 density = {mass:e} kg of this radius and density is outside double \
-                         precision: give `mass` or check the radius"
-                    ),
-                ));
-            }
-            mass
-        }
+        (Some(m), None) => (number(src, &key("mass"), m), None),
+        // The mass follows from the density when the scene is resolved.
+        (None, Some(d)) => (f64::NAN, Some(number(src, &key("density"), d))),
         (None, None) => return Err(missing("mass", "give `mass` in kg (inf for immovable) or `density` in kg/m^3")),
     };
     let velocity = match &raw.velocity {
@@ -267,46 +237,29 @@ fn body(src: &Source, i: usize, raw: &At<RawBody>) -> Checked<Body> {
         None => return Err(missing("velocity", "give `velocity = [vx, vy, vz]` in m/s")),
     };
     let position = raw.position.as_ref().map(|p| vector(src, &key("position"), p)).transpose()?;
-    let angular_velocity = match &raw.angular_velocity {
-        Some(w) => {
-            let spin = vector(src, &key("angular_velocity"), w)?;
-            if spin != Vector3::zeros() && radius.is_infinite() {
-                return Err(src.error(
-                    &key("angular_velocity"),
-                    Some(&w.span()),
-                    "a flat body (radius = inf) cannot spin: use [0, 0, 0] or leave it out",
-                ));
-            }
-            spin
-        }
-        None => Vector3::zeros(),
-    };
-    let inertia = match &raw.inertia {
-        None => Body::solid_sphere_inertia(mass, radius),
-        Some(i) => {
-            let inertia = number(src, &key("inertia"), i, Allowed::Positive)?;
-            let why = if mass.is_infinite() {
-                Some("an immovable body (mass = inf) does not rotate")
-            } else if radius.is_infinite() {
-                Some("a flat body (radius = inf) does not rotate")
-            } else {
-                None
-            };
-            if let Some(why) = why {
-                return Err(src.error(&key("inertia"), Some(&i.span()), format!("{why}: leave `inertia` out")));
-            }
-            inertia
-        }
-    };
-    let young = raw.young.as_ref().map(|e| number(src, &key("young"), e, Allowed::PositiveOrInfinite)).transpose()?;
-    let poisson = raw.poisson.as_ref().map(|nu| number(src, &key("poisson"), nu, Allowed::Any)).transpose()?;
-    if let (Some(nu), Some(at)) = (poisson, &raw.poisson)
-        && !(nu > -1.0 && nu <= 0.5)
-    {
-        return Err(src.error(&key("poisson"), Some(&at.span()), format!("expected a number in (-1, 0.5], got {nu}")));
-    }
+    let angular_velocity = raw
+        .angular_velocity
+        .as_ref()
+        .map(|w| vector(src, &key("angular_velocity"), w))
+        .transpose()?
+        .unwrap_or_default();
+    let inertia_given = raw.inertia.as_ref().map(|i| number(src, &key("inertia"), i));
+    let young = raw.young.as_ref().map(|e| number(src, &key("young"), e));
+    let poisson = raw.poisson.as_ref().map(|nu| number(src, &key("poisson"), nu));
     let name = raw.name.as_ref().map_or_else(|| format!("body {}", i + 1), |n| n.get_ref().clone());
-    Ok(Body { name, mass, radius, velocity, position, angular_velocity, inertia, young, poisson })
+    Ok(Body {
+        name,
+        mass,
+        density,
+        radius,
+        velocity,
+        position,
+        angular_velocity,
+        inertia: f64::NAN,
+        inertia_given,
+        young,
+        poisson,
+    })
 }
 
 fn contact_spec(src: &Source, raw: &At<RawContact>) -> Checked<ContactSpec> {
@@ -326,8 +279,37 @@ fn contact_spec(src: &Source, raw: &At<RawContact>) -> Checked<ContactSpec> {
             format!("unknown law `{}`; expected one of {}", cut(law_name.get_ref()), LawKind::names().join(", ")),
         ));
     };
-    let damping = damping_spec(src, law, raw, &table)?;
-    let (stiffness, exponent) = stiffness_and_exponent(src, law, raw, &table)?;
+    let restitution = raw.restitution.as_ref().map(|e| number(src, "contact.restitution", e));
+    let damping_value = raw.damping.as_ref().map(|c| number(src, "contact.damping", c));
+    let damping = match (restitution, damping_value) {
+        (Some(_), Some(_)) => {
+            return Err(src.error(
+                "contact.damping",
+                raw.damping.as_ref().map(|c| c.span()).as_ref(),
+                "give `restitution` or `damping`, not both",
+            ));
+        }
+        (Some(e), None) => DampingSpec::Restitution(e),
+        (None, Some(c)) => DampingSpec::Parameter(c),
+        (None, None) => DampingSpec::None,
+    };
+    let stiffness = match &raw.stiffness {
+        None => StiffnessSpec::Hertz,
+        Some(value) => StiffnessSpec::written(value.get_ref()).map_or_else(
+            |other| {
+                Err(src.error(
+                    "contact.stiffness",
+                    Some(&value.span()),
+                    format!("expected \"hertz\" or a number in N/m^n, got {}", cut(&other)),
+                ))
+            },
+            |spec| {
+                src.note("contact.stiffness", &value.span());
+                Ok(spec)
+            },
+        )?,
+    };
+    let exponent_given = raw.exponent.as_ref().map(|n| number(src, "contact.exponent", n));
     let separation = match &raw.separation {
         None => Separation::Penetration,
         Some(s) => match s.get_ref().as_str() {
@@ -342,16 +324,15 @@ fn contact_spec(src: &Source, raw: &At<RawContact>) -> Checked<ContactSpec> {
             }
         },
     };
-    let friction =
-        raw.friction.as_ref().map(|f| number(src, "contact.friction", f, Allowed::NonNegative)).transpose()?;
+    let friction = raw.friction.as_ref().map_or(0.0, |f| number(src, "contact.friction", f));
     let tangential_stiffness = match &raw.tangential_stiffness {
         None => TangentialStiffnessSpec::Mindlin,
         Some(value) => match value.get_ref() {
             toml::Value::String(s) if s == "mindlin" => TangentialStiffnessSpec::Mindlin,
             toml::Value::Float(_) | toml::Value::Integer(_) => {
+                src.note("contact.tangential_stiffness", &value.span());
                 let k = value.get_ref().as_float().or_else(|| value.get_ref().as_integer().map(|i| i as f64));
-                let k = At::new(value.span(), k.unwrap_or(f64::NAN));
-                TangentialStiffnessSpec::Value(number(src, "contact.tangential_stiffness", &k, Allowed::Positive)?)
+                TangentialStiffnessSpec::Value(k.unwrap_or(f64::NAN))
             }
             other => {
                 return Err(src.error(
@@ -362,131 +343,22 @@ fn contact_spec(src: &Source, raw: &At<RawContact>) -> Checked<ContactSpec> {
             }
         },
     };
-    let tangential_damping = raw
-        .tangential_damping
-        .as_ref()
-        .map(|c| number(src, "contact.tangential_damping", c, Allowed::NonNegative))
-        .transpose()?
-        .unwrap_or(0.0);
-    let normal = match &raw.normal {
-        Some(n) => {
-            let v = vector(src, "contact.normal", n)?;
-            let length = v.norm();
-            if length == 0.0 || !length.is_finite() {
-                return Err(src.error("contact.normal", Some(&n.span()), "the normal must be a non-zero vector"));
-            }
-            Some(v / length)
-        }
-        None => None,
-    };
+    let tangential_damping =
+        raw.tangential_damping.as_ref().map_or(0.0, |c| number(src, "contact.tangential_damping", c));
+    let normal_given = raw.normal.as_ref().map(|n| vector(src, "contact.normal", n)).transpose()?;
     Ok(ContactSpec {
         law,
         damping,
         stiffness,
-        exponent,
+        exponent: f64::NAN,
+        exponent_given,
         separation,
-        friction: friction.unwrap_or(0.0),
+        friction,
         tangential_stiffness,
         tangential_damping,
-        normal,
+        normal: None,
+        normal_given,
     })
-}
-
-fn damping_spec(src: &Source, law: LawKind, raw: &RawContact, table: &Range<usize>) -> Checked<DampingSpec> {
-    let restitution =
-        raw.restitution.as_ref().map(|e| number(src, "contact.restitution", e, Allowed::Fraction)).transpose()?;
-    let damping = raw.damping.as_ref().map(|c| number(src, "contact.damping", c, Allowed::NonNegative)).transpose()?;
-    let name = law.name();
-    let restitution_span = raw.restitution.as_ref().map(|e| e.span());
-    match (law.family(), restitution, damping) {
-        (_, Some(_), Some(_)) => Err(src.error(
-            "contact.damping",
-            raw.damping.as_ref().map(|c| c.span()).as_ref(),
-            "give `restitution` or `damping`, not both",
-        )),
-        (Family::Elastic, None, None) => Ok(DampingSpec::None),
-        (Family::Elastic, None, Some(_)) => Err(src.error(
-            "contact.damping",
-            raw.damping.as_ref().map(|c| c.span()).as_ref(),
-            "the elastic law `hertz` takes no damping",
-        )),
-        (Family::Viscoelastic, Some(_), None) => Err(src.error(
-            "contact.restitution",
-            restitution_span.as_ref(),
-            "`brilliantov` takes no `restitution` (its e depends on impact speed): give `damping` A in s",
-        )),
-        (_, None, None) => Err(src.error(
-            "contact.restitution",
-            Some(table),
-            format!("missing: `{name}` needs `restitution` (nominal e) or `damping` ({})", law.info().damping_units),
-        )),
-        (_, None, Some(c)) => Ok(DampingSpec::Parameter(c)),
-        (_, Some(e), None) => match check_restitution(law, e) {
-            Ok(()) => Ok(DampingSpec::Restitution(e)),
-            Err(MapError::NoMap) => Err(src.error(
-                "contact.restitution",
-                restitution_span.as_ref(),
-                format!("`{name}` is elastic: restitution must be 1 (or left out), got {e}"),
-            )),
-            Err(MapError::UndefinedAtZero) => Err(src.error(
-                "contact.restitution",
-                restitution_span.as_ref(),
-                format!("the map of `{name}` ({}) is undefined at e = 0", law.info().map),
-            )),
-        },
-    }
-}
-
-fn stiffness_and_exponent(
-    src: &Source,
-    law: LawKind,
-    raw: &RawContact,
-    table: &Range<usize>,
-) -> Checked<(StiffnessSpec, f64)> {
-    let stiffness = match &raw.stiffness {
-        None => StiffnessSpec::Hertz,
-        Some(value) => match value.get_ref() {
-            toml::Value::String(s) if s == "hertz" => StiffnessSpec::Hertz,
-            toml::Value::Float(_) | toml::Value::Integer(_) => {
-                let k = value.get_ref().as_float().or_else(|| value.get_ref().as_integer().map(|i| i as f64));
-                let k = At::new(value.span(), k.unwrap_or(f64::NAN));
-                StiffnessSpec::Value(number(src, "contact.stiffness", &k, Allowed::Positive)?)
-            }
-            other => {
-                return Err(src.error(
-                    "contact.stiffness",
-                    Some(&value.span()),
-                    format!("expected \"hertz\" or a number in N/m^n, got {}", cut(&other.to_string())),
-                ));
-            }
-        },
-    };
-    let exponent = raw.exponent.as_ref().map(|n| number(src, "contact.exponent", n, Allowed::Positive)).transpose()?;
-    let exponent_span = raw.exponent.as_ref().map(|n| n.span());
-    let bad_exponent = |message: &str| src.error("contact.exponent", exponent_span.as_ref(), message);
-    let family = law.family();
-    if matches!(family, Family::Tsuji | Family::Viscoelastic) && exponent.is_some() {
-        return Err(bad_exponent(&format!("`{}` fixes the exponent at 3/2: leave `exponent` out", law.name())));
-    }
-    if family == Family::Linear {
-        if stiffness == StiffnessSpec::Hertz {
-            return Err(src.error(
-                "contact.stiffness",
-                Some(&raw.stiffness.as_ref().map_or_else(|| table.clone(), |s| s.span())),
-                "`kelvin-voigt` needs a numeric `stiffness` k in N/m",
-            ));
-        }
-        if exponent.is_some_and(|n| n != 1.0) {
-            return Err(bad_exponent("`kelvin-voigt` is linear: `exponent` must be 1 (or left out)"));
-        }
-        return Ok((stiffness, 1.0));
-    }
-    if stiffness == StiffnessSpec::Hertz && exponent.is_some_and(|n| n != 1.5) {
-        return Err(bad_exponent(
-            "stiffness = \"hertz\" fixes the exponent at 1.5: give a numeric stiffness for another",
-        ));
-    }
-    Ok((stiffness, exponent.unwrap_or(1.5)))
 }
 
 fn solver(src: &Source, raw: &RawSolver) -> Checked<SolverSpec> {
@@ -503,27 +375,12 @@ fn solver(src: &Source, raw: &RawSolver) -> Checked<SolverSpec> {
             })?
         }
     };
-    Ok(SolverSpec { method, tolerances: tolerances(src, raw)? })
-}
-
-fn tolerances(src: &Source, raw: &RawSolver) -> Checked<Tolerances> {
     let defaults = Tolerances::default();
-    let tolerance = |key: &str, value: &Option<At<f64>>, default: f64| -> Checked<f64> {
-        let Some(value) = value else { return Ok(default) };
-        let x = number(src, key, value, Allowed::Positive)?;
-        if !(1e-14..=1e-2).contains(&x) {
-            return Err(src.error(
-                key,
-                Some(&value.span()),
-                format!("expected a tolerance in [1e-14, 1e-2], got {x:e}"),
-            ));
-        }
-        Ok(x)
+    let tolerances = Tolerances {
+        rtol: raw.rtol.as_ref().map_or(defaults.rtol, |value| number(src, "solver.rtol", value)),
+        atol: raw.atol.as_ref().map_or(defaults.atol, |value| number(src, "solver.atol", value)),
     };
-    Ok(Tolerances {
-        rtol: tolerance("solver.rtol", &raw.rtol, defaults.rtol)?,
-        atol: tolerance("solver.atol", &raw.atol, defaults.atol)?,
-    })
+    Ok(SolverSpec { method, tolerances })
 }
 
 /// The `[output]` paths: a series must name a file (`-` is standard output), plots a folder.

@@ -15,6 +15,8 @@
 //!   perpendicular to the normal when it has none). For a sphere on a wall at rest it is the angle of incidence.
 
 use super::SweepError;
+use crate::scene::{DampingSpec, Scene, StiffnessSpec, TangentialStiffnessSpec};
+use nalgebra::Vector3;
 use std::fmt;
 use toml::{Table, Value};
 
@@ -268,45 +270,107 @@ impl SceneKey {
 
     /// Turns the body's velocity to `degrees` from the contact normal, keeping its speed (see the module doc).
     fn set_incidence(&self, scene: &mut Table, degrees: f64) -> Result<(), String> {
-        if !(0.0..90.0).contains(&degrees) {
-            return Err(format!("an angle of incidence in [0, 90) degrees, got {degrees}"));
-        }
         let normal = scene
             .get("contact")
             .and_then(|c| c.get("normal"))
             .map(|n| numbers(n).ok_or("`contact.normal` is not [x, y, z]"))
             .transpose()?
             .unwrap_or([1.0, 0.0, 0.0]);
-        let length = norm(normal);
-        if !(length > 0.0 && length.is_finite()) {
-            return Err("`contact.normal` is not a direction".into());
-        }
-        let n = normal.map(|c| c / length);
         let table = self.table_mut(scene)?;
         let velocity = table.get("velocity").and_then(numbers).ok_or("the body's `velocity` is not [x, y, z]")?;
-        let speed = norm(velocity);
-        if speed == 0.0 || !speed.is_finite() {
-            return Err("the body is at rest: its speed sets the incidence's speed".into());
-        }
-        let along = dot(velocity, n);
-        let mut across = [velocity[0] - along * n[0], velocity[1] - along * n[1], velocity[2] - along * n[2]];
-        if norm(across) <= 1e-12 * speed {
-            // The coordinate axis most perpendicular to the normal, made perpendicular.
-            let axis = (0..3).min_by(|&i, &j| n[i].abs().total_cmp(&n[j].abs())).unwrap_or(0);
-            across = [0.0; 3];
-            across[axis] = 1.0;
-            let along = dot(across, n);
-            across = [across[0] - along * n[0], across[1] - along * n[1], across[2] - along * n[2]];
-        }
-        let across_length = norm(across);
-        let t = across.map(|c| c / across_length);
-        // Body 1 moves towards body 2 along +n, body 2 towards body 1 along -n.
-        let towards = if self.body == Some(0) { 1.0 } else { -1.0 };
-        let (c, s) = (degrees.to_radians().cos(), degrees.to_radians().sin());
-        let turned: Vec<Value> = (0..3).map(|i| Value::Float(speed * (towards * c * n[i] + s * t[i]))).collect();
+        let body = self.body.unwrap_or(0);
+        let turned: Vec<Value> = turned(normal, velocity, body, degrees)?.iter().map(|&c| Value::Float(c)).collect();
         table.insert("velocity".into(), Value::Array(turned));
         Ok(())
     }
+
+    /// Sets this key to `value` on a typed scene, with exactly the switching rules of [`SceneKey::set`] (a point of a
+    /// sweep applied without writing and re-reading TOML). The caller re-derives the scene ([`Scene::resolve`]) and
+    /// checks it ([`Scene::check`]) after setting every key of the point.
+    pub fn apply(&self, scene: &mut Scene, value: f64) -> Result<(), String> {
+        match (self.table, self.body) {
+            ("bodies", Some(i)) => {
+                if self.is_incidence() {
+                    let normal = scene.contact.normal_given.unwrap_or_else(Vector3::x);
+                    let velocity = scene.bodies[i].velocity;
+                    scene.bodies[i].velocity =
+                        turned([normal.x, normal.y, normal.z], [velocity.x, velocity.y, velocity.z], i, value)?.into();
+                    return Ok(());
+                }
+                let body = &mut scene.bodies[i];
+                match (self.field, self.component) {
+                    ("radius", None) => body.radius = value,
+                    ("mass", None) => (body.mass, body.density) = (value, None),
+                    ("density", None) => body.density = Some(value),
+                    ("young", None) => body.young = Some(value),
+                    ("poisson", None) => body.poisson = Some(value),
+                    ("inertia", None) => body.inertia_given = Some(value),
+                    ("velocity", Some(j)) => body.velocity[j] = value,
+                    ("angular_velocity", Some(j)) => body.angular_velocity[j] = value,
+                    ("position", Some(j)) => match &mut body.position {
+                        Some(position) => position[j] = value,
+                        None => return Err(format!("the scene has no `{}`", self.parent())),
+                    },
+                    _ => return Err(format!("`{self}` cannot be set")),
+                }
+            }
+            ("contact", _) => {
+                let contact = &mut scene.contact;
+                match (self.field, self.component) {
+                    ("restitution", None) => contact.damping = DampingSpec::Restitution(value),
+                    ("damping", None) => contact.damping = DampingSpec::Parameter(value),
+                    ("stiffness", None) => contact.stiffness = StiffnessSpec::Value(value),
+                    ("exponent", None) => contact.exponent_given = Some(value),
+                    ("friction", None) => contact.friction = value,
+                    ("tangential_stiffness", None) => {
+                        contact.tangential_stiffness = TangentialStiffnessSpec::Value(value)
+                    }
+                    ("tangential_damping", None) => contact.tangential_damping = value,
+                    ("normal", Some(j)) => contact.normal_given.get_or_insert_with(Vector3::x)[j] = value,
+                    _ => return Err(format!("`{self}` cannot be set")),
+                }
+            }
+            ("solver", _) => match self.field {
+                "rtol" => scene.solver.tolerances.rtol = value,
+                "atol" => scene.solver.tolerances.atol = value,
+                _ => return Err(format!("`{self}` cannot be set")),
+            },
+            _ => return Err(format!("`{self}` cannot be set")),
+        }
+        Ok(())
+    }
+}
+
+/// `velocity` turned to `degrees` from `normal` (as written: not yet normalised), keeping its speed, towards the
+/// other body (body 0 moves along +n, body 1 along -n), in the plane of the normal and the velocity's part across it
+/// (the coordinate axis most perpendicular to the normal when it has none).
+fn turned(normal: [f64; 3], velocity: [f64; 3], body: usize, degrees: f64) -> Result<[f64; 3], String> {
+    if !(0.0..90.0).contains(&degrees) {
+        return Err(format!("an angle of incidence in [0, 90) degrees, got {degrees}"));
+    }
+    let length = norm(normal);
+    if !(length > 0.0 && length.is_finite()) {
+        return Err("`contact.normal` is not a direction".into());
+    }
+    let n = normal.map(|c| c / length);
+    let speed = norm(velocity);
+    if speed == 0.0 || !speed.is_finite() {
+        return Err("the body is at rest: its speed sets the incidence's speed".into());
+    }
+    let along = dot(velocity, n);
+    let mut across = [velocity[0] - along * n[0], velocity[1] - along * n[1], velocity[2] - along * n[2]];
+    if norm(across) <= 1e-12 * speed {
+        let axis = (0..3).min_by(|&i, &j| n[i].abs().total_cmp(&n[j].abs())).unwrap_or(0);
+        across = [0.0; 3];
+        across[axis] = 1.0;
+        let along = dot(across, n);
+        across = [across[0] - along * n[0], across[1] - along * n[1], across[2] - along * n[2]];
+    }
+    let across_length = norm(across);
+    let t = across.map(|c| c / across_length);
+    let towards = if body == 0 { 1.0 } else { -1.0 };
+    let (c, s) = (degrees.to_radians().cos(), degrees.to_radians().sin());
+    Ok([0, 1, 2].map(|i| speed * (towards * c * n[i] + s * t[i])))
 }
 
 /// A TOML array of three numbers.

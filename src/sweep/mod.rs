@@ -16,12 +16,13 @@ pub mod merge;
 pub mod shard;
 pub mod table;
 
-use crate::history::Recording;
 use crate::accuracy::ReferenceDetail;
-use crate::impact::{Options, simulate_with};
+use crate::history::Recording;
+use crate::impact::{Options, simulate_prepared};
 use crate::law::LawKind;
 use crate::output::text::{MESSAGE_CHARS, cut};
 use crate::scene::{Scene, SceneError};
+use crate::setup::Setup;
 use grid::Grid;
 use rayon::prelude::*;
 use shard::Shard;
@@ -60,6 +61,8 @@ pub struct Sweep {
     pub grid: Grid,
     /// The laws, in `--law` order; empty to run the scene's own law.
     pub laws: Vec<LawKind>,
+    /// For each law, the typed scene its points are applied to (see [`Sweep::base`]).
+    bases: Vec<Option<Scene>>,
 }
 
 /// The laws named in `--law` (scene spellings), checked.
@@ -108,7 +111,8 @@ impl Sweep {
         for axis in &grid.axes {
             axis.key.check_in(&document)?;
         }
-        let sweep = Sweep { path: path.to_path_buf(), text, document, grid, laws };
+        let mut sweep = Sweep { path: path.to_path_buf(), text, document, grid, laws, bases: Vec::new() };
+        sweep.bases = (0..sweep.law_count()).map(|i| sweep.base(i)).collect();
         match sweep.grid.points().and_then(|points| points.checked_mul(sweep.law_count())) {
             Some(rows) if rows <= MAX_ROWS => Ok(sweep),
             _ => Err(SweepError::Usage(format!("the sweep has more than {MAX_ROWS} rows: split it into several"))),
@@ -163,12 +167,34 @@ impl Sweep {
 
     /// Runs row `index`: validates its scene and simulates it.
     pub fn evaluate(&self, index: usize) -> Row {
+        self.evaluate_by(index, true)
+    }
+
+    /// Row `index` through the document: the point written into the scene's TOML and read back like a file. This
+    /// is what a point means; [`Sweep::evaluate`] applies it to a typed scene instead, and must give the same row
+    /// (the tests hold it to that).
+    pub fn evaluate_written(&self, index: usize) -> Row {
+        self.evaluate_by(index, false)
+    }
+
+    fn evaluate_by(&self, index: usize, typed: bool) -> Row {
+        let clock = std::time::Instant::now();
         let (values, law) = self.point(index);
         let law = self.law_name(law);
-        let scene = self.scene_text(index).and_then(|text| Scene::parse(&text, &self.path).map_err(scene_message));
+        let base = self.bases[index % self.law_count()].as_ref().filter(|_| typed);
+        let prepared = match base {
+            Some(base) => self.typed_point(base, &values),
+            None => self.scene_text(index).and_then(|text| {
+                let scene = Scene::parse(&text, &self.path).map_err(scene_message)?;
+                let setup = Setup::new(&scene).map_err(|error| format!("{}: {}", error.key, error.message))?;
+                Ok((scene, setup))
+            }),
+        };
         // A row shows one reference value, the exact restitution: the quadratures of the others are not computed.
         let options = Options { recording: Recording::Off, reference: ReferenceDetail::Restitution };
-        let simulation = scene.and_then(|scene| simulate_with(&scene, options).map_err(|error| error.to_string()));
+        let simulation = prepared.and_then(|(scene, setup)| {
+            simulate_prepared(&scene, &setup, options, clock).map_err(|error| error.to_string())
+        });
         let (status, results) = match simulation {
             Ok(simulation) => {
                 let status = if simulation.report.contact.separated { Status::Ok } else { Status::NotSeparated };
@@ -177,6 +203,30 @@ impl Sweep {
             Err(why) => (Status::Error(why), vec![Cell::Empty; table::RESULT_COLUMNS.len()]),
         };
         Row { index, status, law, values, results }
+    }
+
+    /// The typed scene a law's rows start from: the document with the law's defaults, converted once; `None` when it
+    /// does not convert (the file leaves out something the points set, say), and the rows take the document path.
+    fn base(&self, law: usize) -> Option<Scene> {
+        let mut document = self.document.clone();
+        if let Some(&law) = self.laws.get(law) {
+            let keys: Vec<_> = self.grid.axes.iter().map(|axis| axis.key.clone()).collect();
+            laws::apply(&mut document, law, &keys).ok()?;
+        }
+        let text = toml::to_string(&document).ok()?;
+        Scene::convert(&text, &self.path).ok()
+    }
+
+    /// A point applied to a law's typed scene and checked by the rules a scene file obeys: the same scene, and the
+    /// same error text, as writing the point into the document and reading it back.
+    fn typed_point(&self, base: &Scene, values: &[f64]) -> Result<(Scene, Setup), String> {
+        let mut scene = base.clone();
+        for (axis, &value) in self.grid.axes.iter().zip(values) {
+            axis.key.apply(&mut scene, value).map_err(|why| format!("{}: {why}", axis.key))?;
+        }
+        scene.resolve();
+        let setup = scene.check().map_err(|error| format!("{}: {}", error.key, error.message))?;
+        Ok((scene, setup))
     }
 
     /// The global indices of the rows of `shard` (all rows without one), in increasing order.

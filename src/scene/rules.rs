@@ -1,0 +1,230 @@
+//! Every value rule of a scene, on the typed scene: number ranges, and the rules between keys (a density needs a
+//! finite radius, a flat body cannot spin, each law's damping, stiffness and exponent...). One set of rules serves
+//! both a scene file (after [`super::validate`] has converted it) and a sweep's point (a typed scene with values
+//! set), so that both obey exactly the same rules. A broken rule names the key; the file and line are added by the
+//! caller that knows them.
+
+use super::{DampingSpec, Scene, StiffnessSpec, TangentialStiffnessSpec};
+use crate::body::Body;
+use crate::law::Family;
+use crate::law::damping::{MapError, check_restitution};
+use crate::setup::SetupError;
+use nalgebra::Vector3;
+
+type Checked = Result<(), SetupError>;
+
+fn fail(key: impl Into<String>, message: impl Into<String>) -> Checked {
+    Err(SetupError { key: key.into(), message: message.into() })
+}
+
+/// What a number may be.
+#[derive(Clone, Copy)]
+pub(super) enum Allowed {
+    /// Finite and > 0.
+    Positive,
+    /// > 0, `+inf` allowed (mass, radius, young).
+    PositiveOrInfinite,
+    /// Finite and >= 0.
+    NonNegative,
+    /// In [0, 1].
+    Fraction,
+    /// Finite.
+    Any,
+}
+
+/// A number as a message shows it: plain for ordinary sizes, in exponent form for huge or tiny ones (never three
+/// hundred digits).
+pub(super) fn shown(x: f64) -> String {
+    let size = x.abs();
+    if x.is_infinite() {
+        if x > 0.0 { "inf".into() } else { "-inf".into() }
+    } else if x == 0.0 || (1e-4..1e6).contains(&size) || x.is_nan() {
+        format!("{x}")
+    } else {
+        format!("{x:e}")
+    }
+}
+
+/// Checks that `x` is what `range` allows; the message says what was expected and what was given.
+pub(super) fn number(key: &str, x: f64, range: Allowed) -> Checked {
+    if x.is_nan() {
+        return fail(key, "NaN is not a valid value");
+    }
+    if x == f64::NEG_INFINITY {
+        return fail(key, "-inf is not a valid value");
+    }
+    let ok = match range {
+        Allowed::Positive => x.is_finite() && x > 0.0,
+        Allowed::PositiveOrInfinite => x > 0.0,
+        Allowed::NonNegative => x.is_finite() && x >= 0.0,
+        Allowed::Fraction => (0.0..=1.0).contains(&x),
+        Allowed::Any => x.is_finite(),
+    };
+    if ok {
+        return Ok(());
+    }
+    let expected = match range {
+        Allowed::Positive => "a finite number > 0",
+        Allowed::PositiveOrInfinite => "a number > 0 (or inf)",
+        Allowed::NonNegative => "a finite number >= 0",
+        Allowed::Fraction => "a number in [0, 1]",
+        Allowed::Any => "a finite number",
+    };
+    fail(key, format!("expected {expected}, got {}", shown(x)))
+}
+
+/// Every component finite.
+fn vector(key: &str, v: &Vector3<f64>) -> Checked {
+    for (i, x) in v.iter().enumerate() {
+        if !x.is_finite() {
+            return fail(key, format!("component {i} must be a finite number, got {}", shown(*x)));
+        }
+    }
+    Ok(())
+}
+
+/// The scene's value rules, in the order a reader meets the keys (body 1, body 2, contact, solver).
+pub fn check(scene: &Scene) -> Checked {
+    for (i, body) in scene.bodies.iter().enumerate() {
+        check_body(i, body)?;
+    }
+    check_contact(scene)?;
+    for (key, x) in [("solver.rtol", scene.solver.tolerances.rtol), ("solver.atol", scene.solver.tolerances.atol)] {
+        number(key, x, Allowed::Positive)?;
+        if !(1e-14..=1e-2).contains(&x) {
+            return fail(key, format!("expected a tolerance in [1e-14, 1e-2], got {x:e}"));
+        }
+    }
+    Ok(())
+}
+
+fn check_body(i: usize, body: &Body) -> Checked {
+    let key = |leaf: &str| format!("bodies.{i}.{leaf}");
+    number(&key("radius"), body.radius, Allowed::PositiveOrInfinite)?;
+    match body.density {
+        Some(density) => {
+            number(&key("density"), density, Allowed::Positive)?;
+            if body.radius.is_infinite() {
+                return fail(
+                    key("density"),
+                    "`density` needs a finite radius: a flat body's mass would be infinite (give `mass`)",
+                );
+            }
+            if !(body.mass.is_finite() && body.mass > 0.0) {
+                return fail(
+                    key("density"),
+                    format!(
+                        "the mass (4/3) pi r^3 density = {:e} kg of this radius and density is outside double \
+                         precision: give `mass` or check the radius",
+                        body.mass
+                    ),
+                );
+            }
+        }
+        None => number(&key("mass"), body.mass, Allowed::PositiveOrInfinite)?,
+    }
+    vector(&key("velocity"), &body.velocity)?;
+    if let Some(position) = &body.position {
+        vector(&key("position"), position)?;
+    }
+    vector(&key("angular_velocity"), &body.angular_velocity)?;
+    if body.angular_velocity != Vector3::zeros() && body.radius.is_infinite() {
+        return fail(key("angular_velocity"), "a flat body (radius = inf) cannot spin: use [0, 0, 0] or leave it out");
+    }
+    if let Some(inertia) = body.inertia_given {
+        number(&key("inertia"), inertia, Allowed::Positive)?;
+        let why = if body.mass.is_infinite() {
+            Some("an immovable body (mass = inf) does not rotate")
+        } else if body.radius.is_infinite() {
+            Some("a flat body (radius = inf) does not rotate")
+        } else {
+            None
+        };
+        if let Some(why) = why {
+            return fail(key("inertia"), format!("{why}: leave `inertia` out"));
+        }
+    }
+    if let Some(young) = body.young {
+        number(&key("young"), young, Allowed::PositiveOrInfinite)?;
+    }
+    if let Some(nu) = body.poisson {
+        number(&key("poisson"), nu, Allowed::Any)?;
+        if !(nu > -1.0 && nu <= 0.5) {
+            return fail(key("poisson"), format!("expected a number in (-1, 0.5], got {}", shown(nu)));
+        }
+    }
+    Ok(())
+}
+
+fn check_contact(scene: &Scene) -> Checked {
+    let contact = &scene.contact;
+    let law = contact.law;
+    let name = law.name();
+    match contact.damping {
+        DampingSpec::Restitution(e) => number("contact.restitution", e, Allowed::Fraction)?,
+        DampingSpec::Parameter(c) => number("contact.damping", c, Allowed::NonNegative)?,
+        DampingSpec::None => {}
+    }
+    match (law.family(), contact.damping) {
+        (Family::Elastic, DampingSpec::None) => {}
+        (Family::Elastic, DampingSpec::Parameter(_)) => {
+            fail("contact.damping", "the elastic law `hertz` takes no damping")?
+        }
+        (Family::Viscoelastic, DampingSpec::Restitution(_)) => fail(
+            "contact.restitution",
+            "`brilliantov` takes no `restitution` (its e depends on impact speed): give `damping` A in s",
+        )?,
+        (_, DampingSpec::None) => fail(
+            "contact.restitution",
+            format!("missing: `{name}` needs `restitution` (nominal e) or `damping` ({})", law.info().damping_units),
+        )?,
+        (_, DampingSpec::Parameter(_)) => {}
+        (_, DampingSpec::Restitution(e)) => match check_restitution(law, e) {
+            Ok(()) => {}
+            Err(MapError::NoMap) => fail(
+                "contact.restitution",
+                format!("`{name}` is elastic: restitution must be 1 (or left out), got {e}"),
+            )?,
+            Err(MapError::UndefinedAtZero) => {
+                fail("contact.restitution", format!("the map of `{name}` ({}) is undefined at e = 0", law.info().map))?
+            }
+        },
+    }
+    if let StiffnessSpec::Value(k) = contact.stiffness {
+        number("contact.stiffness", k, Allowed::Positive)?;
+    }
+    if let Some(n) = contact.exponent_given {
+        number("contact.exponent", n, Allowed::Positive)?;
+    }
+    let exponent = contact.exponent_given;
+    let family = law.family();
+    if matches!(family, Family::Tsuji | Family::Viscoelastic) && exponent.is_some() {
+        return fail("contact.exponent", format!("`{name}` fixes the exponent at 3/2: leave `exponent` out"));
+    }
+    if family == Family::Linear {
+        if contact.stiffness == StiffnessSpec::Hertz {
+            return fail("contact.stiffness", "`kelvin-voigt` needs a numeric `stiffness` k in N/m");
+        }
+        if exponent.is_some_and(|n| n != 1.0) {
+            return fail("contact.exponent", "`kelvin-voigt` is linear: `exponent` must be 1 (or left out)");
+        }
+    } else if contact.stiffness == StiffnessSpec::Hertz && exponent.is_some_and(|n| n != 1.5) {
+        return fail(
+            "contact.exponent",
+            "stiffness = \"hertz\" fixes the exponent at 1.5: give a numeric stiffness for another",
+        );
+    }
+    number("contact.friction", contact.friction, Allowed::NonNegative)?;
+    if let TangentialStiffnessSpec::Value(k) = contact.tangential_stiffness {
+        number("contact.tangential_stiffness", k, Allowed::Positive)?;
+    }
+    number("contact.tangential_damping", contact.tangential_damping, Allowed::NonNegative)?;
+    if let Some(normal) = &contact.normal_given {
+        vector("contact.normal", normal)?;
+        let length = normal.norm();
+        if length == 0.0 || !length.is_finite() {
+            return fail("contact.normal", "the normal must be a non-zero vector");
+        }
+    }
+    Ok(())
+}
