@@ -173,8 +173,8 @@ pub enum CalibrationError {
     ApproachSpeed(f64),
     /// The law's e depends on quantities only a scene supplies.
     #[error(
-        "`{0}` needs a scene: its e depends on the impact speed, the stiffness and the masses (physics.md §3), so \
-         give a scene"
+        "`{0}` needs a scene: its e depends on the impact speed, the stiffness and the masses (see \
+         docs/laws.md#brilliantov-viscoelastic-spheres), so give a scene"
     )]
     NeedsScene(&'static str),
     /// The scene cannot carry the asked law.
@@ -523,18 +523,19 @@ fn solve(
             Ok(exact(
                 chi / contact.approach_speed,
                 "alpha = chi / v0, chi the root of chi (1 + e) = ln((1 + chi)/(1 - e chi)) (exact for the whole \
-                 hysteresis family, any n, K, m*; physics.md §3)"
+                 hysteresis family, any n, K, m*; docs/references.md#the-hunt-crossley-family)"
                     .into(),
             ))
         }
         Family::Linear if !force => Ok(exact(
             2.0 * reference::kelvin_voigt_zeta(target) * contact.critical_half(),
-            "c = 2 zeta sqrt(k m*), zeta = -ln e / sqrt(pi^2 + ln^2 e) (exact with separation at d = 0; physics.md §3)"
+            "c = 2 zeta sqrt(k m*), zeta = -ln e / sqrt(pi^2 + ln^2 e) (exact with separation at d = 0; \
+             docs/references.md#kelvin-voigt)"
                 .into(),
         )),
         Family::Tsuji if !force => Ok(exact(
             reference::tsuji_damping(target),
-            "a = -sqrt(5) ln e / sqrt(pi^2 + ln^2 e) (exact with separation at d = 0; physics.md §3)".into(),
+            "a = -sqrt(5) ln e / sqrt(pi^2 + ln^2 e) (exact with separation at d = 0; docs/references.md#tsuji)".into(),
         )),
         Family::Linear => {
             let e_of =
@@ -546,7 +547,7 @@ fn solve(
                 iterations,
                 notes: vec![format!(
                     "zeta root-found ({iterations} evaluations) on the exact e of separation at F = 0 (Schwager & \
-                     Pöschel 2007; physics.md §3), c = 2 zeta sqrt(k m*)"
+                     Pöschel 2007; docs/references.md#kelvin-voigt), c = 2 zeta sqrt(k m*)"
                 )],
             })
         }
@@ -559,7 +560,7 @@ fn solve(
                 iterations,
                 notes: vec![format!(
                     "a root-found ({iterations} evaluations) on the exact e of separation at F = 0 (the Kelvin–Voigt \
-                     closed form at zeta = a/sqrt(5); physics.md §3)"
+                     closed form at zeta = a/sqrt(5); docs/references.md#tsuji)"
                 )],
             })
         }
