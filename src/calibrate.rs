@@ -1,7 +1,7 @@
 //! Calibration (issue #3, part 4): the damping parameter for which a law's *simulated* coefficient of restitution
 //! (the velocity ratio) equals a target `E`, and what the law's own published map would have given instead.
 //!
-//! The method is the first of these that applies (physics.md §3):
+//! The method is the first of these that applies (docs/references.md):
 //!
 //! | law | separation | method | parameter |
 //! |---|---|---|---|
@@ -135,7 +135,7 @@ pub struct Calibration {
     pub restitution_target: f64,
     /// The damping parameter in the law's own units; `None` for Kelvin–Voigt without a scene.
     pub damping: Option<f64>,
-    /// Units of `damping` (interface.md).
+    /// Units of `damping` (docs/laws.md).
     pub damping_units: &'static str,
     /// The damping in dimensionless form.
     pub dimensionless: Dimensionless,
@@ -364,7 +364,7 @@ fn adapt_scene(scene: &Scene, request: &Request) -> Result<Scene, CalibrationErr
     Ok(scene)
 }
 
-/// The stiffness rules of interface.md for the asked law, against the scene's `[contact]`.
+/// The stiffness rules of docs/scene.md for the asked law, against the scene's `[contact]`.
 fn check_law_fits(contact: &ContactSpec, law: LawKind) -> Result<(), CalibrationError> {
     let name = law.name();
     let n = contact.exponent;

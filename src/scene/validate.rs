@@ -1,4 +1,4 @@
-//! From the raw file to a checked [`Scene`]: every rule of interface.md, each failure naming key and line.
+//! From the raw file to a checked [`Scene`]: every rule of docs/scene.md, each failure naming key and line.
 
 use super::file::{At, RawBody, RawContact, RawOutput, RawScene, RawSolver};
 use super::{
