@@ -1,4 +1,4 @@
-//! The simulation measured against exact references (physics.md §3–4), where the law has them: the report's
+//! The simulation measured against exact references (docs/references.md), where the law has them: the report's
 //! `reference` section.
 
 use crate::instantaneous::direct_impact;
@@ -67,24 +67,30 @@ const MAX_HYSTERESIS_X: f64 = 1e8;
 fn exact(setup: &Setup, separation: Separation) -> Option<(ContactReference, &'static str)> {
     let law = &setup.law;
     match law.kind.family() {
-        Family::Elastic => Some((reference::hertz_elastic(law.exponent), "elastic power-law Hertz closed form")),
+        Family::Elastic => Some((
+            reference::hertz_elastic(law.exponent),
+            "elastic power-law Hertz closed form (docs/references.md#elastic-hertz-contact)",
+        )),
         Family::Hysteresis => {
             let x = law.damping * setup.approach_speed;
             // Beyond x ~ 1e8 (e ~ 1e-8) the quadratures of the creeping restitution are no longer trustworthy.
             (x <= MAX_HYSTERESIS_X).then(|| {
                 (
                     reference::hysteresis_contact(x, law.exponent),
-                    "exact Hunt–Crossley relation and quadratures (physics.md §3)",
+                    "exact Hunt–Crossley relation and quadratures (docs/references.md#the-hunt-crossley-family)",
                 )
             })
         }
         Family::Linear => {
             let zeta = law.damping / (2.0 * (law.stiffness * setup.effective_mass).sqrt());
-            Some((reference::kelvin_voigt(zeta, separation)?, "Kelvin–Voigt closed forms (physics.md §3)"))
+            Some((
+                reference::kelvin_voigt(zeta, separation)?,
+                "Kelvin–Voigt closed forms (docs/references.md#kelvin-voigt)",
+            ))
         }
         Family::Tsuji => Some((
             reference::tsuji(law.damping, separation)?,
-            "Tsuji law mapped to a linear oscillator (physics.md §3)",
+            "Tsuji law mapped to a linear oscillator (docs/references.md#tsuji)",
         )),
         Family::Viscoelastic => None,
     }

@@ -1,7 +1,7 @@
 //! Calibration (issue #3, part 4): the damping parameter for which a law's *simulated* coefficient of restitution
 //! (the velocity ratio) equals a target `E`, and what the law's own published map would have given instead.
 //!
-//! The method is the first of these that applies (physics.md §3):
+//! The method is the first of these that applies (docs/references.md):
 //!
 //! | law | separation | method | parameter |
 //! |---|---|---|---|
@@ -135,7 +135,7 @@ pub struct Calibration {
     pub restitution_target: f64,
     /// The damping parameter in the law's own units; `None` for Kelvin–Voigt without a scene.
     pub damping: Option<f64>,
-    /// Units of `damping` (interface.md).
+    /// Units of `damping` (docs/laws.md).
     pub damping_units: &'static str,
     /// The damping in dimensionless form.
     pub dimensionless: Dimensionless,
@@ -173,8 +173,8 @@ pub enum CalibrationError {
     ApproachSpeed(f64),
     /// The law's e depends on quantities only a scene supplies.
     #[error(
-        "`{0}` needs a scene: its e depends on the impact speed, the stiffness and the masses (physics.md §3), so \
-         give a scene"
+        "`{0}` needs a scene: its e depends on the impact speed, the stiffness and the masses (see \
+         docs/laws.md#brilliantov-viscoelastic-spheres), so give a scene"
     )]
     NeedsScene(&'static str),
     /// The scene cannot carry the asked law.
@@ -364,7 +364,7 @@ fn adapt_scene(scene: &Scene, request: &Request) -> Result<Scene, CalibrationErr
     Ok(scene)
 }
 
-/// The stiffness rules of interface.md for the asked law, against the scene's `[contact]`.
+/// The stiffness rules of docs/scene.md for the asked law, against the scene's `[contact]`.
 fn check_law_fits(contact: &ContactSpec, law: LawKind) -> Result<(), CalibrationError> {
     let name = law.name();
     let n = contact.exponent;
@@ -527,18 +527,19 @@ fn solve(
             Ok(exact(
                 chi / contact.approach_speed,
                 "alpha = chi / v0, chi the root of chi (1 + e) = ln((1 + chi)/(1 - e chi)) (exact for the whole \
-                 hysteresis family, any n, K, m*; physics.md §3)"
+                 hysteresis family, any n, K, m*; docs/references.md#the-hunt-crossley-family)"
                     .into(),
             ))
         }
         Family::Linear if !force => Ok(exact(
             2.0 * reference::kelvin_voigt_zeta(target) * contact.critical_half(),
-            "c = 2 zeta sqrt(k m*), zeta = -ln e / sqrt(pi^2 + ln^2 e) (exact with separation at d = 0; physics.md §3)"
+            "c = 2 zeta sqrt(k m*), zeta = -ln e / sqrt(pi^2 + ln^2 e) (exact with separation at d = 0; \
+             docs/references.md#kelvin-voigt)"
                 .into(),
         )),
         Family::Tsuji if !force => Ok(exact(
             reference::tsuji_damping(target),
-            "a = -sqrt(5) ln e / sqrt(pi^2 + ln^2 e) (exact with separation at d = 0; physics.md §3)".into(),
+            "a = -sqrt(5) ln e / sqrt(pi^2 + ln^2 e) (exact with separation at d = 0; docs/references.md#tsuji)".into(),
         )),
         Family::Linear => {
             let e_of =
@@ -550,7 +551,7 @@ fn solve(
                 iterations,
                 notes: vec![format!(
                     "zeta root-found ({iterations} evaluations) on the exact e of separation at F = 0 (Schwager & \
-                     Pöschel 2007; physics.md §3), c = 2 zeta sqrt(k m*)"
+                     Pöschel 2007; docs/references.md#kelvin-voigt), c = 2 zeta sqrt(k m*)"
                 )],
             })
         }
@@ -563,7 +564,7 @@ fn solve(
                 iterations,
                 notes: vec![format!(
                     "a root-found ({iterations} evaluations) on the exact e of separation at F = 0 (the Kelvin–Voigt \
-                     closed form at zeta = a/sqrt(5); physics.md §3)"
+                     closed form at zeta = a/sqrt(5); docs/references.md#tsuji)"
                 )],
             })
         }

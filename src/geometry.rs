@@ -1,5 +1,5 @@
 //! Contact geometry: effective mass, radius and modulus, the Hertz stiffness, the contact normal and the
-//! free flight up to first contact (physics.md §1).
+//! free flight up to first contact (docs/scene.md).
 
 use crate::body::Body;
 use nalgebra::Vector3;
@@ -24,7 +24,7 @@ pub fn effective_modulus(a: &Body, b: &Body) -> Option<f64> {
     (compliance > 0.0).then(|| 1.0 / compliance)
 }
 
-/// Hertz stiffness K = (4/3) E* sqrt(R*) in N/m^(3/2) (physics.md §1).
+/// Hertz stiffness K = (4/3) E* sqrt(R*) in N/m^(3/2) (docs/scene.md).
 pub fn hertz_stiffness(effective_modulus: f64, effective_radius: f64) -> f64 {
     4.0 / 3.0 * effective_modulus * effective_radius.sqrt()
 }

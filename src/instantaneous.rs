@@ -1,4 +1,4 @@
-//! The idealised instantaneous impact (physics.md §2): what momentum and a coefficient of restitution alone say.
+//! The idealised instantaneous impact (docs/references.md): what momentum and a coefficient of restitution alone say.
 
 use crate::body::{Body, after_normal_impulse};
 use nalgebra::Vector3;
@@ -43,7 +43,7 @@ fn common_velocity(a: &Body, u1: f64, b: &Body, u2: f64) -> f64 {
     }
 }
 
-/// How a rigid-body frictional impact ends (physics.md §2).
+/// How a rigid-body frictional impact ends (docs/oblique.md).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum RigidRegime {
     /// No friction: tangential velocities and spins unchanged.
@@ -76,7 +76,7 @@ pub struct RigidBody {
 }
 
 /// Rigid-body theory of an impact with restitution `e` and Coulomb coefficient `friction` along the unit `normal`
-/// (physics.md §2). The normal impulse is (1+e) m* vn; with the initial slip `slip` of the contact points (body 1's
+/// (docs/oblique.md). The normal impulse is (1+e) m* vn; with the initial slip `slip` of the contact points (body 1's
 /// relative to body 2's) and B = 1/m1 + 1/m2 + r1²/I1 + r2²/I2, the contact slides throughout when
 /// |slip| >= mu (1+e) vn m* B — the tangential impulse is then mu times the normal one against the slip — and
 /// otherwise sticks: the tangential impulse slip/B stops the slip. Lever arms are the radii along the normal; a body

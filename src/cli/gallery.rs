@@ -51,7 +51,7 @@ pub fn run(args: &GalleryArgs) -> anyhow::Result<()> {
 }
 
 /// The comparison figure of the contact-mechanics literature: the e each published map actually gives against
-/// the e it was asked for (physics.md §3), from a sweep of the hysteresis-family scene under several laws. The
+/// the e it was asked for (docs/laws.md), from a sweep of the hysteresis-family scene under several laws. The
 /// sweep's table stays in memory: only the figure is written.
 fn effective_restitution(folder: &Path) -> anyhow::Result<()> {
     let (path, text) = SWEEP_SCENE;

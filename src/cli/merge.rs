@@ -16,7 +16,8 @@ pub struct MergeArgs {
     /// The shard files of one sweep, in any order: every shard 1/N ... N/N exactly once.
     #[arg(required = true, value_name = "SHARD")]
     pub shards: Vec<PathBuf>,
-    /// Also draw the sweep's figure (as `impact sweep --plot`; PNG or SVG by the extension).
+    /// One figure file, not a folder: also draw the sweep's figure (as `impact sweep --plot`) into FILE.png or
+    /// FILE.svg (the extension picks the format).
     #[arg(long, value_name = "FILE.png")]
     pub plot: Option<PathBuf>,
 }

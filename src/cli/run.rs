@@ -12,7 +12,7 @@ use std::path::{Path, PathBuf};
 
 #[derive(Debug, Args)]
 pub struct RunArgs {
-    /// The scene file (TOML, see the README).
+    /// The scene file (TOML; every key is described in docs/scene.md).
     pub scene: PathBuf,
     /// Print the JSON report on stdout instead of the readable one.
     #[arg(long)]
@@ -25,7 +25,9 @@ pub struct RunArgs {
     /// of writing the integrator's own steps and events; at most 1000000.
     #[arg(long, value_name = "N")]
     pub samples: Option<u64>,
-    /// Write the figures (PNG and SVG) into folder DIR (overrides the scene's [output] plots).
+    /// A folder, not a file name: write the three figures (force-time, force-penetration, velocities), each as PNG
+    /// and SVG, into folder DIR, creating it if needed (overrides the scene's [output] plots). A name ending in .png
+    /// or .svg is refused; `impact sweep --plot` is the one that takes a single figure file.
     #[arg(long, value_name = "DIR")]
     pub plot: Option<PathBuf>,
 }

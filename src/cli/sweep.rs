@@ -21,7 +21,7 @@ use std::path::{Path, PathBuf};
     bodies.I.density). With --law, each law's own defaults are re-derived (see the README). The CSV is the same \
     whatever the number of threads; `impact merge` joins the shards of --shard into the whole file, byte for byte.")]
 pub struct SweepArgs {
-    /// The scene file (TOML, see the README); it may leave out what the sweep sets.
+    /// The scene file (TOML, see docs/scene.md); it may leave out what the sweep sets.
     pub scene: PathBuf,
     /// A varied scene number and its values: KEY=START:STOP:COUNT (COUNT values, both ends included; add :log for
     /// geometric spacing or :lin for even spacing), or KEY=V1,V2,... (these values). KEY is a dotted scene key with
@@ -39,7 +39,8 @@ pub struct SweepArgs {
     /// The CSV file to write (written completely or not at all); `-` writes it to stdout.
     #[arg(long, value_name = "FILE.csv")]
     pub out: PathBuf,
-    /// Also draw effective e against the first varied key, one line per law (PNG or SVG by the extension).
+    /// One figure file, not a folder: also draw effective e against the first varied key, one line per law, into
+    /// FILE.png or FILE.svg (the extension picks the format). `impact run --plot` is the one that takes a folder.
     #[arg(long, value_name = "FILE.png")]
     pub plot: Option<PathBuf>,
     /// Compute only shard I of N (1 <= I <= N): the rows whose index is I-1 modulo N, for a job array; join the

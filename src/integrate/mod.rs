@@ -4,7 +4,7 @@
 //! accepted step across which an event function changes sign, and the crossing is then located by re-stepping:
 //! the true solution at a trial time is one Dop853 step from the step's start, and a safeguarded secant iteration
 //! (started from the root of the step's cubic Hermite interpolant) drives the event function to zero. The located
-//! time is thus as accurate as the integration itself, never the first step past the event (physics.md §5).
+//! time is thus as accurate as the integration itself, never the first step past the event (docs/numerics.md).
 
 mod events;
 mod stepper;

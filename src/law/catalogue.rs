@@ -1,6 +1,6 @@
 //! The closed set of contact laws, their names, formulas, units and sources.
 
-/// Every contact law the simulator knows (interface.md, "Laws, damping and restitution").
+/// Every contact law the simulator knows (docs/laws.md).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum LawKind {
     Hertz,
@@ -52,7 +52,7 @@ pub struct LawInfo {
 
 const HYSTERESIS_FORCE: &str = "K d^n (1 + alpha d'), alpha = chi / v0";
 
-/// The law table. Order is the order of interface.md.
+/// The law table. Order is the order of docs/laws.md.
 pub const LAWS: [LawInfo; 14] = [
     LawInfo {
         kind: LawKind::Hertz,
@@ -209,7 +209,7 @@ impl LawKind {
         LAWS.iter().map(|row| row.name).collect()
     }
 
-    /// Whether the force can turn tensile before the penetration returns to zero (physics.md §3), so that the
+    /// Whether the force can turn tensile before the penetration returns to zero (docs/laws.md), so that the
     /// separation criterion matters.
     pub fn can_turn_tensile(self) -> bool {
         matches!(self.family(), Family::Linear | Family::Tsuji | Family::Viscoelastic)

@@ -1,6 +1,6 @@
 //! Damping-from-restitution maps: the damping parameter each published law picks for a nominal e.
 //!
-//! Sources are in [`super::catalogue::LAWS`]; formulas from physics.md §3 and interface.md.
+//! Sources are in [`super::catalogue::LAWS`]; formulas in docs/laws.md.
 
 use super::{Family, LawKind};
 use std::f64::consts::PI;
@@ -14,7 +14,7 @@ pub enum MapError {
     UndefinedAtZero,
 }
 
-/// chi(e) of the hysteresis family, x = alpha v0 (physics.md §3). `e` must lie in [0, 1].
+/// chi(e) of the hysteresis family, x = alpha v0 (docs/laws.md). `e` must lie in [0, 1].
 pub fn hysteresis_chi(kind: LawKind, e: f64) -> Result<f64, MapError> {
     let eps = 1.0 - e;
     let divides_by_e = matches!(
@@ -40,7 +40,7 @@ pub fn hysteresis_chi(kind: LawKind, e: f64) -> Result<f64, MapError> {
     Ok(chi)
 }
 
-/// Kelvin–Voigt damping ratio zeta(e) = -ln e / sqrt(pi² + ln² e) (physics.md §3, exact for separation at
+/// Kelvin–Voigt damping ratio zeta(e) = -ln e / sqrt(pi² + ln² e) (docs/laws.md, exact for separation at
 /// d = 0); e = 0 gives 1 (critical, the limit), e = 1 gives 0, and NaN for e outside [0, 1].
 pub fn kelvin_voigt_zeta(e: f64) -> f64 {
     if !(0.0..=1.0).contains(&e) {
@@ -53,13 +53,13 @@ pub fn kelvin_voigt_zeta(e: f64) -> f64 {
     log / PI.hypot(log)
 }
 
-/// Tsuji's dimensionless damping a(e) = -sqrt(5) ln e / sqrt(pi² + ln² e) = sqrt(5) zeta(e) (physics.md §3),
+/// Tsuji's dimensionless damping a(e) = -sqrt(5) ln e / sqrt(pi² + ln² e) = sqrt(5) zeta(e) (docs/laws.md),
 /// e = 0 -> sqrt(5); NaN for e outside [0, 1].
 pub fn tsuji_damping(e: f64) -> f64 {
     5f64.sqrt() * kelvin_voigt_zeta(e)
 }
 
-/// The damping parameter (in the law's own units, interface.md) that `kind`'s published map assigns to a nominal
+/// The damping parameter (in the law's own units, docs/laws.md) that `kind`'s published map assigns to a nominal
 /// restitution `e` in [0, 1], for a contact of `stiffness` (N/m^n), `effective_mass` (kg) and `approach_speed`
 /// (m/s, > 0).
 pub fn damping_for_restitution(

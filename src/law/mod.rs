@@ -9,7 +9,7 @@ pub mod damping;
 
 pub use catalogue::{Family, LawKind};
 
-/// Which event ends the contact (physics.md §1).
+/// Which event ends the contact (docs/laws.md).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum Separation {
     /// The penetration returns to zero (tension allowed before that).
@@ -39,7 +39,7 @@ pub struct ContactLaw {
     pub exponent: f64,
     /// The law's own damping parameter in its own units (see [`LawKind::damping_units`]); 0 for Hertz.
     pub damping: f64,
-    /// sqrt(m* K), N s/m^(5/4) — the Tsuji damping scale (physics.md §3); unused by other laws.
+    /// sqrt(m* K), N s/m^(5/4) — the Tsuji damping scale (docs/laws.md); unused by other laws.
     pub tsuji_scale: f64,
 }
 
@@ -104,10 +104,10 @@ impl ContactLaw {
         if parts.elastic > 0.0 { parts.dissipative.abs() / parts.elastic } else { 0.0 }
     }
 
-    /// A function of (d, d') whose zero where it falls is a force separation, continuous through d = 0 (physics.md
-    /// §5): the force divided by the power of d in its damping term, continued to d < 0 by the law's own expression
-    /// (k d + c d'; K d |d|^(1/4) + a sqrt(m* K) d' for Tsuji; K (d + (3/2) A d') for Brilliantov). Its units are
-    /// N/m^q (q the power divided out). For laws that never turn tensile it is the penetration (m).
+    /// A function of (d, d') whose zero where it falls is a force separation, continuous through d = 0
+    /// (docs/numerics.md): the force divided by the power of d in its damping term, continued to d < 0 by the law's
+    /// own expression (k d + c d'; K d |d|^(1/4) + a sqrt(m* K) d' for Tsuji; K (d + (3/2) A d') for Brilliantov).
+    /// Its units are N/m^q (q the power divided out). For laws that never turn tensile it is the penetration (m).
     pub fn separation_function(&self, d: f64, rate: f64) -> f64 {
         let (k, c) = (self.stiffness, self.damping);
         match self.kind.family() {

@@ -1,4 +1,4 @@
-//! The JSON report of interface.md.
+//! The JSON report of docs/report.md.
 
 use crate::report::Report;
 

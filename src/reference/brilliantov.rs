@@ -1,20 +1,20 @@
 //! Viscoelastic spheres (Kuwabara–Kono; Brilliantov et al. 1996): `F = K (d^(3/2) + (3/2) A d^(1/2) d')`.
-//! Only the small-`b` series of the restitution is provided (physics.md §3); it is approximate.
+//! Only the small-`b` series of the restitution is provided (docs/references.md); it is approximate.
 
 use super::numerics::beta;
 
-/// `C1 = (4/5)(5/4)^(3/5) B(3/5, 3/2) = 1.1534489…` (physics.md §3; Schwager & Pöschel 2008).
+/// `C1 = (4/5)(5/4)^(3/5) B(3/5, 3/2) = 1.1534489…` (docs/references.md; Schwager & Pöschel 2008).
 pub fn brilliantov_c1() -> f64 {
     0.8 * 1.25_f64.powf(0.6) * beta(0.6, 1.5)
 }
 
-/// `C2 = (3/5) C1² = 0.7982666…` (Schwager & Pöschel 2008; physics.md §3 prints 0.7982666).
+/// `C2 = (3/5) C1² = 0.7982666…` (Schwager & Pöschel 2008; docs/references.md prints 0.7982666).
 pub fn brilliantov_c2() -> f64 {
     0.6 * brilliantov_c1().powi(2)
 }
 
 /// **Approximate** restitution of viscoelastic spheres for separation at `d = 0`:
-/// `e ≈ 1 - C1 b + C2 b²`, `b = (3/2) A (K/m*)^(2/5) v0^(1/5)` (dimensionless, physics.md §3).
+/// `e ≈ 1 - C1 b + C2 b²`, `b = (3/2) A (K/m*)^(2/5) v0^(1/5)` (dimensionless, docs/references.md).
 ///
 /// Truncation error (next term about `-0.523 b³`): 6e-5 at b = 0.05, 5e-4 at 0.1, 4e-3 at 0.2 — use it only
 /// for small `b`, never as an exact reference at the 1e-6 level. NaN for `b < 0` or NaN.

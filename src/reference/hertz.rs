@@ -1,9 +1,9 @@
-//! Elastic power-law Hertz contact `F = K d^n` (physics.md §4).
+//! Elastic power-law Hertz contact `F = K d^n` (docs/references.md).
 
 use super::ContactReference;
 use super::numerics::beta;
 
-/// Exact nondimensional elastic impact for `F = K d^n`, `n > 0` (physics.md §4):
+/// Exact nondimensional elastic impact for `F = K d^n`, `n > 0` (docs/references.md):
 /// `dmax = ((n+1)/2)^(1/(n+1))`, `tc = (2/(n+1)) B(1/(n+1), 1/2) dmax`, `t0 = tc/2`, `Fmax = dmax^n`, `e = 1`
 /// (from energy conservation `d'² + 2 d^(n+1)/(n+1) = 1`). For `n = 3/2`: `dmax = (5/4)^(2/5)`,
 /// `tc = 2.9432751843 dmax`; for `n = 1`: `tc = pi`.

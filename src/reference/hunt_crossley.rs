@@ -1,5 +1,5 @@
 //! Exact restitution of the hysteresis-damping family `F = K d^n (1 + alpha d')` and its inverse
-//! (physics.md §3; Carvalho & Martins 2019).
+//! (docs/references.md; Carvalho & Martins 2019).
 //!
 //! With `x = alpha v0` the relation `x (1 + e) = ln((1 + x)/(1 - e x))` is written here as
 //! `phi(x) = phi(-e x)`, `phi(u) = u - ln(1 + u)`: both sides are computed without cancellation, so the
@@ -10,7 +10,7 @@ use super::numerics::{bisect, phi, phi2};
 /// Below this `x` the Taylor series is used (its truncation error there is ~1e-18).
 const SERIES_LIMIT: f64 = 0.05;
 
-/// `e(x) = Σ E_SERIES[k] x^k` (physics.md §3, 13 terms; coefficients re-derived exactly with rational arithmetic).
+/// `e(x) = Σ E_SERIES[k] x^k` (docs/references.md, 13 terms; coefficients re-derived exactly with rational arithmetic).
 const E_SERIES: [f64; 13] = [
     1.0,
     -2.0 / 3.0,
@@ -27,7 +27,7 @@ const E_SERIES: [f64; 13] = [
     893393408.0 / 9499507875.0,
 ];
 
-/// `chi(eps) = Σ CHI_SERIES[k] eps^(k+1)`, `eps = 1 - e` (physics.md §3 gives the first six; the last two,
+/// `chi(eps) = Σ CHI_SERIES[k] eps^(k+1)`, `eps = 1 - e` (docs/references.md gives the first six; the last two,
 /// 6639/7000 and 1599/1750, were derived the same way). Used for `eps < 1e-3`, where its error is < 1e-24.
 const CHI_SERIES: [f64; 8] =
     [3.0 / 2.0, 3.0 / 2.0, 27.0 / 20.0, 6.0 / 5.0, 759.0 / 700.0, 351.0 / 350.0, 6639.0 / 7000.0, 1599.0 / 1750.0];
@@ -63,10 +63,10 @@ impl HuntCrossleyState {
 }
 
 /// Exact restitution `e(x)` of the whole hysteresis-damping family `F = K d^n (1 + alpha d')`, `x = alpha v0`
-/// (dimensionless), independent of `n`, `K`, `m*` (physics.md §3):
+/// (dimensionless), independent of `n`, `K`, `m*` (docs/references.md):
 /// the root of `x (1 + e) = ln((1 + x)/(1 - e x))`, i.e. `e = (1 + W0(-(1+x) e^(-(1+x))))/x`.
 ///
-/// `x <= 0.05`: the 13-term series of physics.md; above: Newton's method on `phi(x) = phi(-e x)`
+/// `x <= 0.05`: the 13-term series of docs/references.md; above: Newton's method on `phi(x) = phi(-e x)`
 /// (`phi(u) = u - ln(1+u)`), started from the Lambert-W closed form (`x <= 1`) or from `ln q = -1 - phi(x)`,
 /// `q = 1 - e x` (`x > 1`, where it converges monotonically and survives the underflow of `q`: `e -> 1/x`).
 /// Relative error ~1e-16 for all `x`. `x = 0` gives 1, `x = +inf` gives 0; `x < 0` or NaN gives NaN.
@@ -83,7 +83,7 @@ pub fn hunt_crossley_restitution(x: f64) -> f64 {
 }
 
 /// Inverse of [`hunt_crossley_restitution`]: the `chi = alpha v0` that yields restitution `e` (the exact map of
-/// Carvalho & Martins 2019, physics.md §3). `e = 1` gives `Some(0)`; `e <= 0`, `e > 1` or NaN give `None`.
+/// Carvalho & Martins 2019, docs/references.md). `e = 1` gives `Some(0)`; `e <= 0`, `e > 1` or NaN give `None`.
 ///
 /// `1 - e < 1e-3`: the series `chi = 3/2 eps + 3/2 eps² + 27/20 eps³ + …`; otherwise bisection on `(0, 1/e)` of
 /// `G(x) = (phi(x) - phi(-e x))/x²`, which excludes the spurious root `x = 0` (G(0+) = (1 - e²)/2 > 0) and is
@@ -128,13 +128,13 @@ fn chi_residual(x: f64, e: f64, ln_e: f64) -> f64 {
     }
 }
 
-/// The series of physics.md §3 (13 terms), accurate to 1e-18 for `x <= 0.05`.
+/// The series of docs/references.md (13 terms), accurate to 1e-18 for `x <= 0.05`.
 fn restitution_series(x: f64) -> f64 {
     E_SERIES.iter().rev().fold(0.0, |acc, c| acc * x + c)
 }
 
 /// The Lambert-W closed form `e = (1 + W0(-(1+x) e^(-(1+x))))/x` as computed in double precision; it cancels
-/// for small `x` (error ~7e-13 at x = 0.01, physics.md) and only serves as a starting guess.
+/// for small `x` (error ~7e-13 at x = 0.01, docs/references.md) and only serves as a starting guess.
 fn restitution_lambert(x: f64) -> f64 {
     let y = 1.0 + x;
     let w = lambert_w::lambert_w0(-y * (-y).exp());
@@ -186,7 +186,7 @@ mod tests {
         ((a - b) / b).abs()
     }
 
-    /// physics.md §3, "Exact Hunt–Crossley values e(x)" (checked), plus the e column of the hysteresis table.
+    /// docs/references.md, the exact values e(x) (checked), plus the e column of the hysteresis table.
     const EXACT: [(f64, f64); 8] = [
         (0.01, 0.993377454399),
         (0.1, 0.937475579950),
@@ -258,7 +258,7 @@ mod tests {
         assert!(rel(hunt_crossley_restitution(x), 1.0 - 2.0 * x / 3.0) < 2.3e-16);
     }
 
-    /// physics.md §3 effective-e table: e_eff = e(chi_law(e_nominal)), printed to 6 decimals.
+    /// docs/laws.md effective-e table: e_eff = e(chi_law(e_nominal)), printed to 6 decimals.
     #[test]
     fn effective_restitution_table() {
         let nominal = [0.1, 0.3, 0.5, 0.7, 0.9, 0.99];
@@ -282,7 +282,7 @@ mod tests {
         }
     }
 
-    /// physics.md §3 floors: LN / Lee–Wang chi <= 3/4, HC / Herbert–McWhannell chi <= 3/2, Zhiying–Qishao
+    /// docs/laws.md floors: LN / Lee–Wang chi <= 3/4, HC / Herbert–McWhannell chi <= 3/2, Zhiying–Qishao
     /// chi <= 3 e²/4 (its value at e = 0).
     #[test]
     fn floors() {

@@ -1,5 +1,5 @@
 //! Exact contact history of the hysteresis-damping family `F = K d^n (1 + alpha d')` (Hunt–Crossley type),
-//! physics.md §3, in the units `L`, `T`, `F0` of the module docs (so `m* = K = v0 = 1` and `alpha = x`).
+//! docs/references.md, in the units `L`, `T`, `F0` of the module docs (so `m* = K = v0 = 1` and `alpha = x`).
 //!
 //! Along the contact `v = d'` is monotone, and `v dv/(1 + x v) = -d^n dd` gives
 //! `d(v)^(n+1) = (n+1) S(v)`, `S(v) = ∫_v^1 u/(1 + x u) du`, and `dt = -dv/(d^n (1 + x v))`.
@@ -11,18 +11,18 @@ use super::hertz::hertz_elastic;
 use super::hunt_crossley::HuntCrossleyState;
 use super::numerics::{bisect, exprel, integrate, phi2};
 
-/// Exact nondimensional impact for `F = K d^n (1 + x d'/v0)`, `n > 0`, `x >= 0` (physics.md §3).
+/// Exact nondimensional impact for `F = K d^n (1 + x d'/v0)`, `n > 0`, `x >= 0` (docs/references.md).
 ///
 /// * `restitution`: [`super::hunt_crossley_restitution`]`(x)`;
 /// * `max_penetration`: `dmax^(n+1) = (n+1)(x - ln(1+x))/x²` (→ `(n+1)/2` as `x → 0`, evaluated without cancellation);
-/// * `max_compression_time`, `duration`: physics.md's integrals `t0 = ∫_0^1 dv/(d^n (1+xv))`,
+/// * `max_compression_time`, `duration`: docs/references.md's integrals `t0 = ∫_0^1 dv/(d^n (1+xv))`,
 ///   `tc = ∫_{-e}^1 …`, by tanh-sinh quadrature after the substitutions `1 - v = s^(n+1)` (compression) and
 ///   `v + e = e s^(n+1)` (restitution, `x < 1`) or `ln((1 + x v)/(1 - e x)) = ln(1/(1 - e x)) s^(n+1)`
 ///   (restitution, `x >= 1`), which remove the endpoint singularities;
 /// * `max_force`: the largest `d^n (1 + x v)`, reached during compression where `x d^(n+1) = n v` (a root found by
 ///   bisection; with damping the force peaks before maximum compression).
 ///
-/// Agrees with physics.md's table to ~1e-13 relative. `x = 0` returns [`hertz_elastic`]`(n)`.
+/// Agrees with docs/references.md's table to ~1e-13 relative. `x = 0` returns [`hertz_elastic`]`(n)`.
 /// `x < 0`, `n <= 0`, or non-finite input gives [`ContactReference::UNDEFINED`].
 pub fn hysteresis_contact(x: f64, n: f64) -> ContactReference {
     if !(x >= 0.0 && x.is_finite() && n > 0.0 && n.is_finite()) {
@@ -135,7 +135,7 @@ mod tests {
         ((a - b) / b).abs()
     }
 
-    /// physics.md §3 table (checked against a tight ODE solve to 1e-12):
+    /// docs/references.md table (checked against a tight ODE solve to 1e-12):
     /// x, n, e, dmax/L, t0/T, tc/T, Fmax/F0.
     const TABLE: [[f64; 7]; 5] = [
         [0.5, 1.5, 0.7484349315974, 0.9777703257171, 1.505190262472, 3.338252755937, 1.03820817965],

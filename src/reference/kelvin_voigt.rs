@@ -1,4 +1,4 @@
-//! Linear Kelvin–Voigt contact `F = k d + c d'` (physics.md §3; Schwager & Pöschel 2007 for force separation).
+//! Linear Kelvin–Voigt contact `F = k d + c d'` (docs/references.md; Schwager & Pöschel 2007 for force separation).
 //!
 //! Nondimensional with `L = v0 sqrt(m*/k)`, `T = sqrt(m*/k) = 1/omega0`, `F0 = k L`, `zeta = c/(2 sqrt(k m*))`:
 //! `D'' + 2 zeta D' + D = 0`, `D(0) = 0`, `D'(0) = 1`, force `D + 2 zeta D'`.
@@ -110,7 +110,7 @@ impl UnitOscillator {
     }
 }
 
-/// Exact nondimensional Kelvin–Voigt impact (physics.md §3), units `L = v0 sqrt(m*/k)`, `T = sqrt(m*/k)`,
+/// Exact nondimensional Kelvin–Voigt impact (docs/references.md), units `L = v0 sqrt(m*/k)`, `T = sqrt(m*/k)`,
 /// `F0 = k L`, for damping ratio `zeta = c/(2 sqrt(k m*)) >= 0`.
 ///
 /// * `Penetration` (separation at `d = 0`): `e = exp(-pi zeta/sqrt(1 - zeta²))`, `tc = pi/sqrt(1 - zeta²)`;

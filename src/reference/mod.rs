@@ -1,7 +1,7 @@
 //! Exact references (closed forms and quadratures) used to measure the simulator's error.
 //!
-//! Everything here is nondimensional, as in physics.md §3: for `F = K d^n (…)` with effective mass `m*` and approach
-//! speed `v0`, lengths are in `L = (m* v0²/K)^(1/(n+1))`, times in `T = L/v0`, forces in `F0 = K L^n`
+//! Everything here is nondimensional, as in docs/references.md: for `F = K d^n (…)` with effective mass `m*` and
+//! approach speed `v0`, lengths are in `L = (m* v0²/K)^(1/(n+1))`, times in `T = L/v0`, forces in `F0 = K L^n`
 //! (Kelvin–Voigt: `L = v0 sqrt(m*/k)`, `T = sqrt(m*/k)`, `F0 = k L`; Tsuji: the `n = 3/2` units).
 //! Restitution is the velocity ratio `e` (dimensionless).
 //!
@@ -52,5 +52,5 @@ impl ContactReference {
     };
 }
 
-/// Which event ends the contact (physics.md §1); the law module's type, under the name this module always used.
+/// Which event ends the contact (docs/laws.md); the law module's type, under the name this module always used.
 pub use crate::law::Separation as SeparationCriterion;

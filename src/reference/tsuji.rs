@@ -1,4 +1,4 @@
-//! DEM Hertz law with Tsuji-type damping `F = K d^(3/2) + a sqrt(m* K) d^(1/4) d'` (physics.md §3).
+//! DEM Hertz law with Tsuji-type damping `F = K d^(3/2) + a sqrt(m* K) d^(1/4) d'` (docs/references.md).
 //!
 //! In the units `L = (m* v0²/K)^(2/5)`, `T = L/v0`, `F0 = K L^(3/2)` the motion is `d'' = -d^(3/2) - a d^(1/4) d'`.
 //! With `w = d^(5/4)` and `dtau = d^(1/4) dt` it becomes `w'' + a w' + (5/4) w = 0`; in the time
@@ -12,13 +12,13 @@ use super::{ContactReference, SeparationCriterion};
 /// `omega0² = 5/4`.
 const OMEGA0_SQ: f64 = 1.25;
 
-/// Exact nondimensional impact for the Tsuji law with damping coefficient `a >= 0` (physics.md §3).
+/// Exact nondimensional impact for the Tsuji law with damping coefficient `a >= 0` (docs/references.md).
 ///
 /// * `Penetration`: `e = exp(-pi zeta/sqrt(1 - zeta²))`, `zeta = a/sqrt(5)` (exactly the nominal e of
 ///   [`tsuji_damping`]); `None` for `zeta >= 1` (never separates).
 /// * `Force`: the Kelvin–Voigt `F = 0` restitution, `e = exp(-2 zeta t0)` (nominal 0.5 → 0.550283).
-/// * `max_penetration = (omega0 D(t0))^(4/5)`, `D(t0) = exp(-zeta t0)` (physics.md's `tau*`);
-/// * `max_compression_time`, `duration`: `omega0^(-6/5) ∫ D(s)^(-1/5) ds` (physics.md's `∫ w^(-1/5) dtau`) by
+/// * `max_penetration = (omega0 D(t0))^(4/5)`, `D(t0) = exp(-zeta t0)` (docs/references.md's `tau*`);
+/// * `max_compression_time`, `duration`: `omega0^(-6/5) ∫ D(s)^(-1/5) ds` (docs/references.md's `∫ w^(-1/5) dtau`) by
 ///   tanh-sinh quadrature after `s = sigma^5` (and `s_zero - s = sigma^5` near `D`'s zero), which makes the
 ///   integrand analytic;
 /// * `max_force`: maximum of `D^(1/5) (D + 2 zeta D')` (no jump at contact for this law), located by bisection on

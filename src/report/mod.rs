@@ -19,7 +19,7 @@ pub struct Report {
     pub effective_mass: f64,
     /// v0 = (v1 - v2)·n at first contact, m/s (> 0).
     pub approach_speed: f64,
-    /// Unit contact normal, body 1 -> body 2 (an addition to interface.md).
+    /// Unit contact normal, body 1 -> body 2 (an addition).
     pub normal: Vec3,
     pub contact: ContactReport,
     pub bodies: [BodyReport; 2],
@@ -33,7 +33,7 @@ pub struct Report {
     /// Exact values for this law and their relative errors; null when no exact reference exists (an addition).
     pub reference: Option<ReferenceReport>,
     pub solver: SolverReport,
-    /// Plain-language remarks (e.g. why the bodies did not separate); an addition to interface.md.
+    /// Plain-language remarks (e.g. why the bodies did not separate); an addition.
     pub notes: Vec<String>,
 }
 
@@ -124,7 +124,7 @@ pub struct EnergyReport {
     pub work_of_immovable_bodies: Option<f64>,
 }
 
-/// Oblique impact, friction and spin (interface.md, "Oblique impact, friction, spin"). Angles in degrees.
+/// Oblique impact, friction and spin (docs/report.md#oblique). Angles in degrees.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct ObliqueReport {
     /// The relative velocity of the contact points before impact, from the normal.
@@ -149,7 +149,7 @@ pub struct ObliqueReport {
     pub rigid_body: Option<RigidBodyReport>,
 }
 
-/// Rigid-body theory of a frictional impact (physics.md §2) with the simulated normal e.
+/// Rigid-body theory of a frictional impact (docs/oblique.md) with the simulated normal e.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct RigidBodyReport {
     /// "smooth", "sliding" or "sticking" (the slip stops and the contact rolls).
@@ -168,7 +168,7 @@ pub struct RigidBodyReport {
     pub max_angular_velocity_difference: f64,
 }
 
-/// The idealised instantaneous impact with a given e (physics.md §2).
+/// The idealised instantaneous impact with a given e (docs/references.md).
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct InstantaneousReport {
     pub restitution: f64,
@@ -182,7 +182,7 @@ pub struct InstantaneousReport {
     pub max_velocity_difference: Option<f64>,
 }
 
-/// Exact values of this contact from closed forms or quadrature (physics.md §3–4), and the simulation's relative
+/// Exact values of this contact from closed forms or quadrature (docs/references.md), and the simulation's relative
 /// errors against them. A quantity without an exact value is null.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct ReferenceReport {
@@ -224,7 +224,7 @@ pub struct SolverReport {
     pub wall_time_s: f64,
 }
 
-/// Writes an infinite input back as the string "inf" (interface.md).
+/// Writes an infinite input back as the string "inf" (docs/report.md).
 fn maybe_infinite<S: Serializer>(value: &f64, serializer: S) -> Result<S::Ok, S::Error> {
     if value.is_infinite() && *value > 0.0 { serializer.serialize_str("inf") } else { serializer.serialize_f64(*value) }
 }

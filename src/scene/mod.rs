@@ -1,6 +1,6 @@
 //! The scene: what a user asks to simulate, typed and validated.
 //!
-//! `file` reads the TOML format of interface.md into raw, span-carrying structs; `validate` turns those into a
+//! `file` reads the TOML format of docs/scene.md into raw, span-carrying structs; `validate` turns those into a
 //! [`Scene`] whose every value has been checked, or a [`SceneError`] naming the file, the key and the line.
 
 mod error;
@@ -36,7 +36,7 @@ pub enum DampingSpec {
     None,
     /// A nominal coefficient of restitution, turned into damping by the law's own map.
     Restitution(f64),
-    /// The law's damping parameter itself, in its own units (interface.md).
+    /// The law's damping parameter itself, in its own units (docs/scene.md).
     Parameter(f64),
 }
 

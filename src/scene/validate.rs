@@ -1,7 +1,7 @@
 //! From the raw file to a checked [`Scene`], each failure naming file, key and line: first the file's form is
 //! converted (TOML syntax, known keys, value types, what must be there) into a typed scene, then every value rule is
 //! checked on it ([`super::rules`], the same rules a sweep's points obey), then the physics-level rules of
-//! [`Setup`]. Lines come from the spans the conversion records for every key.
+//! [`Setup`] (docs/scene.md lists them all). Lines come from the spans the conversion records for every key.
 
 use super::file::{At, RawBody, RawContact, RawOutput, RawScene, RawSolver};
 use super::{
