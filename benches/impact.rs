@@ -8,7 +8,7 @@ use impact::scene::Scene;
 use std::hint::black_box;
 use std::path::Path;
 
-/// A 1 kg sphere on a wall at 1 m/s with K = 1e6 (physics.md's nondimensional case), per law.
+/// A 1 kg sphere on a wall at 1 m/s with K = 1e6 (docs/references.md's nondimensional case), per law.
 const CASES: [(&str, &str); 5] = [
     ("hertz", "law = \"hertz\"\nstiffness = 1e6"),
     ("hunt-crossley x=0.5", "law = \"hunt-crossley\"\ndamping = 0.5\nstiffness = 1e6"),

@@ -464,7 +464,7 @@ impl Contact {
             Family::Hysteresis => damping * self.approach_speed,
             Family::Linear => damping / (2.0 * self.critical_half()),
             Family::Tsuji => damping / 5f64.sqrt(),
-            // b = (3/2) A (K/m*)^(2/5) v0^(1/5) (physics.md §3).
+            // b = (3/2) A (K/m*)^(2/5) v0^(1/5) (docs/references.md).
             Family::Viscoelastic => damping * self.brilliantov_b_per_a(),
             Family::Elastic => 0.0,
         }
@@ -613,7 +613,7 @@ fn brilliantov(target: f64, contact: &Contact, simulations: &mut Simulations) ->
             Err(error) => Err(error),
         }
     };
-    // First guess from the series e = 1 - C1 b + ... (physics.md §3), then grow or shrink by 4 until bracketed.
+    // First guess from the series e = 1 - C1 b + ... (docs/references.md), then grow or shrink by 4 until bracketed.
     let b_per_a = contact.brilliantov_b_per_a();
     let guess = (1.0 - target) / brilliantov_c1() / b_per_a;
     let f_guess = residual(guess)?;
@@ -778,7 +778,7 @@ mod tests {
 
     #[test]
     fn closed_form_root_inverts_the_kelvin_voigt_force_separation() {
-        // zeta = 0.3 separating at F = 0 gives e = 0.4509754529 (physics.md §3).
+        // zeta = 0.3 separating at F = 0 gives e = 0.4509754529 (docs/references.md).
         let e_of = |zeta: f64| reference::kelvin_voigt(zeta, SeparationCriterion::Force).unwrap().restitution;
         let (zeta, _) = closed_form_root(e_of, 0.1, 0.4509754529);
         assert!((zeta - 0.3).abs() < 2e-10, "{zeta}");

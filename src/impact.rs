@@ -138,7 +138,7 @@ fn run<const N: usize, M: ContactModel<N>>(
             _ => format!("no maximum compression within {TIME_LIMIT} elastic time units"),
         }));
     }
-    // A force separation is located on the law's continued force, and never later than d = 0 (physics.md §5):
+    // A force separation is located on the law's continued force, and never later than d = 0 (docs/numerics.md):
     // the penetration is a second separation event then. Laws that never turn tensile end at d = 0 whichever
     // criterion is named.
     let law = &scene.contact;

@@ -51,7 +51,7 @@ pub enum Motion {
     Full,
 }
 
-/// Coulomb friction with a tangential spring (Mindlin) and optional tangential damping (physics.md §2).
+/// Coulomb friction with a tangential spring (Mindlin) and optional tangential damping (docs/oblique.md).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Friction {
     /// Coulomb coefficient mu (> 0).
@@ -275,7 +275,7 @@ fn friction(scene: &Scene, effective_mass: f64) -> Result<Option<Friction>, Setu
     }))
 }
 
-/// 8 G* sqrt(R*) in N/m^(3/2), with 1/G* = (2 - nu1)/G1 + (2 - nu2)/G2 and G = E / (2 (1 + nu)) (physics.md §2).
+/// 8 G* sqrt(R*) in N/m^(3/2), with 1/G* = (2 - nu1)/G1 + (2 - nu2)/G2 and G = E / (2 (1 + nu)) (docs/oblique.md).
 fn mindlin_coefficient(a: &Body, b: &Body) -> Result<f64, SetupError> {
     const KEY: &str = "contact.tangential_stiffness";
     let mut compliance = 0.0;

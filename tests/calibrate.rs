@@ -1,8 +1,8 @@
 //! `impact calibrate` through the real binary: the calibrated damping reproduces the target e when the scene is
 //! simulated with it (`impact run --json`), the exact relations and closed forms it rests on hold when checked by
-//! hand, the published maps give physics.md's effective e, and bad input is a clear error with exit status 2.
+//! hand, the published maps give docs/references.md's effective e, and bad input is a clear error with exit status 2.
 //!
-//! Every expected number comes from physics.md or from a formula written out here, never from an earlier run.
+//! Every expected number comes from docs/references.md or from a formula written out here, never from an earlier run.
 
 mod common;
 
@@ -91,12 +91,12 @@ fn ice_pair(v: f64, contact: &str) -> String {
 // ---------------------------------------------------------------------------------------------------------------
 // Hand calculations
 
-/// Residual of physics.md §3's exact relation of the hysteresis family, x (1 + e) = ln((1 + x)/(1 - e x)).
+/// Residual of docs/references.md's exact relation of the hysteresis family, x (1 + e) = ln((1 + x)/(1 - e x)).
 fn hysteresis_residual(x: f64, e: f64) -> f64 {
     x * (1.0 + e) - ((1.0 + x) / (1.0 - e * x)).ln()
 }
 
-/// Kelvin–Voigt damping ratio for e with separation at d = 0 (physics.md §3): -ln e / sqrt(pi² + ln² e).
+/// Kelvin–Voigt damping ratio for e with separation at d = 0 (docs/references.md): -ln e / sqrt(pi² + ln² e).
 fn zeta_for(e: f64) -> f64 {
     -e.ln() / (PI * PI + e.ln() * e.ln()).sqrt()
 }
@@ -219,7 +219,7 @@ fn hysteresis_damping_is_the_exact_chi_over_the_approach_speed() {
         assert!((number(&result["dimensionless"], "value") - x).abs() <= 1e-14 * x);
         assert!((number(&result, "restitution_simulated") - e).abs() < 1e-9);
     }
-    // physics.md's exact values read backwards: e(x = 0.5) = 0.7484349315974, e(x = 2) = 0.410719686061.
+    // docs/references.md's exact values read backwards: e(x = 0.5) = 0.7484349315974, e(x = 2) = 0.410719686061.
     for (x, e) in [(0.5, "0.7484349315974"), (2.0, "0.410719686061")] {
         let result = calibrate(&scratch, &["--law", "lee-wang", "--restitution", e]);
         let got = number(&result, "damping");
@@ -252,7 +252,7 @@ fn kelvin_voigt_with_a_scene_gives_c_from_k_and_the_mass() {
 
 #[test]
 fn force_separation_calibrates_on_the_closed_form() {
-    // physics.md §3 (Schwager & Pöschel 2007): with separation at F = 0, zeta = 0.1 gives e = 0.7440793977 and
+    // docs/references.md (Schwager & Pöschel 2007): with separation at F = 0, zeta = 0.1 gives e = 0.7440793977 and
     // zeta = 0.3 gives 0.4509754529; critical damping gives exp(-2). Tsuji maps onto the same oscillator with
     // zeta = a / sqrt(5); its overdamped a = 3 gives e = 5^(-3/2) (Omega = 2/sqrt(5): (zeta + Omega)/(zeta - Omega)
     // = 5, zeta/Omega = 3/2).
@@ -279,7 +279,7 @@ fn force_separation_calibrates_on_the_closed_form() {
 
 #[test]
 fn brilliantov_root_find_finds_the_exact_b() {
-    // physics.md §3, exact (ODE, d = 0): b = 0.1 -> 0.8921475873, b = 0.5 -> 0.5738246287, where
+    // docs/references.md, exact (ODE, d = 0): b = 0.1 -> 0.8921475873, b = 0.5 -> 0.5738246287, where
     // b = (3/2) A (K/m*)^(2/5) v0^(1/5). K = (4/3) E* sqrt(R*) for the ice pair.
     let scratch = Scratch::new("brilliantov-b");
     let path = scratch.scene("ice.toml", &ice_pair(0.5, "damping = 1e-6"));
@@ -312,7 +312,7 @@ fn unit_restitution_needs_no_damping() {
 
 #[test]
 fn published_maps_give_the_effective_e_of_physics_md() {
-    // physics.md §3, "Effective e reached by each law's own map" (6 decimals), and the Tsuji F = 0 value.
+    // docs/references.md, "Effective e reached by each law's own map" (6 decimals), and the Tsuji F = 0 value.
     let scratch = Scratch::new("published");
     let cases = [
         ("lankarani-nikravesh", "0.5", "penetration", 0.725241),
@@ -328,7 +328,7 @@ fn published_maps_give_the_effective_e_of_physics_md() {
         let result = calibrate(&scratch, &["--law", law, "--restitution", e, "--separation", separation]);
         let map = &result["published_map"];
         let got = number(map, "restitution");
-        assert!((got - effective).abs() <= 5e-7, "{law} asked for {e}: the map gives {got}, physics.md {effective}");
+        assert!((got - effective).abs() <= 5e-7, "{law} asked for {e}: the map gives {got}, docs/references.md {effective}");
         // The map's damping is the law's formula, written out here.
         let nominal: f64 = e.parse().unwrap();
         let expected = match law {
@@ -346,7 +346,7 @@ fn published_maps_give_the_effective_e_of_physics_md() {
 #[test]
 fn published_kelvin_voigt_map_with_force_separation_matches_schwager_poschel() {
     // Asked for e = exp(-pi 0.1 / sqrt(0.99)), the map gives zeta = 0.1 exactly, which separating at F = 0 yields
-    // 0.7440793977 (physics.md §3); c = 2 zeta sqrt(k m*) for the steel-free rubber ball.
+    // 0.7440793977 (docs/references.md); c = 2 zeta sqrt(k m*) for the steel-free rubber ball.
     let scratch = Scratch::new("published-kv");
     let path = scratch.scene("ball.toml", &rubber_ball("separation = \"force\"\nrestitution = 0.5"));
     let e = (-PI * 0.1 / 0.99_f64.sqrt()).exp();

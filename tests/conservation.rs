@@ -1,4 +1,4 @@
-//! The impact against the instantaneous formulas of physics.md §2: momentum, V0, the three e, energy.
+//! The impact against the instantaneous formulas of docs/oblique.md: momentum, V0, the three e, energy.
 
 mod common;
 use common::{assert_close, run};
@@ -22,7 +22,7 @@ fn momentum_v0_and_the_three_restitution_coefficients_agree() {
     let v0 = u1 - u2;
     let c = &report.contact;
     assert_close("approach speed", report.approach_speed, v0, 1e-12);
-    // V0 = (m1 u1 + m2 u2)/(m1 + m2) (physics.md §2).
+    // V0 = (m1 u1 + m2 u2)/(m1 + m2) (docs/oblique.md).
     let common = (m1 * u1 + m2 * u2) / (m1 + m2);
     assert!((c.common_normal_velocity - common).abs() <= 1e-9 * v0, "V0 {} vs {common}", c.common_normal_velocity);
     // Deformation impulse m* (u1 - u2).
@@ -67,7 +67,7 @@ fn free_flight_to_first_contact_is_solved_in_closed_form() {
 
 #[test]
 fn lecture_worked_example_normal_components() {
-    // Lecture (physics.md §2): equal masses, normal components +5 and -7.071 m/s, e = 0.8:
+    // Lecture (docs/oblique.md): equal masses, normal components +5 and -7.071 m/s, e = 0.8:
     // after the impact -5.864 and +3.793 m/s.
     let report = run("[[bodies]]\nradius = 0.05\nmass = 1.0\nvelocity = [5.0, 0, 0]\nyoung = 2e11\npoisson = 0.3\n\
                       [[bodies]]\nradius = 0.05\nmass = 1.0\nvelocity = [-7.071, 0, 0]\nyoung = 2e11\npoisson = 0.3\n\
@@ -97,7 +97,7 @@ fn a_wall_can_be_either_body_and_imposes_v0() {
     let (e_right, e_left) =
         (right.contact.restitution_velocity_ratio.unwrap(), left.contact.restitution_velocity_ratio.unwrap());
     assert_close("mirror e", e_left, e_right, 1e-12);
-    // Hunt–Crossley e depends on x = alpha v0 = 0.45 only (physics.md §3): x (1 + e) = ln((1 + x)/(1 - e x)).
+    // Hunt–Crossley e depends on x = alpha v0 = 0.45 only (docs/references.md): x (1 + e) = ln((1 + x)/(1 - e x)).
     let x = 0.3 * 1.5;
     let residual = x * (1.0 + e_right) - ((1.0 + x) / (1.0 - e_right * x)).ln();
     assert!(residual.abs() < 1e-9, "exact relation residual {residual}");

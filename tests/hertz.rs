@@ -1,10 +1,10 @@
-//! Elastic Hertz contact against its closed forms and published benchmark values (physics.md §4).
+//! Elastic Hertz contact against its closed forms and published benchmark values (docs/references.md).
 
 mod common;
 use common::{assert_close, run};
 use std::f64::consts::PI;
 
-/// Duration constant (4/5) B(2/5, 1/2) of physics.md §4: tc = 2.9432751843 dmax / v0.
+/// Duration constant (4/5) B(2/5, 1/2) of docs/references.md: tc = 2.9432751843 dmax / v0.
 const DURATION_CONSTANT: f64 = 2.9432751843;
 
 /// Two equal spheres of one material closing at `speed` (half each way), elastic Hertz with Hertz stiffness.
@@ -17,7 +17,7 @@ fn equal_spheres(young: f64, poisson: f64, density: f64, radius: f64, speed: f64
     run(&format!("{}{}[contact]\nlaw = \"hertz\"\n", body(speed / 2.0), body(-speed / 2.0)))
 }
 
-/// Hand calculation of physics.md §1 and §4 for two equal spheres: (dmax, tc, Fmax).
+/// Hand calculation of docs/scene.md and §4 for two equal spheres: (dmax, tc, Fmax).
 fn closed_form(young: f64, poisson: f64, density: f64, radius: f64, speed: f64) -> (f64, f64, f64) {
     let mass = density * 4.0 / 3.0 * PI * radius.powi(3);
     let effective_mass = mass / 2.0;
@@ -37,7 +37,7 @@ fn steel_pair_matches_hertz_closed_forms_and_published_values() {
     assert_close("duration", c.duration.unwrap(), tc, 2e-10);
     assert_close("max force", c.max_force, fmax, 1e-9);
     assert_close("time of max compression is half the duration", c.max_compression_time, tc / 2.0, 2e-10);
-    // physics.md §4 (checked, 6 digits).
+    // docs/references.md (checked, 6 digits).
     assert_close("published dmax", c.max_penetration, 2.04412e-5, 3e-6);
     assert_close("published tc", c.duration.unwrap(), 6.01641e-5, 3e-6);
     assert_close("published Fmax", c.max_force, 1005.38, 5e-6);

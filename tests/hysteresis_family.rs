@@ -1,4 +1,4 @@
-//! The Hunt–Crossley family F = K d^n (1 + alpha d') against its exact results (physics.md §3).
+//! The Hunt–Crossley family F = K d^n (1 + alpha d') against its exact results (docs/references.md).
 
 mod common;
 use common::{assert_close, on_wall};
@@ -7,7 +7,7 @@ use impact::impact::simulate;
 use impact::scene::Scene;
 use std::path::Path;
 
-/// One row of physics.md's quadrature table: x = alpha v0, n, then e, dmax/L, t0/T, tc/T, Fmax/F0 (checked values).
+/// One row of docs/references.md's quadrature table: x = alpha v0, n, then e, dmax/L, t0/T, tc/T, Fmax/F0 (checked values).
 struct Row {
     x: f64,
     n: f64,
@@ -79,7 +79,7 @@ fn hunt_crossley_matches_exact_restitution_penetration_times_and_peak_force() {
             row.n
         );
         let report = on_wall(mass, speed, &contact);
-        // Units of physics.md: L = (m* v0²/K)^(1/(n+1)), T = L/v0, F0 = K L^n.
+        // Units of docs/references.md: L = (m* v0²/K)^(1/(n+1)), T = L/v0, F0 = K L^n.
         let length = (mass * speed * speed / stiffness).powf(1.0 / (row.n + 1.0));
         let time = length / speed;
         let force = stiffness * length.powf(row.n);
@@ -99,7 +99,7 @@ fn hunt_crossley_matches_exact_restitution_penetration_times_and_peak_force() {
 
 #[test]
 fn damped_force_peaks_before_maximum_compression() {
-    // physics.md §3: with damping the force peaks before d' = 0 (Hunt–Crossley x = 0.5: while d' = 0.284 v0).
+    // docs/references.md: with damping the force peaks before d' = 0 (Hunt–Crossley x = 0.5: while d' = 0.284 v0).
     let text = "[[bodies]]\nradius = 0.01\nmass = 1.0\nvelocity = [1.0, 0, 0]\n[[bodies]]\nradius = inf\nmass = inf\n\
                 velocity = [0, 0, 0]\n[contact]\nlaw = \"hunt-crossley\"\ndamping = 0.5\nstiffness = 1e6\n";
     let scene = Scene::parse(text, Path::new("peak.toml")).unwrap();
@@ -113,7 +113,7 @@ fn damped_force_peaks_before_maximum_compression() {
     assert!((peak.force - contact.max_force).abs() <= 1e-12 * contact.max_force);
 }
 
-/// physics.md's effective-e table: the e each published map actually gives, for nominal e = 0.1 ... 0.99.
+/// docs/references.md's effective-e table: the e each published map actually gives, for nominal e = 0.1 ... 0.99.
 const NOMINAL: [f64; 6] = [0.1, 0.3, 0.5, 0.7, 0.9, 0.99];
 const EFFECTIVE: [(&str, [f64; 6]); 5] = [
     ("hunt-crossley", [0.515833, 0.581288, 0.662962, 0.768000, 0.909016, 0.990099]),
@@ -146,7 +146,7 @@ fn exact_map_gives_the_nominal_restitution() {
 
 #[test]
 fn bounded_maps_cannot_go_below_their_floor() {
-    // physics.md §3: Lankarani–Nikravesh and Lee–Wang never go below 0.662962, Hunt–Crossley and
+    // docs/references.md: Lankarani–Nikravesh and Lee–Wang never go below 0.662962, Hunt–Crossley and
     // Herbert–McWhannell never below 0.487741, whatever nominal e is asked (here the lowest, 0).
     for (law, floor) in [
         ("lankarani-nikravesh", 0.662962),

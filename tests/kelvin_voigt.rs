@@ -1,4 +1,4 @@
-//! Linear Kelvin–Voigt F = k d + c d' against its closed forms (physics.md §3).
+//! Linear Kelvin–Voigt F = k d + c d' against its closed forms (docs/references.md).
 
 mod common;
 use common::{assert_close, on_wall};
@@ -20,7 +20,7 @@ fn with_zeta(zeta: f64, separation: &str) -> impact::report::Report {
 #[test]
 fn penetration_separation_gives_the_damped_oscillator_restitution_and_half_period() {
     let omega0 = (STIFFNESS / MASS).sqrt();
-    // physics.md: zeta = 0.1 -> e = 0.7292476143, duration 3.1574/omega0; zeta = 0.3 -> 0.3723261049, 3.2933.
+    // docs/references.md: zeta = 0.1 -> e = 0.7292476143, duration 3.1574/omega0; zeta = 0.3 -> 0.3723261049, 3.2933.
     for (zeta, published_e, published_duration) in [(0.1, 0.7292476143, 3.1574), (0.3, 0.3723261049, 3.2933)] {
         let report = with_zeta(zeta, "penetration");
         let c = &report.contact;
@@ -37,7 +37,7 @@ fn penetration_separation_gives_the_damped_oscillator_restitution_and_half_perio
 #[test]
 fn force_separation_gives_the_schwager_poschel_restitution() {
     let omega0 = (STIFFNESS / MASS).sqrt();
-    // physics.md: zeta = 0.1 -> 0.7440793977, duration 2.9560753247/omega0; zeta = 0.3 -> 0.4509754529, 2.6544745638.
+    // docs/references.md: zeta = 0.1 -> 0.7440793977, duration 2.9560753247/omega0; zeta = 0.3 -> 0.4509754529, 2.6544745638.
     for (zeta, published_e, published_duration) in
         [(0.1, 0.7440793977, 2.9560753247), (0.3, 0.4509754529, 2.6544745638)]
     {
@@ -65,7 +65,7 @@ fn critical_damping_with_force_separation_gives_exp_minus_two() {
 
 #[test]
 fn overdamped_force_separation_matches_closed_form() {
-    // physics.md: e = exp(-(beta/Omega) ln((beta + Omega)/(beta - Omega))), Omega = sqrt(beta² - k/m*).
+    // docs/references.md: e = exp(-(beta/Omega) ln((beta + Omega)/(beta - Omega))), Omega = sqrt(beta² - k/m*).
     let zeta = 2.0;
     let report = with_zeta(zeta, "force");
     let omega0 = (STIFFNESS / MASS).sqrt();

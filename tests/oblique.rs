@@ -1,5 +1,5 @@
 //! Oblique impact, friction and spin (issue 7): the time-resolved simulation against the lecture's four equations,
-//! rigid-body friction theory (physics.md §2), and the conservation laws of two free spheres. Every expected value is
+//! rigid-body friction theory (docs/oblique.md), and the conservation laws of two free spheres. Every expected value is
 //! computed here from those formulas, never taken from the program.
 
 mod common;
@@ -74,7 +74,7 @@ fn lecture(k: f64) -> String {
     )
 }
 
-/// The lecture's two equations (physics.md §2): momentum u1' + u2' = u1 + u2 and restitution u2' - u1' = e (u1 - u2)
+/// The lecture's two equations (docs/oblique.md): momentum u1' + u2' = u1 + u2 and restitution u2' - u1' = e (u1 - u2)
 /// for equal masses.
 fn four_equations(u1: f64, u2: f64, e: f64) -> (f64, f64) {
     let (sum, difference) = (u1 + u2, e * (u1 - u2));
@@ -85,7 +85,7 @@ fn four_equations(u1: f64, u2: f64, e: f64) -> (f64, f64) {
 fn lecture_example_follows_the_four_equations_as_the_contact_stiffens() {
     let v = std::f64::consts::FRAC_1_SQRT_2 * 10.0;
     let (u1, u2) = four_equations(5.0, -v, 0.8);
-    // physics.md §2 (checked): -5.864 and +3.793 m/s.
+    // docs/oblique.md (checked): -5.864 and +3.793 m/s.
     assert!((u1 + 5.864).abs() < 5e-4 && (u2 - 3.793).abs() < 5e-4, "{u1} {u2}");
     let mut previous = f64::INFINITY;
     for k in [1e12, 1e14, 1e16, 1e18] {
@@ -149,7 +149,7 @@ fn frictionless_reflection_keeps_the_tangential_velocity_and_rebounds_with_e() {
     let laws = [
         ("law = \"carvalho-martins\"\nrestitution = 0.3", 0.3),
         ("law = \"carvalho-martins\"\nrestitution = 0.8", 0.8),
-        // Tsuji's and Kelvin–Voigt's maps are exact with separation at zero penetration (physics.md §3).
+        // Tsuji's and Kelvin–Voigt's maps are exact with separation at zero penetration (docs/references.md).
         ("law = \"tsuji\"\nrestitution = 0.5", 0.5),
         ("law = \"kelvin-voigt\"\nrestitution = 0.7\nstiffness = 1e6\nexponent = 1.0", 0.7),
     ];
@@ -177,7 +177,7 @@ fn frictionless_reflection_keeps_the_tangential_velocity_and_rebounds_with_e() {
 
 const TEST_4: &str = "restitution = 0.98\nfriction = 0.092";
 
-/// Rigid-body sliding on a wall (physics.md §2): vt' = vt - mu (1+e) vn, |w'| = (5/2) mu (1+e) vn / r, with the
+/// Rigid-body sliding on a wall (docs/oblique.md): vt' = vt - mu (1+e) vn, |w'| = (5/2) mu (1+e) vn / r, with the
 /// simulated normal e.
 #[test]
 fn sliding_impacts_follow_rigid_body_theory_with_a_hertzian_exact_map() {
@@ -238,7 +238,7 @@ fn tsujis_damping_term_makes_the_contact_stick_for_an_instant_before_it_slides()
 
 #[test]
 fn small_incidence_departs_from_rigid_theory_as_mindlin_compliance_predicts() {
-    // physics.md §2 (checked): with Mindlin's spring the centre's tangential restitution for test 4 is about 0.89 at
+    // docs/oblique.md (checked): with Mindlin's spring the centre's tangential restitution for test 4 is about 0.89 at
     // 5 degrees, 0.71 at 10, 0.61 at 20 and 0.63 at 25 — not rigid theory's 5/7 = 0.714 of the sticking range.
     for (angle, expected) in [(5.0, 0.89), (10.0, 0.71), (20.0, 0.61), (25.0, 0.63)] {
         let report = run(&sphere_on_wall(angle, 3.9, &format!("law = \"tsuji\"\n{TEST_4}")));
@@ -251,7 +251,7 @@ fn small_incidence_departs_from_rigid_theory_as_mindlin_compliance_predicts() {
 
 #[test]
 fn a_stiff_damped_tangential_spring_ends_sticking_impacts_rolling_at_five_sevenths() {
-    // Rigid sticking of a solid sphere without spin: the slip stops, vt' = (5/7) vt (physics.md §2). A tangential
+    // Rigid sticking of a solid sphere without spin: the slip stops, vt' = (5/7) vt (docs/oblique.md). A tangential
     // spring far stiffer than Mindlin's with critical damping reaches that limit.
     let mut previous = f64::INFINITY;
     for stiffness in [1e8, 1e9, 1e10] {

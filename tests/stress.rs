@@ -6,7 +6,7 @@ use impact::integrate::STEP_BUDGET;
 
 #[test]
 fn creeping_restitution_ends_with_a_note_within_the_step_budget() {
-    // x = alpha v0 = 1e6: e ≈ 1/x = 1e-6 (physics.md §3), a restitution lasting ~1e6 elastic time units and
+    // x = alpha v0 = 1e6: e ≈ 1/x = 1e-6 (docs/references.md), a restitution lasting ~1e6 elastic time units and
     // stiff for an explicit method. The run must stop within its budget and say why.
     for contact in [
         "law = \"hunt-crossley\"\ndamping = 1e6\nstiffness = 1e6",
@@ -24,7 +24,7 @@ fn creeping_restitution_ends_with_a_note_within_the_step_budget() {
 
 #[test]
 fn heavy_but_tractable_damping_still_meets_the_exact_restitution() {
-    // x = 1000: from x (1 + e) = ln((1 + x)/(1 - e x)) (physics.md §3), 1 - e x = (1 + x) exp(-x (1 + e)), so
+    // x = 1000: from x (1 + e) = ln((1 + x)/(1 - e x)) (docs/references.md), 1 - e x = (1 + x) exp(-x (1 + e)), so
     // e = (1 - (1 + x) exp(-x(1 + e)))/x = 1/x to within exp(-1000): e = 1e-3 in double precision.
     let report = on_wall(1.0, 1.0, "law = \"hunt-crossley\"\ndamping = 1000\nstiffness = 1e6");
     assert_close("e", report.contact.restitution_velocity_ratio.unwrap(), 1e-3, 1e-9);
@@ -32,7 +32,7 @@ fn heavy_but_tractable_damping_still_meets_the_exact_restitution() {
 
 #[test]
 fn overdamped_tsuji_with_penetration_separation_reaches_the_time_limit() {
-    // a = 10 > sqrt(5): overdamped in the w-variable (physics.md §3), so d never returns to 0.
+    // a = 10 > sqrt(5): overdamped in the w-variable (docs/references.md), so d never returns to 0.
     let report = on_wall(1.0, 1.0, "law = \"tsuji\"\ndamping = 10\nstiffness = 1e6");
     assert!(!report.contact.separated);
     assert!(report.notes.iter().any(|n| n.contains("did not separate")));
@@ -40,7 +40,7 @@ fn overdamped_tsuji_with_penetration_separation_reaches_the_time_limit() {
 
 #[test]
 fn extreme_scales_give_the_same_nondimensional_contact() {
-    // The scaled formulation makes a nanometre contact and a planetary one the same problem (physics.md §3:
+    // The scaled formulation makes a nanometre contact and a planetary one the same problem (docs/references.md:
     // e depends on x = alpha v0 only).
     for (mass, speed, stiffness) in [(1e-12, 1e-6, 1e-3), (1e20, 1e3, 1e25), (1.0, 1e-9, 1e9)] {
         let contact = format!("law = \"hunt-crossley\"\ndamping = {:?}\nstiffness = {stiffness:?}", 0.5 / speed);
@@ -52,7 +52,7 @@ fn extreme_scales_give_the_same_nondimensional_contact() {
 #[test]
 fn power_law_exponents_below_one_stay_finite() {
     // n = 0.5: the force gradient is unbounded at d = 0; the duration constant is (2/(n+1)) B(1/(n+1), 1/2)
-    // = (4/3) B(2/3, 1/2) and dmax = ((n+1)/2)^(1/(n+1)) L = 0.75^(2/3) L (physics.md §4).
+    // = (4/3) B(2/3, 1/2) and dmax = ((n+1)/2)^(1/(n+1)) L = 0.75^(2/3) L (docs/references.md).
     let report = on_wall(1.0, 1.0, "law = \"hertz\"\nstiffness = 1e6\nexponent = 0.5");
     let length = (1.0f64 / 1e6).powf(1.0 / 1.5);
     assert_close("dmax", report.contact.max_penetration, 0.75f64.powf(2.0 / 3.0) * length, 1e-9);
@@ -61,7 +61,7 @@ fn power_law_exponents_below_one_stay_finite() {
 
 #[test]
 fn loose_tolerances_never_report_a_negative_restitution() {
-    // e = 0 with separation at zero penetration: the exact contact never separates (physics.md §3). Loose
+    // e = 0 with separation at zero penetration: the exact contact never separates (docs/references.md). Loose
     // tolerances may bring d back to zero, but without a separation speed that is no separation.
     for law in ["tsuji", "kelvin-voigt"] {
         let text = format!(

@@ -1,6 +1,6 @@
 //! `impact sweep` and `impact merge` through the real binary: a sweep's rows equal single runs of the same scenes,
-//! reproduce physics.md's tables, do not depend on the thread count or on sharding, and bad arguments are clear
-//! errors with exit status 2. Every expected number comes from physics.md or a hand calculation written here.
+//! reproduce docs/references.md's tables, do not depend on the thread count or on sharding, and bad arguments are clear
+//! errors with exit status 2. Every expected number comes from docs/references.md or a hand calculation written here.
 
 mod common;
 
@@ -213,7 +213,7 @@ fn sweep_rows_equal_single_runs_of_the_same_scenes() {
 // ---------------------------------------------------------------------------------------------------------------
 // Physics through the sweep
 
-/// physics.md §3, "Effective e reached by each law's own map (checked, any n)".
+/// docs/references.md, "Effective e reached by each law's own map (checked, any n)".
 const EFFECTIVE_E: [(&str, [f64; 6]); 5] = [
     ("hunt-crossley", [0.515833, 0.581288, 0.662962, 0.768000, 0.909016, 0.990099]),
     ("lankarani-nikravesh", [0.665265, 0.684225, 0.725241, 0.795973, 0.913177, 0.990148]),
@@ -244,7 +244,7 @@ fn restitution_sweep_reproduces_the_effective_e_table_of_physics_md() {
             // The table is rounded to 6 decimals.
             assert!(
                 (effective - expected[point]).abs() <= 1e-6,
-                "{law} at nominal e = {nominal}: simulated {effective}, physics.md {}",
+                "{law} at nominal e = {nominal}: simulated {effective}, docs/references.md {}",
                 expected[point]
             );
         }
@@ -252,7 +252,7 @@ fn restitution_sweep_reproduces_the_effective_e_table_of_physics_md() {
 }
 
 /// Varying `contact.damping` on a scene that gives `restitution` replaces it: Hunt–Crossley with alpha in s/m at
-/// v0 = 2 m/s has x = alpha v0 = 0.5, 1, 2, whose exact e are in physics.md §3.
+/// v0 = 2 m/s has x = alpha v0 = 0.5, 1, 2, whose exact e are in docs/references.md.
 #[test]
 fn damping_sweep_replaces_restitution_and_matches_exact_hunt_crossley() {
     let scratch = Scratch::new("damping");
@@ -272,7 +272,7 @@ fn damping_sweep_replaces_restitution_and_matches_exact_hunt_crossley() {
 }
 
 /// A scene that gives `damping` takes a varied `restitution` (the damping is removed). The exact map
-/// (carvalho-martins) then gives e = the nominal value (physics.md §3).
+/// (carvalho-martins) then gives e = the nominal value (docs/references.md).
 #[test]
 fn restitution_sweep_replaces_damping() {
     let scratch = Scratch::new("restitution-over-damping");
@@ -288,7 +288,7 @@ fn restitution_sweep_replaces_damping() {
 }
 
 /// Against a velocity key the sweep reports the approach speed: with body 2 at -0.5 m/s, body 1 at 0.5 and 1.5 m/s
-/// closes at 1 and 2 m/s; Hunt–Crossley with alpha = 0.5 s/m then has x = 0.5 and 1 (physics.md §3).
+/// closes at 1 and 2 m/s; Hunt–Crossley with alpha = 0.5 s/m then has x = 0.5 and 1 (docs/references.md).
 #[test]
 fn velocity_sweep_gives_approach_speed_and_speed_dependent_e() {
     let scratch = Scratch::new("velocity");
@@ -318,7 +318,7 @@ fn mass_sweep_replaces_density() {
 }
 
 /// `--law` re-derives each law's defaults: `hertz` drops the damping (e = 1), `kelvin-voigt` takes the scene's
-/// linear stiffness (exponent 1) and its exact map gives e = nominal (physics.md §3), `tsuji` fixes the exponent at
+/// linear stiffness (exponent 1) and its exact map gives e = nominal (docs/references.md), `tsuji` fixes the exponent at
 /// 3/2 so it cannot read a stiffness in N/m (its rows say so), and a scene `damping` in s/m means nothing to
 /// `kelvin-voigt`.
 #[test]
@@ -370,7 +370,7 @@ fn law_list_rederives_each_laws_defaults() {
 }
 
 /// A point that is not a valid scene, and a point whose bodies never separate, are rows, not a failed sweep.
-/// Kelvin–Voigt at e = 0 is critical damping (zeta = 1), which never separates at zero penetration (physics.md).
+/// Kelvin–Voigt at e = 0 is critical damping (zeta = 1), which never separates at zero penetration (docs/references.md).
 #[test]
 fn invalid_and_stuck_points_are_rows_that_say_why() {
     let scratch = Scratch::new("statuses");

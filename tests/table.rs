@@ -7,7 +7,7 @@ mod common;
 use impact::law::LawKind;
 use impact::output::table::render;
 
-/// Two steel balls as in physics.md §4 (r = 10 mm, E = 210 GPa, nu = 0.3, rho = 7850 kg/m^3) closing at 1 m/s
+/// Two steel balls as in docs/references.md (r = 10 mm, E = 210 GPa, nu = 0.3, rho = 7850 kg/m^3) closing at 1 m/s
 /// (+0.5 and -0.5 m/s along x), with the given `[contact]` lines; `gap` (m) places them apart on the x axis.
 fn steel_pair(contact: &str, gap: Option<f64>) -> String {
     let position = |x: f64| gap.map_or(String::new(), |_| format!("position = [{x:?}, 0.0, 0.0]\n"));
@@ -125,7 +125,7 @@ fn every_law_renders_readable_numbers() {
         // Equal masses at +0.5 and -0.5 m/s: V0 = (m 0.5 + m (-0.5)) / 2m = 0, whatever the law.
         assert_eq!(row(&text, "contact", "common normal velocity V0"), "0 m/s", "{law}:\n{text}");
         assert_eq!(row(&text, "bodies", "at maximum compression"), "[0, 0, 0] m/s", "{law}:\n{text}");
-        // Steel balls at 1 m/s touch for tens of microseconds over tens of micrometres (physics.md §4: 60.2 us and
+        // Steel balls at 1 m/s touch for tens of microseconds over tens of micrometres (docs/references.md: 60.2 us and
         // 20.4 um elastic; a linear k = 1e7 N/m gives pi sqrt(m*/k) = pi sqrt(0.016441/1e7) = 127 us).
         let contact = section(&text, "contact");
         assert!(value(&contact, "separation at (= contact duration)").is_some_and(|t| t.ends_with(" µs")), "{law}");
@@ -166,7 +166,7 @@ fn only_what_the_law_has_is_printed() {
     }
 }
 
-/// physics.md §4 for the steel pair: m = (4/3) pi r^3 rho, m* = m/2, E* = E / (2 (1 - nu^2)), R* = r/2,
+/// docs/references.md for the steel pair: m = (4/3) pi r^3 rho, m* = m/2, E* = E / (2 (1 - nu^2)), R* = r/2,
 /// K = (4/3) E* sqrt(R*), dmax = (5 m* v0^2 / (4K))^(2/5), Fmax = K dmax^(3/2), tc = 2.9432751843 dmax / v0.
 /// Returns (m*, dmax, tc, Fmax).
 fn hertz_steel_pair_by_hand() -> (f64, f64, f64, f64) {
@@ -187,7 +187,7 @@ fn six_digits(written: f64, exact: f64) {
 #[test]
 fn hertz_steel_pair_reads_in_microseconds_micrometres_and_kilonewtons() {
     let (m_eff, dmax, tc, fmax) = hertz_steel_pair_by_hand();
-    // physics.md §4: dmax = 2.04412e-5 m, tc = 6.01641e-5 s, Fmax = 1005.38 N; the strings below are those values
+    // docs/references.md: dmax = 2.04412e-5 m, tc = 6.01641e-5 s, Fmax = 1005.38 N; the strings below are those values
     // written with their SI prefixes, checked against the hand calculation first.
     six_digits(16.4410e-3, m_eff);
     six_digits(20.4412e-6, dmax);

@@ -1,4 +1,4 @@
-//! The DEM Tsuji law and the viscoelastic (Brilliantov) law against physics.md §3.
+//! The DEM Tsuji law and the viscoelastic (Brilliantov) law against docs/references.md.
 
 mod common;
 use common::{assert_close, on_wall};
@@ -14,7 +14,7 @@ fn tsuji_effective_restitution_equals_nominal_with_penetration_separation() {
 
 #[test]
 fn tsuji_matches_the_nondimensional_table() {
-    // physics.md: e, dmax/L, tc/T, Fmax/F0 with L = (m* v0²/K)^(2/5), T = L/v0, F0 = K L^(3/2) (6-7 digits).
+    // docs/references.md: e, dmax/L, tc/T, Fmax/F0 with L = (m* v0²/K)^(2/5), T = L/v0, F0 = K L^(3/2) (6-7 digits).
     let table = [
         (1.0, 1.093362, 3.218065, 1.143263),
         (0.9, 1.049184, 3.253683, 1.076691),
@@ -34,14 +34,14 @@ fn tsuji_matches_the_nondimensional_table() {
 
 #[test]
 fn tsuji_with_force_separation_gives_the_kelvin_voigt_force_values() {
-    // physics.md: nominal 0.5 with separation at F = 0 gives 0.550283.
+    // docs/references.md: nominal 0.5 with separation at F = 0 gives 0.550283.
     let report = on_wall(0.3, 1.0, "law = \"tsuji\"\nrestitution = 0.5\nstiffness = 2e9\nseparation = \"force\"");
     assert!((report.contact.restitution_velocity_ratio.unwrap() - 0.550283).abs() < 5e-7);
 }
 
 #[test]
 fn brilliantov_matches_exact_restitution_and_its_small_b_series() {
-    // physics.md: exact (ODE, d = 0) e(b): 0.01 -> 0.9885448187, 0.1 -> 0.8921475873, 0.5 -> 0.5738246287,
+    // docs/references.md: exact (ODE, d = 0) e(b): 0.01 -> 0.9885448187, 0.1 -> 0.8921475873, 0.5 -> 0.5738246287,
     // b = (3/2) A (K/m*)^(2/5) v0^(1/5).
     let (mass, speed, stiffness): (f64, f64, f64) = (0.05, 2.0, 5e8);
     for (b, exact) in [(0.01, 0.9885448187), (0.1, 0.8921475873), (0.5, 0.5738246287)] {
@@ -70,7 +70,7 @@ fn brilliantov_restitution_falls_with_impact_speed() {
 
 #[test]
 fn brilliantov_separation_criterion_matters_a_little() {
-    // physics.md: e(F = 0) - e(d = 0) = 7.1e-4 at b = 0.1.
+    // docs/references.md: e(F = 0) - e(d = 0) = 7.1e-4 at b = 0.1.
     let (mass, speed, stiffness): (f64, f64, f64) = (0.05, 2.0, 5e8);
     let a = 0.1 / (1.5 * (stiffness / mass).powf(0.4) * speed.powf(0.2));
     let e = |separation: &str| {

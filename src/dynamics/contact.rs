@@ -2,7 +2,7 @@
 //! overlap, how fast the contact points slip, and the tangential (friction) force of a Mindlin spring capped by
 //! Coulomb's law. Pure functions of the relative kinematics — each contact of a run with several would use them.
 //!
-//! Conventions (physics.md §1): the normal n points from body 1 to body 2; the penetration is d = r1 + r2 - |x2 - x1|
+//! Conventions (docs/scene.md): the normal n points from body 1 to body 2; the penetration is d = r1 + r2 - |x2 - x1|
 //! for two spheres and the overlap with the wall's plane for a sphere on a wall; the slip is the velocity of body 1's
 //! contact point relative to body 2's, across the normal; the tangential force Ft acts on body 1, -Ft on body 2.
 //!

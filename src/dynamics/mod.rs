@@ -1,7 +1,7 @@
 //! Equations of motion during contact, in scaled variables.
 //!
 //! Lengths are measured in the elastic penetration scale L = (m* v0²/K)^(1/(n+1)), speeds in the approach speed v0,
-//! times in T = L/v0, forces in F0 = K L^n = m* v0²/L (physics.md §3). Every scaled quantity is O(1) whatever the
+//! times in T = L/v0, forces in F0 = K L^n = m* v0²/L (docs/references.md). Every scaled quantity is O(1) whatever the
 //! bodies, which is what makes one absolute tolerance meaningful.
 //!
 //! Two models share one interface ([`ContactModel`]) so that one phase driver (`crate::impact`) runs either:

@@ -30,7 +30,7 @@ pub mod index {
     pub const WORK: usize = 3;
     /// ∫ F_dissipative d' dt / (m* v0² delta): energy dissipated so far, in units of the damping's own size delta
     /// (see [`super::normal::NormalContact::dissipation_scale`]), so that a light damping's small dissipation is
-    /// integrated to the tolerance relative to itself (physics.md §5).
+    /// integrated to the tolerance relative to itself (docs/numerics.md).
     pub const DISSIPATED: usize = 4;
 }
 

@@ -37,7 +37,7 @@ mod tests {
 
     #[test]
     fn series_error_against_exact_values() {
-        // physics.md §3: exact (ODE, d = 0) b = 0.01 → 0.9885448187, 0.1 → 0.8921475873; series error
+        // docs/references.md: exact (ODE, d = 0) b = 0.01 → 0.9885448187, 0.1 → 0.8921475873; series error
         // ~0.523 b³ (5.2e-7 at 0.01) and 5e-4 at b = 0.1.
         let err_small = brilliantov_restitution_series(0.01) - 0.9885448187;
         assert!(err_small > 0.0 && err_small < 6e-7, "{err_small}");

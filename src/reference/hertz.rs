@@ -36,7 +36,7 @@ mod tests {
     #[test]
     fn hertz_three_halves() {
         let r = hertz_elastic(1.5);
-        // physics.md §4: dmax = (5/4)^(2/5) L, tc = 2.9432751843 dmax/v0, Fmax = dmax^(3/2), t0 = tc/2.
+        // docs/references.md: dmax = (5/4)^(2/5) L, tc = 2.9432751843 dmax/v0, Fmax = dmax^(3/2), t0 = tc/2.
         assert!(rel(r.max_penetration, 1.25_f64.powf(0.4)) < 1e-15);
         assert!((r.duration / r.max_penetration - 2.9432751843).abs() < 5e-11);
         assert!(rel(r.max_force, 1.25_f64.powf(0.6)) < 1e-15);
@@ -65,7 +65,7 @@ mod tests {
 
     #[test]
     fn steel_spheres_example_of_physics_md() {
-        // physics.md §4: two steel spheres, E = 210 GPa, nu = 0.3, rho = 7850, r = 10 mm, closing at 1 m/s:
+        // docs/references.md: two steel spheres, E = 210 GPa, nu = 0.3, rho = 7850, r = 10 mm, closing at 1 m/s:
         // dmax = 2.04412e-5 m, tc = 6.01641e-5 s, Fmax = 1005.38 N.
         let (e_mod, nu, rho, r, v0) = (210e9_f64, 0.3_f64, 7850.0_f64, 0.01_f64, 1.0_f64);
         let e_star = e_mod / (2.0 * (1.0 - nu * nu));

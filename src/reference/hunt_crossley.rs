@@ -308,7 +308,7 @@ mod tests {
 
     #[test]
     fn inverse_against_the_series_of_physics_md() {
-        // chi = 3/2 eps + 3/2 eps² + 27/20 eps³ + 6/5 eps⁴ + 759/700 eps⁵ + 351/350 eps⁶ (physics.md §3).
+        // chi = 3/2 eps + 3/2 eps² + 27/20 eps³ + 6/5 eps⁴ + 759/700 eps⁵ + 351/350 eps⁶ (docs/references.md).
         let series = |eps: f64| {
             1.5 * eps
                 + 1.5 * eps.powi(2)
@@ -339,7 +339,7 @@ mod tests {
         for e in [1e-3, 1e-10, 1e-300] {
             assert!(rel(hunt_crossley_chi(e).unwrap(), 1.0 / e) < 1e-15, "e = {e}");
         }
-        // physics.md's exact values read backwards.
+        // docs/references.md's exact values read backwards.
         for (x, e) in EXACT {
             assert!(rel(hunt_crossley_chi(e).unwrap(), x) < 1e-10, "x = {x}");
         }

@@ -164,7 +164,7 @@ mod tests {
 
     #[test]
     fn elastic_limit_matches_the_closed_form() {
-        // The quadrature at x = 0 against Hertz's Beta-function closed form (physics.md §4).
+        // The quadrature at x = 0 against Hertz's Beta-function closed form (docs/references.md).
         for n in [0.5, 1.0, 1.5, 2.2, 4.0] {
             let q = by_quadrature(0.0, n);
             let h = hertz_elastic(n);
@@ -193,7 +193,7 @@ mod tests {
 
     #[test]
     fn force_peaks_before_maximum_compression() {
-        // physics.md §3: Hunt–Crossley x = 0.5 (n = 3/2) peaks while d' = 0.284 v0.
+        // docs/references.md: Hunt–Crossley x = 0.5 (n = 3/2) peaks while d' = 0.284 v0.
         let (v, _) = peak_force(0.5, 1.5);
         assert!((v - 0.284).abs() < 5e-4, "{v}");
     }
@@ -216,7 +216,7 @@ mod tests {
 
     #[test]
     fn large_damping_against_an_ode_solve() {
-        // x = 100 (outside physics.md's table; q = 1 - e x ~ 4e-42): RK4 with dt = 5e-4 is converged to ~1e-9.
+        // x = 100 (outside docs/references.md's table; q = 1 - e x ~ 4e-42): RK4 with dt = 5e-4 is converged to ~1e-9.
         let (tc, e) = rk4_contact(100.0, 1.5, 5e-4);
         let r = hysteresis_contact(100.0, 1.5);
         assert!(rel(r.duration, tc) < 1e-8, "{} vs {tc}", r.duration);

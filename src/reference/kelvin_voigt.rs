@@ -165,7 +165,7 @@ mod tests {
 
     #[test]
     fn physics_md_values() {
-        // physics.md §3: zeta = 0.1: e = 0.7292476143 (d = 0) or 0.7440793977 (F = 0), durations 3.1574 and
+        // docs/references.md: zeta = 0.1: e = 0.7292476143 (d = 0) or 0.7440793977 (F = 0), durations 3.1574 and
         // 2.9560753247; zeta = 0.3: 0.3723261049 or 0.4509754529, durations 3.2933 and 2.6544745638 (checked).
         let cases = [
             (0.1, 0.7292476143, 3.1574, 0.7440793977, 2.9560753247),
@@ -183,7 +183,7 @@ mod tests {
 
     #[test]
     fn critical_and_overdamped() {
-        // physics.md §3: critical damping with F = 0 separation gives e = exp(-2); d = 0 never separates.
+        // docs/references.md: critical damping with F = 0 separation gives e = exp(-2); d = 0 never separates.
         let c = kelvin_voigt(1.0, Force).unwrap();
         assert!(rel(c.restitution, (-2.0_f64).exp()) < 1e-15);
         assert!((c.restitution - 0.135335).abs() < 5e-7);
@@ -192,7 +192,7 @@ mod tests {
         assert_eq!(c.max_force, 2.0); // F = e^(-s)(2 - s), decreasing
         assert!(kelvin_voigt(1.0, Penetration).is_none());
         assert!(kelvin_voigt(3.0, Penetration).is_none());
-        // Overdamped, physics.md: e = exp(-(beta/Omega) ln((beta + Omega)/(beta - Omega))).
+        // Overdamped, docs/references.md: e = exp(-(beta/Omega) ln((beta + Omega)/(beta - Omega))).
         for zeta in [1.5_f64, 4.0, 100.0] {
             let w = (zeta * zeta - 1.0).sqrt();
             let e = (-(zeta / w) * ((zeta + w) / (zeta - w)).ln()).exp();

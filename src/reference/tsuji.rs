@@ -93,7 +93,7 @@ mod tests {
 
     #[test]
     fn physics_md_table() {
-        // physics.md §3 Tsuji table (nominal e; dmax/L, tc/T, Fmax/F0), d = 0 separation.
+        // docs/references.md Tsuji table (nominal e; dmax/L, tc/T, Fmax/F0), d = 0 separation.
         let table = [
             (1.0, 1.093362, 3.218065, 1.143263),
             (0.9, 1.049184, 3.253683, 1.076691),
@@ -111,7 +111,7 @@ mod tests {
 
     #[test]
     fn force_separation_gives_the_kelvin_voigt_value() {
-        // physics.md §3: separating at F = 0, nominal 0.5 → 0.550283.
+        // docs/references.md: separating at F = 0, nominal 0.5 → 0.550283.
         let r = tsuji(tsuji_damping(0.5), Force).unwrap();
         assert!((r.restitution - 0.550283).abs() <= 5e-7, "{}", r.restitution);
         let p = tsuji(tsuji_damping(0.5), Penetration).unwrap();
@@ -122,7 +122,7 @@ mod tests {
 
     #[test]
     fn undamped_is_hertz() {
-        // a = 0: Hertz n = 3/2, dmax = (5/4)^(2/5), tc = 2.9432751843 dmax, Fmax = dmax^(3/2) (physics.md §4).
+        // a = 0: Hertz n = 3/2, dmax = (5/4)^(2/5), tc = 2.9432751843 dmax, Fmax = dmax^(3/2) (docs/references.md).
         let r = tsuji(0.0, Penetration).unwrap();
         let dmax = 1.25_f64.powf(0.4);
         assert!(((r.max_penetration - dmax) / dmax).abs() < 1e-15);
@@ -134,7 +134,7 @@ mod tests {
     #[test]
     fn overdamped_force_separation_against_closed_form_and_ode() {
         // a = 3: zeta = 3/sqrt(5), Omega = 2/sqrt(5), (zeta + Omega)/(zeta - Omega) = 5, zeta/Omega = 3/2, so the
-        // Kelvin–Voigt F = 0 formula of physics.md gives e = 5^(-3/2).
+        // Kelvin–Voigt F = 0 formula of docs/references.md gives e = 5^(-3/2).
         let r = tsuji(3.0, Force).unwrap();
         assert!((r.restitution - 5.0_f64.powf(-1.5)).abs() < 1e-15);
         // Duration against classical RK4 on d'' = -d^(3/2) - a d^(1/4) d' until F = 0 (dt = 2.5e-4; the d^(1/4)
