@@ -328,7 +328,10 @@ fn published_maps_give_the_effective_e_of_physics_md() {
         let result = calibrate(&scratch, &["--law", law, "--restitution", e, "--separation", separation]);
         let map = &result["published_map"];
         let got = number(map, "restitution");
-        assert!((got - effective).abs() <= 5e-7, "{law} asked for {e}: the map gives {got}, docs/references.md {effective}");
+        assert!(
+            (got - effective).abs() <= 5e-7,
+            "{law} asked for {e}: the map gives {got}, docs/references.md {effective}"
+        );
         // The map's damping is the law's formula, written out here.
         let nominal: f64 = e.parse().unwrap();
         let expected = match law {

@@ -344,7 +344,7 @@ fn every_pointer_the_program_prints_names_a_file_of_the_repository() {
     let mut pointers = 0;
     for file in rust_files(&root().join("src")) {
         for literal in string_literals(&read(&file)) {
-            for outside in ["docs/references.md", "interface.md", "../shared", "../seed"] {
+            for outside in ["physics.md", "interface.md", "../shared", "../seed"] {
                 if literal.contains(outside) {
                     problems
                         .push(format!("{}: \"{literal}\" names {outside}, which a clone does not have", shown(&file)));

@@ -1,4 +1,4 @@
-//! Writing outputs: where an output path leads, and writing there completely or not at all (interface.md, "Output
+//! Writing outputs: where an output path leads, and writing there completely or not at all (docs/scene.md, "Output
 //! paths").
 //!
 //! - `-` is standard output; so is a path that is the very file or pipe standard output already writes to (a shell's

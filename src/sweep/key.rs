@@ -206,7 +206,7 @@ impl SceneKey {
         SceneKey { component: None, ..self.clone() }.to_string()
     }
 
-    /// The vector a scene means when it leaves this field out (interface.md), if it has one.
+    /// The vector a scene means when it leaves this field out (docs/scene.md), if it has one.
     fn default_vector(&self) -> Option<[f64; 3]> {
         match self.field {
             "normal" => Some([1.0, 0.0, 0.0]),
