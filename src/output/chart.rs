@@ -19,6 +19,7 @@ pub const HEIGHT: f64 = 640.0;
 /// Font sizes, px.
 const TITLE_SIZE: f64 = 20.0;
 const LABEL_SIZE: f64 = 17.0;
+const HEADING_SIZE: f64 = 16.0;
 const TICK_SIZE: f64 = 15.0;
 const LEGEND_SIZE: f64 = 14.5;
 const NOTE_SIZE: f64 = 14.5;
@@ -438,6 +439,8 @@ pub struct Chart {
     pub min_left: f64,
     /// Write the legend below the plot even when it would fit inside.
     pub legend_below: bool,
+    /// A panel's heading, e.g. "(a) rebound spin": left-aligned over the plot area, under the title (if any).
+    pub heading: String,
 }
 
 impl Chart {
@@ -452,6 +455,7 @@ impl Chart {
             x_labels: true,
             min_left: 0.0,
             legend_below: false,
+            heading: String::new(),
         }
     }
 
@@ -469,6 +473,7 @@ impl Chart {
     /// The plot area, leaving `below` px under the x axis's label for a legend.
     fn frame(&self, below: f64) -> Frame {
         let top = if self.title.is_empty() { PAD + 8.0 } else { PAD + 1.2 * TITLE_SIZE + 14.0 };
+        let top = if self.heading.is_empty() { top } else { top + HEADING_SIZE * 1.2 + 2.0 };
         let bottom = if self.x_labels {
             let superscript = if self.x.log { SUPER_RISE * TICK_SIZE } else { 0.0 };
             let x_ticks_height = TICK_LENGTH + TICK_GAP + superscript + 1.2 * TICK_SIZE;
@@ -663,6 +668,15 @@ impl Chart {
                 number(PAD + ASCENT * size),
                 number(size),
                 escape(&self.title)
+            );
+        }
+        if !self.heading.is_empty() {
+            let _ = writeln!(
+                svg,
+                "<text class=\"heading\" x=\"{}\" y=\"{}\" font-size=\"{HEADING_SIZE}\" fill=\"{INK}\">{}</text>",
+                number(frame.left),
+                number(frame.top - 8.0),
+                escape(&self.heading)
             );
         }
         let x_ticks = self.x.ticks(frame.width(), X_SPACING);
