@@ -940,7 +940,7 @@ impl Stack {
         for (i, panel) in self.aligned().iter().enumerate() {
             let id = format!("plot-area-{}", i + 1);
             let (frame, content) = panel.content(&id);
-            let _ = write!(svg, "<g class=\"panel\" transform=\"translate(0 {})\">\n", number(top));
+            let _ = writeln!(svg, "<g class=\"panel\" transform=\"translate(0 {})\">", number(top));
             svg.push_str(&clip_path(&id, &frame));
             svg.push_str(&content);
             svg.push_str("</g>\n");

@@ -279,3 +279,47 @@ fn rigid_threshold(mut rows: Vec<RigidRow>) -> Option<Threshold> {
     };
     Some(Threshold::At { x, degrees: theta })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A sphere on a wall by rigid-body theory (physics.md §2): the slip changes by (7/2) mu (1 + e) v_n while it
+    /// slides, so it sticks below tan(theta*) = (7/2) mu (1 + e), and a sliding row's rebound angle is
+    /// atan((tan(theta) - (7/2) mu (1 + e)) / e).
+    fn sphere_on_wall(degrees: f64, mu: f64, e: f64) -> RigidRow {
+        let limit = 3.5 * mu * (1.0 + e);
+        let tangent = degrees.to_radians().tan();
+        let rebound = if tangent <= limit { 0.0 } else { ((tangent - limit) / e).atan().to_degrees() };
+        RigidRow { x: degrees, incidence: degrees, restitution: e, rebound }
+    }
+
+    #[test]
+    fn the_rigid_threshold_is_located_from_a_sliding_row() {
+        let (mu, e): (f64, f64) = (0.092, 0.98);
+        let exact = (3.5 * mu * (1.0 + e)).atan().to_degrees();
+        // In any order; the first change of regime counts.
+        let rows = [45.0, 5.0, 30.0, 35.0, 60.0].map(|d| sphere_on_wall(d, mu, e)).to_vec();
+        let Some(Threshold::At { x, degrees }) = rigid_threshold(rows) else { panic!("a located threshold") };
+        assert!((degrees - exact).abs() < 1e-10 && (x - exact).abs() < 1e-10, "{degrees} against {exact}");
+        assert!((exact - 32.52).abs() < 0.01, "Chung & Ooi's 32.5 degrees: {exact}");
+    }
+
+    #[test]
+    fn the_threshold_goes_on_the_varied_axis_and_falls_back_to_an_interval() {
+        let (mu, e): (f64, f64) = (0.2, 0.5);
+        let exact = (3.5 * mu * (1.0 + e)).atan().to_degrees();
+        // The varied angle is not the contact points' incidence (x = incidence + 10): interpolated between the rows.
+        let shifted = |d: f64| RigidRow { x: d + 10.0, ..sphere_on_wall(d, mu, e) };
+        let Some(Threshold::At { x, degrees }) = rigid_threshold(vec![shifted(40.0), shifted(50.0)]) else {
+            panic!("a located threshold")
+        };
+        assert!((degrees - exact).abs() < 1e-10 && (x - (exact + 10.0)).abs() < 1e-10, "{x}, {degrees}");
+        // A sliding row whose rebound does not fit the sliding law (a turning slip): only the interval is known.
+        let mut odd = sphere_on_wall(50.0, mu, e);
+        odd.rebound = 45.0;
+        assert_eq!(rigid_threshold(vec![sphere_on_wall(40.0, mu, e), odd]), Some(Threshold::Between(40.0, 50.0)));
+        // Sliding throughout (or smooth): no change of regime, no threshold.
+        assert_eq!(rigid_threshold(vec![sphere_on_wall(50.0, mu, e), sphere_on_wall(60.0, mu, e)]), None);
+    }
+}
