@@ -96,19 +96,24 @@ impl IncidenceFigure {
         (low, high + pad)
     }
 
-    /// The distinct thresholds (to 0.05 degrees), each with the series it belongs to.
-    fn thresholds(&self) -> Vec<(usize, Threshold)> {
-        let mut found: Vec<(usize, Threshold)> = Vec::new();
+    /// The distinct thresholds (to 0.05 degrees), each with the series it belongs to: `None` when it is every
+    /// series' threshold.
+    fn thresholds(&self) -> Vec<(Option<usize>, Threshold)> {
+        let same = |a: &Threshold, b: &Threshold| match (a, b) {
+            (Threshold::At { x: a, .. }, Threshold::At { x: b, .. }) => (a - b).abs() < 0.05,
+            (Threshold::Between(a, b), Threshold::Between(c, d)) => a == c && b == d,
+            _ => false,
+        };
+        let mut found: Vec<(Option<usize>, Threshold)> = Vec::new();
         for (i, series) in self.series.iter().enumerate() {
             let Some(threshold) = series.threshold else { continue };
-            let same = |other: &Threshold| match (other, threshold) {
-                (Threshold::At { x: a, .. }, Threshold::At { x: b, .. }) => (a - b).abs() < 0.05,
-                (Threshold::Between(a, b), Threshold::Between(c, d)) => a == &c && b == &d,
-                _ => false,
-            };
-            if !found.iter().any(|(_, t)| same(t)) {
-                found.push((i, threshold));
+            if !found.iter().any(|(_, t)| same(t, &threshold)) {
+                found.push((Some(i), threshold));
             }
+        }
+        let shared = self.series.iter().all(|s| s.threshold.is_some_and(|t| same(&t, &found[0].1)));
+        if found.len() == 1 && shared {
+            found[0].0 = None;
         }
         found
     }
@@ -151,39 +156,50 @@ pub fn stack(figure: &IncidenceFigure) -> Stack {
             Threshold::At { .. } => None,
         }) {
             let span = Mark::Span { from: start, to: end, fill: Colour::GREY, opacity: 0.15 };
-            let owner = if count > 1 { format!(" ({})", figure.series[*i].label) } else { String::new() };
+            let owner = i.map(|i| format!(" ({})", figure.series[i].label)).unwrap_or_default();
             let text = format!("rigid-body theory turns from sticking to sliding in this interval{owner}");
             chart.push(label(Layer::new("threshold", span), text, 2 * count as i32 + 1));
         }
+        // All simulations, then all rigid-body lines over them (so that theory shows where the two agree); with
+        // several series, each a little narrower than the one before, so that coinciding lines and markers still
+        // show every colour.
+        let narrowing = |i: usize| if count > 1 { 1.0 - 0.45 * i as f64 / (count - 1) as f64 } else { 1.0 };
         for (i, series) in figure.series.iter().enumerate() {
-            let (simulated, rigid) = colours(i, count);
+            let colour = colours(i, count).0;
             let shape = chart::SHAPES[i % chart::SHAPES.len()];
-            let named = |what: &str| if count > 1 { format!("{what}, {}", series.label) } else { what.to_string() };
             let marked = series.simulated[panel].iter().flatten().count() <= MARKED;
+            let (width, radius) = if count > 1 { (3.2 * narrowing(i), 5.5 * narrowing(i)) } else { (2.0, 4.0) };
             let text = if count > 1 {
                 format!("simulation, {}", series.label)
             } else {
                 format!("simulation ({})", series.label)
             };
             for (j, points) in runs(&series.simulated[panel]).into_iter().enumerate() {
-                let marker = (marked || points.len() == 1).then(|| Marker::new(shape, 4.0, simulated));
-                let line = Mark::Line { points, stroke: Stroke::solid(simulated, 2.0), marker };
+                let marker = (marked || points.len() == 1).then(|| Marker::new(shape, radius, colour));
+                let line = Mark::Line { points, stroke: Stroke::solid(colour, width), marker };
                 let layer = Layer::new("simulated", line);
                 chart.push(if j == 0 { label(layer, text.clone(), 2 * i as i32) } else { layer });
             }
-            // Over the simulation, so that it shows where the two agree.
-            let theory = named("rigid-body theory with the simulated e");
+        }
+        for (i, series) in figure.series.iter().enumerate() {
+            let colour = colours(i, count).1;
+            let width = if count > 1 { 2.6 * narrowing(i) } else { 1.8 };
+            let theory = if count > 1 {
+                format!("rigid-body theory with the simulated e, {}", series.label)
+            } else {
+                "rigid-body theory with the simulated e".to_string()
+            };
             for (j, points) in runs(&series.rigid[panel]).into_iter().enumerate() {
-                let line = Mark::Line { points, stroke: Stroke::dashed(rigid, 1.8, 7.0, 4.0), marker: None };
+                let line = Mark::Line { points, stroke: Stroke::dashed(colour, width, 7.0, 4.0), marker: None };
                 let layer = Layer::new("rigid", line);
                 chart.push(if j == 0 { label(layer, theory.clone(), 2 * i as i32 + 1) } else { layer });
             }
         }
         for (i, threshold) in &thresholds {
             let Threshold::At { x, degrees } = *threshold else { continue };
-            let colour = if count > 1 { colours(*i, count).0 } else { Colour::GREY };
+            let colour = i.map_or(Colour::GREY, |i| colours(i, count).0);
             let line = Mark::VLine { x, stroke: Stroke::dashed(colour, 1.5, 2.0, 3.0) };
-            let owner = if count > 1 { format!(" ({})", figure.series[*i].label) } else { String::new() };
+            let owner = i.map(|i| format!(" ({})", figure.series[i].label)).unwrap_or_default();
             let text = format!("rigid-body theory sticks below θ* = {}°, slides above{owner}", fixed(degrees, 1));
             chart.push(label(Layer::new("threshold", line), text, 2 * count as i32 + 2));
             if panel == 0 && thresholds.len() == 1 {
