@@ -319,6 +319,8 @@ fn the_gallery_reports_only_the_figures_it_leaves() {
         "demo_velocities.png",
         "effective_restitution.png",
         "kelvin_voigt_force_penetration.png",
+        "chung_ooi_20deg_force_time.png",
+        "chung_ooi_test4.png",
     ]
     .map(|name| format!("g/{name}"));
     let mut reported: Vec<String> = paths.iter().map(|p| p.to_string()).collect();
@@ -333,5 +335,211 @@ fn the_gallery_reports_only_the_figures_it_leaves() {
         .map(|e| e.expect("an entry").file_name().to_string_lossy().into_owned())
         .collect();
     left.sort();
-    assert_eq!(left.len(), 4, "only the figures: {left:?}");
+    assert_eq!(left.len(), expected.len(), "only the figures: {left:?}");
+}
+
+// ---------------------------------------------------------------------------------------------------------------
+// Oblique impacts with friction
+
+/// Chung & Ooi's test 4 (physics.md): an alumina sphere (r = 2.5 mm) on a rigid wall at 3.9 m/s, mu = 0.092,
+/// e = 0.98 from Tsuji's exact map; at `degrees` from the normal, with friction `mu`.
+fn alumina_on_wall(degrees: f64, mu: f64) -> String {
+    let (s, c) = degrees.to_radians().sin_cos();
+    format!(
+        "title = \"alumina\"\n[[bodies]]\nname = \"sphere\"\nradius = 0.0025\ndensity = 4000\n\
+         velocity = [{}, 0.0, {}]\nyoung = 3.8e11\npoisson = 0.23\n\
+         [[bodies]]\nname = \"wall\"\nradius = inf\nmass = inf\nvelocity = [0.0, 0.0, 0.0]\nyoung = inf\n\
+         [contact]\nlaw = \"tsuji\"\nrestitution = 0.98\nfriction = {mu}\nnormal = [0.0, 0.0, -1.0]\n",
+        3.9 * s,
+        -3.9 * c
+    )
+}
+
+/// The force–time SVG of `scene`.
+fn force_time_of(scratch: &Scratch, scene: &str, folder: &str) -> String {
+    std::fs::write(scratch.path().join(format!("{folder}.toml")), scene).expect("write the scene");
+    let out = impact(scratch.path(), &["run", &format!("{folder}.toml"), "--plot", folder]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    scratch.read(&format!("{folder}/force_time.svg"))
+}
+
+/// The panels `<g class="panel" ...>...` of a stacked figure, in order (each up to the next panel or the end).
+fn panels(svg: &str) -> Vec<&str> {
+    let starts: Vec<usize> = svg.match_indices("<g class=\"panel\"").map(|(i, _)| i).collect();
+    starts.iter().enumerate().map(|(k, &i)| &svg[i..starts.get(k + 1).copied().unwrap_or(svg.len())]).collect()
+}
+
+/// The y of a horizontal line (the first `<line` in the group of class `class`).
+fn line_y(svg: &str, class: &str) -> f64 {
+    let group = groups(svg, class);
+    number(tags(group.first().unwrap_or_else(|| panic!("a {class} line")), "line")[0], "y1")
+}
+
+#[test]
+fn the_tangential_force_panel_belongs_to_frictional_contacts_only() {
+    let scratch = Scratch::new("tangential_force_panel");
+    // Central and frictionless, oblique and smooth: one panel, no tangential force, as before.
+    let central = Figures::render("tangential_force_panel_central");
+    let smooth = force_time_of(&scratch, &alumina_on_wall(20.0, 0.0), "smooth");
+    for svg in [central.get("force_time").0, smooth.as_str()] {
+        assert!(panels(svg).is_empty(), "a single chart");
+        assert!(!svg.contains("class=\"coulomb\"") && !svg.contains("tangential"), "no tangential force");
+    }
+
+    // At 20 degrees the sphere slides, sticks (the force turns round) and slides back.
+    let svg = force_time_of(&scratch, &alumina_on_wall(20.0, 0.092), "friction");
+    let [normal, tangential] = panels(&svg)[..] else { panic!("two panels: normal and tangential force") };
+    assert!(texts(normal, "axis-label y")[0].starts_with("normal force"), "{:?}", texts(normal, "axis-label y"));
+    assert!(texts(normal, "tick-x").is_empty() && texts(normal, "axis-label x").is_empty(), "one time axis, below");
+    assert!(texts(tangential, "axis-label x")[0].contains("(µs)"));
+    assert!(texts(tangential, "axis-label y")[0].contains("tangential force (N)"));
+    assert!(tangential.contains("μ = 0.092"), "the friction coefficient in the legend");
+    assert!(!groups(tangential, "sticking").is_empty(), "the sticking stretches shaded");
+    let frames: Vec<f64> = [normal, tangential]
+        .iter()
+        .map(|p| number(tags(p, "rect").into_iter().find(|t| attribute(t, "class") == Some("frame")).unwrap(), "x"))
+        .collect();
+    assert_eq!(frames[0], frames[1], "the panels' plot areas are aligned");
+
+    // The Coulomb limits, dashed like their legend symbol, above and below (the force reverses).
+    let coulomb: Vec<Vec<(f64, f64)>> =
+        groups(tangential, "coulomb").iter().map(|g| points(tags(g, "polyline")[0])).collect();
+    assert_eq!(coulomb.len(), 2, "+μF and −μF");
+    let (legend, plot) = dash_patterns(tangential);
+    assert!(!plot.is_empty() && legend.is_subset(&plot), "legend {legend:?}, plot {plot:?}");
+    let dashed = attribute(tags(groups(tangential, "coulomb")[0], "polyline")[0], "stroke-dasharray");
+    assert!(dashed.is_some(), "the Coulomb limit is dashed");
+
+    // Measured from the zero lines: the limit is mu F, so it follows the normal force at one ratio, and the tangential
+    // force never leaves it (Coulomb's law), reaching it where the contact slides.
+    let normal_force = points(tags(groups(normal, "curve")[0], "polyline")[0]);
+    let tangential_force = points(tags(groups(tangential, "curve")[0], "polyline")[0]);
+    let (zero_n, zero_t) = (line_y(normal, "zero"), line_y(tangential, "zero"));
+    assert_eq!(normal_force.len(), coulomb[0].len());
+    let peak = normal_force.iter().map(|p| zero_n - p.1).fold(0.0, f64::max);
+    let ratios: Vec<f64> = normal_force
+        .iter()
+        .zip(&coulomb[0])
+        .filter(|(n, _)| zero_n - n.1 > 0.2 * peak)
+        .map(|(n, c)| (zero_t - c.1) / (zero_n - n.1))
+        .collect();
+    let (low, high) = ratios.iter().fold((f64::INFINITY, 0.0f64), |(a, b), &r| (a.min(r), b.max(r)));
+    assert!(high / low < 1.01, "limit / normal force from {low} to {high}");
+    let mut on_limit = 0;
+    for ((t, upper), lower) in tangential_force.iter().zip(&coulomb[0]).zip(&coulomb[1]) {
+        assert!(t.1 >= upper.1 - 0.6 && t.1 <= lower.1 + 0.6, "the tangential force beyond μF at x = {}", t.0);
+        on_limit += usize::from((t.1 - upper.1).abs() < 0.6 || (t.1 - lower.1).abs() < 0.6);
+    }
+    assert!(on_limit > tangential_force.len() / 3, "sliding on the limit at {on_limit} samples");
+    assert!(tangential_force.iter().any(|t| t.1 > zero_t + 5.0), "the force turns round");
+}
+
+/// A chart's axis as (value, pixel) pairs of its major ticks: the grid lines (vertical for x, horizontal for y) with
+/// the tick labels, in the same order.
+fn axis(svg: &str, x: bool) -> Vec<(f64, f64)> {
+    let start = svg.find("<g class=\"grid\"").expect("a grid");
+    let grid = &svg[start..start + svg[start..].find("</g>").expect("closed")];
+    let lines: Vec<f64> = tags(grid, "line")
+        .into_iter()
+        .filter(|l| (number(l, "x1") == number(l, "x2")) == x)
+        .map(|l| number(l, if x { "x1" } else { "y1" }))
+        .collect();
+    let labels = texts(svg, if x { "tick-x" } else { "tick-y" });
+    let values = labels.iter().map(|l| l.replace('\u{2212}', "-").parse::<f64>().expect("a number"));
+    values.zip(lines).collect()
+}
+
+/// The pixel of `value` on an axis (linear between its outer ticks).
+fn to_pixel(axis: &[(f64, f64)], value: f64) -> f64 {
+    let ((v0, p0), (v1, p1)) = (axis[0], axis[axis.len() - 1]);
+    p0 + (value - v0) * (p1 - p0) / (v1 - v0)
+}
+
+#[test]
+fn the_incidence_sweep_figure_has_three_panels_of_simulation_and_rigid_theory() {
+    let scratch = Scratch::new("incidence_figure");
+    let model = concat!(env!("CARGO_MANIFEST_DIR"), "/models/chung-ooi-test4.toml");
+    std::fs::copy(model, scratch.path().join("t4.toml")).expect("the model");
+    let args = ["sweep", "t4.toml", "--vary", "bodies.0.incidence_deg=5:85:9", "--out", "t4.csv", "--plot", "t4.svg"];
+    let out = impact(scratch.path(), &args);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let svg = scratch.read("t4.svg");
+    let [a, b, c] = panels(&svg)[..] else { panic!("three panels") };
+    let headings: Vec<String> = [a, b, c].iter().map(|p| texts(p, "heading")[0].clone()).collect();
+    for (heading, start) in headings.iter().zip(["(a) tangential restitution", "(b) rebound spin", "(c) rebound angle"])
+    {
+        assert!(heading.starts_with(start), "{heading}");
+    }
+    assert!(texts(b, "axis-label y")[0].ends_with("(rad/s)") && texts(c, "axis-label y")[0].ends_with("(°)"));
+    assert!(texts(a, "tick-x").is_empty() && texts(b, "tick-x").is_empty(), "one x axis, at the bottom");
+    let x_label = &texts(c, "axis-label x")[0];
+    assert!(x_label.contains("incidence") && x_label.ends_with("(°)"), "{x_label}");
+
+    // Rigid-body theory of a sphere (I = 2/5 m r²) on a wall, e = 0.98, mu = 0.092: it sticks (rolls) below
+    // tan(theta*) = (7/2) mu (1 + e), where the centre keeps 5/7 of its tangential velocity and spins at
+    // omega = 5 v sin(theta) / (7 r); sliding, the tangential velocity loses mu (1 + e) v cos(theta) and
+    // omega = 5 mu (1 + e) v cos(theta) / (2 r).
+    let (mu, e, v, r) = (0.092f64, 0.98, 3.9, 0.0025);
+    let threshold = (3.5 * mu * (1.0 + e)).atan();
+    let sticks = |theta: f64| theta.tan() <= 3.5 * mu * (1.0 + e);
+    let restitution = |t: f64| if sticks(t) { 5.0 / 7.0 } else { 1.0 - mu * (1.0 + e) / t.tan() };
+    let spin =
+        |t: f64| if sticks(t) { 5.0 * v * t.sin() / (7.0 * r) } else { 5.0 * mu * (1.0 + e) * v * t.cos() / (2.0 * r) };
+    let x_axis = axis(c, true);
+    for (panel, exact) in [(a, &restitution as &dyn Fn(f64) -> f64), (b, &spin)] {
+        let y_axis = axis(panel, false);
+        let rigid = points(tags(groups(panel, "rigid")[0], "polyline")[0]);
+        assert_eq!(rigid.len(), 9);
+        for (i, point) in rigid.iter().enumerate() {
+            let degrees = 5.0 + 10.0 * i as f64;
+            assert!((point.0 - to_pixel(&x_axis, degrees)).abs() < 0.6, "x of {degrees} degrees");
+            let expected = to_pixel(&y_axis, exact(degrees.to_radians()));
+            assert!(
+                (point.1 - expected).abs() < 1.0,
+                "rigid theory at {degrees} degrees: {} px off",
+                point.1 - expected
+            );
+        }
+    }
+    for panel in [a, b, c] {
+        let rigid = tags(groups(panel, "rigid")[0], "polyline")[0];
+        assert!(attribute(rigid, "stroke-dasharray").is_some(), "rigid-body theory dashed");
+        let simulated = groups(panel, "simulated")[0];
+        assert_eq!(points(tags(simulated, "polyline")[0]).len(), 9);
+        assert_eq!(tags(simulated, "circle").len(), 9, "a marker at every simulated point");
+        // The rigid sliding threshold in every panel, at theta*.
+        let line = tags(groups(panel, "threshold")[0], "line")[0];
+        let expected = to_pixel(&x_axis, threshold.to_degrees());
+        assert!((number(line, "x1") - expected).abs() < 0.6, "threshold at {} px, not {expected}", number(line, "x1"));
+    }
+    assert!(c.contains(&format!("θ* = {:.1}°", threshold.to_degrees())), "the threshold named in the legend");
+    let (legend, plot) = dash_patterns(c);
+    assert!(!legend.is_empty() && legend.is_subset(&plot), "legend {legend:?}, plot {plot:?}");
+
+    // Mindlin's tangential compliance below the threshold: the centre keeps 0.89 of its tangential velocity at 5
+    // degrees and 0.63 at 25 (Maw, Barber & Fawcett; Chung & Ooi), against rigid theory's 5/7.
+    let (y_axis, simulated) = (axis(a, false), points(tags(groups(a, "simulated")[0], "polyline")[0]));
+    for (i, physics) in [(0, 0.89), (2, 0.63)] {
+        let expected = to_pixel(&y_axis, physics);
+        let tolerance = (to_pixel(&y_axis, physics - 0.015) - expected).abs();
+        assert!((simulated[i].1 - expected).abs() < tolerance, "tangential restitution at {} degrees", 5 + 10 * i);
+    }
+}
+
+#[test]
+fn merge_draws_the_incidence_figure_of_its_shards() {
+    let scratch = Scratch::new("incidence_merge");
+    let model = concat!(env!("CARGO_MANIFEST_DIR"), "/models/chung-ooi-test4.toml");
+    std::fs::copy(model, scratch.path().join("t4.toml")).expect("the model");
+    for shard in ["1/2", "2/2"] {
+        let name = format!("s{}.csv", &shard[..1]);
+        let args = ["sweep", "t4.toml", "--vary", "bodies.0.incidence_deg=10:70:4", "--shard", shard, "--out", &name];
+        let out = impact(scratch.path(), &args);
+        assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    }
+    let out = impact(scratch.path(), &["merge", "all.csv", "s1.csv", "s2.csv", "--plot", "all.svg"]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let svg = scratch.read("all.svg");
+    assert_eq!(panels(&svg).len(), 3, "the incidence figure, not effective e");
+    assert!(!svg.contains("effective e"));
 }

@@ -7,6 +7,7 @@ use crate::output::files::write_atomically;
 use crate::output::{figures, render, sweep_figure};
 use crate::scene::Scene;
 use crate::sweep::grid::{Axis, Grid, Spacing};
+use crate::sweep::key::SceneKey;
 use crate::sweep::{self as sweeps, Sweep, table};
 use anyhow::{Context, anyhow};
 use clap::Args;
@@ -34,6 +35,14 @@ const SWEEP_VARY: &str = "contact.restitution=0.05:1:39";
 const SWEEP_LAWS: [&str; 6] =
     ["hunt-crossley", "lankarani-nikravesh", "gonthier", "flores", "hu-guo", "carvalho-martins"];
 
+/// Chung & Ooi's test 4 (an alumina sphere on a rigid wall with friction): its sweep over the angle of incidence
+/// (the README's command) and one impact at 20 degrees, where the contact sticks, the tangential force reverses and
+/// the sphere slides back.
+const OBLIQUE_SCENE: (&str, &str) = ("models/chung-ooi-test4.toml", include_str!("../../models/chung-ooi-test4.toml"));
+const OBLIQUE_VARY: &str = "bodies.0.incidence_deg=5:85:33";
+const OBLIQUE_KEY: &str = "bodies.0.incidence_deg";
+const OBLIQUE_ANGLE: f64 = 20.0;
+
 pub fn run(args: &GalleryArgs) -> anyhow::Result<()> {
     for (name, text, keep) in SCENES {
         let scene = Scene::parse(text, Path::new(&format!("models/{name}.toml")))?;
@@ -47,7 +56,45 @@ pub fn run(args: &GalleryArgs) -> anyhow::Result<()> {
             println!("wrote {}", target.display());
         }
     }
-    effective_restitution(&args.out)
+    effective_restitution(&args.out)?;
+    oblique_forces(&args.out)?;
+    incidence(&args.out)
+}
+
+/// The contact forces of Chung & Ooi's test 4 at [`OBLIQUE_ANGLE`] degrees: the scene file with its sphere's
+/// velocity turned as `--vary bodies.0.incidence_deg` turns it, and its title saying so.
+fn oblique_forces(folder: &Path) -> anyhow::Result<()> {
+    let (path, text) = OBLIQUE_SCENE;
+    let mut document: toml::Table = text.parse().with_context(|| format!("{path} is not TOML"))?;
+    SceneKey::parse(OBLIQUE_KEY)?.set(&mut document, OBLIQUE_ANGLE).map_err(|why| anyhow!("{path}: {why}"))?;
+    let title = format!("Chung & Ooi test 4: Al2O3 sphere on a rigid wall at {OBLIQUE_ANGLE} degrees, mu = 0.092");
+    document.insert("title".into(), toml::Value::String(title));
+    let scene = Scene::parse(&toml::to_string(&document)?, Path::new(path))?;
+    let simulation = simulate(&scene, Recording::Uniform(super::run::FIGURE_SAMPLES))?;
+    let history = simulation.history.as_ref().ok_or_else(|| anyhow!("{path}: no contact history recorded"))?;
+    let svg = figures::svg("force_time", &simulation.report, history);
+    let target = folder.join("chung_ooi_20deg_force_time.png");
+    let png = render::png(&svg).with_context(|| format!("cannot render {}", target.display()))?;
+    write_atomically(&target, &png)?;
+    println!("wrote {}", target.display());
+    Ok(())
+}
+
+/// Chung & Ooi's test 4 swept over the angle of incidence: the tangential restitution, rebound spin and rebound
+/// angle against it, simulated and by rigid-body theory (the sweep's table stays in memory).
+fn incidence(folder: &Path) -> anyhow::Result<()> {
+    let (path, text) = OBLIQUE_SCENE;
+    let grid = Grid::new(vec![Axis::parse(OBLIQUE_VARY, Spacing::Linear)?])?;
+    let sweep = Sweep::new(Path::new(path), text.to_string(), grid, sweeps::parse_laws(&[])?)?;
+    let indices: Vec<usize> = (0..sweep.rows()).collect();
+    let rows = sweep.run(&indices, None, || {})?;
+    let csv = table::render(&sweep.keys(), &rows, None);
+    let mut figure = sweeps::figure::incidence_from_csv(&csv)?;
+    figure.title = "Chung & Ooi test 4: Al2O3 sphere on a rigid wall, 3.9 m/s, mu = 0.092, e = 0.98".into();
+    let plot = sweep_figure::SweepPlot::Incidence(figure);
+    let written = sweep_figure::stage(&plot, &folder.join("chung_ooi_test4.png"))?.commit()?;
+    println!("wrote {}", written.display());
+    Ok(())
 }
 
 /// The comparison figure of the contact-mechanics literature: the e each published map actually gives against
@@ -61,7 +108,7 @@ fn effective_restitution(folder: &Path) -> anyhow::Result<()> {
     let indices: Vec<usize> = (0..sweep.rows()).collect();
     let rows = sweep.run(&indices, None, || {})?;
     let csv = table::render(&sweep.keys(), &rows, None);
-    let figure = sweeps::figure::from_csv(&csv)?;
+    let figure = sweep_figure::SweepPlot::Restitution(sweeps::figure::from_csv(&csv)?);
     let written = sweep_figure::stage(&figure, &folder.join("effective_restitution.png"))?.commit()?;
     println!("wrote {}", written.display());
     Ok(())

@@ -40,7 +40,9 @@ pub struct SweepArgs {
     #[arg(long, value_name = "FILE.csv")]
     pub out: PathBuf,
     /// One figure file, not a folder: also draw effective e against the first varied key, one line per law, into
-    /// FILE.png or FILE.svg (the extension picks the format). `impact run --plot` is the one that takes a folder.
+    /// FILE.png or FILE.svg (the extension picks the format); for a sweep over bodies.I.incidence_deg, the tangential
+    /// restitution, rebound spin and rebound angle against it, simulated and by rigid-body theory. `impact run
+    /// --plot` is the one that takes a folder.
     #[arg(long, value_name = "FILE.png")]
     pub plot: Option<PathBuf>,
     /// Compute only shard I of N (1 <= I <= N): the rows whose index is I-1 modulo N, for a job array; join the
@@ -201,7 +203,7 @@ pub(super) fn check_names(csv: &Path, option: &str, plot: Option<&Path>) -> anyh
 /// The sweep's figure, drawn from its CSV `text` in a staging folder beside `path` and copied to `destination`;
 /// unfinished, so that the caller shows it only with its CSV.
 pub(super) fn figure_output(text: &str, path: &Path, destination: &Destination) -> anyhow::Result<OutputFile> {
-    let figure = sweeps::figure::from_csv(text).map_err(bad)?;
+    let figure = sweeps::figure::plot_from_csv(text).map_err(bad)?;
     let folder = path.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));
     let staging = Staging::inside(folder)?;
     // The staged file keeps the figure's name: its extension picks the format.

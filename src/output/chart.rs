@@ -19,6 +19,7 @@ pub const HEIGHT: f64 = 640.0;
 /// Font sizes, px.
 const TITLE_SIZE: f64 = 20.0;
 const LABEL_SIZE: f64 = 17.0;
+const HEADING_SIZE: f64 = 16.0;
 const TICK_SIZE: f64 = 15.0;
 const LEGEND_SIZE: f64 = 14.5;
 const NOTE_SIZE: f64 = 14.5;
@@ -420,18 +421,42 @@ enum Placement {
     Below { widths: Vec<f64>, rows: usize, left: f64, top: f64 },
 }
 
-/// A chart: a title, two axes, layers drawn in order.
+/// A chart: a title, two axes, layers drawn in order, on a canvas of `width` × `height` px ([`WIDTH`] × [`HEIGHT`]
+/// unless it is a panel of a [`Stack`]).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Chart {
     pub title: String,
     pub x: Axis,
     pub y: Axis,
     pub layers: Vec<Layer>,
+    /// Canvas size, px.
+    pub width: f64,
+    pub height: f64,
+    /// Whether the x axis's tick labels and label are written (a panel above another one with the same x axis
+    /// leaves them to the panel below; its ticks stay).
+    pub x_labels: bool,
+    /// The least left edge of the plot area, px: stacked panels share the widest one's, so that their frames align.
+    pub min_left: f64,
+    /// Write the legend below the plot even when it would fit inside.
+    pub legend_below: bool,
+    /// A panel's heading, e.g. "(a) rebound spin": left-aligned over the plot area, under the title (if any).
+    pub heading: String,
 }
 
 impl Chart {
     pub fn new(title: impl Into<String>, x: Axis, y: Axis) -> Chart {
-        Chart { title: title.into(), x, y, layers: Vec::new() }
+        Chart {
+            title: title.into(),
+            x,
+            y,
+            layers: Vec::new(),
+            width: WIDTH,
+            height: HEIGHT,
+            x_labels: true,
+            min_left: 0.0,
+            legend_below: false,
+            heading: String::new(),
+        }
     }
 
     pub fn push(&mut self, layer: Layer) {
@@ -441,24 +466,29 @@ impl Chart {
     /// The title's font size: the standard one, smaller if the title would not fit the canvas.
     fn title_size(&self) -> f64 {
         let width = text_width(&self.title, TITLE_SIZE, false);
-        let room = WIDTH - 2.0 * PAD;
+        let room = self.width - 2.0 * PAD;
         if width > room { TITLE_SIZE * room / width } else { TITLE_SIZE }
     }
 
     /// The plot area, leaving `below` px under the x axis's label for a legend.
     fn frame(&self, below: f64) -> Frame {
         let top = if self.title.is_empty() { PAD + 8.0 } else { PAD + 1.2 * TITLE_SIZE + 14.0 };
-        let superscript = if self.x.log { SUPER_RISE * TICK_SIZE } else { 0.0 };
-        let x_ticks_height = TICK_LENGTH + TICK_GAP + superscript + 1.2 * TICK_SIZE;
-        let bottom = HEIGHT - PAD - below - 1.2 * LABEL_SIZE - 6.0 - x_ticks_height;
+        let top = if self.heading.is_empty() { top } else { top + HEADING_SIZE * 1.2 + 2.0 };
+        let bottom = if self.x_labels {
+            let superscript = if self.x.log { SUPER_RISE * TICK_SIZE } else { 0.0 };
+            let x_ticks_height = TICK_LENGTH + TICK_GAP + superscript + 1.2 * TICK_SIZE;
+            self.height - PAD - below - 1.2 * LABEL_SIZE - 6.0 - x_ticks_height
+        } else {
+            self.height - PAD - below - TICK_LENGTH
+        };
         let y_ticks = self.y.ticks(bottom - top, Y_SPACING);
         let widest = y_ticks.major.iter().map(|(_, label)| label.width(TICK_SIZE)).fold(0.0, f64::max);
-        let left = PAD + 1.2 * LABEL_SIZE + 10.0 + widest + TICK_GAP + TICK_LENGTH;
+        let left = (PAD + 1.2 * LABEL_SIZE + 10.0 + widest + TICK_GAP + TICK_LENGTH).max(self.min_left);
         // Room on the right for half of a label that sits at the right end of the x axis.
-        let mut right = WIDTH - PAD - 10.0;
+        let mut right = self.width - PAD - 10.0;
         for (value, label) in self.x.ticks(right - left, X_SPACING).major {
             let x = left + self.x.fraction(value) * (right - left);
-            let overhang = x + label.width(TICK_SIZE) / 2.0 - (WIDTH - PAD);
+            let overhang = x + label.width(TICK_SIZE) / 2.0 - (self.width - PAD);
             if overhang > 0.0 {
                 right -= overhang;
             }
@@ -574,8 +604,8 @@ impl Chart {
 
     /// The legend in columns below the x axis's label, filled column by column: each column's width (px), and
     /// the number of rows. As many columns as fit the canvas's width.
-    fn below(entries: &[Entry]) -> (Vec<f64>, usize) {
-        let room = WIDTH - 2.0 * PAD;
+    fn below(&self, entries: &[Entry]) -> (Vec<f64>, usize) {
+        let room = self.width - 2.0 * PAD;
         for columns in (1..=entries.len()).rev() {
             let rows = entries.len().div_ceil(columns);
             let widths: Vec<f64> = entries
@@ -592,51 +622,67 @@ impl Chart {
 
     /// The chart as a standalone SVG document.
     pub fn svg(&self) -> String {
-        let entries = self.entries();
-        let mut frame = self.frame(0.0);
-        let placement = if entries.is_empty() {
-            None
-        } else if let Some((x, y)) = self.inside(&frame, &entries) {
-            Some(Placement::Inside(x, y))
-        } else {
-            let (widths, rows) = Self::below(&entries);
-            let height = rows as f64 * ROW + 6.0;
-            frame = self.frame(height);
-            let total = widths.iter().sum::<f64>() + (widths.len().max(1) - 1) as f64 * COLUMN_GAP;
-            // Centred under the plot, inside the canvas.
-            let left = ((frame.left + frame.right - total) / 2.0).min(WIDTH - PAD - total).max(PAD);
-            Some(Placement::Below { widths, rows, left, top: HEIGHT - PAD - height + 6.0 })
-        };
-
+        let (frame, content) = self.content("plot-area");
         let mut svg = String::with_capacity(64 * 1024);
         let _ = write!(
             svg,
             "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{w}\" height=\"{h}\" viewBox=\"0 0 {w} {h}\" \
              font-family=\"{FONT_FAMILY}, sans-serif\">\n<rect class=\"background\" width=\"{w}\" height=\"{h}\" \
-             fill=\"#ffffff\"/>\n<defs><clipPath id=\"plot-area\"><rect x=\"{}\" y=\"{}\" width=\"{}\" \
-             height=\"{}\"/></clipPath></defs>\n",
-            number(frame.left),
-            number(frame.top),
-            number(frame.width()),
-            number(frame.height()),
-            w = WIDTH,
-            h = HEIGHT,
+             fill=\"#ffffff\"/>\n{}",
+            clip_path("plot-area", &frame),
+            w = number(self.width),
+            h = number(self.height),
         );
+        svg.push_str(&content);
+        svg.push_str("</svg>\n");
+        svg
+    }
+
+    /// The plot area and everything drawn on the canvas but its background: the title, grid, layers (clipped by
+    /// the clip path `clip`, which the caller defines over the plot area), axes and legend.
+    fn content(&self, clip: &str) -> (Frame, String) {
+        let entries = self.entries();
+        let mut frame = self.frame(0.0);
+        let inside = if self.legend_below { None } else { self.inside(&frame, &entries) };
+        let placement = if entries.is_empty() {
+            None
+        } else if let Some((x, y)) = inside {
+            Some(Placement::Inside(x, y))
+        } else {
+            let (widths, rows) = self.below(&entries);
+            let height = rows as f64 * ROW + 6.0;
+            frame = self.frame(height);
+            let total = widths.iter().sum::<f64>() + (widths.len().max(1) - 1) as f64 * COLUMN_GAP;
+            // Centred under the plot, inside the canvas.
+            let left = ((frame.left + frame.right - total) / 2.0).min(self.width - PAD - total).max(PAD);
+            Some(Placement::Below { widths, rows, left, top: self.height - PAD - height + 6.0 })
+        };
+
+        let mut svg = String::with_capacity(64 * 1024);
         if !self.title.is_empty() {
             let size = self.title_size();
             let _ = writeln!(
                 svg,
                 "<text class=\"title\" x=\"{}\" y=\"{}\" font-size=\"{}\" text-anchor=\"middle\" fill=\"{INK}\">{}</text>",
-                number(WIDTH / 2.0),
+                number(self.width / 2.0),
                 number(PAD + ASCENT * size),
                 number(size),
                 escape(&self.title)
             );
         }
+        if !self.heading.is_empty() {
+            let _ = writeln!(
+                svg,
+                "<text class=\"heading\" x=\"{}\" y=\"{}\" font-size=\"{HEADING_SIZE}\" fill=\"{INK}\">{}</text>",
+                number(frame.left),
+                number(frame.top - 8.0),
+                escape(&self.heading)
+            );
+        }
         let x_ticks = self.x.ticks(frame.width(), X_SPACING);
         let y_ticks = self.y.ticks(frame.height(), Y_SPACING);
         self.grid(&mut svg, &frame, &x_ticks, &y_ticks);
-        self.data(&mut svg, &frame);
+        self.data(&mut svg, &frame, clip);
         self.axes(&mut svg, &frame, &x_ticks, &y_ticks);
         match placement {
             Some(Placement::Inside(x, y)) => legend_box(&mut svg, &entries, x, y),
@@ -645,8 +691,7 @@ impl Chart {
             }
             None => {}
         }
-        svg.push_str("</svg>\n");
-        svg
+        (frame, svg)
     }
 
     /// Light grid lines at the major ticks, under the data.
@@ -678,7 +723,7 @@ impl Chart {
     }
 
     /// The layers, clipped to the plot area (markers unclipped, but only those inside it).
-    fn data(&self, svg: &mut String, frame: &Frame) {
+    fn data(&self, svg: &mut String, frame: &Frame, clip: &str) {
         let inside = |&(x, y): &(f64, f64)| {
             x >= frame.left - 0.5 && x <= frame.right + 0.5 && y >= frame.top - 0.5 && y <= frame.bottom + 0.5
         };
@@ -694,7 +739,7 @@ impl Chart {
             let class = layer.class;
             let mut markers: Vec<(Marker, Vec<(f64, f64)>)> = Vec::new();
             let _ = write!(svg, "<g class=\"{class}\">");
-            let clip = "clip-path=\"url(#plot-area)\"";
+            let clip = format!("clip-path=\"url(#{clip})\"");
             match &layer.mark {
                 Mark::Line { points, stroke, marker } => {
                     let _ = write!(
@@ -797,8 +842,10 @@ impl Chart {
         for (value, label) in &x_ticks.major {
             let x = crisp(frame.left + self.x.fraction(*value) * frame.width());
             tick(&mut marks, x, frame.bottom, x, frame.bottom + TICK_LENGTH);
-            labels.push_str(&label.svg("tick-x", x, x_baseline, "middle"));
-            labels.push('\n');
+            if self.x_labels {
+                labels.push_str(&label.svg("tick-x", x, x_baseline, "middle"));
+                labels.push('\n');
+            }
         }
         for value in &x_ticks.minor {
             let x = crisp(frame.left + self.x.fraction(*value) * frame.width());
@@ -818,14 +865,16 @@ impl Chart {
         let _ = writeln!(svg, "<g class=\"ticks\" stroke=\"{INK}\" stroke-width=\"1\">{marks}</g>");
         svg.push_str(&labels);
         let x_label_baseline = x_baseline + (1.0 - ASCENT) * TICK_SIZE + 6.0 + ASCENT * LABEL_SIZE;
-        let _ = writeln!(
-            svg,
-            "<text class=\"axis-label x\" x=\"{}\" y=\"{}\" font-size=\"{LABEL_SIZE}\" text-anchor=\"middle\" \
-             fill=\"{INK}\">{}</text>",
-            number((frame.left + frame.right) / 2.0),
-            number(x_label_baseline),
-            escape(&self.x.label)
-        );
+        if self.x_labels {
+            let _ = writeln!(
+                svg,
+                "<text class=\"axis-label x\" x=\"{}\" y=\"{}\" font-size=\"{LABEL_SIZE}\" text-anchor=\"middle\" \
+                 fill=\"{INK}\">{}</text>",
+                number((frame.left + frame.right) / 2.0),
+                number(x_label_baseline),
+                escape(&self.x.label)
+            );
+        }
         let (x, y) = (PAD + ASCENT * LABEL_SIZE, (frame.top + frame.bottom) / 2.0);
         let _ = writeln!(
             svg,
@@ -835,6 +884,70 @@ impl Chart {
             x = number(x),
             y = number(y)
         );
+    }
+}
+
+/// The definition of a clip path `id` over the plot area `frame`.
+fn clip_path(id: &str, frame: &Frame) -> String {
+    format!(
+        "<defs><clipPath id=\"{id}\"><rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\"/></clipPath></defs>\n",
+        number(frame.left),
+        number(frame.top),
+        number(frame.width()),
+        number(frame.height())
+    )
+}
+
+/// Charts stacked top to bottom on one canvas as wide as the widest: panels that share their x axis (a panel
+/// above another usually hides its x labels, see [`Chart::x_labels`]) or simply belong together. The plot areas'
+/// left edges are aligned. The first panel's title is the figure's.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Stack {
+    pub panels: Vec<Chart>,
+}
+
+impl Stack {
+    pub fn new(panels: Vec<Chart>) -> Stack {
+        Stack { panels }
+    }
+
+    /// The canvas size, px.
+    pub fn size(&self) -> (f64, f64) {
+        let width = self.panels.iter().map(|p| p.width).fold(0.0, f64::max);
+        (width, self.panels.iter().map(|p| p.height).sum())
+    }
+
+    /// The panels as they are drawn: their left edges aligned on the widest.
+    fn aligned(&self) -> Vec<Chart> {
+        let left = self.panels.iter().map(|p| p.frame(0.0).left).fold(0.0, f64::max);
+        self.panels.iter().map(|p| Chart { min_left: p.min_left.max(left), ..p.clone() }).collect()
+    }
+
+    /// The stack as a standalone SVG document; each panel is a group `<g class="panel">` moved into place, its
+    /// data clipped by its own clip path.
+    pub fn svg(&self) -> String {
+        let (width, height) = self.size();
+        let mut svg = String::with_capacity(128 * 1024);
+        let _ = write!(
+            svg,
+            "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{w}\" height=\"{h}\" viewBox=\"0 0 {w} {h}\" \
+             font-family=\"{FONT_FAMILY}, sans-serif\">\n<rect class=\"background\" width=\"{w}\" height=\"{h}\" \
+             fill=\"#ffffff\"/>\n",
+            w = number(width),
+            h = number(height),
+        );
+        let mut top = 0.0;
+        for (i, panel) in self.aligned().iter().enumerate() {
+            let id = format!("plot-area-{}", i + 1);
+            let (frame, content) = panel.content(&id);
+            let _ = writeln!(svg, "<g class=\"panel\" transform=\"translate(0 {})\">", number(top));
+            svg.push_str(&clip_path(&id, &frame));
+            svg.push_str(&content);
+            svg.push_str("</g>\n");
+            top += panel.height;
+        }
+        svg.push_str("</svg>\n");
+        svg
     }
 }
 

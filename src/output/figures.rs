@@ -2,13 +2,18 @@
 //! anti-aliased PNG (see [`super::render`]): force against time with the phases shaded, the force–penetration
 //! loop with its area (the energy dissipated) filled, and the normal velocities of both bodies with V0 and the
 //! instantaneous before/after values as reference lines. Bodies are called by their names in the report.
+//!
+//! A frictional contact (the report's oblique section with a friction coefficient above zero) adds a second panel
+//! to the force–time figure, on the same time axis: the tangential force against the initial slip, between the
+//! dashed Coulomb limits ±μF, with the sticking stretches shaded.
 
-use super::chart::{self, Axis, Chart, Colour, Layer, Mark, Marker, Shape, Stroke, fixed, prefix, si};
+use super::chart::{self, Axis, Chart, Colour, Layer, Mark, Marker, Shape, Stack, Stroke, fixed, prefix, si};
 use super::files::write_atomically;
 use super::render;
 use crate::history::{History, Phase};
 use crate::report::Report;
 use anyhow::Context;
+use nalgebra::Vector3;
 use std::path::{Path, PathBuf};
 
 /// The figures one impact gives, by file stem.
@@ -16,6 +21,12 @@ pub const FIGURES: [&str; 3] = ["force_time", "force_penetration", "velocities"]
 
 const COMPRESSION: Colour = chart::PALETTE[0];
 const RESTITUTION: Colour = chart::PALETTE[3];
+/// The shade of the sticking stretches and the tangential force's colour.
+const STICKING: Colour = chart::PALETTE[2];
+const TANGENTIAL: Colour = chart::PALETTE[4];
+/// Heights of the force–time figure's two panels (normal force over tangential force) of a frictional contact, px.
+const NORMAL_PANEL: f64 = 470.0;
+const TANGENTIAL_PANEL: f64 = 450.0;
 /// The two bodies' colours in the velocity figure.
 const BODIES: [Colour; 2] = [chart::PALETTE[0], chart::PALETTE[1]];
 /// The fill of the dissipated-energy loop.
@@ -50,16 +61,35 @@ pub fn write_all(report: &Report, history: &History, folder: &Path) -> anyhow::R
 
 /// The SVG document of the figure `name` (one of [`FIGURES`]; anything else gives the velocity figure).
 pub fn svg(name: &str, report: &Report, history: &History) -> String {
-    figure(name, report, history).svg()
+    match name {
+        "force_time" => match friction(report) {
+            Some(mu) => forces(report, history, mu).svg(),
+            None => force_time(report, history).svg(),
+        },
+        "force_penetration" => force_penetration(report, history).svg(),
+        _ => velocities(report, history).svg(),
+    }
 }
 
-/// The chart of the figure `name` (one of [`FIGURES`]; anything else gives the velocity figure).
-pub fn figure(name: &str, report: &Report, history: &History) -> Chart {
-    match name {
-        "force_time" => force_time(report, history),
-        "force_penetration" => force_penetration(report, history),
-        _ => velocities(report, history),
+/// The friction coefficient of a frictional contact: the report has an oblique section that is not smooth.
+fn friction(report: &Report) -> Option<f64> {
+    report.oblique.as_ref().filter(|o| o.regime != "smooth" && o.friction > 0.0).map(|o| o.friction)
+}
+
+/// The force–time figure of a frictional contact: the normal force over the tangential force, one time axis.
+fn forces(report: &Report, history: &History, mu: f64) -> Stack {
+    let mut normal = force_time(report, history);
+    normal.title = caption(&report.title, "contact forces");
+    // Two forces now: name this one.
+    normal.y.label = normal.y.label.replace("contact force", "normal force");
+    for layer in normal.layers.iter_mut().filter(|layer| layer.class == "curve") {
+        layer.label = Some("normal force F(t)".into());
     }
+    normal.height = NORMAL_PANEL;
+    normal.x_labels = false;
+    let mut tangential = tangential_force(report, history, mu);
+    tangential.height = TANGENTIAL_PANEL;
+    Stack::new(vec![normal, tangential])
 }
 
 /// Seconds since first contact of the last sample (0 without samples).
@@ -130,6 +160,106 @@ fn force_time(report: &Report, history: &History) -> Chart {
             ))
             .rank(2),
     );
+    chart
+}
+
+/// The direction the tangential force is measured against: the slip of body 1's contact point relative to body 2's
+/// at first contact, or (without one) the largest tangential force's.
+fn slip_direction(history: &History) -> Vector3<f64> {
+    let first = history.samples.first().map_or_else(Vector3::zeros, |s| s.slip);
+    if first.norm() > 0.0 {
+        return first.normalize();
+    }
+    let largest = history
+        .samples
+        .iter()
+        .map(|s| s.tangential_force)
+        .fold(Vector3::zeros(), |a: Vector3<f64>, f| if f.norm() > a.norm() { f } else { a });
+    if largest.norm() > 0.0 { -largest.normalize() } else { Vector3::zeros() }
+}
+
+/// The sticking stretches of the history as (from, to) in seconds since first contact: runs of samples that do not
+/// slide, each reaching halfway to its neighbours (the samples do not locate the switches more finely).
+fn sticking_stretches(report: &Report, history: &History) -> Vec<(f64, f64)> {
+    let start = report.contact.start_time;
+    let samples = &history.samples;
+    let time = |i: usize| samples[i].time - start;
+    let mut stretches: Vec<(f64, f64)> = Vec::new();
+    let mut i = 0;
+    while i < samples.len() {
+        if samples[i].sliding {
+            i += 1;
+            continue;
+        }
+        let first = i;
+        while i < samples.len() && !samples[i].sliding {
+            i += 1;
+        }
+        let from = if first == 0 { time(0) } else { (time(first - 1) + time(first)) / 2.0 };
+        let to = if i == samples.len() { time(i - 1) } else { (time(i - 1) + time(i)) / 2.0 };
+        stretches.push((from, to));
+    }
+    stretches
+}
+
+/// The tangential force on body 1 against its initial slip, −F_t·ŝ₀ (positive while friction opposes that slip),
+/// between the Coulomb limits ±μF (dashed), with the sticking stretches shaded and maximum compression marked.
+fn tangential_force(report: &Report, history: &History, mu: f64) -> Chart {
+    let c = &report.contact;
+    let start = c.start_time;
+    let direction = slip_direction(history);
+    let span = contact_span(report, history);
+    let (tf, tp) = prefix(span);
+    let x_max = span / tf;
+    let time = |t: f64| (t - start) / tf;
+    let against: Vec<(f64, f64)> =
+        history.samples.iter().map(|s| (time(s.time), -s.tangential_force.dot(&direction))).collect();
+    let limit: Vec<(f64, f64)> = history.samples.iter().map(|s| (time(s.time), mu * s.force.max(0.0))).collect();
+    let high = against.iter().chain(&limit).map(|p| p.1).fold(mu * c.max_force, f64::max);
+    let low = against.iter().map(|p| p.1).fold(0.0, f64::min);
+    // The lower limit −μF only where the force reverses noticeably.
+    let reverses = low < -0.02 * high;
+    let low = if reverses { low.min(-high) } else { low };
+    let (ff, fp) = prefix(high.max(-low));
+    let pad = 0.06 * (high - low) / ff;
+    let bottom = if low < 0.0 { low / ff - pad } else { 0.0 };
+    let mut chart = Chart::new(
+        "",
+        Axis::linear(format!("time since first contact t ({tp}s)"), 0.0, x_max),
+        Axis::linear(format!("tangential force ({fp}N)"), bottom, high / ff + pad),
+    );
+    let oblique = report.oblique.as_ref();
+    let stick = oblique.and_then(|o| o.stick_duration).unwrap_or(0.0);
+    for (i, (from, to)) in sticking_stretches(report, history).into_iter().enumerate() {
+        let layer = Layer::new("sticking", Mark::Span { from: from / tf, to: to / tf, fill: STICKING, opacity: 0.15 });
+        chart.push(if i == 0 {
+            layer.label(format!("sticking (shaded): {} in all", si(stick, "s", 3))).rank(3)
+        } else {
+            layer
+        });
+    }
+    zero_line(&mut chart);
+    let t0 = time(c.max_compression_time);
+    let dashed = Stroke::dashed(Colour::BLACK, 1.2, 6.0, 4.0);
+    chart.push(Layer::new("reference", Mark::VLine { x: t0, stroke: dashed }));
+    let scaled = |points: &[(f64, f64)], sign: f64| points.iter().map(|&(t, f)| (t, sign * f / ff)).collect();
+    let name = report.bodies[0].name.as_str();
+    let work = oblique.and_then(|o| o.friction_work).map(|w| format!(", friction work {}", si(w, "J", 3)));
+    let curve = Mark::Line { points: scaled(&against, 1.0), stroke: Stroke::solid(TANGENTIAL, CURVE), marker: None };
+    chart.push(
+        Layer::new("curve", curve)
+            .label(format!("tangential force on {name} against its initial slip{}", work.unwrap_or_default()))
+            .rank(0),
+    );
+    // Over the curve, so that the sliding stretches, where the force lies on the limit, show both.
+    let coulomb = Stroke::dashed(Colour::BLACK, 1.3, 7.0, 4.0);
+    let upper = Mark::Line { points: scaled(&limit, 1.0), stroke: coulomb, marker: None };
+    let text = if reverses { "Coulomb limits ±μF" } else { "Coulomb limit μF" };
+    chart.push(Layer::new("coulomb", upper).label(format!("{text}, μ = {mu}")).rank(1));
+    if reverses {
+        let lower = Mark::Line { points: scaled(&limit, -1.0), stroke: coulomb, marker: None };
+        chart.push(Layer::new("coulomb", lower));
+    }
     chart
 }
 

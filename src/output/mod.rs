@@ -4,6 +4,7 @@ pub mod chart;
 pub mod csv;
 pub mod figures;
 pub mod files;
+pub mod incidence_figure;
 pub mod json;
 pub mod render;
 pub mod sweep_figure;

@@ -6,6 +6,7 @@
 
 use super::chart::{self, Axis, Chart, Colour, Layer, Mark, Marker, Stroke};
 use super::figures::caption;
+use super::incidence_figure::{self, IncidenceFigure};
 use super::render;
 use anyhow::{Context, anyhow};
 use std::path::{Path, PathBuf};
@@ -15,6 +16,24 @@ pub const SIZE: (u32, u32) = (chart::WIDTH as u32, chart::HEIGHT as u32);
 
 /// Curves with at most this many points show a marker at every point (more would hide the lines).
 const MARKED: usize = 25;
+
+/// The figure a sweep draws: effective e ([`SweepFigure`]), or the oblique-impact panels of a sweep over the angle
+/// of incidence ([`IncidenceFigure`]).
+#[derive(Debug, Clone, PartialEq)]
+pub enum SweepPlot {
+    Restitution(SweepFigure),
+    Incidence(IncidenceFigure),
+}
+
+impl SweepPlot {
+    /// The figure as an SVG document.
+    pub fn svg(&self) -> String {
+        match self {
+            SweepPlot::Restitution(figure) => svg(figure),
+            SweepPlot::Incidence(figure) => incidence_figure::svg(figure),
+        }
+    }
+}
 
 /// What a sweep figure shows: a function of the sweep's table, nothing else.
 #[derive(Debug, Clone, PartialEq)]
@@ -106,9 +125,9 @@ pub fn format_of(path: &Path) -> Option<&'static str> {
 
 /// Renders `figure` to a temporary file in `target`'s folder (created if missing), PNG or SVG by `target`'s
 /// extension.
-pub fn stage(figure: &SweepFigure, target: &Path) -> anyhow::Result<Staged> {
+pub fn stage(figure: &SweepPlot, target: &Path) -> anyhow::Result<Staged> {
     let format = format_of(target).ok_or_else(|| anyhow!("{}: a figure must end in .png or .svg", target.display()))?;
-    let svg = svg(figure);
+    let svg = figure.svg();
     let bytes = if format == "png" {
         render::png(&svg).with_context(|| format!("cannot render {}", target.display()))?
     } else {

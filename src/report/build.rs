@@ -196,6 +196,7 @@ fn oblique(scene: &Scene, setup: &Setup, outcome: &Outcome, e: f64, friction_wor
         tangential_restitution_centre: done.then(|| ratio(&centre_after, &setup.tangential_velocity)).flatten(),
         tangential_restitution_contact: done.then(|| ratio(&end.slip, &slip)).flatten(),
         friction_work: done.then_some(friction_work),
+        friction,
         regime: regime.into(),
         stick_duration: (friction > 0.0).then_some(if setup.motion == Motion::Normal {
             end.time

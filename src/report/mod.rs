@@ -137,6 +137,9 @@ pub struct ObliqueReport {
     pub tangential_restitution_contact: Option<f64>,
     /// Work of friction (dissipated by slip and tangential damping), J; included in `energy.dissipated`.
     pub friction_work: Option<f64>,
+    /// Coulomb friction coefficient mu of the contact (dimensionless; 0: smooth), as the scene gave it (an
+    /// addition).
+    pub friction: f64,
     /// "smooth", "sliding" (slid throughout) or "sticking" (stuck at some time).
     pub regime: String,
     /// Time the contact spent sticking, s (an addition; null for a smooth contact).
