@@ -7,7 +7,7 @@
 //! (the velocities follow from it). Spins are scaled as omega r / v0 so that they are O(1) at the contact point.
 
 use super::contact::{Kinematics, Mode, Shape, Tangential, set_vector, vector};
-use super::{ContactModel, Scales, Snapshot, unit_or_one};
+use super::{ContactModel, Scales, Snapshot, dissipation_scale, unit_or_one};
 use crate::body::Body;
 use crate::integrate::{Model, State};
 use crate::law::ContactLaw;
@@ -128,7 +128,7 @@ impl<'a> PairContact<'a> {
             shares: [setup.effective_mass * a.inverse_mass(), setup.effective_mass * b.inverse_mass()],
             spin_gains: [spin_gain(a), spin_gain(b)],
             initial_spins: [scaled_spin(a), scaled_spin(b)],
-            dissipation_scale: unit_or_one(law.damping_ratio(s.length, s.speed)),
+            dissipation_scale: dissipation_scale(&law, &s),
             friction_scale,
             bodies,
             setup,
