@@ -6,6 +6,7 @@ mod gallery;
 mod merge;
 mod models;
 pub mod run;
+mod stress;
 pub mod sweep;
 
 use clap::{Parser, Subcommand};
@@ -33,6 +34,8 @@ pub enum Command {
     Calibrate(calibrate::CalibrateArgs),
     /// Regenerate the README's figures in plots/.
     Gallery(gallery::GalleryArgs),
+    /// Run random scenes over the whole accepted range, checking each against invariants and exact results.
+    Stress(stress::StressArgs),
 }
 
 /// A bad scene or bad arguments: exit status 2.
@@ -50,6 +53,7 @@ pub fn dispatch(cli: Cli) -> anyhow::Result<()> {
         Some(Command::Merge(args)) => merge::run(&args),
         Some(Command::Calibrate(args)) => calibrate::run(&args),
         Some(Command::Gallery(args)) => gallery::run(&args),
+        Some(Command::Stress(args)) => stress::run(&args),
     }
 }
 
