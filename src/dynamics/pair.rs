@@ -286,7 +286,11 @@ impl ContactModel<SIZE> for PairContact<'_> {
             setup.positions[1] + b.velocity * time + pushed * self.shares[1],
         ];
         let kt = self.tangential.map_or(0.0, |t| t.stiffness_at(k.penetration));
-        let tangential_elastic = if kt > 0.0 { e.spring.norm_squared() / (2.0 * kt) } else { 0.0 };
+        // The spring stores at most what the Coulomb cap lets it hold: at the contact's edge kt -> 0 and Fn -> 0, and an
+        // uncapped spring state (a rounding-sized remainder) over a vanishing kt gave energies of 1e9 J in a 3 J impact.
+        let cap = self.tangential.map_or(0.0, |t| t.friction * (e.elastic + e.dissipative).max(0.0));
+        let stored = e.spring.norm().min(cap);
+        let tangential_elastic = if kt > 0.0 { stored * stored / (2.0 * kt) } else { 0.0 };
         Snapshot {
             time,
             penetration: k.penetration * s.length,
