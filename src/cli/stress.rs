@@ -19,6 +19,9 @@ pub struct StressArgs {
     /// Index of the first case (to rerun one case of a larger run: `--start I --count 1`).
     #[arg(long, default_value_t = 0)]
     pub start: u64,
+    /// Narrower ranges that run fast (damping ratios up to 10, e >= 0.1, no friction): what the test suite runs.
+    #[arg(long)]
+    pub quick: bool,
     /// Print the JSON summary on stdout instead of the readable one.
     #[arg(long)]
     pub json: bool,
@@ -42,7 +45,7 @@ pub fn run(args: &StressArgs) -> anyhow::Result<()> {
     }
     if args.scenes {
         for index in args.start..args.start + args.count {
-            println!("# case {index}\n{}", stress::scene_text(args.seed, index));
+            println!("# case {index}\n{}", stress::scene_text(args.seed, index, args.quick));
         }
         return Ok(());
     }
@@ -63,7 +66,7 @@ pub fn run(args: &StressArgs) -> anyhow::Result<()> {
     // terminal while the run lasts.
     let hook = std::panic::take_hook();
     std::panic::set_hook(Box::new(|_| {}));
-    let summary = pool.install(|| stress::run(args.seed, args.start, args.count, &|| bar.inc(1)));
+    let summary = pool.install(|| stress::run(args.seed, args.start, args.count, args.quick, &|| bar.inc(1)));
     std::panic::set_hook(hook);
     bar.finish_and_clear();
     let seconds = clock.elapsed().as_secs_f64();
