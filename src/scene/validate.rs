@@ -123,6 +123,14 @@ fn cut(text: &str) -> String {
     }
 }
 
+/// A message cut to `max` characters, saying how long it was.
+fn shorten(text: &str, max: usize) -> String {
+    match text.char_indices().nth(max) {
+        None => text.to_string(),
+        Some((end, _)) => format!("{}… ({} characters)", &text[..end], text.chars().count()),
+    }
+}
+
 /// What a number may be.
 #[derive(Clone, Copy)]
 enum Allowed {
@@ -225,8 +233,9 @@ pub fn scene(text: &str, path: &Path) -> Checked<Scene> {
 fn parse_error(src: &Source, error: &toml::de::Error) -> SceneError {
     let span = error.span();
     let line = span.as_ref().map(|s| src.line(s));
-    let key = line.and_then(|n| src.key_on_line(n));
-    let message = error.message().trim().replace('\n', " ");
+    // A key or message may hold a huge piece of the input (a 10 000-character key): keep messages readable.
+    let key = line.and_then(|n| src.key_on_line(n)).map(|key| cut(&key));
+    let message = shorten(&error.message().trim().replace('\n', " "), 400);
     SceneError { file: src.file.clone(), key, line, message, form: true }
 }
 
