@@ -17,4 +17,5 @@ pub mod reference;
 pub mod report;
 pub mod scene;
 pub mod setup;
+pub mod stress;
 pub mod sweep;

@@ -7,6 +7,7 @@ mod merge;
 mod models;
 pub mod paths;
 pub mod run;
+mod stress;
 pub mod sweep;
 
 use clap::{Parser, Subcommand};
@@ -34,6 +35,8 @@ pub enum Command {
     Calibrate(calibrate::CalibrateArgs),
     /// Regenerate the README's figures in plots/.
     Gallery(gallery::GalleryArgs),
+    /// Run random scenes over the whole accepted range, checking each against invariants and exact results.
+    Stress(stress::StressArgs),
 }
 
 /// A bad scene or bad arguments: exit status 2.
@@ -51,6 +54,7 @@ pub fn dispatch(cli: Cli) -> anyhow::Result<()> {
         Some(Command::Merge(args)) => merge::run(&args),
         Some(Command::Calibrate(args)) => calibrate::run(&args),
         Some(Command::Gallery(args)) => gallery::run(&args),
+        Some(Command::Stress(args)) => stress::run(&args),
     }
 }
 

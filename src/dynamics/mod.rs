@@ -123,6 +123,15 @@ pub trait ContactModel<const N: usize>: Model<N> {
     fn snapshot(&self, t: f64, y: &State<N>) -> Snapshot;
 }
 
+/// The unit of the dissipated-energy state, in m* v0²: the damping's size delta at the contact's scales
+/// ([`crate::law::ContactLaw::damping_ratio`]) for a light damping, whose dissipation is about delta m* v0², so that
+/// it is integrated to the tolerance relative to itself (physics.md §5); 1 for a heavy one (delta > 1), which can
+/// dissipate no more than m* v0²/2 — a larger unit would shrink the state below the absolute tolerance (1e-9
+/// relative errors at delta ~ 1e3).
+pub(crate) fn dissipation_scale(law: &crate::law::ContactLaw, scales: &Scales) -> f64 {
+    unit_or_one(law.damping_ratio(scales.length, scales.speed).min(1.0))
+}
+
 /// `value / scale`, for the scaled energy integrals; a zero scale means the integral is zero anyway.
 pub(crate) fn unit_or_one(scale: f64) -> f64 {
     if scale > 0.0 && scale.is_finite() { scale } else { 1.0 }

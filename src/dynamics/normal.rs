@@ -5,7 +5,7 @@
 //! The state carries, besides penetration and its rate, the integrals the report needs, so that impulses and
 //! works come from the force history itself rather than from momentum.
 
-use super::{ContactModel, Scales, Snapshot, unit_or_one};
+use super::{ContactModel, Scales, Snapshot, dissipation_scale};
 use crate::body::{Body, after_normal_impulse};
 use crate::integrate::{Model, State};
 use crate::law::ContactLaw;
@@ -28,8 +28,8 @@ pub mod index {
     pub const IMPULSE: usize = 2;
     /// ∫ F d' dt / (m* v0²): work of the contact force on the relative motion so far.
     pub const WORK: usize = 3;
-    /// ∫ F_dissipative d' dt / (m* v0² delta): energy dissipated so far, in units of the damping's own size delta
-    /// (see [`super::normal::NormalContact::dissipation_scale`]), so that a light damping's small dissipation is
+    /// ∫ F_dissipative d' dt / (m* v0² min(delta, 1)): energy dissipated so far, in units of the damping's own size
+    /// delta when it is light (see [`super::dissipation_scale`]), so that a light damping's small dissipation is
     /// integrated to the tolerance relative to itself (docs/numerics.md).
     pub const DISSIPATED: usize = 4;
 }
@@ -52,7 +52,7 @@ impl<'a> NormalContact<'a> {
     /// The normal contact of a resolved scene.
     pub fn new(bodies: &'a [Body; 2], setup: &'a Setup) -> NormalContact<'a> {
         let (law, scales) = (setup.law, setup.scales);
-        let dissipation_scale = unit_or_one(law.damping_ratio(scales.length, scales.speed));
+        let dissipation_scale = dissipation_scale(&law, &scales);
         NormalContact { law, scales, dissipation_scale, per_dissipation: 1.0 / dissipation_scale, bodies, setup }
     }
 

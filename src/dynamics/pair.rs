@@ -7,7 +7,7 @@
 //! (the velocities follow from it). Spins are scaled as omega r / v0 so that they are O(1) at the contact point.
 
 use super::contact::{Kinematics, Mode, Shape, Tangential, set_vector, vector};
-use super::{ContactModel, Scales, Snapshot, unit_or_one};
+use super::{ContactModel, Scales, Snapshot, dissipation_scale, unit_or_one};
 use crate::body::Body;
 use crate::integrate::{Model, State};
 use crate::law::ContactLaw;
@@ -128,7 +128,7 @@ impl<'a> PairContact<'a> {
             shares: [setup.effective_mass * a.inverse_mass(), setup.effective_mass * b.inverse_mass()],
             spin_gains: [spin_gain(a), spin_gain(b)],
             initial_spins: [scaled_spin(a), scaled_spin(b)],
-            dissipation_scale: unit_or_one(law.damping_ratio(s.length, s.speed)),
+            dissipation_scale: dissipation_scale(&law, &s),
             friction_scale,
             bodies,
             setup,
@@ -286,7 +286,11 @@ impl ContactModel<SIZE> for PairContact<'_> {
             setup.positions[1] + b.velocity * time + pushed * self.shares[1],
         ];
         let kt = self.tangential.map_or(0.0, |t| t.stiffness_at(k.penetration));
-        let tangential_elastic = if kt > 0.0 { e.spring.norm_squared() / (2.0 * kt) } else { 0.0 };
+        // The spring stores at most what the Coulomb cap lets it hold: at the contact's edge kt -> 0 and Fn -> 0, and an
+        // uncapped spring state (a rounding-sized remainder) over a vanishing kt gave energies of 1e9 J in a 3 J impact.
+        let cap = self.tangential.map_or(0.0, |t| t.friction * (e.elastic + e.dissipative).max(0.0));
+        let stored = e.spring.norm().min(cap);
+        let tangential_elastic = if kt > 0.0 { stored * stored / (2.0 * kt) } else { 0.0 };
         Snapshot {
             time,
             penetration: k.penetration * s.length,

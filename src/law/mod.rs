@@ -118,6 +118,25 @@ impl ContactLaw {
         }
     }
 
+    /// The penetration (m) at which the force vanishes at penetration rate `rate` (m/s): the zero in d of
+    /// [`ContactLaw::separation_function`], -c d'/k (Kelvin–Voigt), (-a sqrt(m* K) d'/K)^(4/5) (Tsuji),
+    /// -(3/2) A d' (Brilliantov); 0 for a rate >= 0 and for laws that never turn tensile. At a located force
+    /// separation this is the separation penetration as accurate as the rate, where the integrated penetration
+    /// carries the event's time resolution (relative errors up to 1e-5 when the window between F = 0 and d = 0 is
+    /// tiny: light damping).
+    pub fn separation_penetration(&self, rate: f64) -> f64 {
+        if rate >= 0.0 {
+            return 0.0;
+        }
+        let (k, c) = (self.stiffness, self.damping);
+        match self.kind.family() {
+            Family::Elastic | Family::Hysteresis => 0.0,
+            Family::Linear => -c * rate / k,
+            Family::Tsuji => (-c * self.tsuji_scale * rate / k).powf(0.8),
+            Family::Viscoelastic => -1.5 * c * rate,
+        }
+    }
+
     /// Elastic (spring) energy stored at penetration `d` (m), the integral of the elastic force from 0 to d, J:
     /// K d^(n+1)/(n+1) (k d²/2 for Kelvin–Voigt, (2/5) K d^(5/2) for Tsuji and Brilliantov); zero for d <= 0.
     pub fn elastic_energy(&self, d: f64) -> f64 {

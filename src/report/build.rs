@@ -33,6 +33,16 @@ pub fn build(scene: &Scene, setup: &Setup, outcome: &Outcome, detail: ReferenceD
     let kinetic_before =
         a.kinetic_energy(&a.velocity, &a.angular_velocity) + b.kinetic_energy(&b.velocity, &b.angular_velocity);
     let friction_work = 0.0 - (end.tangential_work + end.tangential_elastic_energy);
+    // A force separation leaves the spring at the law's zero-force penetration for the separation speed: taken from
+    // the rate, it is as accurate as the rate (the integrated penetration carries the event's time resolution).
+    let force_end = scene.contact.separation == crate::law::Separation::Force
+        && setup.law.kind.can_turn_tensile()
+        && end.penetration > 0.0;
+    let elastic_left = if force_end {
+        setup.law.elastic_energy(setup.law.separation_penetration(end.rate))
+    } else {
+        end.elastic_energy
+    };
 
     let nominal = match scene.contact.damping {
         DampingSpec::None => Some(1.0),
@@ -115,7 +125,7 @@ pub fn build(scene: &Scene, setup: &Setup, outcome: &Outcome, detail: ReferenceD
             kinetic_before,
             kinetic_after: when(kinetic(0, a) + kinetic(1, b)),
             dissipated: when(end.dissipated_normal + friction_work),
-            elastic_left_at_separation: when(end.elastic_energy + end.tangential_elastic_energy),
+            elastic_left_at_separation: when(elastic_left + end.tangential_elastic_energy),
             work_of_immovable_bodies: when(end.work_of_immovable_bodies),
         },
         oblique,

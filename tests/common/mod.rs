@@ -3,6 +3,7 @@
 #![allow(dead_code)]
 
 pub mod binary;
+pub mod edge_ode;
 
 use impact::impact::simulate;
 use impact::report::Report;

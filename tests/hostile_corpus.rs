@@ -1,0 +1,374 @@
+//! A corpus of hostile scene files (issue 6 part 4), beside the 127 cases of `bad_scenes.rs` and of the classes they
+//! lack: empty and blank files, non-UTF-8 bytes, NUL and control characters, syntax errors of every kind, wrong
+//! types (booleans, tables, dates, strings, nested arrays), huge and tiny numbers, derived quantities outside double
+//! precision, contradictory and misplaced keys, hundreds of bodies, huge files generated here. Each must exit 2 with
+//! nothing on stdout and no panic, naming the file — and the key and line where they can be known (the expected line
+//! is counted here from the text written, not copied from the program).
+
+mod common;
+use common::binary::{Scratch, impact};
+use std::fs;
+
+/// A valid scene, each line unique so that one can be swapped for a hostile one.
+const BASE: &str = "title = \"corpus base\"\n\
+[[bodies]]\n\
+radius = 0.01\n\
+mass = 0.03\n\
+velocity = [1.0, 0.0, 0.0]\n\
+[[bodies]]\n\
+radius = inf\n\
+mass = inf\n\
+velocity = [0.0, 0.0, 0.0]\n\
+[contact]\n\
+law = \"hunt-crossley\"\n\
+restitution = 0.8\n\
+stiffness = 1e9\n\
+[solver]\n\
+rtol = 1e-10\n";
+
+/// `BASE` with its line `old` replaced by `new` (several lines allowed).
+fn swap(old: &str, new: &str) -> Vec<u8> {
+    assert_eq!(BASE.lines().filter(|l| *l == old).count(), 1, "no single line `{old}`");
+    BASE.lines().map(|l| if l == old { new } else { l }).collect::<Vec<_>>().join("\n").into_bytes()
+}
+
+/// `BASE` with `extra` appended.
+fn plus(extra: &str) -> Vec<u8> {
+    format!("{BASE}{extra}\n").into_bytes()
+}
+
+/// One hostile file: its bytes, the key the message must name (if any), and the line (1-based) it must give (if
+/// known).
+struct Case {
+    name: &'static str,
+    bytes: Vec<u8>,
+    key: Option<&'static str>,
+    line: Option<usize>,
+}
+
+fn case(name: &'static str, bytes: Vec<u8>, key: Option<&'static str>, line: Option<usize>) -> Case {
+    Case { name, bytes, key, line }
+}
+
+/// The 1-based line of `BASE` that is `text` (after a swap the line numbers of the rest stay).
+fn line_of(text: &str) -> Option<usize> {
+    BASE.lines().position(|l| l == text).map(|i| i + 1)
+}
+
+fn corpus() -> Vec<Case> {
+    let velocity = line_of("velocity = [1.0, 0.0, 0.0]");
+    let mass = line_of("mass = 0.03");
+    let radius = line_of("radius = 0.01");
+    let restitution = line_of("restitution = 0.8");
+    let stiffness = line_of("stiffness = 1e9");
+    let law = line_of("law = \"hunt-crossley\"");
+    let rtol = line_of("rtol = 1e-10");
+    let mut cases = vec![
+        // Empty, blank, comments only.
+        case("empty", Vec::new(), Some("bodies"), None),
+        case("blank", b"\n\n   \n\t\n".to_vec(), Some("bodies"), None),
+        case("comments_only", b"# a scene\n# nothing else\n".to_vec(), Some("bodies"), None),
+        case("title_only", b"title = \"x\"\n".to_vec(), Some("bodies"), None),
+        // Not UTF-8, NUL, control characters, a byte-order mark in the middle.
+        case(
+            "latin1_title",
+            {
+                let mut b = BASE.as_bytes().to_vec();
+                b.splice(9..9, [0xE9u8, 0xFF]);
+                b
+            },
+            None,
+            None,
+        ),
+        case("invalid_utf8_start", [&[0xC3u8, 0x28][..], BASE.as_bytes()].concat(), None, None),
+        case(
+            "lone_continuation_byte",
+            plus("\u{0}").into_iter().map(|c| if c == 0 { 0x80 } else { c }).collect(),
+            None,
+            None,
+        ),
+        case("nul_byte", swap("mass = 0.03", "mass = 0.0\u{0}3"), Some("bodies.0.mass"), mass),
+        case("control_character", swap("mass = 0.03", "mass = \u{7}0.03"), Some("bodies.0.mass"), mass),
+        case("bom_in_the_middle", swap("mass = 0.03", "\u{feff}mass = 0.03"), None, mass),
+        case("utf16", BASE.encode_utf16().flat_map(|u| u.to_le_bytes()).collect(), None, None),
+        // Syntax errors.
+        // (A syntax error is told where the parser meets it: for an unclosed array, the next line.)
+        case(
+            "unclosed_array",
+            swap("velocity = [1.0, 0.0, 0.0]", "velocity = [1.0, 0.0, 0.0"),
+            None,
+            velocity.map(|l| l + 1),
+        ),
+        case("missing_value", swap("mass = 0.03", "mass ="), Some("bodies.0.mass"), mass),
+        case("unterminated_string", swap("law = \"hunt-crossley\"", "law = \"hunt-crossley"), Some("contact.law"), law),
+        case("bad_escape", swap("law = \"hunt-crossley\"", "law = \"hunt\\q\""), Some("contact.law"), law),
+        case("unclosed_table_header", swap("[contact]", "[contact"), None, line_of("[contact]")),
+        case("key_without_equals", swap("mass = 0.03", "mass 0.03"), None, mass),
+        case("two_values_on_a_line", swap("mass = 0.03", "mass = 0.03 0.04"), Some("bodies.0.mass"), mass),
+        case("duplicate_table", plus("[contact]\nlaw = \"hertz\""), None, Some(BASE.lines().count() + 1)),
+        case("table_redefined_as_key", plus("contact = 3"), None, Some(BASE.lines().count() + 1)),
+        case("dotted_key_clash", swap("mass = 0.03", "mass.value = 0.03"), Some("bodies.0.mass.value"), mass),
+        case("number_with_two_points", swap("mass = 0.03", "mass = 0.0.3"), Some("bodies.0.mass"), mass),
+        case("leading_zero", swap("mass = 0.03", "mass = 003"), Some("bodies.0.mass"), mass),
+        case("trailing_comma_in_inline_table", plus("[output]\nseries = { a = 1, }"), None, None),
+        // Wrong types.
+        case("bool_mass", swap("mass = 0.03", "mass = true"), Some("bodies.0.mass"), mass),
+        case(
+            "table_velocity",
+            swap("velocity = [1.0, 0.0, 0.0]", "velocity = { x = 1.0 }"),
+            Some("bodies.0.velocity"),
+            velocity,
+        ),
+        case(
+            "string_vector_items",
+            swap("velocity = [1.0, 0.0, 0.0]", "velocity = [\"1\", \"0\", \"0\"]"),
+            Some("bodies.0.velocity"),
+            velocity,
+        ),
+        case(
+            "nested_array",
+            swap("velocity = [1.0, 0.0, 0.0]", "velocity = [[1.0], [0.0], [0.0]]"),
+            Some("bodies.0.velocity"),
+            velocity,
+        ),
+        case("date_radius", swap("radius = 0.01", "radius = 1979-05-27"), Some("bodies.0.radius"), radius),
+        case("string_tolerance", swap("rtol = 1e-10", "rtol = \"1e-10\""), Some("solver.rtol"), rtol),
+        case("number_law", swap("law = \"hunt-crossley\"", "law = 3"), Some("contact.law"), law),
+        case("array_of_laws", swap("law = \"hunt-crossley\"", "law = [\"hertz\"]"), Some("contact.law"), law),
+        case("bool_stiffness", swap("stiffness = 1e9", "stiffness = false"), Some("contact.stiffness"), stiffness),
+        case(
+            "table_stiffness",
+            swap("stiffness = 1e9", "stiffness = { value = 1e9 }"),
+            Some("contact.stiffness"),
+            stiffness,
+        ),
+        case(
+            "bodies_as_a_table",
+            b"[bodies]\nradius = 1\n[contact]\nlaw = \"hertz\"\n".to_vec(),
+            Some("bodies"),
+            Some(1),
+        ),
+        case("solver_as_an_array", plus("[[solver]]\nrtol = 1e-9"), None, Some(BASE.lines().count() + 1)),
+        case("title_number", swap("title = \"corpus base\"", "title = 7"), Some("title"), Some(1)),
+        case(
+            "separation_bool",
+            swap("stiffness = 1e9", "stiffness = 1e9\nseparation = true"),
+            Some("contact.separation"),
+            stiffness.map(|l| l + 1),
+        ),
+        // Case and spelling.
+        case("law_in_capitals", swap("law = \"hunt-crossley\"", "law = \"Hunt-Crossley\""), Some("contact.law"), law),
+        case("law_with_spaces", swap("law = \"hunt-crossley\"", "law = \" hunt-crossley \""), Some("contact.law"), law),
+        case(
+            "hertz_in_capitals",
+            swap("stiffness = 1e9", "stiffness = \"HERTZ\""),
+            Some("contact.stiffness"),
+            stiffness,
+        ),
+        // Huge and tiny numbers.
+        case("mass_overflows_to_inf", swap("mass = 0.03", "mass = 1e400"), Some("bodies.0.mass"), mass),
+        case(
+            "huge_velocity",
+            swap("velocity = [1.0, 0.0, 0.0]", "velocity = [1e200, 0.0, 0.0]"),
+            Some("bodies.0.velocity"),
+            velocity,
+        ),
+        case("huge_integer", swap("mass = 0.03", "mass = 99999999999999999999999999"), Some("bodies.0.mass"), mass),
+        case("subnormal_mass", swap("mass = 0.03", "mass = 5e-324"), None, None),
+        case("negative_zero_mass", swap("mass = 0.03", "mass = -0.0"), Some("bodies.0.mass"), mass),
+        case("tiny_stiffness", swap("stiffness = 1e9", "stiffness = 1e-320"), None, None),
+        case(
+            "relative_velocity_overflows",
+            {
+                let text =
+                    String::from_utf8(swap("velocity = [0.0, 0.0, 0.0]", "velocity = [-1.7e308, 0.0, 0.0]")).unwrap();
+                text.replace("radius = inf\nmass = inf", "radius = 0.01\nmass = 1e-300").into_bytes()
+            },
+            None,
+            None,
+        ),
+        case("too_heavy_damping", swap("restitution = 0.8", "damping = 1e300"), Some("contact.damping"), restitution),
+        case("nan_spelled_with_sign", swap("mass = 0.03", "mass = +nan"), Some("bodies.0.mass"), mass),
+        case(
+            "inf_velocity_component",
+            swap("velocity = [1.0, 0.0, 0.0]", "velocity = [inf, -inf, nan]"),
+            Some("bodies.0.velocity"),
+            velocity,
+        ),
+        case(
+            "poisson_minus_one",
+            swap("mass = 0.03", "mass = 0.03\npoisson = -1.0"),
+            Some("bodies.0.poisson"),
+            mass.map(|l| l + 1),
+        ),
+        // Contradictions and misplaced keys.
+        case(
+            "restitution_and_damping",
+            swap("restitution = 0.8", "restitution = 0.8\ndamping = 0.1"),
+            Some("contact.damping"),
+            None,
+        ),
+        case("inertia_of_a_wall", swap("mass = inf", "mass = inf\ninertia = 1.0"), Some("bodies.1.inertia"), None),
+        case(
+            "law_in_a_body",
+            swap("mass = 0.03", "mass = 0.03\nlaw = \"hertz\""),
+            Some("bodies.0.law"),
+            mass.map(|l| l + 1),
+        ),
+        case(
+            "mass_in_contact",
+            swap("stiffness = 1e9", "stiffness = 1e9\nmass = 1.0"),
+            Some("contact.mass"),
+            stiffness.map(|l| l + 1),
+        ),
+        case("unknown_solver_key", plus("[solver]\nmethod = \"rk4\""), None, None),
+        case("unknown_top_level_key", plus("gravity = 9.81"), Some("gravity"), Some(BASE.lines().count() + 1)),
+        case(
+            "unknown_output_key",
+            plus("[output]\nformat = \"png\""),
+            Some("output.format"),
+            Some(BASE.lines().count() + 2),
+        ),
+        case(
+            "three_bodies",
+            plus("[[bodies]]\nradius = 0.01\nmass = 1.0\nvelocity = [0.0, 0.0, 0.0]"),
+            Some("bodies"),
+            None,
+        ),
+        case(
+            "position_for_one_body",
+            swap("mass = 0.03", "mass = 0.03\nposition = [0.0, 0.0, 0.0]"),
+            Some("bodies.1.position"),
+            None,
+        ),
+        case(
+            "spinning_wall",
+            swap("mass = inf", "mass = inf\nangular_velocity = [1.0, 0.0, 0.0]"),
+            Some("bodies.1.angular_velocity"),
+            None,
+        ),
+        case("zero_normal", plus("[contact.normal]\n"), None, None),
+    ];
+    // Hundreds of bodies.
+    let mut many = String::from(BASE);
+    for _ in 0..500 {
+        many.push_str("[[bodies]]\nradius = 0.01\nmass = 1.0\nvelocity = [0.0, 0.0, 0.0]\n");
+    }
+    cases.push(case("five_hundred_bodies", many.into_bytes(), Some("bodies"), None));
+    // Deeply nested arrays.
+    let depth = 10_000;
+    cases.push(case(
+        "deeply_nested_arrays",
+        swap("velocity = [1.0, 0.0, 0.0]", &format!("velocity = {}{}", "[".repeat(depth), "]".repeat(depth))),
+        None,
+        None,
+    ));
+    // A long line: a title of a million characters, and a key of ten thousand.
+    cases.push(case("million_character_title", plus(&format!("law2 = \"{}\"", "x".repeat(1_000_000))), None, None));
+    cases.push(case("ten_thousand_character_key", plus(&format!("{} = 1", "k".repeat(10_000))), None, None));
+    // Huge files: 20 MB of comments before a bad value (the line counted through all of them), and 5 MB of digits.
+    let comments = 400_000;
+    let mut big = "# padding line of a huge scene file\n".repeat(comments);
+    big.push_str(&String::from_utf8(swap("mass = 0.03", "mass = -1.0")).unwrap());
+    cases.push(case("huge_file_of_comments", big.into_bytes(), Some("bodies.0.mass"), mass.map(|l| l + comments)));
+    cases.push(case(
+        "five_million_digit_number",
+        swap("mass = 0.03", &format!("mass = 1{}", "0".repeat(5_000_000))),
+        Some("bodies.0.mass"),
+        mass,
+    ));
+    cases
+}
+
+#[test]
+fn the_corpus_has_at_least_sixty_hostile_scenes() {
+    let cases = corpus();
+    assert!(cases.len() >= 60, "{} cases", cases.len());
+    let mut names: Vec<_> = cases.iter().map(|c| c.name).collect();
+    names.sort_unstable();
+    names.dedup();
+    assert_eq!(names.len(), cases.len(), "case names are unique");
+    // The base scene itself is valid: every case is hostile because of its one change.
+    let scratch = Scratch::new("base_is_valid");
+    let path = scratch.path().join("base.toml");
+    fs::write(&path, BASE).unwrap();
+    let output = impact(scratch.path(), &["run", path.to_str().unwrap(), "--json"]);
+    assert_eq!(output.status.code(), Some(0), "{}", String::from_utf8_lossy(&output.stderr));
+}
+
+#[test]
+fn every_hostile_scene_exits_2_naming_the_problem() {
+    let scratch = Scratch::new("every_hostile_scene");
+    let mut failures = Vec::new();
+    for case in corpus() {
+        let file = format!("{}.toml", case.name);
+        let path = scratch.path().join(&file);
+        fs::write(&path, &case.bytes).expect("write the scene");
+        let output = impact(scratch.path(), &["run", path.to_str().unwrap()]);
+        let stderr = String::from_utf8_lossy(&output.stderr);
+        let mut problems = Vec::new();
+        if output.status.code() != Some(2) {
+            problems.push(format!("exit {:?}", output.status.code()));
+        }
+        if !output.stdout.is_empty() {
+            problems.push("printed on stdout".into());
+        }
+        if stderr.contains("panicked") || stderr.contains("RUST_BACKTRACE") {
+            problems.push("panicked".into());
+        }
+        if !stderr.contains(&file) {
+            problems.push(format!("does not name the file {file}"));
+        }
+        if let Some(key) = case.key
+            && !stderr.contains(&format!("`{key}`"))
+        {
+            problems.push(format!("does not name the key `{key}`"));
+        }
+        if let Some(line) = case.line
+            && !stderr.contains(&format!("line {line}:"))
+            && !stderr.contains(&format!("line {line},"))
+        {
+            problems.push(format!("does not say line {line}"));
+        }
+        if stderr.len() > 2000 {
+            problems.push(format!("a message of {} bytes (a huge input echoed back?)", stderr.len()));
+        }
+        if !problems.is_empty() {
+            let shown: String = stderr.chars().take(300).collect();
+            failures.push(format!("{}: {} — stderr: {shown}", case.name, problems.join(", ")));
+        }
+    }
+    assert!(failures.is_empty(), "{} hostile scenes mishandled:\n{}", failures.len(), failures.join("\n"));
+}
+
+#[test]
+fn extreme_but_valid_numbers_run_and_pass_the_stress_checks() {
+    // Not hostile: huge and tiny values whose derived quantities stay inside double precision run normally (the
+    // scaled formulation makes them the same problem), and their reports pass every check of the stress run.
+    for (old, new) in [
+        ("stiffness = 1e9", "stiffness = 1e308"),
+        ("stiffness = 1e9", "stiffness = 1e-300"),
+        ("mass = 0.03", "density = 1e-300"),
+        ("mass = 0.03", "density = 1e300"),
+        ("mass = 0.03", "mass = 1e-300"),
+        ("velocity = [1.0, 0.0, 0.0]", "velocity = [1e-150, 0.0, 0.0]"),
+    ] {
+        let text = String::from_utf8(swap(old, new)).unwrap();
+        let scene = impact::scene::Scene::parse(&text, std::path::Path::new("extreme.toml")).expect(new);
+        let report = impact::impact::simulate(&scene, impact::history::Recording::Off).expect(new).report;
+        assert!(report.contact.separated, "{new}");
+        let (_, problems) = impact::stress::check_report(&scene, &report, None);
+        assert!(problems.is_empty(), "{new}: {problems:?}");
+    }
+}
+
+#[test]
+fn a_folder_or_a_missing_file_is_a_bad_scene() {
+    let scratch = Scratch::new("a_folder_or_a_missing_file");
+    fs::create_dir(scratch.path().join("folder.toml")).unwrap();
+    for name in ["folder.toml", "missing.toml"] {
+        let output = impact(scratch.path(), &["run", name]);
+        assert_eq!(output.status.code(), Some(2), "{name}");
+        assert!(String::from_utf8_lossy(&output.stderr).contains(name), "{name}");
+    }
+}

@@ -1,0 +1,136 @@
+//! The stress run (issue 6 part 4; interface.md "Stress run") and determinism: a short run of random scenes passes
+//! every check, the checks catch a wrong report, and the same scene gives bit-identical reports (all but the wall
+//! time) across runs and thread counts.
+
+mod common;
+use common::binary::{Scratch, assert_success, impact, stdout};
+use impact::history::Recording;
+use impact::impact::simulate;
+use impact::scene::Scene;
+use impact::stress;
+use std::path::Path;
+
+fn pool(threads: usize) -> rayon::ThreadPool {
+    rayon::ThreadPoolBuilder::new().num_threads(threads).build().expect("a thread pool")
+}
+
+#[test]
+fn a_short_stress_run_passes_every_check() {
+    // 300 random scenes (the narrowed ranges of --quick, which run fast in a debug build): every law, both criteria,
+    // spheres, still and moving walls and fixed spheres, oblique, spins, positions. (Friction is left to the stress
+    // verb: the frictional 3-D model is still short of 1e-9 against rigid-body theory on some scenes.)
+    let summary = stress::run(6, 0, 300, true, &|| {});
+    assert_eq!(summary.cases, 300);
+    assert_eq!(summary.failures, 0, "failed scenes:\n{}", summary.failed.join("\n"));
+    // Most cases are checked (not refused or stuck), and the checks that matter ran.
+    let checked: u64 = summary.outcomes.iter().filter(|(k, _)| k.starts_with("checked")).map(|(_, n)| n).sum();
+    assert!(checked >= 270, "outcomes {:?}", summary.outcomes);
+    for quantity in [
+        "momentum",
+        "angular_momentum",
+        "energy_balance",
+        "energy_balance_relative",
+        "exact.dissipated",
+        "exact.elastic_left_at_separation",
+        "reference.restitution",
+        "reference.duration",
+        "flight.start_time",
+        "impulse_ratio_vs_velocity_ratio",
+    ] {
+        assert!(summary.worst.contains_key(quantity), "{quantity} was never checked: {:?}", summary.worst.keys());
+    }
+}
+
+#[test]
+fn the_checks_catch_a_wrong_energy_a_lost_momentum_and_a_nan() {
+    // A passing report, then the same report with one number spoiled: each spoiling must be reported.
+    let text = stress::scene_text(6, 3, true);
+    let scene = Scene::parse(&text, Path::new("case.toml")).expect("a valid stress scene");
+    let report = simulate(&scene, Recording::Off).expect("simulation").report;
+    assert!(report.contact.separated);
+    assert!(stress::check_report(&scene, &report, None).1.is_empty());
+    let mut spoiled = report.clone();
+    *spoiled.energy.dissipated.as_mut().unwrap() *= 1.0 + 1e-7;
+    assert!(!stress::check_report(&scene, &spoiled, None).1.is_empty(), "a dissipated energy 1e-7 off passes");
+    let mut spoiled = report.clone();
+    spoiled.bodies[1].velocity_after.as_mut().unwrap()[0] += 1e-6 * report.approach_speed;
+    assert!(!stress::check_report(&scene, &spoiled, None).1.is_empty(), "a velocity 1e-6 v0 off passes");
+    let mut spoiled = report.clone();
+    spoiled.contact.max_force = f64::NAN;
+    let problems = stress::check_report(&scene, &spoiled, None).1;
+    assert!(problems.iter().any(|p| p.contains("non-finite")), "{problems:?}");
+}
+
+#[test]
+fn the_summary_does_not_depend_on_the_thread_count() {
+    let one = pool(1).install(|| stress::run(9, 100, 40, true, &|| {}));
+    let two = pool(2).install(|| stress::run(9, 100, 40, true, &|| {}));
+    assert_eq!(one, two);
+}
+
+#[test]
+fn the_same_scene_gives_bit_identical_reports_across_runs_and_threads() {
+    let strip = |mut report: impact::report::Report| {
+        report.solver.wall_time_s = 0.0;
+        serde_json::to_string(&report).expect("serialises")
+    };
+    let texts: Vec<String> = (0..12).map(|i| stress::scene_text(21, i, true)).collect();
+    let reports = |threads: usize| -> Vec<Option<String>> {
+        pool(threads).install(|| {
+            use rayon::prelude::*;
+            texts
+                .par_iter()
+                .map(|text| {
+                    let scene = Scene::parse(text, Path::new("case.toml")).ok()?;
+                    simulate(&scene, Recording::Off).ok().map(|s| strip(s.report))
+                })
+                .collect()
+        })
+    };
+    let (first, again, parallel) = (reports(1), reports(1), reports(2));
+    assert!(first.iter().filter(|r| r.is_some()).count() >= 10);
+    assert_eq!(first, again);
+    assert_eq!(first, parallel);
+}
+
+#[test]
+fn the_verb_prints_its_json_and_exits_zero() {
+    let scratch = Scratch::new("the_verb_prints_its_json_and_exits_zero");
+    let args = ["stress", "--quick", "--count", "12", "--seed", "4", "--json", "--threads", "2"];
+    let output = impact(scratch.path(), &args);
+    assert_success(&output);
+    let value: serde_json::Value = serde_json::from_str(&stdout(&output)).expect("JSON on stdout");
+    assert_eq!(value["cases"], 12);
+    assert_eq!(value["failures"], 0);
+    assert!(value["worst"].is_object() && value["failed"].as_array().is_some_and(|a| a.is_empty()));
+    // The same seed gives the same summary with one thread (all but the time it took).
+    let single =
+        impact(scratch.path(), &["stress", "--quick", "--count", "12", "--seed", "4", "--json", "--threads", "1"]);
+    let mut other: serde_json::Value = serde_json::from_str(&stdout(&single)).expect("JSON on stdout");
+    let mut value = value;
+    value["seconds"] = serde_json::Value::Null;
+    other["seconds"] = serde_json::Value::Null;
+    assert_eq!(value, other);
+    // The scenes can be printed, to rerun one with `impact run`.
+    let scenes =
+        impact(scratch.path(), &["stress", "--quick", "--count", "1", "--seed", "4", "--start", "3", "--scenes"]);
+    assert_success(&scenes);
+    assert_eq!(stdout(&scenes).trim_end(), format!("# case 3\n{}", stress::scene_text(4, 3, true)).trim_end());
+    // Bad arguments exit 2.
+    assert_eq!(impact(scratch.path(), &["stress", "--count", "0"]).status.code(), Some(2));
+}
+
+#[test]
+fn a_run_report_is_bit_identical_across_runs() {
+    let scratch = Scratch::new("a_run_report_is_bit_identical_across_runs");
+    let path = scratch.scene("case.toml", &stress::scene_text(21, 5, true));
+    let strip = |text: String| {
+        let mut value: serde_json::Value = serde_json::from_str(&text).expect("JSON");
+        value["solver"]["wall_time_s"] = serde_json::Value::Null;
+        value.to_string()
+    };
+    let first = impact(scratch.path(), &["run", &path, "--json"]);
+    let second = impact(scratch.path(), &["run", &path, "--json"]);
+    assert_success(&first);
+    assert_eq!(strip(stdout(&first)), strip(stdout(&second)));
+}
