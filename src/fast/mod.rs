@@ -77,6 +77,12 @@ pub struct Outcome {
     pub max_compression: PhasePoint,
     /// The separation (or where the integration stopped, see `ending`).
     pub end: PhasePoint,
+    /// `∫ F dt` over the restitution alone, in `m* v0` (integrated from maximum compression, so that it is
+    /// accurate relative to itself when e is small; `end.impulse` is the deformation impulse plus this).
+    pub restitution_impulse: f64,
+    /// Energy returned in restitution, `-∫ F d' dt` from maximum compression, in `m* v0²` (`e²/2` at a
+    /// penetration separation); integrated on its own like `restitution_impulse`.
+    pub restitution_work: f64,
     /// Largest compressive force, in `F0`.
     pub peak_force: f64,
     /// When it acts, in `T` since first contact.
@@ -119,10 +125,21 @@ pub fn simulate_normal(request: &Request) -> Result<Outcome, FastError> {
     let mut run = Run::new(system, eps);
     let max_compression = run.compress()?;
     let force_criterion = request.separation == Separation::Force && system.can_turn_tensile();
+    // The restitution's integrals start from zero, so that they are accurate relative to themselves.
+    run.state.impulse = 0.0;
+    run.state.work = 0.0;
     let ending = run.restitute(force_criterion);
+    let restitution = run.point();
+    let end = PhasePoint {
+        impulse: max_compression.impulse + restitution.impulse,
+        work: max_compression.work + restitution.work,
+        ..restitution
+    };
     Ok(Outcome {
         max_compression,
-        end: run.point(),
+        end,
+        restitution_impulse: restitution.impulse,
+        restitution_work: -restitution.work,
         peak_force: run.peak.0,
         peak_force_time: run.peak.1,
         separated: ending == Ending::Separated,
@@ -235,9 +252,13 @@ impl Run {
         let e = &self.expansion;
         let k = self.order;
         let size = self.state.w.abs().max(self.state.rate.abs());
-        // The integrals' series converge more slowly than w's and v's when the solution is entire (their
-        // products double and triple the frequency), so they take part in the step size.
-        let norm = |i: usize| e.w[i].abs().max(e.rate[i].abs()).max(e.work[i].abs()).max(e.dissipation[i].abs()) / size;
+        // The dissipation's series converges more slowly than w's and v's when the solution is entire (its
+        // integrand, a product, doubles and triples the frequency), so it takes part in the step size. It is
+        // weighed as D̃ (relative to itself: D = x D̃ is then accurate relative to D for light damping) or as D
+        // itself when the damping x > 1 multiplies D̃'s error. (The work is the exact integral of the step's
+        // polynomials: as accurate as they are.)
+        let weight = self.system.damping.max(1.0);
+        let norm = |i: usize| e.w[i].abs().max(e.rate[i].abs()).max(weight * e.dissipation[i].abs()) / size;
         taylor::step_size(norm(k - 1), norm(k), k, self.eps)
     }
 

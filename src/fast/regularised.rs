@@ -77,16 +77,29 @@ pub struct Expansion {
     pub w: Coefficients,
     pub rate: Coefficients,
     pub impulse: Coefficients,
-    pub work: Coefficients,
+    /// The work, to degree `2 order + 1`: the exact integral of the product of the step's force and rate
+    /// polynomials. (Truncating it at `order` would drop terms `~ w v_K σ^K`, an error that does not shrink with
+    /// `v`, and the restitution work `≈ v²/2` of a small e would be far less accurate than e itself.)
+    pub work: [f64; 2 * MAX_ORDER + 2],
     pub dissipation: Coefficients,
-    /// Scratch: the series of `w v` (hysteresis) or `v²` (linear).
+    /// Scratch: the series of `w v` (hysteresis) or `v²` (linear), and of `F̂`.
     product: Coefficients,
+    force: Coefficients,
 }
 
 impl Default for Expansion {
     fn default() -> Self {
         let zero = [0.0; MAX_ORDER + 1];
-        Expansion { order: 0, w: zero, rate: zero, impulse: zero, work: zero, dissipation: zero, product: zero }
+        Expansion {
+            order: 0,
+            w: zero,
+            rate: zero,
+            impulse: zero,
+            work: [0.0; 2 * MAX_ORDER + 2],
+            dissipation: zero,
+            product: zero,
+            force: zero,
+        }
     }
 }
 
@@ -94,12 +107,12 @@ impl Expansion {
     /// The state at offset `sigma` in the step.
     pub fn state_at(&self, sigma: f64) -> State {
         let k = self.order + 1;
-        let at = |c: &Coefficients| super::taylor::value(&c[..k], sigma);
+        let at = |c: &[f64]| super::taylor::value(&c[..k], sigma);
         State {
             w: at(&self.w),
             rate: at(&self.rate),
             impulse: at(&self.impulse),
-            work: at(&self.work),
+            work: super::taylor::value(&self.work[..2 * k], sigma),
             dissipation: at(&self.dissipation),
         }
     }
@@ -208,35 +221,46 @@ impl Regularised {
         let (p, x) = (self.rate_factor, self.damping);
         match self.form {
             Form::Hysteresis => {
-                for k in 0..order {
-                    // P = w v; F̂ = w + x P; dD̃/dτ = P v; dW/dτ = F̂ v = P + x P v.
+                for k in 0..=order {
+                    // P = w v; F̂ = w + x P; dD̃/dτ = P v.
                     let wv = cauchy(&e.w, &e.rate, k);
                     e.product[k] = wv;
                     let force = e.w[k] + x * wv;
+                    e.force[k] = force;
+                    if k == order {
+                        break;
+                    }
                     let wvv = if x == 0.0 { 0.0 } else { cauchy(&e.product, &e.rate, k) };
                     let inverse = INVERSE[k + 1];
                     e.w[k + 1] = p * e.rate[k] * inverse;
                     e.rate[k + 1] = -force * inverse;
                     e.impulse[k + 1] = force * inverse;
                     e.dissipation[k + 1] = wvv * inverse;
-                    e.work[k + 1] = (wv + x * wvv) * inverse;
                 }
             }
             Form::Linear => {
-                for k in 0..order {
-                    // F̂ = w + c v; dD̃/dτ = v²; dW/dτ = F̂ v = w v + c v².
-                    let wv = cauchy(&e.w, &e.rate, k);
-                    let vv = cauchy(&e.rate, &e.rate, k);
-                    e.product[k] = vv;
+                for k in 0..=order {
+                    // F̂ = w + c v; dD̃/dτ = v².
                     let force = e.w[k] + x * e.rate[k];
+                    e.force[k] = force;
+                    if k == order {
+                        break;
+                    }
+                    let vv = cauchy(&e.rate, &e.rate, k);
                     let inverse = INVERSE[k + 1];
                     e.w[k + 1] = p * e.rate[k] * inverse;
                     e.rate[k + 1] = -force * inverse;
                     e.impulse[k + 1] = force * inverse;
                     e.dissipation[k + 1] = vv * inverse;
-                    e.work[k + 1] = (wv + x * vv) * inverse;
                 }
             }
+        }
+        // dW/dτ = F̂ v, the whole product of the two polynomials (degree 2 order).
+        for k in 0..=2 * order {
+            let low = k.saturating_sub(order);
+            let high = k.min(order);
+            let sum = (low..=high).fold(0.0, |sum, j| sum + e.force[j] * e.rate[k - j]);
+            e.work[k + 1] = sum / (k + 1) as f64;
         }
     }
 
