@@ -19,7 +19,7 @@
 //! [`super::quadrature`], which treats the `w^(-γ)` singularities at the ends of the contact.
 
 use super::FastError;
-use super::taylor::{Coefficients, INVERSE, MAX_ORDER};
+use super::taylor::{self, Coefficients, INVERSE, MAX_ORDER};
 use crate::dynamics::Scales;
 use crate::law::{ContactLaw, Family};
 
@@ -70,21 +70,29 @@ impl State {
     pub const FIRST_CONTACT: State = State { w: 0.0, rate: 1.0, impulse: 0.0, work: 0.0, dissipation: 0.0 };
 }
 
-/// One step's Taylor series of every component, in the offset `σ = τ - τ_start`.
+/// One step's Taylor series, in the offset `σ = τ - τ_start`: `w`, `v` and `D̃` to the order, and the force
+/// series' last coefficient `F̂_K` (the lower ones are `-k v_k`).
+///
+/// The impulse and the work are the exact integrals over the step of the force polynomial
+/// `F̂(σ) = Σ_{k<=K} F̂_k σ^k` and of its product with the rate polynomial. Since `F̂_k = -(k+1) v_{k+1}` for
+/// `k < K` (the recursion itself), `F̂ = -v' + F̂_K σ^K` on the polynomials, and the integrals have the closed
+/// forms `∫F̂ = -(v(σ) - v_0) + F̂_K σ^(K+1)/(K+1)` and `∫F̂ v = -(v(σ)² - v_0²)/2 + F̂_K Σ_j v_j
+/// σ^(K+j+1)/(K+j+1)`: `O(K)` instead of a product of series, and no truncation of the product (which would drop
+/// terms `~ w v_K σ^K` that do not shrink with `v`: the restitution work `≈ v²/2` of a small e would be far less
+/// accurate than e itself).
 #[derive(Debug, Clone)]
 pub struct Expansion {
     pub order: usize,
     pub w: Coefficients,
     pub rate: Coefficients,
-    pub impulse: Coefficients,
-    /// The work, to degree `2 order + 1`: the exact integral of the product of the step's force and rate
-    /// polynomials. (Truncating it at `order` would drop terms `~ w v_K σ^K`, an error that does not shrink with
-    /// `v`, and the restitution work `≈ v²/2` of a small e would be far less accurate than e itself.)
-    pub work: [f64; 2 * MAX_ORDER + 2],
     pub dissipation: Coefficients,
-    /// Scratch: the series of `w v` (hysteresis) or `v²` (linear), and of `F̂`.
+    /// `F̂_K`, the force series' coefficient of order `K`.
+    pub force_top: f64,
+    /// The state the step starts from (its impulse and work are the integration constants).
+    start: State,
+    /// Scratch: the series of `w v` (hysteresis), and `v` reversed ([`TOP`]).
     product: Coefficients,
-    force: Coefficients,
+    reversed: Coefficients,
 }
 
 impl Default for Expansion {
@@ -94,11 +102,11 @@ impl Default for Expansion {
             order: 0,
             w: zero,
             rate: zero,
-            impulse: zero,
-            work: [0.0; 2 * MAX_ORDER + 2],
             dissipation: zero,
+            force_top: 0.0,
+            start: State::FIRST_CONTACT,
             product: zero,
-            force: zero,
+            reversed: zero,
         }
     }
 }
@@ -106,23 +114,50 @@ impl Default for Expansion {
 impl Expansion {
     /// The state at offset `sigma` in the step.
     pub fn state_at(&self, sigma: f64) -> State {
-        let k = self.order + 1;
-        let at = |c: &[f64]| super::taylor::value(&c[..k], sigma);
+        let k = self.order;
+        let rate = taylor::value(&self.rate[..=k], sigma);
+        // v(σ) - v_0 without cancellation: σ Σ_{j>=1} v_j σ^(j-1).
+        let change = sigma * taylor::value(&self.rate[1..=k], sigma);
+        let power = sigma.powi(k as i32 + 1);
+        let top = self.force_top * power;
+        let moment = self.rate[..=k].iter().enumerate().rev().fold(0.0, |acc, (j, &vj)| acc * sigma + vj * INVERSE[k + j + 1]);
         State {
-            w: at(&self.w),
-            rate: at(&self.rate),
-            impulse: at(&self.impulse),
-            work: super::taylor::value(&self.work[..2 * k], sigma),
-            dissipation: at(&self.dissipation),
+            w: taylor::value(&self.w[..=k], sigma),
+            rate,
+            impulse: self.start.impulse - change + top * INVERSE[k + 1],
+            work: self.start.work - 0.5 * change * (rate + self.start.rate) + top * moment,
+            dissipation: taylor::value(&self.dissipation[..=k], sigma),
         }
+    }
+
+    /// The force series `F̂` at offset `sigma` (its polynomial: `-v'(σ) + F̂_K σ^K`).
+    pub fn force_at(&self, sigma: f64) -> f64 {
+        let k = self.order;
+        -taylor::value_and_slope(&self.rate[..=k], sigma).1 + self.force_top * sigma.powi(k as i32)
     }
 }
 
-/// `Σ_{j=0}^{k} a_j b_{k-j}`: coefficient `k` of the product of two series.
-#[inline]
-fn cauchy(a: &Coefficients, b: &Coefficients, k: usize) -> f64 {
-    a[..=k].iter().zip(b[..=k].iter().rev()).fold(0.0, |sum, (x, y)| sum + x * y)
+/// `Σ a_j b_j` over the common length, with four partial sums (lane-wise, so the compiler keeps them in vector
+/// registers and the additions do not wait for each other).
+#[inline(always)]
+fn dot(a: &[f64], b: &[f64]) -> f64 {
+    let n = a.len().min(b.len());
+    let (a, b) = (&a[..n], &b[..n]);
+    let mut sums = [0.0; 4];
+    let (chunks_a, chunks_b) = (a.chunks_exact(4), b.chunks_exact(4));
+    let (tail_a, tail_b) = (chunks_a.remainder(), chunks_b.remainder());
+    for (x, y) in chunks_a.zip(chunks_b) {
+        for l in 0..4 {
+            sums[l] += x[l] * y[l];
+        }
+    }
+    let tail = tail_a.iter().zip(tail_b).fold(0.0, |acc, (x, y)| acc + x * y);
+    ((sums[0] + sums[2]) + (sums[1] + sums[3])) + tail
 }
+
+/// Index in a reversed copy of a series: `reversed[TOP - j]` holds coefficient `j`, so that the coefficient `k`
+/// of a product, `Σ_j a_j b_(k-j)`, is the contiguous `dot(a[..=k], reversed[TOP-k..])`.
+const TOP: usize = MAX_ORDER;
 
 impl Regularised {
     /// The regularised system of `law` in the units `scales`. Errors: Brilliantov's law (not smoothed by the
@@ -213,28 +248,30 @@ impl Regularised {
     pub fn expand(&self, state: &State, order: usize, e: &mut Expansion) {
         debug_assert!(order <= MAX_ORDER);
         e.order = order;
+        e.start = *state;
         e.w[0] = state.w;
         e.rate[0] = state.rate;
-        e.impulse[0] = state.impulse;
-        e.work[0] = state.work;
         e.dissipation[0] = state.dissipation;
         let (p, x) = (self.rate_factor, self.damping);
+        e.reversed[TOP] = state.rate;
         match self.form {
             Form::Hysteresis => {
                 for k in 0..=order {
                     // P = w v; F̂ = w + x P; dD̃/dτ = P v.
-                    let wv = cauchy(&e.w, &e.rate, k);
+                    let v_reversed = &e.reversed[TOP - k..];
+                    let wv = dot(&e.w[..=k], v_reversed);
                     e.product[k] = wv;
                     let force = e.w[k] + x * wv;
-                    e.force[k] = force;
                     if k == order {
+                        e.force_top = force;
                         break;
                     }
-                    let wvv = if x == 0.0 { 0.0 } else { cauchy(&e.product, &e.rate, k) };
+                    let wvv = if x == 0.0 { 0.0 } else { dot(&e.product[..=k], v_reversed) };
                     let inverse = INVERSE[k + 1];
                     e.w[k + 1] = p * e.rate[k] * inverse;
-                    e.rate[k + 1] = -force * inverse;
-                    e.impulse[k + 1] = force * inverse;
+                    let v_next = -force * inverse;
+                    e.rate[k + 1] = v_next;
+                    e.reversed[TOP - k - 1] = v_next;
                     e.dissipation[k + 1] = wvv * inverse;
                 }
             }
@@ -242,25 +279,19 @@ impl Regularised {
                 for k in 0..=order {
                     // F̂ = w + c v; dD̃/dτ = v².
                     let force = e.w[k] + x * e.rate[k];
-                    e.force[k] = force;
                     if k == order {
+                        e.force_top = force;
                         break;
                     }
-                    let vv = cauchy(&e.rate, &e.rate, k);
+                    let vv = dot(&e.rate[..=k], &e.reversed[TOP - k..]);
                     let inverse = INVERSE[k + 1];
                     e.w[k + 1] = p * e.rate[k] * inverse;
-                    e.rate[k + 1] = -force * inverse;
-                    e.impulse[k + 1] = force * inverse;
+                    let v_next = -force * inverse;
+                    e.rate[k + 1] = v_next;
+                    e.reversed[TOP - k - 1] = v_next;
                     e.dissipation[k + 1] = vv * inverse;
                 }
             }
-        }
-        // dW/dτ = F̂ v, the whole product of the two polynomials (degree 2 order).
-        for k in 0..=2 * order {
-            let low = k.saturating_sub(order);
-            let high = k.min(order);
-            let sum = (low..=high).fold(0.0, |sum, j| sum + e.force[j] * e.rate[k - j]);
-            e.work[k + 1] = sum / (k + 1) as f64;
         }
     }
 
@@ -373,15 +404,17 @@ mod tests {
         for sigma in [0.01, 0.05] {
             let (w, dw) = taylor::value_and_slope(&e.w[..k], sigma);
             let (v, dv) = taylor::value_and_slope(&e.rate[..k], sigma);
-            let (_, dj) = taylor::value_and_slope(&e.impulse[..k], sigma);
-            let (_, dwork) = taylor::value_and_slope(&e.work[..k], sigma);
             let (_, dd) = taylor::value_and_slope(&e.dissipation[..k], sigma);
             let force = w * (1.0 + x * v);
             assert!((dw - 1.6 * v).abs() < 1e-14);
             assert!((dv + force).abs() < 1e-14);
-            assert!((dj - force).abs() < 1e-14);
-            assert!((dwork - force * v).abs() < 1e-14);
+            assert!((e.force_at(sigma) - force).abs() < 1e-14);
             assert!((dd - w * v * v).abs() < 1e-14);
+            // Impulse and work: central differences of the closed forms give F̂ and F̂ v.
+            let h = 1e-5;
+            let (after, before) = (e.state_at(sigma + h), e.state_at(sigma - h));
+            assert!(((after.impulse - before.impulse) / (2.0 * h) - force).abs() < 1e-9);
+            assert!(((after.work - before.work) / (2.0 * h) - force * v).abs() < 1e-9);
         }
     }
 

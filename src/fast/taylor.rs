@@ -10,11 +10,11 @@ pub const MAX_ORDER: usize = 30;
 /// The coefficients of one component over one step, `c[k]` multiplying `σ^k`.
 pub type Coefficients = [f64; MAX_ORDER + 1];
 
-/// `1/k` for `k = 0..=MAX_ORDER + 1` (entry 0 unused): the recursions divide by `k` once per coefficient.
-pub const INVERSE: [f64; MAX_ORDER + 2] = {
-    let mut table = [0.0; MAX_ORDER + 2];
+/// `1/k` for `k = 0..=2 MAX_ORDER + 1` (entry 0 unused): the recursions divide by `k` once per coefficient.
+pub const INVERSE: [f64; 2 * MAX_ORDER + 2] = {
+    let mut table = [0.0; 2 * MAX_ORDER + 2];
     let mut k = 1;
-    while k < MAX_ORDER + 2 {
+    while k < 2 * MAX_ORDER + 2 {
         table[k] = 1.0 / k as f64;
         k += 1;
     }
