@@ -39,7 +39,9 @@ fn median_time(request: &Request) -> f64 {
 }
 
 fn table() {
-    println!("\nfast path, one impact: median time (µs), Taylor steps, order, largest error over every measured quantity");
+    println!(
+        "\nfast path, one impact: median time (µs), Taylor steps, order, largest error over every measured quantity"
+    );
     println!("quantities: {}", QUANTITIES.join(", "));
     for tolerance in TOLERANCES.into_iter().chain([1e-16]) {
         let mut worst_time: f64 = 0.0;

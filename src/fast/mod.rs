@@ -107,6 +107,8 @@ pub enum FastError {
     Invalid(String),
     #[error("no maximum compression within {0} steps")]
     Compression(u64),
+    #[error("the step size collapsed at scaled time {0} (a time piece that no shorter step could resolve)")]
+    Stalled(f64),
 }
 
 /// Whether [`simulate_normal`] handles this law: every family but Brilliantov's viscoelastic law.
@@ -128,7 +130,8 @@ pub fn simulate_normal(request: &Request) -> Result<Outcome, FastError> {
     // The restitution's integrals start from zero, so that they are accurate relative to themselves.
     run.state.impulse = 0.0;
     run.state.work = 0.0;
-    let ending = run.restitute(force_criterion);
+    run.restituting = true;
+    let ending = run.restitute(force_criterion)?;
     let restitution = run.point();
     let end = PhasePoint {
         impulse: max_compression.impulse + restitution.impulse,
@@ -162,9 +165,16 @@ const STEP_BUDGET: u64 = 200_000;
 const TIME_LIMIT: f64 = 1e4;
 /// Scaled `δ + |v|` below which the relative motion counts as died out.
 const SETTLED: f64 = 1e-10;
-/// Smallest Bernstein parameter allowed for a Gauss–Legendre piece: the step is kept at most as long as its
-/// distance to a zero of `w` (`ξ = 1 + 2 distance/length >= 3`, `ρ >= 5.8`: 11 nodes reach 1e-16).
-const XI_MIN: f64 = 3.0;
+/// Smallest scale of the rate, relative to the state's, against which its series is measured in restitution
+/// (see [`Run::expand`]): at most `RATE_FLOOR^(-1/(K+1))`, about 1.3 times, more steps.
+const RATE_FLOOR: f64 = 0.01;
+/// Times a step may be halved because its time piece could not reach the accuracy (each halving brings the
+/// piece twice nearer its rule's domain: a handful suffice; more means something is wrong).
+const MAX_SHRINKS: u32 = 60;
+/// Smallest Bernstein parameter allowed for a Gauss–Legendre piece: a step is kept at most twice as long as its
+/// distance to a zero of `w` (`ξ = 1 + 2 distance/length >= 2`, `ρ >= 3.7`: 15 nodes reach 1e-16, 10 reach
+/// 1e-11). (Tighter limits cost steps, looser ones nodes; 2 to 3 measured best.)
+const XI_MIN: f64 = 2.0;
 
 /// Which rule gives the time over a piece of a step.
 #[derive(Debug, Clone, Copy)]
@@ -196,6 +206,8 @@ struct Run {
     system: Regularised,
     eps: f64,
     order: usize,
+    /// `eps^(1/(order+1))`, for the step size.
+    eps_root: f64,
     state: State,
     /// Regularised time since first contact.
     tau: f64,
@@ -203,6 +215,8 @@ struct Run {
     time: f64,
     time_carry: f64,
     expansion: Expansion,
+    /// Whether the run is past maximum compression (the step size then also measures v against itself).
+    restituting: bool,
     /// The singular time series of the current step (reused: no allocation per step).
     series: SingularSeries,
     steps: u64,
@@ -212,16 +226,19 @@ struct Run {
 
 impl Run {
     fn new(system: Regularised, eps: f64) -> Run {
+        let order = taylor::order_for(eps);
         Run {
             system,
             eps,
-            order: taylor::order_for(eps),
+            order,
+            eps_root: eps.powf(1.0 / (order + 1) as f64),
             state: State::FIRST_CONTACT,
             tau: 0.0,
             time: 0.0,
             time_carry: 0.0,
             expansion: Expansion::default(),
             series: SingularSeries::default(),
+            restituting: false,
             steps: 0,
             peak: (0.0, 0.0),
         }
@@ -258,8 +275,22 @@ impl Run {
         // itself when the damping x > 1 multiplies D̃'s error. (The work is the exact integral of the step's
         // polynomials: as accurate as they are.)
         let weight = self.system.damping.max(1.0);
-        let norm = |i: usize| e.w[i].abs().max(e.rate[i].abs()).max(weight * e.dissipation[i].abs()) / size;
-        taylor::step_size(norm(k - 1), norm(k), k, self.eps)
+        let norm = |i: usize, rate_size: f64| {
+            (e.w[i].abs().max(weight * e.dissipation[i].abs()) / size).max(e.rate[i].abs() / rate_size)
+        };
+        let h = taylor::step_size(norm(k - 1, size), norm(k, size), k, self.eps_root);
+        if !self.restituting {
+            return h;
+        }
+        // In restitution the rate is measured against itself where it is small beside w (heavy damping: v
+        // creeps at about -1/x while w is still large): the restitution impulse and work (≈ e and e²/2) add
+        // up every step's truncation of v with nothing to damp it, unlike v itself, which the slow manifold
+        // pulls back. Floored, so that a rate passing through zero does not stall the step.
+        let rate_size = self.state.rate.abs().max(taylor::value(&e.rate[..=k], h).abs()).max(RATE_FLOOR * size);
+        if rate_size >= size {
+            return h;
+        }
+        h.min(taylor::step_size(norm(k - 1, rate_size), norm(k, rate_size), k, self.eps_root))
     }
 
     fn w(&self) -> &[f64] {
@@ -379,18 +410,30 @@ impl Run {
                 h = h.min(self.left_limit());
             }
             let v_start = self.state.rate;
+            let mut shrinks = 0;
             let (end, turned, dt, peak) = loop {
                 let rate = self.rate();
                 let v_end = taylor::value(rate, h);
                 let turn =
                     (v_end <= 0.0).then(|| taylor::root(|s| taylor::value_and_slope(rate, s), 0.0, h, v_start, v_end));
                 let end = turn.unwrap_or(h);
-                let piece = if from_zero { Piece::FromZero } else { Piece::Inside { right: self.next_zero(end, h) } };
+                // In compression the next zero of w lies beyond maximum compression, at least as far from the
+                // step as first contact is (restitution is never shorter in τ than compression): the Gauss rule's
+                // accuracy is set by the left zero alone.
+                let piece = if from_zero { Piece::FromZero } else { Piece::Inside { right: f64::INFINITY } };
                 let Some(rule) = self.time_rule(piece) else {
-                    h *= 0.5;
+                    shrinks += 1;
+                    if shrinks > MAX_SHRINKS {
+                        return Err(FastError::Stalled(self.time()));
+                    }
+                    h = 0.5 * end;
                     continue;
                 };
                 let Some(dt) = self.time_between(rule, 0.0, end) else {
+                    shrinks += 1;
+                    if shrinks > MAX_SHRINKS {
+                        return Err(FastError::Stalled(self.time()));
+                    }
                     h = 0.5 * end;
                     continue;
                 };
@@ -406,6 +449,10 @@ impl Run {
                             0.0
                         };
                         let Some(time) = self.time_between(rule, 0.0, at) else {
+                            shrinks += 1;
+                            if shrinks > MAX_SHRINKS {
+                                return Err(FastError::Stalled(self.time()));
+                            }
                             h = 0.5 * end;
                             continue;
                         };
@@ -434,29 +481,34 @@ impl Run {
 
     /// Restitution: from maximum compression to separation (penetration back to zero, or for a law that turns
     /// tensile under the force criterion, the force back to zero), or until the motion dies out.
-    fn restitute(&mut self, force_criterion: bool) -> Ending {
+    fn restitute(&mut self, force_criterion: bool) -> Result<Ending, FastError> {
         let system = self.system;
         loop {
             if self.steps >= STEP_BUDGET {
-                return Ending::StepBudget;
+                return Ok(Ending::StepBudget);
             }
             if self.time() > TIME_LIMIT {
-                return Ending::TimeLimit;
+                return Ok(Ending::TimeLimit);
             }
             let mut h = self.expand().min(self.left_limit());
+            let mut shrinks = 0;
             let (end, zero, force_zero, dt) = loop {
                 let w = self.w();
                 let w_start = self.state.w;
                 let w_end = taylor::value(w, h);
                 let zero =
                     (w_end <= 0.0).then(|| taylor::root(|s| taylor::value_and_slope(w, s), 0.0, h, w_start, w_end));
-                let right = zero.unwrap_or_else(|| self.next_zero(h, h));
-                if zero.is_none() && right - h < 0.5 * (XI_MIN - 1.0) * h {
-                    // The next zero is near: end this step early enough for the Gauss rule, and let the next
-                    // step reach the zero with the singular series.
-                    h = 2.0 * right / (XI_MIN + 1.0);
-                    continue;
-                }
+                let right = match zero {
+                    Some(zero) => zero,
+                    None => {
+                        // The next zero beyond the step: if near, end this step early enough for the Gauss rule
+                        // (`ξ >= XI_MIN`); the next step reaches the zero with the singular series. (`w`
+                        // decreases in restitution, so the shorter step has no zero either.)
+                        let right = self.next_zero(h, h);
+                        h = h.min(2.0 * right / (XI_MIN + 1.0));
+                        right
+                    }
+                };
                 let reach = zero.unwrap_or(h);
                 let force_zero = if force_criterion {
                     let rate = self.rate();
@@ -476,11 +528,11 @@ impl Run {
                     Some(zero) => Piece::ToZero { zero },
                     None => Piece::Inside { right },
                 };
-                let Some(rule) = self.time_rule(piece) else {
-                    h = 0.5 * reach;
-                    continue;
-                };
-                let Some(dt) = self.time_between(rule, 0.0, end) else {
+                let Some(dt) = self.time_rule(piece).and_then(|rule| self.time_between(rule, 0.0, end)) else {
+                    shrinks += 1;
+                    if shrinks > MAX_SHRINKS {
+                        return Err(FastError::Stalled(self.time()));
+                    }
                     h = 0.5 * reach;
                     continue;
                 };
@@ -488,14 +540,14 @@ impl Run {
             };
             self.advance(end, dt);
             if force_zero.is_some() {
-                return Ending::Separated;
+                return Ok(Ending::Separated);
             }
             if zero.is_some() {
                 self.state.w = 0.0;
-                return if self.state.rate < 0.0 { Ending::Separated } else { Ending::Settled };
+                return Ok(if self.state.rate < 0.0 { Ending::Separated } else { Ending::Settled });
             }
             if system.penetration(self.state.w) + self.state.rate.abs() < SETTLED {
-                return Ending::Settled;
+                return Ok(Ending::Settled);
             }
         }
     }

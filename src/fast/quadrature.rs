@@ -95,13 +95,25 @@ pub fn gauss_power(c: &[f64], gamma: f64, a: f64, b: f64, m: usize) -> Option<f6
     let (nodes, weights) = gauss_legendre(m);
     let half = 0.5 * (b - a);
     let middle = 0.5 * (a + b);
+    // Horner at four nodes at once: their chains are independent, so they overlap (and fill vector lanes).
     let mut sum = 0.0;
-    for (&x, &weight) in nodes.iter().zip(weights) {
-        let w = taylor::value(c, middle + half * x);
-        if w <= 0.0 {
-            return None;
+    for (chunk_nodes, chunk_weights) in nodes.chunks(4).zip(weights.chunks(4)) {
+        let mut at = [middle; 4];
+        for (point, &x) in at.iter_mut().zip(chunk_nodes) {
+            *point = middle + half * x;
         }
-        sum += weight * w.powf(-gamma);
+        let mut values = [0.0; 4];
+        for &ck in c.iter().rev() {
+            for l in 0..4 {
+                values[l] = values[l] * at[l] + ck;
+            }
+        }
+        for (&w, &weight) in values.iter().zip(chunk_weights) {
+            if w <= 0.0 {
+                return None;
+            }
+            sum += weight * w.powf(-gamma);
+        }
     }
     Some(half * sum)
 }
@@ -117,16 +129,26 @@ pub const SERIES_TERMS: usize = 160;
 /// variable. The coefficients `r_k` are computed as far as a sum needs them and kept for later sums.
 pub struct SingularSeries {
     q: [f64; MAX_ORDER + 1],
+    /// `(1 - γ) j q_j`: the recursion's other weights.
+    weighted: [f64; MAX_ORDER + 1],
     degree: usize,
     gamma: f64,
-    r: [f64; SERIES_TERMS],
+    /// `r` reversed: `reversed[SERIES_TERMS - 1 - k] = r_k`, so that the recursion's sums are contiguous.
+    reversed: [f64; SERIES_TERMS],
     known: usize,
 }
 
 impl Default for SingularSeries {
     /// An empty series, to be [`reset`](SingularSeries::reset) before use.
     fn default() -> Self {
-        SingularSeries { q: [0.0; MAX_ORDER + 1], degree: 0, gamma: 0.0, r: [0.0; SERIES_TERMS], known: 0 }
+        SingularSeries {
+            q: [0.0; MAX_ORDER + 1],
+            weighted: [0.0; MAX_ORDER + 1],
+            degree: 0,
+            gamma: 0.0,
+            reversed: [0.0; SERIES_TERMS],
+            known: 0,
+        }
     }
 }
 
@@ -140,16 +162,41 @@ impl SingularSeries {
 
     /// Makes this the series of `Q` = `q` (see [`SingularSeries::new`]); false (and unusable) if `q[0] <= 0`.
     pub fn reset(&mut self, q: &[f64], gamma: f64) -> bool {
-        if !(q[0] > 0.0) {
+        // (NaN is refused too.)
+        if q[0].is_nan() || q[0] <= 0.0 {
             self.known = 0;
             return false;
         }
         self.q[..q.len()].copy_from_slice(q);
+        for (j, (weighted, &qj)) in self.weighted.iter_mut().zip(q).enumerate() {
+            *weighted = (1.0 - gamma) * j as f64 * qj;
+        }
         self.degree = q.len() - 1;
         self.gamma = gamma;
-        self.r[0] = q[0].powf(-gamma);
+        self.reversed[SERIES_TERMS - 1] = q[0].powf(-gamma);
         self.known = 1;
         true
+    }
+
+    /// `r_k` (known).
+    fn r(&self, k: usize) -> f64 {
+        self.reversed[SERIES_TERMS - 1 - k]
+    }
+
+    /// Extends `r = Q^alpha`, `alpha = -γ`, to `to` coefficients. From `Q r' = alpha Q' r`:
+    /// `r_k = (Σ_j (alpha + 1) j q_j r_{k-j} - k Σ_j q_j r_{k-j}) / (k q_0)`, `j = 1..=min(k, deg Q)` (the
+    /// coefficients of `Q` beyond its degree are zero, so `r` continues to any length at `O(deg Q)` each).
+    fn extend(&mut self, to: usize) {
+        let inverse_q0 = 1.0 / self.q[0];
+        for k in self.known..to {
+            let top = k.min(self.degree);
+            // r_{k-j} for j = 1..=top, in the reversed storage: contiguous from SERIES_TERMS - k.
+            let window = &self.reversed[SERIES_TERMS - k..SERIES_TERMS - k + top];
+            let first = taylor::dot(&self.weighted[1..=top], window);
+            let second = taylor::dot(&self.q[1..=top], window);
+            self.reversed[SERIES_TERMS - 1 - k] = (first - k as f64 * second) * inverse_q0 / k as f64;
+        }
+        self.known = to;
     }
 
     /// `S(t)` for `t >= 0`, to relative accuracy `eps`; `None` if the series has not converged within
@@ -166,11 +213,9 @@ impl SingularSeries {
         let mut small = 0;
         for k in 0..SERIES_TERMS {
             if k == self.known {
-                let to = (2 * k).clamp(k + 1, SERIES_TERMS);
-                taylor::power_series(&self.q[..=self.degree], -self.gamma, &mut self.r, k, to);
-                self.known = to;
+                self.extend((k + 8).min(SERIES_TERMS));
             }
-            let term = self.r[k] * power / (k as f64 + exponent);
+            let term = self.r(k) * power / (k as f64 + exponent);
             sum += term;
             small = if term.abs() <= eps * sum.abs() { small + 1 } else { 0 };
             if small == CONVERGED_RUN {
@@ -229,6 +274,19 @@ mod tests {
                 let exact = if degree % 2 == 1 { 0.0 } else { 2.0 / (degree as f64 + 1.0) };
                 assert!((got - exact).abs() < 2e-15, "m = {m}, degree {degree}: {got} vs {exact}");
             }
+        }
+    }
+
+    #[test]
+    fn series_coefficients_are_the_binomial_ones() {
+        // Q = 1 + σ: r = (1 + σ)^(-γ) = Σ binom(-γ, k) σ^k.
+        let gamma = 0.3;
+        let mut series = SingularSeries::new(&[1.0, 1.0], gamma).unwrap();
+        series.extend(20);
+        let mut binomial = 1.0;
+        for k in 0..20 {
+            assert!((series.r(k) - binomial).abs() <= 1e-15 * binomial.abs(), "k = {k}");
+            binomial *= (-gamma - k as f64) / (k as f64 + 1.0);
         }
     }
 

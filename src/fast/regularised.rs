@@ -120,7 +120,8 @@ impl Expansion {
         let change = sigma * taylor::value(&self.rate[1..=k], sigma);
         let power = sigma.powi(k as i32 + 1);
         let top = self.force_top * power;
-        let moment = self.rate[..=k].iter().enumerate().rev().fold(0.0, |acc, (j, &vj)| acc * sigma + vj * INVERSE[k + j + 1]);
+        let moment =
+            self.rate[..=k].iter().enumerate().rev().fold(0.0, |acc, (j, &vj)| acc * sigma + vj * INVERSE[k + j + 1]);
         State {
             w: taylor::value(&self.w[..=k], sigma),
             rate,
@@ -131,6 +132,7 @@ impl Expansion {
     }
 
     /// The force series `F̂` at offset `sigma` (its polynomial: `-v'(σ) + F̂_K σ^K`).
+    #[cfg(test)]
     pub fn force_at(&self, sigma: f64) -> f64 {
         let k = self.order;
         -taylor::value_and_slope(&self.rate[..=k], sigma).1 + self.force_top * sigma.powi(k as i32)
@@ -185,7 +187,7 @@ impl Regularised {
         }
         // The scaled equations take K L^n = F0 (so that F/F0 = δ^n): the scales must be those of this law.
         let stiffness_unit = law.stiffness * scales.length.powf(n) / scales.force;
-        if !((stiffness_unit - 1.0).abs() <= SCALE_MISMATCH) {
+        if stiffness_unit.is_nan() || (stiffness_unit - 1.0).abs() > SCALE_MISMATCH {
             return Err(FastError::Invalid(format!(
                 "the scales are not those of this law: K L^n / F0 = {stiffness_unit} (expected 1)"
             )));

@@ -71,34 +71,63 @@ const MIN_ORDER: usize = 8;
 /// size of the state. Each gives an estimate of the radius of convergence, `ρ_k = |c_k|^(-1/k)`; with the smaller,
 /// the first omitted term `(h/ρ)^(order+1)` is `eps` at `h = ρ eps^(1/(order+1))`. Returns `f64::INFINITY` when
 /// both coefficients vanish (a polynomial solution: any step is exact).
-pub fn step_size(before_last: f64, last: f64, order: usize, eps: f64) -> f64 {
-    let radius = |size: f64, k: usize| if size > 0.0 { size.powf(-1.0 / k as f64) } else { f64::INFINITY };
-    let rho = radius(before_last, order - 1).min(radius(last, order));
-    STEP_SAFETY * rho * eps.powf(1.0 / (order + 1) as f64)
+///
+/// `eps_root` is `eps^(1/(order+1))`. The roots are taken in logarithms with [`rough_log2`] and [`rough_exp2`]:
+/// a step size needs no more than 4 digits, and this runs once per step.
+pub fn step_size(before_last: f64, last: f64, order: usize, eps_root: f64) -> f64 {
+    let log_radius = |size: f64, k: usize| if size > 0.0 { -rough_log2(size) / k as f64 } else { f64::INFINITY };
+    let log_rho = log_radius(before_last, order - 1).min(log_radius(last, order));
+    if log_rho == f64::INFINITY {
+        return f64::INFINITY;
+    }
+    STEP_SAFETY * eps_root * rough_exp2(log_rho.min(1000.0))
+}
+
+/// `log2(x)` for finite `x > 0`, to about 2e-5 absolute: the exponent from the bits, and
+/// `ln m = 2 (s + s³/3 + s⁵/5 + s⁷/7)`, `s = (m-1)/(m+1) <= 1/3`, for the mantissa `m ∈ [1, 2)`.
+pub fn rough_log2(x: f64) -> f64 {
+    let bits = x.to_bits();
+    let exponent = ((bits >> 52) & 0x7ff) as i64 - 1023;
+    if exponent == -1023 {
+        // Subnormal: scale into the normal range first.
+        return rough_log2(x * 2f64.powi(64)) - 64.0;
+    }
+    let m = f64::from_bits((bits & 0x000f_ffff_ffff_ffff) | 0x3ff0_0000_0000_0000);
+    let s = (m - 1.0) / (m + 1.0);
+    let s2 = s * s;
+    let ln_m = 2.0 * s * (1.0 + s2 * (1.0 / 3.0 + s2 * (0.2 + s2 / 7.0)));
+    exponent as f64 + ln_m * std::f64::consts::LOG2_E
+}
+
+/// `2^y` for `|y| <= 1000`, to about 2e-5 relative: `2^i` from the bits and `e^(f ln 2)` by its Taylor
+/// polynomial of degree 6 for the fraction `f ∈ [0, 1)`.
+pub fn rough_exp2(y: f64) -> f64 {
+    let whole = y.floor();
+    let t = (y - whole) * std::f64::consts::LN_2;
+    let fraction = 1.0 + t * (1.0 + t * (0.5 + t * (1.0 / 6.0 + t * (1.0 / 24.0 + t * (1.0 / 120.0 + t / 720.0)))));
+    fraction * 2f64.powi(whole as i32)
+}
+
+/// `Σ a_j b_j` over the common length, with four partial sums (lane-wise, so that the compiler keeps them in
+/// vector registers and the additions do not wait for each other).
+#[inline(always)]
+pub fn dot(a: &[f64], b: &[f64]) -> f64 {
+    let n = a.len().min(b.len());
+    let (a, b) = (&a[..n], &b[..n]);
+    let (chunks_a, tail_a) = a.as_chunks::<4>();
+    let (chunks_b, tail_b) = b.as_chunks::<4>();
+    let mut sums = [0.0; 4];
+    for (x, y) in chunks_a.iter().zip(chunks_b) {
+        for l in 0..4 {
+            sums[l] += x[l] * y[l];
+        }
+    }
+    let tail = tail_a.iter().zip(tail_b).fold(0.0, |acc, (x, y)| acc + x * y);
+    ((sums[0] + sums[2]) + (sums[1] + sums[3])) + tail
 }
 
 /// Factor applied to the step of [`step_size`] (1: the first omitted term equals the tolerance).
 const STEP_SAFETY: f64 = 1.0;
-
-/// Taylor coefficients of `q^alpha` from those of `q` (`q[0] > 0`), written to `out[from..to]`; `out[..from]`
-/// must already hold the lower coefficients (`out[0] = q[0]^alpha`).
-///
-/// From `q f' = alpha q' f`: `f_k = (1/(k q_0)) Σ_{j=1}^{min(k, deg q)} ((alpha + 1) j - k) q_j f_{k-j}`.
-/// The coefficients of `q` beyond its slice are zero (a polynomial), so the series may be continued to any
-/// length at `O(deg q)` per coefficient.
-pub fn power_series(q: &[f64], alpha: f64, out: &mut [f64], from: usize, to: usize) {
-    let inverse_q0 = 1.0 / q[0];
-    let degree = q.len() - 1;
-    for k in from.max(1)..to {
-        let top = k.min(degree);
-        let kf = k as f64;
-        let mut sum = 0.0;
-        for j in 1..=top {
-            sum += ((alpha + 1.0) * j as f64 - kf) * q[j] * out[k - j];
-        }
-        out[k] = sum * inverse_q0 / kf;
-    }
-}
 
 /// The root of `f` in `[lo, hi]`, where `f(lo)` and `f(hi)` have opposite signs (or `f(hi) = 0`).
 ///
@@ -163,24 +192,21 @@ mod tests {
     }
 
     #[test]
-    fn power_series_is_the_binomial_series() {
-        // (1 + σ)^alpha = Σ binom(alpha, k) σ^k.
-        let alpha = -0.3;
-        let mut out = [0.0; 12];
-        out[0] = 1.0;
-        power_series(&[1.0, 1.0], alpha, &mut out, 1, 12);
-        let mut binomial = 1.0;
-        for (k, &got) in out.iter().enumerate() {
-            assert!((got - binomial).abs() <= 1e-15 * binomial.abs().max(1e-300), "k = {k}: {got} vs {binomial}");
-            binomial *= (alpha - k as f64) / (k as f64 + 1.0);
-        }
-    }
-
-    #[test]
     fn root_finds_cos_zero() {
         let f = |x: f64| (x.cos(), -x.sin());
         let r = root(f, 0.0, 3.0, 1.0, 3.0_f64.cos());
         assert!((r - std::f64::consts::FRAC_PI_2).abs() <= 4e-16, "{r:e}");
+    }
+
+    #[test]
+    fn rough_logarithm_and_power() {
+        for x in [1e-300, 3e-20, 0.01, 0.7, 1.0, 1.5, 2.0, 1234.5, 1e200] {
+            assert!((rough_log2(x) - x.log2()).abs() < 3e-5, "log2 {x}");
+        }
+        assert!((rough_log2(5e-320) - 5e-320_f64.log2()).abs() < 3e-5);
+        for y in [-900.0, -3.7, -1.0, 0.0, 0.3, 1.0, 17.25, 900.0] {
+            assert!((rough_exp2(y) / y.exp2() - 1.0).abs() < 3e-5, "exp2 {y}");
+        }
     }
 
     #[test]
