@@ -112,7 +112,7 @@ fn every_reference_impact_within_the_tolerance() {
             let out = run(&case, tolerance);
             let Some(exact) = case.exact() else {
                 // Overdamped Kelvin–Voigt with separation at zero penetration: e = 0, never separates.
-                assert!(!out.separated && out.ending == Ending::Settled, "{}", case.name());
+                assert!(!out.separated && out.ending == Ending::NeverSeparates, "{}", case.name());
                 continue;
             };
             assert!(out.separated, "{}", case.name());
@@ -124,7 +124,9 @@ fn every_reference_impact_within_the_tolerance() {
 }
 
 /// The rounding floor: at tolerance 1e-16, e, maximum penetration, time of maximum compression, duration and
-/// both impulses within 1e-15 for every reference impact.
+/// both impulses within 1e-15 of the exact values for every reference impact. The references are themselves
+/// good to about 1e-15 (a 40-digit quadrature puts the Tsuji e = 0.2, F = 0 duration of `reference::tsuji` 6e-16
+/// off, the fast path's 4e-16 off, on opposite sides), hence the bound 1.5e-15 on the difference.
 #[test]
 fn rounding_floor() {
     for case in reference_cases() {
@@ -132,7 +134,7 @@ fn rounding_floor() {
         let out = run(&case, 1e-16);
         let err = errors(&out, &exact);
         for i in [0, 1, 2, 3, 6, 7] {
-            assert!(err[i] <= 1e-15, "{}: {} error {:.2e}", case.name(), QUANTITIES[i], err[i]);
+            assert!(err[i] <= 1.5e-15, "{}: {} error {:.2e}", case.name(), QUANTITIES[i], err[i]);
         }
     }
 }
@@ -234,39 +236,37 @@ fn force_separation_leaves_spring_energy() {
     assert!((out.end.elastic / 0.5 - 0.09).abs() < 0.01, "{}", out.end.elastic / 0.5);
 }
 
-/// Heavy damping creeps; the integration stays accurate and ends, classified: a penetration separation
-/// that never comes settles (Kelvin–Voigt and Tsuji with zeta >= 1), a huge x separates accurately.
+/// Heavy damping creeps; the integration stays accurate and ends, classified: a penetration separation that
+/// never comes (Kelvin–Voigt and Tsuji with zeta >= 1) is recognised at maximum compression, a huge x separates
+/// accurately.
 #[test]
 fn heavy_damping_ends_classified() {
-    for case in [
-        Case::KelvinVoigt { zeta: 1.0, separation: Separation::Penetration },
-        Case::KelvinVoigt { zeta: 5.0, separation: Separation::Penetration },
-    ] {
-        let out = run(&case, 1e-10);
-        assert!(!out.separated && out.ending == Ending::Settled, "{}: {:?}", case.name(), out.ending);
-        assert!(out.end.penetration + out.end.rate.abs() < 1e-10);
+    for zeta in [1.0, 1.0 + 1e-9, 5.0] {
+        for case in [
+            Case::KelvinVoigt { zeta, separation: Separation::Penetration },
+            Case::Tsuji { e: 0.0, separation: Separation::Penetration },
+        ] {
+            let mut request = case.request(1e-10);
+            if let Case::Tsuji { .. } = case {
+                request.law.damping = zeta * 5.0_f64.sqrt();
+            }
+            let out = simulate_normal(&request).unwrap();
+            assert!(!out.separated && out.ending == Ending::NeverSeparates, "{}: {:?}", case.name(), out.ending);
+            assert_eq!(out.end, out.max_compression);
+        }
     }
-    // Tsuji with a = 2 sqrt 5 (zeta = 2): the physical time of the creeping return exceeds the time limit first.
-    let request = Request {
-        law: ContactLaw {
-            kind: LawKind::Tsuji,
-            stiffness: 1.0,
-            exponent: 1.5,
-            damping: 2.0 * 5.0_f64.sqrt(),
-            tsuji_scale: 1.0,
-        },
-        scales: Scales::new(1.0, 1.0, 1.5, 1.0),
-        separation: Separation::Penetration,
-        tolerance: 1e-10,
-    };
-    let out = simulate_normal(&request).unwrap();
-    assert!(!out.separated && matches!(out.ending, Ending::Settled | Ending::TimeLimit), "{:?}", out.ending);
+    // Just underdamped: it separates, with the tiny e of the closed form exp(-pi zeta/sqrt(1 - zeta²)).
+    let zeta = 0.99;
+    let out = run(&Case::KelvinVoigt { zeta, separation: Separation::Penetration }, 1e-10);
+    let e = (-std::f64::consts::PI * zeta / (1.0 - zeta * zeta).sqrt()).exp();
+    assert!(out.separated && rel(-out.end.rate, e) < 1e-9, "{} vs {e}", -out.end.rate);
     for x in [1e2, 1e3, 1e4] {
         let out = run(&Case::Hysteresis { x, n: 1.5 }, 1e-10);
         let exact = reference::hysteresis_contact(x, 1.5);
         assert!(out.separated);
         assert!(rel(-out.end.rate, exact.restitution) < 1e-9, "x = {x}");
         assert!(rel(out.end.time, exact.duration) < 1e-9, "x = {x}");
+        assert!(rel(out.restitution_impulse, exact.restitution) < 1e-9, "x = {x}");
     }
 }
 

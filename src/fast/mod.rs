@@ -63,6 +63,11 @@ pub enum Ending {
     /// The relative motion died out in contact (`δ + |v| < 1e-10`): e = 0, e.g. an overdamped Kelvin–Voigt
     /// contact with separation at zero penetration.
     Settled,
+    /// The bodies never part: the law is linear in the regularised variables (Kelvin–Voigt, Tsuji), overdamped
+    /// (`c² >= 4p`, i.e. zeta >= 1) and the separation is at zero penetration. Past maximum compression the motion
+    /// is then a sum of two decaying exponentials (or `(C1 + C2 τ) e^(λτ)`, critically damped) that keeps `w`
+    /// positive for ever (physics.md §3: e = 0). The integration stops at maximum compression.
+    NeverSeparates,
     /// The step budget ran out (a creeping, extremely damped restitution).
     StepBudget,
     /// The scaled time limit was passed without separation.
@@ -127,6 +132,21 @@ pub fn simulate_normal(request: &Request) -> Result<Outcome, FastError> {
     let mut run = Run::new(system, eps);
     let max_compression = run.compress()?;
     let force_criterion = request.separation == Separation::Force && system.can_turn_tensile();
+    if !force_criterion && system.never_separates() {
+        return Ok(Outcome {
+            max_compression,
+            end: max_compression,
+            restitution_impulse: 0.0,
+            restitution_work: 0.0,
+            peak_force: run.peak.0,
+            peak_force_time: run.peak.1,
+            separated: false,
+            ending: Ending::NeverSeparates,
+            steps: run.steps,
+            force_evaluations: run.steps * run.order as u64,
+            order: run.order,
+        });
+    }
     // The restitution's integrals start from zero, so that they are accurate relative to themselves.
     run.state.impulse = 0.0;
     run.state.work = 0.0;
@@ -311,13 +331,7 @@ impl Run {
     fn next_zero(&self, from: f64, h: f64) -> f64 {
         let w = self.w();
         let w_from = taylor::value(w, from);
-        for reach in [2.0 * h, 4.0 * h] {
-            let w_reach = taylor::value(w, reach);
-            if w_reach <= 0.0 {
-                return taylor::root(|s| taylor::value_and_slope(w, s), from, reach, w_from, w_reach);
-            }
-        }
-        4.0 * h
+        taylor::first_fall(|s| taylor::value_and_slope(w, s), from, 4.0 * h, w_from).unwrap_or(4.0 * h)
     }
 
     /// Sets up the time rule of a piece of the current step; `None` if its singular series cannot be formed
@@ -413,9 +427,7 @@ impl Run {
             let mut shrinks = 0;
             let (end, turned, dt, peak) = loop {
                 let rate = self.rate();
-                let v_end = taylor::value(rate, h);
-                let turn =
-                    (v_end <= 0.0).then(|| taylor::root(|s| taylor::value_and_slope(rate, s), 0.0, h, v_start, v_end));
+                let turn = taylor::first_fall(|s| taylor::value_and_slope(rate, s), 0.0, h, v_start);
                 let end = turn.unwrap_or(h);
                 // In compression the next zero of w lies beyond maximum compression, at least as far from the
                 // step as first contact is (restitution is never shorter in τ than compression): the Gauss rule's
@@ -441,13 +453,12 @@ impl Run {
                 let mut peak = None;
                 if rising {
                     let (g_start, _) = self.peak_at(0.0);
-                    let (g_end, _) = self.peak_at(end);
-                    if g_end <= 0.0 {
-                        let at = if g_start > 0.0 {
-                            taylor::root(|s| self.peak_at(s), 0.0, end, g_start, g_end)
-                        } else {
-                            0.0
-                        };
+                    let fall = if g_start > 0.0 {
+                        taylor::first_fall(|s| self.peak_at(s), 0.0, end, g_start)
+                    } else {
+                        Some(0.0)
+                    };
+                    if let Some(at) = fall {
                         let Some(time) = self.time_between(rule, 0.0, at) else {
                             shrinks += 1;
                             if shrinks > MAX_SHRINKS {
@@ -494,10 +505,7 @@ impl Run {
             let mut shrinks = 0;
             let (end, zero, force_zero, dt) = loop {
                 let w = self.w();
-                let w_start = self.state.w;
-                let w_end = taylor::value(w, h);
-                let zero =
-                    (w_end <= 0.0).then(|| taylor::root(|s| taylor::value_and_slope(w, s), 0.0, h, w_start, w_end));
+                let zero = taylor::first_fall(|s| taylor::value_and_slope(w, s), 0.0, h, self.state.w);
                 let right = match zero {
                     Some(zero) => zero,
                     None => {
@@ -517,9 +525,7 @@ impl Run {
                         let (v, dv) = taylor::value_and_slope(rate, s);
                         (system.regular_force(w, v), dw + system.damping * dv)
                     };
-                    let f_start = f(0.0).0;
-                    let f_end = f(reach).0;
-                    (f_end <= 0.0).then(|| taylor::root(f, 0.0, reach, f_start, f_end))
+                    taylor::first_fall(f, 0.0, reach, f(0.0).0)
                 } else {
                     None
                 };

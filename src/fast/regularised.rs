@@ -246,6 +246,14 @@ impl Regularised {
         self.form == Form::Linear && self.damping > 0.0
     }
 
+    /// Whether, past maximum compression, `w` can never return to zero: a linear system (`w' = p v`,
+    /// `v' = -(w + c v)`) that is overdamped or critically damped, `c² >= 4p` (zeta >= 1). From `v = 0`,
+    /// `w > 0` the solution is `A e^(λ1 τ) + B e^(λ2 τ)` with `A = -λ2 w/(λ1 - λ2) > 0` on the slower mode, so
+    /// `w > 0` for all `τ` (critically damped: `w (1 - λ τ) e^(λ τ)`, `λ < 0`).
+    pub fn never_separates(&self) -> bool {
+        self.form == Form::Linear && self.damping * self.damping >= 4.0 * self.rate_factor
+    }
+
     /// Taylor coefficients of every component at `state`, to `order` (<= [`MAX_ORDER`]).
     pub fn expand(&self, state: &State, order: usize, e: &mut Expansion) {
         debug_assert!(order <= MAX_ORDER);
