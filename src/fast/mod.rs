@@ -129,40 +129,52 @@ pub fn simulate_normal(request: &Request) -> Result<Outcome, FastError> {
         return Err(FastError::Invalid(format!("tolerance {tolerance} must be finite and positive")));
     }
     let eps = (tolerance * TOLERANCE_FACTOR).clamp(EPS_FLOOR, EPS_CEILING);
-    let mut run = Run::new(system, eps);
-    let max_compression = run.compress()?;
     let force_criterion = request.separation == Separation::Force && system.can_turn_tensile();
-    if !force_criterion && system.never_separates() {
-        return Ok(Outcome {
-            max_compression,
-            end: max_compression,
-            restitution_impulse: 0.0,
-            restitution_work: 0.0,
-            peak_force: run.peak.0,
-            peak_force_time: run.peak.1,
-            separated: false,
-            ending: Ending::NeverSeparates,
-            steps: run.steps,
-            force_evaluations: run.steps * run.order as u64,
-            order: run.order,
-        });
-    }
-    // The restitution's integrals start from zero, so that they are accurate relative to themselves.
-    run.state.impulse = 0.0;
-    run.state.work = 0.0;
-    run.restituting = true;
-    let ending = run.restitute(force_criterion)?;
+    WORKSPACE.with(|cell| match cell.try_borrow_mut() {
+        Ok(mut workspace) => integrate(system, eps, force_criterion, &mut workspace),
+        // Only if a caller re-entered on this thread (it cannot: nothing here calls back out).
+        Err(_) => integrate(system, eps, force_criterion, &mut Workspace::default()),
+    })
+}
+
+/// The scratch arrays of one integration (a few kilobytes): kept per thread and reused, so that an impact
+/// neither allocates nor clears them. Every entry read is written first in the same integration.
+#[derive(Default)]
+struct Workspace {
+    expansion: Expansion,
+    series: SingularSeries,
+}
+
+thread_local! {
+    static WORKSPACE: std::cell::RefCell<Workspace> = std::cell::RefCell::new(Workspace::default());
+}
+
+/// [`simulate_normal`] with its scratch space.
+fn integrate(
+    system: Regularised,
+    eps: f64,
+    force_criterion: bool,
+    workspace: &mut Workspace,
+) -> Result<Outcome, FastError> {
+    let mut run = Run::new(system, eps, workspace);
+    let (max_compression, ending) = run.integrate(force_criterion)?;
     let restitution = run.point();
-    let end = PhasePoint {
-        impulse: max_compression.impulse + restitution.impulse,
-        work: max_compression.work + restitution.work,
-        ..restitution
+    let (end, restitution_impulse, restitution_work) = if ending == Ending::NeverSeparates {
+        (max_compression, 0.0, 0.0)
+    } else {
+        // The restitution's integrals ran from zero at maximum compression (accurate relative to themselves).
+        let end = PhasePoint {
+            impulse: max_compression.impulse + restitution.impulse,
+            work: max_compression.work + restitution.work,
+            ..restitution
+        };
+        (end, restitution.impulse, -restitution.work)
     };
     Ok(Outcome {
         max_compression,
         end,
-        restitution_impulse: restitution.impulse,
-        restitution_work: -restitution.work,
+        restitution_impulse,
+        restitution_work,
         peak_force: run.peak.0,
         peak_force_time: run.peak.1,
         separated: ending == Ending::Separated,
@@ -222,7 +234,7 @@ enum TimeRule {
 }
 
 /// The integration of one impact.
-struct Run {
+struct Run<'a> {
     system: Regularised,
     eps: f64,
     order: usize,
@@ -234,18 +246,18 @@ struct Run {
     /// Physical time since first contact, in `T`, and its compensation (Neumaier summation).
     time: f64,
     time_carry: f64,
-    expansion: Expansion,
+    expansion: &'a mut Expansion,
     /// Whether the run is past maximum compression (the step size then also measures v against itself).
     restituting: bool,
     /// The singular time series of the current step (reused: no allocation per step).
-    series: SingularSeries,
+    series: &'a mut SingularSeries,
     steps: u64,
     /// Largest compressive force so far and its time.
     peak: (f64, f64),
 }
 
-impl Run {
-    fn new(system: Regularised, eps: f64) -> Run {
+impl<'a> Run<'a> {
+    fn new(system: Regularised, eps: f64, workspace: &'a mut Workspace) -> Run<'a> {
         let order = taylor::order_for(eps);
         Run {
             system,
@@ -256,8 +268,8 @@ impl Run {
             tau: 0.0,
             time: 0.0,
             time_carry: 0.0,
-            expansion: Expansion::default(),
-            series: SingularSeries::default(),
+            expansion: &mut workspace.expansion,
+            series: &mut workspace.series,
             restituting: false,
             steps: 0,
             peak: (0.0, 0.0),
@@ -331,7 +343,8 @@ impl Run {
     fn next_zero(&self, from: f64, h: f64) -> f64 {
         let w = self.w();
         let w_from = taylor::value(w, from);
-        taylor::first_fall(|s| taylor::value_and_slope(w, s), from, 4.0 * h, w_from).unwrap_or(4.0 * h)
+        let value = |s: f64| taylor::value(w, s);
+        taylor::first_fall(value, |s| taylor::value_and_slope(w, s), from, 4.0 * h, w_from).unwrap_or(4.0 * h)
     }
 
     /// Sets up the time rule of a piece of the current step; `None` if its singular series cannot be formed
@@ -366,6 +379,7 @@ impl Run {
     fn time_between(&mut self, rule: TimeRule, a: f64, b: f64) -> Option<f64> {
         let eps = self.eps;
         match rule {
+            _ if b == a => Some(0.0),
             TimeRule::Identity => Some(b - a),
             TimeRule::FromZero => Some(self.series.integral(b, eps)? - self.series.integral(a, eps)?),
             TimeRule::ToZero { zero } => {
@@ -383,6 +397,12 @@ impl Run {
         }
     }
 
+    /// The force-peak function `g` at offset `sigma` (value only, for sampling).
+    fn peak_value(&self, sigma: f64) -> f64 {
+        let (w, v) = (taylor::value(self.w(), sigma), taylor::value(self.rate(), sigma));
+        self.system.peak_function(w, 0.0, v, 0.0).0
+    }
+
     /// The force-peak function `g` (falling zero at the peak) at offset `sigma` of the step, with its slope.
     fn peak_at(&self, sigma: f64) -> (f64, f64) {
         let (w, dw) = taylor::value_and_slope(self.w(), sigma);
@@ -390,11 +410,8 @@ impl Run {
         self.system.peak_function(w, dw, v, dv)
     }
 
-    /// Advances to offset `end` of the current step, `dt` later in physical time.
-    fn advance(&mut self, end: f64, dt: f64) {
-        self.state = self.expansion.state_at(end);
-        self.tau += end;
-        // Neumaier summation: the time is a sum of a few to thousands of increments.
+    /// Adds `dt` to the physical time (Neumaier summation: the time is a sum of a few to thousands of pieces).
+    fn advance_time(&mut self, dt: f64) {
         let sum = self.time + dt;
         self.time_carry += if self.time.abs() >= dt.abs() { (self.time - sum) + dt } else { (dt - sum) + self.time };
         self.time = sum;
@@ -407,156 +424,201 @@ impl Run {
         }
     }
 
-    /// Compression: from first contact to `v = 0`, locating the force peak on the way.
-    fn compress(&mut self) -> Result<PhasePoint, FastError> {
+    /// Shortens the step after a time piece failed (see [`MAX_SHRINKS`]).
+    fn shrink(&self, shrinks: &mut u32) -> Result<(), FastError> {
+        *shrinks += 1;
+        if *shrinks > MAX_SHRINKS { Err(FastError::Stalled(self.time())) } else { Ok(()) }
+    }
+
+    /// From first contact to separation (penetration back to zero, or for a law that turns tensile under the
+    /// force criterion, the force back to zero), or until the motion dies out. Maximum compression (`v = 0`) and
+    /// the force peak are located inside the steps, on their polynomials; a step is cut only where the contact
+    /// ends. Returns the maximum-compression point and how the contact ended (`self.state` then holds the end,
+    /// with the restitution's impulse and work counted from maximum compression).
+    fn integrate(&mut self, force_criterion: bool) -> Result<(PhasePoint, Ending), FastError> {
         let system = self.system;
         // The force at first contact is a candidate peak (Kelvin–Voigt's jump to c v0, its maximum for c >= 1).
         self.offer_peak(system.force(0.0, 1.0), 0.0);
         let (g0, _) = system.peak_function(0.0, system.rate_factor, 1.0, -system.regular_force(0.0, 1.0));
         let mut rising = g0 > 0.0;
+        let mut max_compression = None;
         loop {
             if self.steps >= STEP_BUDGET {
-                return Err(FastError::Compression(self.steps));
+                return match max_compression {
+                    Some(point) => Ok((point, Ending::StepBudget)),
+                    None => Err(FastError::Compression(self.steps)),
+                };
             }
+            if let Some(point) = max_compression
+                && self.time() > TIME_LIMIT
+            {
+                return Ok((point, Ending::TimeLimit));
+            }
+            let compressing = max_compression.is_none();
             let from_zero = self.state.w == 0.0;
             let mut h = self.expand();
             if !from_zero {
                 h = h.min(self.left_limit());
             }
-            let v_start = self.state.rate;
             let mut shrinks = 0;
-            let (end, turned, dt, peak) = loop {
-                let rate = self.rate();
-                let turn = taylor::first_fall(|s| taylor::value_and_slope(rate, s), 0.0, h, v_start);
-                let end = turn.unwrap_or(h);
-                // In compression the next zero of w lies beyond maximum compression, at least as far from the
-                // step as first contact is (restitution is never shorter in τ than compression): the Gauss rule's
-                // accuracy is set by the left zero alone.
-                let piece = if from_zero { Piece::FromZero } else { Piece::Inside { right: f64::INFINITY } };
-                let Some(rule) = self.time_rule(piece) else {
-                    shrinks += 1;
-                    if shrinks > MAX_SHRINKS {
-                        return Err(FastError::Stalled(self.time()));
-                    }
-                    h = 0.5 * end;
-                    continue;
+            let step = loop {
+                let (w, rate) = (self.w(), self.rate());
+                let value_slope = |c: &[f64], s: f64| taylor::value_and_slope(c, s);
+                let fall = |c: &[f64], from: f64, start: f64| {
+                    taylor::first_fall(|s| taylor::value(c, s), |s| value_slope(c, s), from, h, start)
                 };
-                let Some(dt) = self.time_between(rule, 0.0, end) else {
-                    shrinks += 1;
-                    if shrinks > MAX_SHRINKS {
-                        return Err(FastError::Stalled(self.time()));
-                    }
-                    h = 0.5 * end;
+                // Maximum compression, then (only after it) the zero of w, then the force's zero before that.
+                let turn = if compressing { fall(rate, 0.0, self.state.rate) } else { None };
+                let restitution_from = if compressing { turn } else { Some(0.0) };
+                let zero = restitution_from.and_then(|a| fall(w, a, taylor::value(w, a)));
+                if from_zero && zero.is_some() {
+                    // The whole contact in one step: the time series about first contact would have to reach the
+                    // other zero of w. Two steps at least.
+                    self.shrink(&mut shrinks)?;
+                    h = 0.5 * zero.unwrap_or(h);
                     continue;
-                };
-                // The force peak, if it lies in this step (it precedes maximum compression for every damped law).
-                let mut peak = None;
-                if rising {
-                    let (g_start, _) = self.peak_at(0.0);
-                    let fall = if g_start > 0.0 {
-                        taylor::first_fall(|s| self.peak_at(s), 0.0, end, g_start)
-                    } else {
-                        Some(0.0)
-                    };
-                    if let Some(at) = fall {
-                        let Some(time) = self.time_between(rule, 0.0, at) else {
-                            shrinks += 1;
-                            if shrinks > MAX_SHRINKS {
-                                return Err(FastError::Stalled(self.time()));
-                            }
-                            h = 0.5 * end;
-                            continue;
-                        };
-                        peak = Some((at, time));
-                    }
                 }
-                break (end, turn.is_some(), dt, peak);
-            };
-            if let Some((at, time)) = peak {
-                rising = false;
-                let w = taylor::value(self.w(), at);
-                let v = taylor::value(self.rate(), at);
-                let t = self.time() + time;
-                self.offer_peak(system.force(w, v), t);
-            }
-            self.advance(end, dt);
-            if turned {
-                // The event's definition: the rate is zero there (the polynomial leaves an ulp).
-                self.state.rate = 0.0;
-                let point = self.point();
-                self.offer_peak(system.force(self.state.w, 0.0), point.time);
-                return Ok(point);
-            }
-        }
-    }
-
-    /// Restitution: from maximum compression to separation (penetration back to zero, or for a law that turns
-    /// tensile under the force criterion, the force back to zero), or until the motion dies out.
-    fn restitute(&mut self, force_criterion: bool) -> Result<Ending, FastError> {
-        let system = self.system;
-        loop {
-            if self.steps >= STEP_BUDGET {
-                return Ok(Ending::StepBudget);
-            }
-            if self.time() > TIME_LIMIT {
-                return Ok(Ending::TimeLimit);
-            }
-            let mut h = self.expand().min(self.left_limit());
-            let mut shrinks = 0;
-            let (end, zero, force_zero, dt) = loop {
-                let w = self.w();
-                let zero = taylor::first_fall(|s| taylor::value_and_slope(w, s), 0.0, h, self.state.w);
-                let right = match zero {
-                    Some(zero) => zero,
-                    None => {
+                let right = match (zero, restitution_from) {
+                    (Some(zero), _) => zero,
+                    (None, Some(_)) => {
                         // The next zero beyond the step: if near, end this step early enough for the Gauss rule
-                        // (`ξ >= XI_MIN`); the next step reaches the zero with the singular series. (`w`
-                        // decreases in restitution, so the shorter step has no zero either.)
+                        // (`ξ >= XI_MIN`); the next step reaches the zero with the singular series.
                         let right = self.next_zero(h, h);
-                        h = h.min(2.0 * right / (XI_MIN + 1.0));
+                        let limit = 2.0 * right / (XI_MIN + 1.0);
+                        if limit < h {
+                            self.shrink(&mut shrinks)?;
+                            h = limit;
+                            continue;
+                        }
                         right
                     }
+                    // All of the step compresses: the next zero of w lies beyond maximum compression, at least as
+                    // far from the step as first contact is (restitution is never shorter in τ than compression),
+                    // so the Gauss rule's accuracy is set by the left zero alone.
+                    (None, None) => f64::INFINITY,
                 };
                 let reach = zero.unwrap_or(h);
-                let force_zero = if force_criterion {
-                    let rate = self.rate();
-                    let f = |s: f64| {
-                        let (w, dw) = taylor::value_and_slope(w, s);
-                        let (v, dv) = taylor::value_and_slope(rate, s);
-                        (system.regular_force(w, v), dw + system.damping * dv)
-                    };
-                    taylor::first_fall(f, 0.0, reach, f(0.0).0)
+                let force_zero = match restitution_from {
+                    Some(a) if force_criterion => {
+                        let f = |s: f64| {
+                            let (w, dw) = value_slope(w, s);
+                            let (v, dv) = value_slope(rate, s);
+                            (system.regular_force(w, v), dw + system.damping * dv)
+                        };
+                        taylor::first_fall(|s| f(s).0, f, a, reach, f(a).0)
+                    }
+                    _ => None,
+                };
+                let end = force_zero.or(zero).unwrap_or(h);
+                let piece = if from_zero {
+                    Piece::FromZero
+                } else if let Some(zero) = zero {
+                    Piece::ToZero { zero }
+                } else {
+                    Piece::Inside { right }
+                };
+                // The force peak, if it lies in this step's compression (it precedes maximum compression for
+                // every damped law).
+                let peak_at = if rising {
+                    let until = turn.unwrap_or(end);
+                    let (g_start, _) = self.peak_at(0.0);
+                    if g_start > 0.0 {
+                        taylor::first_fall(|s| self.peak_value(s), |s| self.peak_at(s), 0.0, until, g_start)
+                    } else {
+                        Some(0.0)
+                    }
                 } else {
                     None
                 };
-                let end = force_zero.or(zero).unwrap_or(h);
-                let piece = match zero {
-                    Some(zero) => Piece::ToZero { zero },
-                    None => Piece::Inside { right },
-                };
-                let Some(dt) = self.time_rule(piece).and_then(|rule| self.time_between(rule, 0.0, end)) else {
-                    shrinks += 1;
-                    if shrinks > MAX_SHRINKS {
-                        return Err(FastError::Stalled(self.time()));
+                let times = self.time_rule(piece).and_then(|rule| {
+                    // The events inside the step split it into pieces, each integrated on its own (a short piece
+                    // needs fewer Gauss nodes than an integral from the step's start would).
+                    let mut marks = [peak_at, turn];
+                    if let [Some(a), Some(b)] = marks
+                        && b < a
+                    {
+                        marks.swap(0, 1);
                     }
+                    let (mut elapsed, mut from) = (0.0, 0.0);
+                    let mut at_mark = [None, None];
+                    for (slot, mark) in at_mark.iter_mut().zip(marks) {
+                        if let Some(to) = mark {
+                            elapsed += self.time_between(rule, from, to)?;
+                            from = to;
+                            *slot = Some((to, elapsed));
+                        }
+                    }
+                    let dt = elapsed + self.time_between(rule, from, end)?;
+                    let find = |event: Option<f64>| at_mark.into_iter().flatten().find(|&(at, _)| Some(at) == event);
+                    Some((dt, find(turn), find(peak_at)))
+                });
+                let Some((dt, turn, peak)) = times else {
+                    self.shrink(&mut shrinks)?;
                     h = 0.5 * reach;
                     continue;
                 };
-                break (end, zero, force_zero, dt);
+                break Step { end, dt, turn, peak, zero, force_zero };
             };
-            self.advance(end, dt);
-            if force_zero.is_some() {
-                return Ok(Ending::Separated);
+            let now = self.time();
+            if let Some((at, time)) = step.peak {
+                rising = false;
+                let (w, v) = (taylor::value(self.w(), at), taylor::value(self.rate(), at));
+                self.offer_peak(system.force(w, v), now + time);
             }
-            if zero.is_some() {
+            if let Some((at, time)) = step.turn {
+                // The event's definition: the rate is zero there (the polynomial leaves an ulp).
+                let state = State { rate: 0.0, ..self.expansion.state_at(at) };
+                let point = PhasePoint {
+                    time: now + time,
+                    penetration: system.penetration(state.w),
+                    rate: 0.0,
+                    impulse: state.impulse,
+                    work: state.work,
+                    dissipated: system.damping * state.dissipation,
+                    elastic: system.elastic_energy(state.w),
+                };
+                self.offer_peak(system.force(state.w, 0.0), point.time);
+                max_compression = Some(point);
+                if !force_criterion && system.never_separates() {
+                    // Overdamped linear law: w never returns to zero (see `Ending::NeverSeparates`).
+                    self.state = state;
+                    self.advance_time(time);
+                    return Ok((point, Ending::NeverSeparates));
+                }
+                // The restitution's integrals start from zero there, within this step.
+                let (impulse, work) = self.expansion.increments(at, step.end);
+                self.state = State { impulse, work, ..self.expansion.state_at(step.end) };
+                self.restituting = true;
+            } else {
+                self.state = self.expansion.state_at(step.end);
+            }
+            self.tau += step.end;
+            self.advance_time(step.dt);
+            let Some(point) = max_compression else { continue };
+            if step.force_zero.is_some() {
+                return Ok((point, Ending::Separated));
+            }
+            if step.zero.is_some() {
                 self.state.w = 0.0;
-                return Ok(if self.state.rate < 0.0 { Ending::Separated } else { Ending::Settled });
+                return Ok((point, if self.state.rate < 0.0 { Ending::Separated } else { Ending::Settled }));
             }
             if system.penetration(self.state.w) + self.state.rate.abs() < SETTLED {
-                return Ok(Ending::Settled);
+                return Ok((point, Ending::Settled));
             }
         }
     }
+}
+
+/// What one step found: where it ends and how much physical time it took, maximum compression and the force
+/// peak inside it (offset and time from the step's start), and whether it ends at the zero of `w` or of the
+/// force.
+struct Step {
+    end: f64,
+    dt: f64,
+    turn: Option<(f64, f64)>,
+    peak: Option<(f64, f64)>,
+    zero: Option<f64>,
+    force_zero: Option<f64>,
 }
 
 #[cfg(test)]

@@ -124,7 +124,7 @@ pub fn gauss_power(c: &[f64], gamma: f64, a: f64, b: f64, m: usize) -> Option<f6
 const CONVERGED_RUN: usize = 4;
 
 /// Largest number of terms of a [`SingularSeries`].
-pub const SERIES_TERMS: usize = 160;
+pub const SERIES_TERMS: usize = 96;
 
 /// `S(t) = ∫_0^t σ^(-γ) Q(σ)^(-γ) dσ` for a polynomial `Q` with `Q(0) > 0`, as the series
 /// `t^(1-γ) Σ_k r_k t^k/(k + 1 - γ)`, `r = Q^(-γ)`: the time from (or to) a zero `w = σ Q(σ)` of the penetration
@@ -137,6 +137,8 @@ pub struct SingularSeries {
     gamma: f64,
     /// `r` reversed: `reversed[SERIES_TERMS - 1 - k] = r_k`, so that the recursion's sums are contiguous.
     reversed: [f64; SERIES_TERMS],
+    /// The series' coefficients `r_k/(k + 1 - γ)`.
+    divided: [f64; SERIES_TERMS],
     known: usize,
 }
 
@@ -149,6 +151,7 @@ impl Default for SingularSeries {
             degree: 0,
             gamma: 0.0,
             reversed: [0.0; SERIES_TERMS],
+            divided: [0.0; SERIES_TERMS],
             known: 0,
         }
     }
@@ -176,11 +179,13 @@ impl SingularSeries {
         self.degree = q.len() - 1;
         self.gamma = gamma;
         self.reversed[SERIES_TERMS - 1] = q[0].powf(-gamma);
+        self.divided[0] = self.reversed[SERIES_TERMS - 1] / (1.0 - gamma);
         self.known = 1;
         true
     }
 
     /// `r_k` (known).
+    #[cfg(test)]
     fn r(&self, k: usize) -> f64 {
         self.reversed[SERIES_TERMS - 1 - k]
     }
@@ -196,7 +201,9 @@ impl SingularSeries {
             let window = &self.reversed[SERIES_TERMS - k..SERIES_TERMS - k + top];
             let first = taylor::dot(&self.weighted[1..=top], window);
             let second = taylor::dot(&self.q[1..=top], window);
-            self.reversed[SERIES_TERMS - 1 - k] = (first - k as f64 * second) * inverse_q0 / k as f64;
+            let r = (first - k as f64 * second) * inverse_q0 / k as f64;
+            self.reversed[SERIES_TERMS - 1 - k] = r;
+            self.divided[k] = r / (k as f64 + 1.0 - self.gamma);
         }
         self.known = to;
     }
@@ -217,7 +224,7 @@ impl SingularSeries {
             if k == self.known {
                 self.extend((k + 8).min(SERIES_TERMS));
             }
-            let term = self.r(k) * power / (k as f64 + exponent);
+            let term = self.divided[k] * power;
             sum += term;
             small = if term.abs() <= eps * sum.abs() { small + 1 } else { 0 };
             if small == CONVERGED_RUN {

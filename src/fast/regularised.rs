@@ -131,6 +131,25 @@ impl Expansion {
         }
     }
 
+    /// The impulse and the work integrated from offset `a` to offset `b` of the step, formed without the totals
+    /// at `a` (no cancellation against them): the restitution's integrals, started at a maximum compression
+    /// inside the step, where `v(a) = 0`.
+    pub fn increments(&self, a: f64, b: f64) -> (f64, f64) {
+        let k = self.order;
+        let (rate_a, rate_b) = (taylor::value(&self.rate[..=k], a), taylor::value(&self.rate[..=k], b));
+        let moment = |sigma: f64| {
+            let sum = self.rate[..=k]
+                .iter()
+                .enumerate()
+                .rev()
+                .fold(0.0, |acc, (j, &vj)| acc * sigma + vj * INVERSE[k + j + 1]);
+            sigma.powi(k as i32 + 1) * sum
+        };
+        let change = rate_b - rate_a;
+        let top = self.force_top * (b.powi(k as i32 + 1) - a.powi(k as i32 + 1));
+        (-change + top * INVERSE[k + 1], -0.5 * change * (rate_b + rate_a) + self.force_top * (moment(b) - moment(a)))
+    }
+
     /// The force series `F̂` at offset `sigma` (its polynomial: `-v'(σ) + F̂_K σ^K`).
     #[cfg(test)]
     pub fn force_at(&self, sigma: f64) -> f64 {
