@@ -296,7 +296,7 @@ impl<'a> Run<'a> {
 
     /// Expands the solution at the current state; returns the step size its coefficients allow.
     fn expand(&mut self) -> f64 {
-        self.system.expand(&self.state, self.order, &mut self.expansion);
+        self.system.expand(&self.state, self.order, self.expansion);
         self.steps += 1;
         let e = &self.expansion;
         let k = self.order;
