@@ -1,14 +1,27 @@
 //! The fast, accurate path for the normal contact problem (issue 8): a Taylor-series integrator of the
 //! regularised equations of physics.md §5.
 //!
-//! With `w = δ^((n+1)/2)` and `dτ = δ^((n-1)/2) dt` every covered law becomes a polynomial system in `(w, v)`,
-//! smooth through `δ = 0` ([`regularised`]). Each step expands the solution and the integrals the report needs
-//! (impulse, work, dissipated energy) in a Taylor series of order 10–22 by the standard recursions ([`taylor`]),
-//! chooses its size from the last two coefficients, and locates the events on the step's polynomial:
-//! maximum compression `v = 0`, separation `w = 0` (or, for the laws that turn tensile and `separation = "force"`,
-//! the zero of the force's continued expression `w + c v`), and the force peak. Physical time
-//! `t = ∫ w^(-γ) dτ` is integrated per step by [`quadrature`], exactly through the `w = 0` singularities at the
-//! ends of the contact.
+//! * **Equations** (`regularised.rs`). With `w = δ^((n+1)/2)` and `dτ = δ^((n-1)/2) dt` every covered law
+//!   becomes a polynomial system in `(w, v)`, smooth through `δ = 0` — one system for every `n`, no fractional
+//!   power per step. Kelvin–Voigt and Tsuji become linear.
+//! * **Steps** (`taylor.rs`). Each step expands `w`, `v` and the dissipation in a Taylor series by the standard
+//!   recursions (the product `w v` and `w v²` by Cauchy sums), of order `K = ⌈ln(1/eps)/2⌉ + 6` (14 at 1e-6, 19
+//!   at 1e-10, 23 at 1e-13, 26 at the rounding floor; measured best, since a step's fixed work favours long
+//!   steps). Its size comes from the last two coefficients: `h = ρ eps^(1/(K+1))`, `ρ` the smaller of
+//!   `|c_K|^(-1/K)`, `|c_(K-1)|^(-1/(K-1))` relative to the state, so that the first omitted term is `eps`
+//!   (the per-step tolerance, a tenth of the requested one). In restitution the rate is also measured against
+//!   itself, so that a small e keeps its relative accuracy.
+//! * **Events**, located on the step's polynomials (safeguarded Newton), never at the first step past them:
+//!   maximum compression `v = 0` and the force peak `dF/dτ = 0` inside the step; the separation `w = 0`, or for
+//!   the laws that turn tensile under `separation = "force"` the zero of the force's continued expression
+//!   `w + c v`, where the step is cut.
+//! * **Time** (`quadrature.rs`). `t = ∫ w^(-γ) dτ` per step: exact singular series at the zeros of `w` (first
+//!   contact, penetration separation), Gauss–Legendre elsewhere with the nodes the distance to those zeros
+//!   asks for; steps are kept within twice their distance to a zero.
+//! * **Endings**: separation; `NeverSeparates` for an overdamped linear law with separation at zero penetration
+//!   (decided exactly at maximum compression); `Settled`, `StepBudget`, `TimeLimit` otherwise, never a hang.
+//!   Very heavy damping (x >> 100) creeps and is stiff for an explicit method: the steps grow like x (x = 1e4:
+//!   about 1500 steps, 1 ms), accurate throughout.
 //!
 //! Everything is scaled as in [`crate::dynamics::Scales`]: lengths in `L`, speeds in `v0`, time in `T`, force in
 //! `F0`, impulse in `m* v0`, energy in `m* v0²`.

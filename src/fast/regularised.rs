@@ -2,21 +2,21 @@
 //! Taylor-coefficient recursions of its states (physics.md §5).
 //!
 //! Scaled variables as in [`crate::dynamics::Scales`]: penetration `δ = d/L`, rate `v = d'/v0`, time `t/T`,
-//! force `F/F0`, impulse in `m* v0`, energy in `m* v0²`. Every covered law has the form
-//! `F = δ^γ' · (…)` that the change of variables `w = δ^(1/β)`, `dτ = w^(-γ)`-weighted time, turns into
+//! force `F/F0`, impulse in `m* v0`, energy in `m* v0²`. With `'` the derivative in the regularised time `τ`:
 //!
 //! * hysteresis family, `F = δ^n (1 + x v)` (`x = alpha v0`; elastic Hertz is `x = 0`):
 //!   `w = δ^((n+1)/2)`, `dτ = δ^((n-1)/2) dt`, `w' = ((n+1)/2) v`, `v' = -w (1 + x v)`;
 //! * Kelvin–Voigt, `F = δ + c v` (`c = 2 zeta`): `w = δ`, `τ = t`, `w' = v`, `v' = -(w + c v)`;
 //! * Tsuji, `F = δ^(3/2) + a δ^(1/4) v`: `w = δ^(5/4)`, `dτ = δ^(1/4) dt`, `w' = (5/4) v`, `v' = -(w + a v)`
-//!   (linear: a damped oscillator in `τ`).
+//!   (linear: a damped oscillator in `τ`, with `zeta = a/sqrt 5`).
 //!
-//! In all three `dt/dτ = w^(-γ)` and `F = w^γ F̂` with `F̂ = F dt/dτ` the force in `τ`: `w (1 + x v)`, resp.
-//! `w + c v`. The integrals the report needs are extra components, integrated along:
-//! impulse `dJ/dτ = F̂`, work `dW/dτ = F̂ v`, and the dissipated energy divided by the damping parameter,
-//! `dD̃/dτ = w v²` (hysteresis) or `v²` (linear), so that a lightly damped contact's dissipation `D = x D̃` is
-//! accurate relative to itself. Physical time is not a component: it is integrated by
-//! [`super::quadrature`], which treats the `w^(-γ)` singularities at the ends of the contact.
+//! In all three `dt/dτ = w^(-γ)` and `F = w^γ F̂`, where `F̂ = F dt/dτ` is the force in `τ`: `w (1 + x v)`,
+//! resp. `w + c v`. The integrals the report needs are integrated along with the motion: the impulse
+//! `dJ/dτ = F̂` and the work `dW/dτ = F̂ v` as exact integrals of each step's force and rate polynomials (closed
+//! forms, see [`Expansion`]); and the dissipated energy divided by the damping parameter, `dD̃/dτ = w v²`
+//! (hysteresis) or `v²` (linear), as a third series, so that a lightly damped contact's dissipation `D = x D̃`
+//! is accurate relative to itself. Physical time is integrated by [`super::quadrature`], which treats the
+//! `w^(-γ)` singularities at the ends of the contact.
 
 use super::FastError;
 use super::taylor::{self, Coefficients, INVERSE, MAX_ORDER};
@@ -176,6 +176,32 @@ fn dot(a: &[f64], b: &[f64]) -> f64 {
     ((sums[0] + sums[2]) + (sums[1] + sums[3])) + tail
 }
 
+/// `(Σ a_j c_j, Σ b_j c_j)` over the common length, in one pass (each `c_j` loaded once), four partial sums each.
+#[inline(always)]
+fn dot2(a: &[f64], b: &[f64], c: &[f64]) -> (f64, f64) {
+    let n = a.len().min(b.len()).min(c.len());
+    let (a, b, c) = (&a[..n], &b[..n], &c[..n]);
+    let (chunks_a, tail_a) = a.as_chunks::<4>();
+    let (chunks_b, tail_b) = b.as_chunks::<4>();
+    let (chunks_c, tail_c) = c.as_chunks::<4>();
+    let (mut first, mut second) = ([0.0; 4], [0.0; 4]);
+    for ((x, y), z) in chunks_a.iter().zip(chunks_b).zip(chunks_c) {
+        for l in 0..4 {
+            first[l] += x[l] * z[l];
+            second[l] += y[l] * z[l];
+        }
+    }
+    let (mut tail_first, mut tail_second) = (0.0, 0.0);
+    for ((x, y), z) in tail_a.iter().zip(tail_b).zip(tail_c) {
+        tail_first += x * z;
+        tail_second += y * z;
+    }
+    (
+        ((first[0] + first[2]) + (first[1] + first[3])) + tail_first,
+        ((second[0] + second[2]) + (second[1] + second[3])) + tail_second,
+    )
+}
+
 /// Index in a reversed copy of a series: `reversed[TOP - j]` holds coefficient `j`, so that the coefficient `k`
 /// of a product, `Σ_j a_j b_(k-j)`, is the contiguous `dot(a[..=k], reversed[TOP-k..])`.
 const TOP: usize = MAX_ORDER;
@@ -287,15 +313,22 @@ impl Regularised {
             Form::Hysteresis => {
                 for k in 0..=order {
                     // P = w v; F̂ = w + x P; dD̃/dτ = P v.
+                    // Both sums over j < k in one pass; their j = k terms (w_k v_0 and P_k v_0) after.
                     let v_reversed = &e.reversed[TOP - k..];
-                    let wv = dot(&e.w[..=k], v_reversed);
+                    let v0 = v_reversed[k];
+                    let (wv, wvv) = if x == 0.0 {
+                        (dot(&e.w[..k], v_reversed) + e.w[k] * v0, 0.0)
+                    } else {
+                        let (wv, partial) = dot2(&e.w[..k], &e.product[..k], v_reversed);
+                        let wv = wv + e.w[k] * v0;
+                        (wv, partial + wv * v0)
+                    };
                     e.product[k] = wv;
                     let force = e.w[k] + x * wv;
                     if k == order {
                         e.force_top = force;
                         break;
                     }
-                    let wvv = if x == 0.0 { 0.0 } else { dot(&e.product[..=k], v_reversed) };
                     let inverse = INVERSE[k + 1];
                     e.w[k + 1] = p * e.rate[k] * inverse;
                     let v_next = -force * inverse;
