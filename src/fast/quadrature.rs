@@ -201,8 +201,7 @@ impl SingularSeries {
             let top = k.min(self.degree);
             // r_{k-j} for j = 1..=top, in the reversed storage: contiguous from SERIES_TERMS - k.
             let window = &self.reversed[SERIES_TERMS - k..SERIES_TERMS - k + top];
-            let first = taylor::dot(&self.weighted[1..=top], window);
-            let second = taylor::dot(&self.q[1..=top], window);
+            let (first, second) = taylor::dot2(&self.weighted[1..=top], &self.q[1..=top], window);
             let r = (first - k as f64 * second) * inverse_q0 / k as f64;
             self.reversed[SERIES_TERMS - 1 - k] = r;
             self.divided[k] = r / (k as f64 + 1.0 - self.gamma);

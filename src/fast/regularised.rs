@@ -158,50 +158,6 @@ impl Expansion {
     }
 }
 
-/// `Σ a_j b_j` over the common length, with four partial sums (lane-wise, so the compiler keeps them in vector
-/// registers and the additions do not wait for each other).
-#[inline(always)]
-fn dot(a: &[f64], b: &[f64]) -> f64 {
-    let n = a.len().min(b.len());
-    let (a, b) = (&a[..n], &b[..n]);
-    let mut sums = [0.0; 4];
-    let (chunks_a, chunks_b) = (a.chunks_exact(4), b.chunks_exact(4));
-    let (tail_a, tail_b) = (chunks_a.remainder(), chunks_b.remainder());
-    for (x, y) in chunks_a.zip(chunks_b) {
-        for l in 0..4 {
-            sums[l] += x[l] * y[l];
-        }
-    }
-    let tail = tail_a.iter().zip(tail_b).fold(0.0, |acc, (x, y)| acc + x * y);
-    ((sums[0] + sums[2]) + (sums[1] + sums[3])) + tail
-}
-
-/// `(Σ a_j c_j, Σ b_j c_j)` over the common length, in one pass (each `c_j` loaded once), four partial sums each.
-#[inline(always)]
-fn dot2(a: &[f64], b: &[f64], c: &[f64]) -> (f64, f64) {
-    let n = a.len().min(b.len()).min(c.len());
-    let (a, b, c) = (&a[..n], &b[..n], &c[..n]);
-    let (chunks_a, tail_a) = a.as_chunks::<4>();
-    let (chunks_b, tail_b) = b.as_chunks::<4>();
-    let (chunks_c, tail_c) = c.as_chunks::<4>();
-    let (mut first, mut second) = ([0.0; 4], [0.0; 4]);
-    for ((x, y), z) in chunks_a.iter().zip(chunks_b).zip(chunks_c) {
-        for l in 0..4 {
-            first[l] += x[l] * z[l];
-            second[l] += y[l] * z[l];
-        }
-    }
-    let (mut tail_first, mut tail_second) = (0.0, 0.0);
-    for ((x, y), z) in tail_a.iter().zip(tail_b).zip(tail_c) {
-        tail_first += x * z;
-        tail_second += y * z;
-    }
-    (
-        ((first[0] + first[2]) + (first[1] + first[3])) + tail_first,
-        ((second[0] + second[2]) + (second[1] + second[3])) + tail_second,
-    )
-}
-
 /// Index in a reversed copy of a series: `reversed[TOP - j]` holds coefficient `j`, so that the coefficient `k`
 /// of a product, `Σ_j a_j b_(k-j)`, is the contiguous `dot(a[..=k], reversed[TOP-k..])`.
 const TOP: usize = MAX_ORDER;
@@ -317,9 +273,9 @@ impl Regularised {
                     let v_reversed = &e.reversed[TOP - k..];
                     let v0 = v_reversed[k];
                     let (wv, wvv) = if x == 0.0 {
-                        (dot(&e.w[..k], v_reversed) + e.w[k] * v0, 0.0)
+                        (taylor::dot(&e.w[..k], v_reversed) + e.w[k] * v0, 0.0)
                     } else {
-                        let (wv, partial) = dot2(&e.w[..k], &e.product[..k], v_reversed);
+                        let (wv, partial) = taylor::dot2(&e.w[..k], &e.product[..k], v_reversed);
                         let wv = wv + e.w[k] * v0;
                         (wv, partial + wv * v0)
                     };
@@ -345,7 +301,7 @@ impl Regularised {
                         e.force_top = force;
                         break;
                     }
-                    let vv = dot(&e.rate[..=k], &e.reversed[TOP - k..]);
+                    let vv = taylor::dot(&e.rate[..=k], &e.reversed[TOP - k..]);
                     let inverse = INVERSE[k + 1];
                     e.w[k + 1] = p * e.rate[k] * inverse;
                     let v_next = -force * inverse;

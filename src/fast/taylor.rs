@@ -130,6 +130,32 @@ pub fn dot(a: &[f64], b: &[f64]) -> f64 {
 /// Factor applied to the step of [`step_size`] (1: the first omitted term equals the tolerance).
 const STEP_SAFETY: f64 = 1.0;
 
+/// `(Σ a_j c_j, Σ b_j c_j)` over the common length, in one pass (each `c_j` loaded once), four partial sums each.
+#[inline(always)]
+pub fn dot2(a: &[f64], b: &[f64], c: &[f64]) -> (f64, f64) {
+    let n = a.len().min(b.len()).min(c.len());
+    let (a, b, c) = (&a[..n], &b[..n], &c[..n]);
+    let (chunks_a, tail_a) = a.as_chunks::<4>();
+    let (chunks_b, tail_b) = b.as_chunks::<4>();
+    let (chunks_c, tail_c) = c.as_chunks::<4>();
+    let (mut first, mut second) = ([0.0; 4], [0.0; 4]);
+    for ((x, y), z) in chunks_a.iter().zip(chunks_b).zip(chunks_c) {
+        for l in 0..4 {
+            first[l] += x[l] * z[l];
+            second[l] += y[l] * z[l];
+        }
+    }
+    let (mut tail_first, mut tail_second) = (0.0, 0.0);
+    for ((x, y), z) in tail_a.iter().zip(tail_b).zip(tail_c) {
+        tail_first += x * z;
+        tail_second += y * z;
+    }
+    (
+        ((first[0] + first[2]) + (first[1] + first[3])) + tail_first,
+        ((second[0] + second[2]) + (second[1] + second[3])) + tail_second,
+    )
+}
+
 /// The first fall of a function through zero on `(from, to]`, from its value `f_from > 0` at `from`: it is
 /// sampled (`value`) at [`FALL_SAMPLES`] equally spaced points, and the root located ([`root`], with `newton`
 /// giving value and slope) in the first interval that ends at a value `<= 0`. `None` if no sample is `<= 0`.
