@@ -6,6 +6,7 @@ pub mod body;
 pub mod calibrate;
 pub mod cli;
 pub mod dynamics;
+pub mod fast;
 pub mod geometry;
 pub mod history;
 pub mod impact;

@@ -1,0 +1,459 @@
+//! The physics of the regularised normal contact: each covered law as a polynomial system in `(w, v)` and the
+//! Taylor-coefficient recursions of its states (physics.md §5).
+//!
+//! Scaled variables as in [`crate::dynamics::Scales`]: penetration `δ = d/L`, rate `v = d'/v0`, time `t/T`,
+//! force `F/F0`, impulse in `m* v0`, energy in `m* v0²`. With `'` the derivative in the regularised time `τ`:
+//!
+//! * hysteresis family, `F = δ^n (1 + x v)` (`x = alpha v0`; elastic Hertz is `x = 0`):
+//!   `w = δ^((n+1)/2)`, `dτ = δ^((n-1)/2) dt`, `w' = ((n+1)/2) v`, `v' = -w (1 + x v)`;
+//! * Kelvin–Voigt, `F = δ + c v` (`c = 2 zeta`): `w = δ`, `τ = t`, `w' = v`, `v' = -(w + c v)`;
+//! * Tsuji, `F = δ^(3/2) + a δ^(1/4) v`: `w = δ^(5/4)`, `dτ = δ^(1/4) dt`, `w' = (5/4) v`, `v' = -(w + a v)`
+//!   (linear: a damped oscillator in `τ`, with `zeta = a/sqrt 5`).
+//!
+//! In all three `dt/dτ = w^(-γ)` and `F = w^γ F̂`, where `F̂ = F dt/dτ` is the force in `τ`: `w (1 + x v)`,
+//! resp. `w + c v`. The integrals the report needs are integrated along with the motion: the impulse
+//! `dJ/dτ = F̂` and the work `dW/dτ = F̂ v` as exact integrals of each step's force and rate polynomials (closed
+//! forms, see [`Expansion`]); and the dissipated energy divided by the damping parameter, `dD̃/dτ = w v²`
+//! (hysteresis) or `v²` (linear), as a third series, so that a lightly damped contact's dissipation `D = x D̃`
+//! is accurate relative to itself. Physical time is integrated by [`super::quadrature`], which treats the
+//! `w^(-γ)` singularities at the ends of the contact.
+
+use super::FastError;
+use super::taylor::{self, Coefficients, INVERSE, MAX_ORDER};
+use crate::dynamics::Scales;
+use crate::law::{ContactLaw, Family};
+
+/// Which polynomial system.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Form {
+    /// `w' = p v`, `v' = -w (1 + x v)`.
+    Hysteresis,
+    /// `w' = p v`, `v' = -(w + c v)`.
+    Linear,
+}
+
+/// One contact law as a regularised system (all parameters dimensionless).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Regularised {
+    pub form: Form,
+    /// `p` in `dw/dτ = p v`: `(n+1)/2`, 1 (Kelvin–Voigt) or 5/4 (Tsuji).
+    pub rate_factor: f64,
+    /// The scaled damping: `x = alpha v0` (hysteresis), `c = 2 zeta` (Kelvin–Voigt) or `a` (Tsuji).
+    pub damping: f64,
+    /// `n`, the exponent of the elastic force (for the force-peak condition `n v = x w²` of the hysteresis family).
+    pub exponent: f64,
+    /// `γ` in `dt/dτ = w^(-γ)` and `F = w^γ F̂`: `(n-1)/(n+1)`, 0 or 1/5.
+    pub time_exponent: f64,
+    /// `β` in `δ = w^β`: `2/(n+1)`, 1 or 4/5.
+    pub penetration_exponent: f64,
+    /// Elastic energy `∫_0^δ F_elastic dδ = elastic_factor · w²`: `1/(n+1)`, 1/2 or 2/5.
+    pub elastic_factor: f64,
+}
+
+/// Scaled contact state in the regularised variables.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct State {
+    /// `w = δ^(1/β)` (>= 0 inside the contact).
+    pub w: f64,
+    /// Penetration rate `v = d'/v0`.
+    pub rate: f64,
+    /// `∫ F dt`, in `m* v0`.
+    pub impulse: f64,
+    /// `∫ F d' dt`, in `m* v0²`.
+    pub work: f64,
+    /// `D̃`: the dissipated energy (in `m* v0²`) divided by [`Regularised::damping`].
+    pub dissipation: f64,
+}
+
+impl State {
+    /// First contact: no penetration, closing at the approach speed, nothing integrated yet.
+    pub const FIRST_CONTACT: State = State { w: 0.0, rate: 1.0, impulse: 0.0, work: 0.0, dissipation: 0.0 };
+}
+
+/// One step's Taylor series, in the offset `σ = τ - τ_start`: `w`, `v` and `D̃` to the order, and the force
+/// series' last coefficient `F̂_K` (the lower ones are `-k v_k`).
+///
+/// The impulse and the work are the exact integrals over the step of the force polynomial
+/// `F̂(σ) = Σ_{k<=K} F̂_k σ^k` and of its product with the rate polynomial. Since `F̂_k = -(k+1) v_{k+1}` for
+/// `k < K` (the recursion itself), `F̂ = -v' + F̂_K σ^K` on the polynomials, and the integrals have the closed
+/// forms `∫F̂ = -(v(σ) - v_0) + F̂_K σ^(K+1)/(K+1)` and `∫F̂ v = -(v(σ)² - v_0²)/2 + F̂_K Σ_j v_j
+/// σ^(K+j+1)/(K+j+1)`: `O(K)` instead of a product of series, and no truncation of the product (which would drop
+/// terms `~ w v_K σ^K` that do not shrink with `v`: the restitution work `≈ v²/2` of a small e would be far less
+/// accurate than e itself).
+#[derive(Debug, Clone)]
+pub struct Expansion {
+    pub order: usize,
+    pub w: Coefficients,
+    pub rate: Coefficients,
+    pub dissipation: Coefficients,
+    /// `F̂_K`, the force series' coefficient of order `K`.
+    pub force_top: f64,
+    /// The state the step starts from (its impulse and work are the integration constants).
+    start: State,
+    /// Scratch: the series of `w v` (hysteresis), and `v` reversed ([`TOP`]).
+    product: Coefficients,
+    reversed: Coefficients,
+}
+
+impl Default for Expansion {
+    fn default() -> Self {
+        let zero = [0.0; MAX_ORDER + 1];
+        Expansion {
+            order: 0,
+            w: zero,
+            rate: zero,
+            dissipation: zero,
+            force_top: 0.0,
+            start: State::FIRST_CONTACT,
+            product: zero,
+            reversed: zero,
+        }
+    }
+}
+
+impl Expansion {
+    /// The state at offset `sigma` in the step.
+    pub fn state_at(&self, sigma: f64) -> State {
+        let k = self.order;
+        let rate = taylor::value(&self.rate[..=k], sigma);
+        // v(σ) - v_0 without cancellation: σ Σ_{j>=1} v_j σ^(j-1).
+        let change = sigma * taylor::value(&self.rate[1..=k], sigma);
+        let power = sigma.powi(k as i32 + 1);
+        let top = self.force_top * power;
+        let moment =
+            self.rate[..=k].iter().enumerate().rev().fold(0.0, |acc, (j, &vj)| acc * sigma + vj * INVERSE[k + j + 1]);
+        State {
+            w: taylor::value(&self.w[..=k], sigma),
+            rate,
+            impulse: self.start.impulse - change + top * INVERSE[k + 1],
+            work: self.start.work - 0.5 * change * (rate + self.start.rate) + top * moment,
+            dissipation: taylor::value(&self.dissipation[..=k], sigma),
+        }
+    }
+
+    /// The impulse and the work integrated from offset `a` to offset `b` of the step, formed without the totals
+    /// at `a` (no cancellation against them): the restitution's integrals, started at a maximum compression
+    /// inside the step, where `v(a) = 0`.
+    pub fn increments(&self, a: f64, b: f64) -> (f64, f64) {
+        let k = self.order;
+        let (rate_a, rate_b) = (taylor::value(&self.rate[..=k], a), taylor::value(&self.rate[..=k], b));
+        let moment = |sigma: f64| {
+            let sum = self.rate[..=k]
+                .iter()
+                .enumerate()
+                .rev()
+                .fold(0.0, |acc, (j, &vj)| acc * sigma + vj * INVERSE[k + j + 1]);
+            sigma.powi(k as i32 + 1) * sum
+        };
+        let change = rate_b - rate_a;
+        let top = self.force_top * (b.powi(k as i32 + 1) - a.powi(k as i32 + 1));
+        (-change + top * INVERSE[k + 1], -0.5 * change * (rate_b + rate_a) + self.force_top * (moment(b) - moment(a)))
+    }
+
+    /// The force series `F̂` at offset `sigma` (its polynomial: `-v'(σ) + F̂_K σ^K`).
+    #[cfg(test)]
+    pub fn force_at(&self, sigma: f64) -> f64 {
+        let k = self.order;
+        -taylor::value_and_slope(&self.rate[..=k], sigma).1 + self.force_top * sigma.powi(k as i32)
+    }
+}
+
+/// Index in a reversed copy of a series: `reversed[TOP - j]` holds coefficient `j`, so that the coefficient `k`
+/// of a product, `Σ_j a_j b_(k-j)`, is the contiguous `dot(a[..=k], reversed[TOP-k..])`.
+const TOP: usize = MAX_ORDER;
+
+impl Regularised {
+    /// The regularised system of `law` in the units `scales`. Errors: Brilliantov's law (not smoothed by the
+    /// transformation), parameters that are not finite and positive (damping: non-negative), scales that do not
+    /// belong to the law's stiffness and exponent.
+    pub fn new(law: &ContactLaw, scales: &Scales) -> Result<Regularised, FastError> {
+        let family = law.kind.family();
+        if family == Family::Viscoelastic {
+            return Err(FastError::NotCovered(law.kind.name()));
+        }
+        let n = law.exponent;
+        let positive = |value: f64| value.is_finite() && value > 0.0;
+        if !(positive(law.stiffness) && positive(n)) {
+            return Err(FastError::Invalid(format!(
+                "stiffness {} and exponent {} must be finite and positive",
+                law.stiffness, n
+            )));
+        }
+        if !(law.damping.is_finite() && law.damping >= 0.0) {
+            return Err(FastError::Invalid(format!("damping {} must be finite and >= 0", law.damping)));
+        }
+        let units = [scales.length, scales.speed, scales.time, scales.force, scales.impulse, scales.energy];
+        if !units.iter().all(|&u| positive(u)) {
+            return Err(FastError::Invalid(format!("the scales {scales:?} must be finite and positive")));
+        }
+        // The scaled equations take K L^n = F0 (so that F/F0 = δ^n): the scales must be those of this law.
+        let stiffness_unit = law.stiffness * scales.length.powf(n) / scales.force;
+        if stiffness_unit.is_nan() || (stiffness_unit - 1.0).abs() > SCALE_MISMATCH {
+            return Err(FastError::Invalid(format!(
+                "the scales are not those of this law: K L^n / F0 = {stiffness_unit} (expected 1)"
+            )));
+        }
+        let fixed_exponent = |expected: f64| {
+            if n == expected {
+                Ok(())
+            } else {
+                Err(FastError::Invalid(format!("the `{}` law needs exponent {expected}, not {n}", law.kind.name())))
+            }
+        };
+        let v0 = scales.speed;
+        Ok(match family {
+            Family::Elastic | Family::Hysteresis => Regularised {
+                form: Form::Hysteresis,
+                rate_factor: 0.5 * (n + 1.0),
+                damping: if family == Family::Elastic { 0.0 } else { law.damping * v0 },
+                exponent: n,
+                time_exponent: (n - 1.0) / (n + 1.0),
+                penetration_exponent: 2.0 / (n + 1.0),
+                elastic_factor: 1.0 / (n + 1.0),
+            },
+            Family::Linear => {
+                fixed_exponent(1.0)?;
+                Regularised {
+                    form: Form::Linear,
+                    rate_factor: 1.0,
+                    // c d' / F0 = (c v0 / F0) v.
+                    damping: law.damping * v0 / scales.force,
+                    exponent: 1.0,
+                    time_exponent: 0.0,
+                    penetration_exponent: 1.0,
+                    elastic_factor: 0.5,
+                }
+            }
+            Family::Tsuji => {
+                fixed_exponent(1.5)?;
+                Regularised {
+                    form: Form::Linear,
+                    rate_factor: 1.25,
+                    // a sqrt(m* K) d^(1/4) d' / F0 = (a sqrt(m* K) L^(1/4) v0 / F0) δ^(1/4) v.
+                    damping: law.damping * law.tsuji_scale * scales.length.sqrt().sqrt() * v0 / scales.force,
+                    exponent: 1.5,
+                    time_exponent: 0.2,
+                    penetration_exponent: 0.8,
+                    elastic_factor: 0.4,
+                }
+            }
+            Family::Viscoelastic => unreachable!("rejected above"),
+        })
+    }
+
+    /// Whether the force can turn tensile before the penetration returns to zero (so that a force separation
+    /// differs from a penetration separation).
+    pub fn can_turn_tensile(&self) -> bool {
+        self.form == Form::Linear && self.damping > 0.0
+    }
+
+    /// Whether, past maximum compression, `w` can never return to zero: a linear system (`w' = p v`,
+    /// `v' = -(w + c v)`) that is overdamped or critically damped, `c² >= 4p` (zeta >= 1). From `v = 0`,
+    /// `w > 0` the solution is `A e^(λ1 τ) + B e^(λ2 τ)` with `A = -λ2 w/(λ1 - λ2) > 0` on the slower mode, so
+    /// `w > 0` for all `τ` (critically damped: `w (1 - λ τ) e^(λ τ)`, `λ < 0`).
+    pub fn never_separates(&self) -> bool {
+        self.form == Form::Linear && self.damping * self.damping >= 4.0 * self.rate_factor
+    }
+
+    /// Taylor coefficients of every component at `state`, to `order` (<= [`MAX_ORDER`]).
+    pub fn expand(&self, state: &State, order: usize, e: &mut Expansion) {
+        debug_assert!(order <= MAX_ORDER);
+        e.order = order;
+        e.start = *state;
+        e.w[0] = state.w;
+        e.rate[0] = state.rate;
+        e.dissipation[0] = state.dissipation;
+        let (p, x) = (self.rate_factor, self.damping);
+        e.reversed[TOP] = state.rate;
+        match self.form {
+            Form::Hysteresis => {
+                for k in 0..=order {
+                    // P = w v; F̂ = w + x P; dD̃/dτ = P v.
+                    // Both sums over j < k in one pass; their j = k terms (w_k v_0 and P_k v_0) after.
+                    let v_reversed = &e.reversed[TOP - k..];
+                    let v0 = v_reversed[k];
+                    let (wv, wvv) = if x == 0.0 {
+                        (taylor::dot(&e.w[..k], v_reversed) + e.w[k] * v0, 0.0)
+                    } else {
+                        let (wv, partial) = taylor::dot2(&e.w[..k], &e.product[..k], v_reversed);
+                        let wv = wv + e.w[k] * v0;
+                        (wv, partial + wv * v0)
+                    };
+                    e.product[k] = wv;
+                    let force = e.w[k] + x * wv;
+                    if k == order {
+                        e.force_top = force;
+                        break;
+                    }
+                    let inverse = INVERSE[k + 1];
+                    e.w[k + 1] = p * e.rate[k] * inverse;
+                    let v_next = -force * inverse;
+                    e.rate[k + 1] = v_next;
+                    e.reversed[TOP - k - 1] = v_next;
+                    e.dissipation[k + 1] = wvv * inverse;
+                }
+            }
+            Form::Linear => {
+                for k in 0..=order {
+                    // F̂ = w + c v; dD̃/dτ = v².
+                    let force = e.w[k] + x * e.rate[k];
+                    if k == order {
+                        e.force_top = force;
+                        break;
+                    }
+                    let vv = taylor::dot(&e.rate[..=k], &e.reversed[TOP - k..]);
+                    let inverse = INVERSE[k + 1];
+                    e.w[k + 1] = p * e.rate[k] * inverse;
+                    let v_next = -force * inverse;
+                    e.rate[k + 1] = v_next;
+                    e.reversed[TOP - k - 1] = v_next;
+                    e.dissipation[k + 1] = vv * inverse;
+                }
+            }
+        }
+    }
+
+    /// `F̂ = F dt/dτ`, the force in regularised time: `w (1 + x v)` or `w + c v`. For the linear laws its zero is
+    /// the force separation (a continuous function, continued past `d = 0`: physics.md §5).
+    #[inline]
+    pub fn regular_force(&self, w: f64, rate: f64) -> f64 {
+        match self.form {
+            Form::Hysteresis => w * (1.0 + self.damping * rate),
+            Form::Linear => w + self.damping * rate,
+        }
+    }
+
+    /// Scaled contact force `F = w^γ F̂` (`w` clamped at 0: a located zero may sit an ulp below).
+    pub fn force(&self, w: f64, rate: f64) -> f64 {
+        let w = w.max(0.0);
+        let regular = self.regular_force(w, rate);
+        if self.time_exponent == 0.0 { regular } else { w.powf(self.time_exponent) * regular }
+    }
+
+    /// Scaled penetration `δ = w^β` (`w` clamped at 0).
+    pub fn penetration(&self, w: f64) -> f64 {
+        let w = w.max(0.0);
+        if self.penetration_exponent == 1.0 { w } else { w.powf(self.penetration_exponent) }
+    }
+
+    /// Elastic energy stored at `w`, in `m* v0²`.
+    pub fn elastic_energy(&self, w: f64) -> f64 {
+        self.elastic_factor * w * w
+    }
+
+    /// A function whose falling zero is the force peak (`dF/dτ = 0`), with its derivative along `τ`, from `w`,
+    /// `v` and their `τ`-derivatives. Positive while the force rises.
+    ///
+    /// * hysteresis: `dF/dτ = w^γ (1 + x v) (n v - x w²)`, so `g = n v - x w²`;
+    /// * Kelvin–Voigt (`γ = 0`): `g = dF̂/dτ = p v - c F̂`;
+    /// * Tsuji: `w^(1-γ) dF/dτ = γ p v F̂ + w (p v - c F̂)` (positive at first contact, where `w = 0`).
+    pub fn peak_function(&self, w: f64, dw: f64, rate: f64, drate: f64) -> (f64, f64) {
+        let (p, c, n) = (self.rate_factor, self.damping, self.exponent);
+        match self.form {
+            Form::Hysteresis => (n * rate - c * w * w, n * drate - 2.0 * c * w * dw),
+            Form::Linear => {
+                let force = w + c * rate;
+                let dforce = dw + c * drate;
+                let slope = p * rate - c * force;
+                let dslope = p * drate - c * dforce;
+                if self.time_exponent == 0.0 {
+                    (slope, dslope)
+                } else {
+                    let g = self.time_exponent * p;
+                    (g * rate * force + w * slope, g * (drate * force + rate * dforce) + dw * slope + w * dslope)
+                }
+            }
+        }
+    }
+}
+
+/// Largest relative mismatch between `K L^n` and `F0` accepted (rounding of the scales is ~1e-16).
+const SCALE_MISMATCH: f64 = 1e-9;
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::fast::taylor;
+
+    fn hysteresis(x: f64, n: f64) -> Regularised {
+        Regularised {
+            form: Form::Hysteresis,
+            rate_factor: 0.5 * (n + 1.0),
+            damping: x,
+            exponent: n,
+            time_exponent: (n - 1.0) / (n + 1.0),
+            penetration_exponent: 2.0 / (n + 1.0),
+            elastic_factor: 1.0 / (n + 1.0),
+        }
+    }
+
+    /// Elastic: `w'' = -p w` with `w(0) = 0`, `w'(0) = p`, so `w = sqrt(p) sin(sqrt(p) τ)`, `v = cos(sqrt(p) τ)`.
+    #[test]
+    fn elastic_series_is_the_sine() {
+        let system = hysteresis(0.0, 1.5);
+        let mut e = Expansion::default();
+        system.expand(&State::FIRST_CONTACT, 30, &mut e);
+        let omega = 1.25_f64.sqrt();
+        for tau in [0.1, 0.5, 1.0] {
+            let s = e.state_at(tau);
+            assert!((s.w - omega * (omega * tau).sin()).abs() < 1e-13, "w at {tau}");
+            assert!((s.rate - (omega * tau).cos()).abs() < 1e-13, "v at {tau}");
+            // Impulse = 1 - v and work = (1 - v²)/2 for any law (momentum and energy, checked here only).
+            assert!((s.impulse - (1.0 - s.rate)).abs() < 1e-14);
+            assert!(
+                (s.work - 0.5 * (1.0 - s.rate * s.rate)).abs() < 1e-14,
+                "{} {}",
+                s.work,
+                0.5 * (1.0 - s.rate * s.rate)
+            );
+        }
+    }
+
+    /// The series satisfy their equations: the derivative of each polynomial equals the right-hand side
+    /// evaluated on the polynomials, up to the truncation order.
+    #[test]
+    fn series_satisfy_the_equations() {
+        let x = 0.7;
+        let system = hysteresis(x, 2.2);
+        let mut e = Expansion::default();
+        let state = State { w: 0.4, rate: -0.3, impulse: 1.1, work: 0.45, dissipation: 0.02 };
+        system.expand(&state, 24, &mut e);
+        let k = e.order + 1;
+        for sigma in [0.01, 0.05] {
+            let (w, dw) = taylor::value_and_slope(&e.w[..k], sigma);
+            let (v, dv) = taylor::value_and_slope(&e.rate[..k], sigma);
+            let (_, dd) = taylor::value_and_slope(&e.dissipation[..k], sigma);
+            let force = w * (1.0 + x * v);
+            assert!((dw - 1.6 * v).abs() < 1e-14);
+            assert!((dv + force).abs() < 1e-14);
+            assert!((e.force_at(sigma) - force).abs() < 1e-14);
+            assert!((dd - w * v * v).abs() < 1e-14);
+            // Impulse and work: central differences of the closed forms give F̂ and F̂ v.
+            let h = 1e-5;
+            let (after, before) = (e.state_at(sigma + h), e.state_at(sigma - h));
+            assert!(((after.impulse - before.impulse) / (2.0 * h) - force).abs() < 1e-9);
+            assert!(((after.work - before.work) / (2.0 * h) - force * v).abs() < 1e-9);
+        }
+    }
+
+    #[test]
+    fn peak_function_matches_the_force_derivative() {
+        // Tsuji: compare g / w^(1-γ) with a central difference of F along the exact flow's derivatives.
+        let system = Regularised {
+            form: Form::Linear,
+            rate_factor: 1.25,
+            damping: 0.3,
+            exponent: 1.5,
+            time_exponent: 0.2,
+            penetration_exponent: 0.8,
+            elastic_factor: 0.4,
+        };
+        let (w, v) = (0.5, 0.4);
+        let (dw, dv) = (1.25 * v, -(w + 0.3 * v));
+        let h = 1e-6;
+        let slope = (system.force(w + h * dw, v + h * dv) - system.force(w - h * dw, v - h * dv)) / (2.0 * h);
+        let (g, _) = system.peak_function(w, dw, v, dv);
+        let expected = slope * w.powf(0.8);
+        assert!((g - expected).abs() < 1e-8, "{g} vs {expected}");
+    }
+}

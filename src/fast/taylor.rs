@@ -1,0 +1,283 @@
+//! Generic Taylor-series tools: polynomial evaluation, re-expansion about another point, powers of a series, the
+//! order and step-size rules, and root location on a step's polynomial.
+//!
+//! A step's solution is a truncated Taylor series `c_0 + c_1 σ + … + c_K σ^K` in the offset `σ` from the step's
+//! start. Everything here works on such coefficient slices; nothing allocates.
+
+/// Highest Taylor order the stepper uses (the coefficient arrays hold `MAX_ORDER + 1` numbers).
+pub const MAX_ORDER: usize = 30;
+
+/// The coefficients of one component over one step, `c[k]` multiplying `σ^k`.
+pub type Coefficients = [f64; MAX_ORDER + 1];
+
+/// `1/k` for `k = 0..=2 MAX_ORDER + 1` (entry 0 unused): the recursions divide by `k` once per coefficient.
+pub const INVERSE: [f64; 2 * MAX_ORDER + 2] = {
+    let mut table = [0.0; 2 * MAX_ORDER + 2];
+    let mut k = 1;
+    while k < 2 * MAX_ORDER + 2 {
+        table[k] = 1.0 / k as f64;
+        k += 1;
+    }
+    table
+};
+
+/// Value of the polynomial `c` at `sigma` (Horner).
+#[inline]
+pub fn value(c: &[f64], sigma: f64) -> f64 {
+    c.iter().rev().fold(0.0, |acc, &ck| acc * sigma + ck)
+}
+
+/// Value and first derivative of the polynomial `c` at `sigma`.
+#[inline]
+pub fn value_and_slope(c: &[f64], sigma: f64) -> (f64, f64) {
+    let mut value = 0.0;
+    let mut slope = 0.0;
+    for &ck in c.iter().rev() {
+        slope = slope * sigma + value;
+        value = value * sigma + ck;
+    }
+    (value, slope)
+}
+
+/// Re-expands the polynomial `c` (in `σ`) about `sigma`: on return `c[k]` multiplies `(σ - sigma)^k`
+/// (repeated synthetic division, exact up to rounding).
+pub fn shift(c: &mut [f64], sigma: f64) {
+    let degree = c.len().saturating_sub(1);
+    for start in 0..degree {
+        for k in (start..degree).rev() {
+            c[k] += sigma * c[k + 1];
+        }
+    }
+}
+
+/// The Taylor order used for a local tolerance `eps` (relative, per step).
+///
+/// A step of size `h ≈ ρ eps^(1/(K+1))` (ρ the radius of convergence) costs `O(K²)` for the products of the
+/// recursion; the number of steps falls like `eps^(-1/(K+1))`. The cost `K² eps^(-1/(K+1))` is least near
+/// `K ≈ ln(1/eps)/2`; a few more orders pay for the fixed work of a step (events, quadrature).
+pub fn order_for(eps: f64) -> usize {
+    let wanted = (0.5 * (1.0 / eps).ln()).ceil() as usize + ORDER_MARGIN;
+    wanted.clamp(MIN_ORDER, MAX_ORDER)
+}
+
+/// Orders added to `ln(1/eps)/2` (see [`order_for`]): measured best from 1e-7 to 1e-17 (instruction counts
+/// over the reference impacts; a step's fixed work — events, time quadrature — favours longer steps).
+const ORDER_MARGIN: usize = 6;
+/// Lowest order used, whatever the tolerance.
+const MIN_ORDER: usize = 8;
+
+/// Step size from the last two coefficients of the step's series.
+///
+/// `last` and `before_last` are the sizes of the coefficients of orders `order` and `order - 1`, relative to the
+/// size of the state. Each gives an estimate of the radius of convergence, `ρ_k = |c_k|^(-1/k)`; with the smaller,
+/// the first omitted term `(h/ρ)^(order+1)` is `eps` at `h = ρ eps^(1/(order+1))`. Returns `f64::INFINITY` when
+/// both coefficients vanish (a polynomial solution: any step is exact).
+///
+/// `eps_root` is `eps^(1/(order+1))`. The roots are taken in logarithms with [`rough_log2`] and [`rough_exp2`]:
+/// a step size needs no more than 4 digits, and this runs once per step.
+pub fn step_size(before_last: f64, last: f64, order: usize, eps_root: f64) -> f64 {
+    let log_radius = |size: f64, k: usize| if size > 0.0 { -rough_log2(size) / k as f64 } else { f64::INFINITY };
+    let log_rho = log_radius(before_last, order - 1).min(log_radius(last, order));
+    if log_rho == f64::INFINITY {
+        return f64::INFINITY;
+    }
+    STEP_SAFETY * eps_root * rough_exp2(log_rho.min(1000.0))
+}
+
+/// `log2(x)` for finite `x > 0`, to about 2e-5 absolute: the exponent from the bits, and
+/// `ln m = 2 (s + s³/3 + s⁵/5 + s⁷/7)`, `s = (m-1)/(m+1) <= 1/3`, for the mantissa `m ∈ [1, 2)`.
+pub fn rough_log2(x: f64) -> f64 {
+    let bits = x.to_bits();
+    let exponent = ((bits >> 52) & 0x7ff) as i64 - 1023;
+    if exponent == -1023 {
+        // Subnormal: scale into the normal range first.
+        return rough_log2(x * 2f64.powi(64)) - 64.0;
+    }
+    let m = f64::from_bits((bits & 0x000f_ffff_ffff_ffff) | 0x3ff0_0000_0000_0000);
+    let s = (m - 1.0) / (m + 1.0);
+    let s2 = s * s;
+    let ln_m = 2.0 * s * (1.0 + s2 * (1.0 / 3.0 + s2 * (0.2 + s2 / 7.0)));
+    exponent as f64 + ln_m * std::f64::consts::LOG2_E
+}
+
+/// `2^y` for `|y| <= 1000`, to about 2e-5 relative: `2^i` from the bits and `e^(f ln 2)` by its Taylor
+/// polynomial of degree 6 for the fraction `f ∈ [0, 1)`.
+pub fn rough_exp2(y: f64) -> f64 {
+    let whole = y.floor();
+    let t = (y - whole) * std::f64::consts::LN_2;
+    let fraction = 1.0 + t * (1.0 + t * (0.5 + t * (1.0 / 6.0 + t * (1.0 / 24.0 + t * (1.0 / 120.0 + t / 720.0)))));
+    fraction * 2f64.powi(whole as i32)
+}
+
+/// `Σ a_j b_j` over the common length, with four partial sums (lane-wise, so that the compiler keeps them in
+/// vector registers and the additions do not wait for each other).
+#[inline(always)]
+pub fn dot(a: &[f64], b: &[f64]) -> f64 {
+    let n = a.len().min(b.len());
+    let (a, b) = (&a[..n], &b[..n]);
+    let (chunks_a, tail_a) = a.as_chunks::<4>();
+    let (chunks_b, tail_b) = b.as_chunks::<4>();
+    let mut sums = [0.0; 4];
+    for (x, y) in chunks_a.iter().zip(chunks_b) {
+        for l in 0..4 {
+            sums[l] += x[l] * y[l];
+        }
+    }
+    let tail = tail_a.iter().zip(tail_b).fold(0.0, |acc, (x, y)| acc + x * y);
+    ((sums[0] + sums[2]) + (sums[1] + sums[3])) + tail
+}
+
+/// Factor applied to the step of [`step_size`] (1: the first omitted term equals the tolerance).
+const STEP_SAFETY: f64 = 1.0;
+
+/// `(Σ a_j c_j, Σ b_j c_j)` over the common length, in one pass (each `c_j` loaded once), four partial sums each.
+#[inline(always)]
+pub fn dot2(a: &[f64], b: &[f64], c: &[f64]) -> (f64, f64) {
+    let n = a.len().min(b.len()).min(c.len());
+    let (a, b, c) = (&a[..n], &b[..n], &c[..n]);
+    let (chunks_a, tail_a) = a.as_chunks::<4>();
+    let (chunks_b, tail_b) = b.as_chunks::<4>();
+    let (chunks_c, tail_c) = c.as_chunks::<4>();
+    let (mut first, mut second) = ([0.0; 4], [0.0; 4]);
+    for ((x, y), z) in chunks_a.iter().zip(chunks_b).zip(chunks_c) {
+        for l in 0..4 {
+            first[l] += x[l] * z[l];
+            second[l] += y[l] * z[l];
+        }
+    }
+    let (mut tail_first, mut tail_second) = (0.0, 0.0);
+    for ((x, y), z) in tail_a.iter().zip(tail_b).zip(tail_c) {
+        tail_first += x * z;
+        tail_second += y * z;
+    }
+    (
+        ((first[0] + first[2]) + (first[1] + first[3])) + tail_first,
+        ((second[0] + second[2]) + (second[1] + second[3])) + tail_second,
+    )
+}
+
+/// The first fall of a function through zero on `(from, to]`, from its value `f_from > 0` at `from`: it is
+/// sampled (`value`) at [`FALL_SAMPLES`] equally spaced points, and the root located ([`root`], with `newton`
+/// giving value and slope) in the first interval that ends at a value `<= 0`. `None` if no sample is `<= 0`.
+///
+/// Sampling inside the step keeps a function that falls and rises again within one step from being missed:
+/// with the order rule of [`order_for`] a step stays below about 0.75 of the fastest half-period of these
+/// contacts (`h ≈ K eps^(1/(K+1))/(e ω) < 2.4/ω`, the elastic oscillation `π/ω`), so two samples leave a factor 2.
+pub fn first_fall(
+    value: impl Fn(f64) -> f64,
+    newton: impl Fn(f64) -> (f64, f64),
+    from: f64,
+    to: f64,
+    f_from: f64,
+) -> Option<f64> {
+    let (mut lo, mut f_lo) = (from, f_from);
+    for i in 1..=FALL_SAMPLES {
+        let hi = if i == FALL_SAMPLES { to } else { from + (to - from) * (i as f64 / FALL_SAMPLES as f64) };
+        let f_hi = value(hi);
+        if f_hi <= 0.0 {
+            return Some(root(&newton, lo, hi, f_lo, f_hi));
+        }
+        (lo, f_lo) = (hi, f_hi);
+    }
+    None
+}
+
+/// Points at which [`first_fall`] samples its function.
+const FALL_SAMPLES: usize = 2;
+
+/// The root of `f` in `[lo, hi]`, where `f(lo)` and `f(hi)` have opposite signs (or `f(hi) = 0`).
+///
+/// `f` returns its value and derivative. Newton's method, safeguarded by the bracket (a step that leaves it is
+/// replaced by bisection), started from the secant point; it stops when the bracket or the Newton step is down to
+/// rounding. Converges quadratically on a step's polynomial, where the root is simple.
+pub fn root(f: impl Fn(f64) -> (f64, f64), mut lo: f64, mut hi: f64, f_lo: f64, f_hi: f64) -> f64 {
+    if f_hi == 0.0 {
+        return hi;
+    }
+    if f_lo == 0.0 {
+        return lo;
+    }
+    let rising = f_hi > f_lo;
+    let mut x = lo + (hi - lo) * (f_lo / (f_lo - f_hi));
+    if !(x > lo && x < hi) {
+        x = 0.5 * (lo + hi);
+    }
+    for _ in 0..100 {
+        let (fx, slope) = f(x);
+        if fx == 0.0 {
+            return x;
+        }
+        if (fx > 0.0) == rising {
+            hi = x;
+        } else {
+            lo = x;
+        }
+        let newton = x - fx / slope;
+        let small = 2.0 * f64::EPSILON * x.abs().max(f64::MIN_POSITIVE);
+        if (newton - x).abs() <= small {
+            // Converged: the Newton correction is down to rounding.
+            return newton.clamp(lo, hi);
+        }
+        let next = if newton > lo && newton < hi { newton } else { 0.5 * (lo + hi) };
+        if hi - lo <= small {
+            return next;
+        }
+        x = next;
+    }
+    x
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn horner_value_and_slope() {
+        // 1 + 2σ + 3σ² at σ = 2: 17, slope 2 + 6σ = 14.
+        let c = [1.0, 2.0, 3.0];
+        assert_eq!(value(&c, 2.0), 17.0);
+        assert_eq!(value_and_slope(&c, 2.0), (17.0, 14.0));
+    }
+
+    #[test]
+    fn shift_re_expands() {
+        // (σ)³ about σ = 1: (s + 1)³ = 1 + 3s + 3s² + s³.
+        let mut c = [0.0, 0.0, 0.0, 1.0];
+        shift(&mut c, 1.0);
+        assert_eq!(c, [1.0, 3.0, 3.0, 1.0]);
+    }
+
+    #[test]
+    fn root_finds_cos_zero() {
+        let f = |x: f64| (x.cos(), -x.sin());
+        let r = root(f, 0.0, 3.0, 1.0, 3.0_f64.cos());
+        assert!((r - std::f64::consts::FRAC_PI_2).abs() <= 4e-16, "{r:e}");
+    }
+
+    #[test]
+    fn rough_logarithm_and_power() {
+        for x in [1e-300, 3e-20, 0.01, 0.7, 1.0, 1.5, 2.0, 1234.5, 1e200] {
+            assert!((rough_log2(x) - x.log2()).abs() < 3e-5, "log2 {x}");
+        }
+        assert!((rough_log2(5e-320) - 5e-320_f64.log2()).abs() < 3e-5);
+        for y in [-900.0, -3.7, -1.0, 0.0, 0.3, 1.0, 17.25, 900.0] {
+            assert!((rough_exp2(y) / y.exp2() - 1.0).abs() < 3e-5, "exp2 {y}");
+        }
+    }
+
+    #[test]
+    fn first_fall_finds_the_first_of_two_crossings() {
+        // cos on (0, 5]: falls through zero at pi/2, rises through 3 pi/2; the end value is positive.
+        let f = |x: f64| (x.cos(), -x.sin());
+        let r = first_fall(f64::cos, f, 0.0, 5.0, 1.0).expect("a fall");
+        assert!((r - std::f64::consts::FRAC_PI_2).abs() <= 4e-16);
+        assert_eq!(first_fall(f64::cos, f, 0.0, 1.0, 1.0), None);
+    }
+
+    #[test]
+    fn order_grows_with_accuracy() {
+        assert!(order_for(1e-6) < order_for(1e-10));
+        assert!(order_for(1e-10) < order_for(1e-16));
+        assert!(order_for(1e-30) <= MAX_ORDER);
+    }
+}

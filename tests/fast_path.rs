@@ -1,0 +1,430 @@
+//! The fast path (src/fast) against exact references: physics.md's tables, the closed forms and quadratures of
+//! `impact::reference`, momentum and energy balances, and the general Dop853 path on random scenes.
+
+mod fast_support;
+
+use fast_support::{Case, QUANTITIES, errors, reference_cases};
+use impact::dynamics::Scales;
+use impact::fast::{Ending, FastError, Outcome, Request, covers, simulate_normal};
+use impact::law::{ContactLaw, LawKind, Separation};
+use impact::reference;
+
+fn run(case: &Case, tolerance: f64) -> Outcome {
+    simulate_normal(&case.request(tolerance)).unwrap_or_else(|e| panic!("{}: {e}", case.name()))
+}
+
+fn rel(got: f64, want: f64) -> f64 {
+    ((got - want) / want).abs()
+}
+
+/// A small deterministic generator (xorshift64*), so that the random cases are the same on every run.
+struct Random(u64);
+
+impl Random {
+    fn next(&mut self) -> f64 {
+        self.0 ^= self.0 >> 12;
+        self.0 ^= self.0 << 25;
+        self.0 ^= self.0 >> 27;
+        (self.0.wrapping_mul(0x2545_f491_4f6c_dd1d) >> 11) as f64 / (1u64 << 53) as f64
+    }
+
+    fn uniform(&mut self, low: f64, high: f64) -> f64 {
+        low + (high - low) * self.next()
+    }
+
+    fn log_uniform(&mut self, low: f64, high: f64) -> f64 {
+        (low.ln() + (high.ln() - low.ln()) * self.next()).exp()
+    }
+}
+
+/// physics.md §3 table: x, n, e, dmax/L, t0/T, tc/T, Fmax/F0 (given to 11–13 digits).
+const HUNT_CROSSLEY_TABLE: [[f64; 7]; 5] = [
+    [0.5, 1.5, 0.7484349315974, 0.9777703257171, 1.505190262472, 3.338252755937, 1.03820817965],
+    [2.0, 1.5, 0.410719686061, 0.7949076199716, 1.33112133457, 3.78025803753, 1.10425499427],
+    [0.5, 1.0, 0.7484349315974, 0.8696431079096, 1.437445184309, 3.166389384992, 0.945050174739],
+    [1.0, 2.2, 0.59362426004, 0.9943173787563, 1.468630256523, 3.613729878934, 1.18053806176],
+    [10.0, 1.5, 0.09998162475294, 0.5146945181523, 1.026446744025, 6.458113911715, 1.63632476647],
+];
+
+#[test]
+fn hunt_crossley_matches_the_table_of_physics_md() {
+    for [x, n, e, dmax, t0, tc, fmax] in HUNT_CROSSLEY_TABLE {
+        let out = run(&Case::Hysteresis { x, n }, 1e-10);
+        let got =
+            [-out.end.rate, out.max_compression.penetration, out.max_compression.time, out.end.time, out.peak_force];
+        for (got, want) in got.into_iter().zip([e, dmax, t0, tc, fmax]) {
+            // The table's digits limit the comparison to about 1e-11.
+            assert!(rel(got, want) < 1e-10, "x = {x}, n = {n}: {got} vs {want}");
+        }
+        assert!(out.separated && out.ending == Ending::Separated);
+    }
+}
+
+/// physics.md §3 Tsuji table (6–7 digits): nominal e, dmax/L, tc/T, Fmax/F0, with separation at zero penetration
+/// (where the map gives exactly the nominal e).
+#[test]
+fn tsuji_matches_the_table_of_physics_md() {
+    for [e, dmax, tc, fmax] in
+        [[0.9, 1.049184, 3.253683, 1.076691], [0.5, 0.860991, 3.518532, 0.863967], [0.2, 0.697339, 4.170294, 0.831543]]
+    {
+        let out = run(&Case::Tsuji { e, separation: Separation::Penetration }, 1e-10);
+        assert!(rel(-out.end.rate, e) < 1e-12, "e = {e}: {}", -out.end.rate);
+        assert!(rel(out.max_compression.penetration, dmax) < 1e-6, "e = {e}: dmax");
+        assert!(rel(out.end.time, tc) < 1e-6, "e = {e}: tc {}", out.end.time);
+        assert!(rel(out.peak_force, fmax) < 1e-6, "e = {e}: Fmax");
+    }
+    // Separating where the force returns to zero: nominal 0.5 gives 0.550283 (physics.md).
+    let out = run(&Case::Tsuji { e: 0.5, separation: Separation::Force }, 1e-10);
+    assert!((-out.end.rate - 0.550283).abs() < 1e-6, "{}", -out.end.rate);
+    // The elastic Tsuji contact (a = 0) is Hertz: e = 1, dmax = 1.093362, tc = 3.218065, Fmax = 1.143263.
+    let out = run(&Case::Tsuji { e: 1.0, separation: Separation::Force }, 1e-10);
+    assert!(rel(-out.end.rate, 1.0) < 1e-13);
+    assert!(rel(out.max_compression.penetration, 1.093362) < 1e-6);
+    assert!(rel(out.end.time, 3.218065) < 1e-6);
+    assert!(rel(out.peak_force, 1.143263) < 1e-6);
+}
+
+/// physics.md §3 Kelvin–Voigt values (units of 1/omega0): e and durations at zeta = 0.1 and 0.3 under both
+/// criteria, and critical damping with F = 0 separation, e = exp(-2), duration 2.
+#[test]
+fn kelvin_voigt_matches_physics_md() {
+    for (zeta, separation, e, duration, digits) in [
+        (0.1, Separation::Penetration, 0.7292476143, 3.1574, 1e-4),
+        (0.1, Separation::Force, 0.7440793977, 2.9560753247, 1e-10),
+        (0.3, Separation::Penetration, 0.3723261049, 3.2933, 1e-4),
+        (0.3, Separation::Force, 0.4509754529, 2.6544745638, 1e-10),
+    ] {
+        let out = run(&Case::KelvinVoigt { zeta, separation }, 1e-10);
+        assert!(rel(-out.end.rate, e) < 1e-9, "zeta {zeta} {separation:?}: e {}", -out.end.rate);
+        assert!(rel(out.end.time, duration) < digits, "zeta {zeta} {separation:?}: tc {}", out.end.time);
+    }
+    let out = run(&Case::KelvinVoigt { zeta: 1.0, separation: Separation::Force }, 1e-10);
+    assert!(rel(-out.end.rate, (-2.0_f64).exp()) < 1e-12);
+    assert!(rel(out.end.time, 2.0) < 1e-12);
+}
+
+/// Every reference impact, every measured quantity (e, dmax, t0, tc, Fmax and its time, both impulses, both
+/// works, the dissipated and the elastic energy left) within the requested tolerance.
+#[test]
+fn every_reference_impact_within_the_tolerance() {
+    for (tolerance, bound) in [(1e-6, 1e-6), (1e-10, 1e-10), (1e-13, 2e-13)] {
+        for case in reference_cases() {
+            let out = run(&case, tolerance);
+            let Some(exact) = case.exact() else {
+                // Overdamped Kelvin–Voigt with separation at zero penetration: e = 0, never separates.
+                assert!(!out.separated && out.ending == Ending::NeverSeparates, "{}", case.name());
+                continue;
+            };
+            assert!(out.separated, "{}", case.name());
+            for (error, name) in errors(&out, &exact).into_iter().zip(QUANTITIES) {
+                assert!(error <= bound, "{} at {tolerance:e}: {name} error {error:.2e}", case.name());
+            }
+        }
+    }
+}
+
+/// The rounding floor: at tolerance 1e-16, e, maximum penetration, time of maximum compression, duration and
+/// both impulses within 1e-15 of the exact values for every reference impact. The references are themselves
+/// good to about 1e-15 (a 40-digit quadrature puts the Tsuji e = 0.2, F = 0 duration of `reference::tsuji` 6e-16
+/// off, the fast path's 4e-16 off, on opposite sides), hence the bound 1.5e-15 on the difference.
+#[test]
+fn rounding_floor() {
+    for case in reference_cases() {
+        let Some(exact) = case.exact() else { continue };
+        let out = run(&case, 1e-16);
+        let err = errors(&out, &exact);
+        for i in [0, 1, 2, 3, 6, 7] {
+            assert!(err[i] <= 1.5e-15, "{}: {} error {:.2e}", case.name(), QUANTITIES[i], err[i]);
+        }
+    }
+}
+
+/// Random Hunt–Crossley impacts, x log-uniform in [1e-3, 1e3] and n in [1, 2.5], against the reference
+/// quadratures; and random elastic exponents against the closed form.
+#[test]
+fn random_hysteresis_impacts_agree_with_the_references() {
+    let mut random = Random(0x9e37_79b9_7f4a_7c15);
+    for _ in 0..40 {
+        let (x, n) = (random.log_uniform(1e-3, 1e3), random.uniform(1.0, 2.5));
+        let out = run(&Case::Hysteresis { x, n }, 1e-10);
+        let exact = Case::Hysteresis { x, n }.exact().unwrap();
+        let err = errors(&out, &exact);
+        for (error, name) in err.into_iter().zip(QUANTITIES) {
+            assert!(error <= 1e-9, "x = {x}, n = {n}: {name} error {error:.2e}");
+        }
+    }
+    for _ in 0..10 {
+        let n = random.uniform(0.5, 3.0);
+        let out = run(&Case::Elastic { n }, 1e-10);
+        let exact = reference::hertz_elastic(n);
+        assert!(rel(-out.end.rate, 1.0) < 1e-12, "n = {n}");
+        assert!(rel(out.max_compression.penetration, exact.max_penetration) < 1e-12, "n = {n}");
+        assert!(rel(out.max_compression.time, exact.max_compression_time) < 1e-11, "n = {n}");
+        assert!(rel(out.end.time, exact.duration) < 1e-11, "n = {n}");
+        assert!(rel(out.peak_force, exact.max_force) < 1e-12, "n = {n}");
+        assert!(out.end.dissipated == 0.0 && out.max_compression.dissipated == 0.0);
+    }
+}
+
+/// Random Kelvin–Voigt and Tsuji impacts under both criteria against their closed forms.
+#[test]
+fn random_linear_impacts_agree_with_the_references() {
+    let mut random = Random(0x2545_f491_4f6c_dd1d);
+    for _ in 0..30 {
+        let zeta = random.log_uniform(1e-3, 3.0);
+        let e = random.uniform(0.02, 0.999);
+        for separation in [Separation::Penetration, Separation::Force] {
+            for case in [Case::KelvinVoigt { zeta, separation }, Case::Tsuji { e, separation }] {
+                let out = run(&case, 1e-10);
+                match case.exact() {
+                    Some(exact) => {
+                        for (error, name) in errors(&out, &exact).into_iter().zip(QUANTITIES) {
+                            assert!(error <= 1e-9, "{}: {name} error {error:.2e}", case.name());
+                        }
+                    }
+                    None => assert!(!out.separated, "{}", case.name()),
+                }
+            }
+        }
+    }
+}
+
+/// A lightly damped contact's dissipated energy is accurate relative to itself (physics.md §5): Tsuji with
+/// a = 1e-5, Hunt–Crossley with x = 1e-6, Kelvin–Voigt with zeta = 1e-6.
+#[test]
+fn light_damping_dissipation_is_accurate_relative_to_itself() {
+    // Tsuji, zero-penetration separation: e = exp(-pi zeta/sqrt(1 - zeta²)), zeta = a/sqrt 5, so
+    // (1 - e²)/2 = -expm1(-2 pi zeta/sqrt(1 - zeta²))/2 without cancellation.
+    let a: f64 = 1e-5;
+    let zeta = a / 5.0_f64.sqrt();
+    let request = Request {
+        law: ContactLaw { kind: LawKind::Tsuji, stiffness: 1.0, exponent: 1.5, damping: a, tsuji_scale: 1.0 },
+        scales: Scales::new(1.0, 1.0, 1.5, 1.0),
+        separation: Separation::Penetration,
+        tolerance: 1e-10,
+    };
+    let out = simulate_normal(&request).unwrap();
+    let exact = -(-2.0 * std::f64::consts::PI * zeta / (1.0 - zeta * zeta).sqrt()).exp_m1() / 2.0;
+    assert!(rel(out.end.dissipated, exact) < 1e-9, "Tsuji: {} vs {exact}", out.end.dissipated);
+    // The same for Kelvin–Voigt (c = 2 zeta).
+    let zeta: f64 = 1e-6;
+    let out = run(&Case::KelvinVoigt { zeta, separation: Separation::Penetration }, 1e-10);
+    let exact = -(-2.0 * std::f64::consts::PI * zeta / (1.0 - zeta * zeta).sqrt()).exp_m1() / 2.0;
+    assert!(rel(out.end.dissipated, exact) < 1e-9, "Kelvin–Voigt: {} vs {exact}", out.end.dissipated);
+    // Hunt–Crossley: 1 - e = 2x/3 - 4x²/9 + 44x³/135 - ... (physics.md), (1 - e²)/2 = (1 - e) - (1 - e)²/2.
+    let x: f64 = 1e-6;
+    let one_minus_e = 2.0 * x / 3.0 - 4.0 * x * x / 9.0 + 44.0 * x.powi(3) / 135.0;
+    let exact = one_minus_e - 0.5 * one_minus_e * one_minus_e;
+    let out = run(&Case::Hysteresis { x, n: 1.5 }, 1e-10);
+    assert!(rel(out.end.dissipated, exact) < 1e-9, "Hunt–Crossley: {} vs {exact}", out.end.dissipated);
+    assert!(rel(out.restitution_work, 0.5 * (1.0 - one_minus_e).powi(2)) < 1e-12);
+}
+
+/// The energy balance at a force separation: kinetic energy lost = dissipated + spring energy left, and the
+/// spring energy is where the force's continued expression vanishes (Kelvin–Voigt: d = -c d').
+#[test]
+fn force_separation_leaves_spring_energy() {
+    for zeta in [0.1, 0.6, 2.0] {
+        let out = run(&Case::KelvinVoigt { zeta, separation: Separation::Force }, 1e-10);
+        let lost = 0.5 * (1.0 - out.end.rate * out.end.rate);
+        assert!((out.end.dissipated + out.end.elastic - lost).abs() < 1e-10 * lost, "zeta {zeta}");
+        assert!(rel(out.end.penetration, -2.0 * zeta * out.end.rate) < 1e-12, "zeta {zeta}");
+        assert!(out.end.penetration > 0.0);
+    }
+    // Near zeta = 0.6 the spring energy left is about 9 % of (1/2) m* v0² (physics.md §5).
+    let out = run(&Case::KelvinVoigt { zeta: 0.6, separation: Separation::Force }, 1e-10);
+    assert!((out.end.elastic / 0.5 - 0.09).abs() < 0.01, "{}", out.end.elastic / 0.5);
+}
+
+/// Heavy damping creeps; the integration stays accurate and ends, classified: a penetration separation that
+/// never comes (Kelvin–Voigt and Tsuji with zeta >= 1) is recognised at maximum compression, a huge x separates
+/// accurately.
+#[test]
+fn heavy_damping_ends_classified() {
+    for zeta in [1.0, 1.0 + 1e-9, 5.0] {
+        for case in [
+            Case::KelvinVoigt { zeta, separation: Separation::Penetration },
+            Case::Tsuji { e: 0.0, separation: Separation::Penetration },
+        ] {
+            let mut request = case.request(1e-10);
+            if let Case::Tsuji { .. } = case {
+                request.law.damping = zeta * 5.0_f64.sqrt();
+            }
+            let out = simulate_normal(&request).unwrap();
+            assert!(!out.separated && out.ending == Ending::NeverSeparates, "{}: {:?}", case.name(), out.ending);
+            assert_eq!(out.end, out.max_compression);
+        }
+    }
+    // Just underdamped: it separates, with the tiny e of the closed form exp(-pi zeta/sqrt(1 - zeta²)).
+    let zeta = 0.99;
+    let out = run(&Case::KelvinVoigt { zeta, separation: Separation::Penetration }, 1e-10);
+    let e = (-std::f64::consts::PI * zeta / (1.0 - zeta * zeta).sqrt()).exp();
+    assert!(out.separated && rel(-out.end.rate, e) < 1e-9, "{} vs {e}", -out.end.rate);
+    for x in [1e2, 1e3, 1e4] {
+        let out = run(&Case::Hysteresis { x, n: 1.5 }, 1e-10);
+        let exact = reference::hysteresis_contact(x, 1.5);
+        assert!(out.separated);
+        assert!(rel(-out.end.rate, exact.restitution) < 1e-9, "x = {x}");
+        assert!(rel(out.end.time, exact.duration) < 1e-9, "x = {x}");
+        assert!(rel(out.restitution_impulse, exact.restitution) < 1e-9, "x = {x}");
+    }
+}
+
+#[test]
+fn covers_every_law_but_brilliantov() {
+    use impact::law::catalogue::LAWS;
+    for info in LAWS {
+        let law = ContactLaw { kind: info.kind, stiffness: 1.0, exponent: 1.5, damping: 0.1, tsuji_scale: 1.0 };
+        assert_eq!(covers(&law), info.kind != LawKind::Brilliantov, "{}", info.name);
+    }
+    let brilliantov = Request {
+        law: ContactLaw { kind: LawKind::Brilliantov, stiffness: 1.0, exponent: 1.5, damping: 0.1, tsuji_scale: 0.0 },
+        scales: Scales::new(1.0, 1.0, 1.5, 1.0),
+        separation: Separation::Penetration,
+        tolerance: 1e-10,
+    };
+    assert!(matches!(simulate_normal(&brilliantov), Err(FastError::NotCovered(_))));
+}
+
+#[test]
+fn invalid_requests_are_errors() {
+    let good = Case::Hysteresis { x: 0.5, n: 1.5 }.request(1e-10);
+    let mut scales_of_another_law = good;
+    scales_of_another_law.scales = Scales::new(1.0, 2.0, 1.5, 1.0);
+    let mut negative_damping = good;
+    negative_damping.law.damping = -1.0;
+    let mut no_tolerance = good;
+    no_tolerance.tolerance = 0.0;
+    let mut nan_tolerance = good;
+    nan_tolerance.tolerance = f64::NAN;
+    for request in [scales_of_another_law, negative_damping, no_tolerance, nan_tolerance] {
+        assert!(matches!(simulate_normal(&request), Err(FastError::Invalid(_))), "{request:?}");
+    }
+}
+
+/// Physical units: the same impact of a real pair (steel spheres, Hunt–Crossley x = 0.5) comes out identical in
+/// scaled units whatever the scales.
+#[test]
+fn scaled_outcome_does_not_depend_on_the_units() {
+    let scaled = run(&Case::Hysteresis { x: 0.5, n: 1.5 }, 1e-12);
+    let (mass, stiffness, speed) = (0.0329, 1.6e10, 2.5);
+    let request = Request {
+        law: ContactLaw {
+            kind: LawKind::HuntCrossley,
+            stiffness,
+            exponent: 1.5,
+            damping: 0.5 / speed,
+            tsuji_scale: 0.0,
+        },
+        scales: Scales::new(mass, stiffness, 1.5, speed),
+        separation: Separation::Penetration,
+        tolerance: 1e-12,
+    };
+    let physical = simulate_normal(&request).unwrap();
+    for (a, b) in [
+        (scaled.end.rate, physical.end.rate),
+        (scaled.end.time, physical.end.time),
+        (scaled.max_compression.penetration, physical.max_compression.penetration),
+        (scaled.peak_force, physical.peak_force),
+    ] {
+        assert!(rel(b, a) < 1e-13, "{a} vs {b}");
+    }
+}
+
+mod against_dop853 {
+    //! The general Dop853 path (`impact::impact::simulate`) and the fast path on random scenes of every covered
+    //! law, both criteria, masses, speeds and stiffnesses: the same impact to 1e-10.
+
+    use super::{Random, rel};
+    use impact::fast::{Request, simulate_normal};
+    use impact::history::Recording;
+    use impact::impact::simulate;
+    use impact::scene::Scene;
+    use impact::setup::Setup;
+    use std::path::Path;
+
+    const LAWS: [&str; 13] = [
+        "hertz",
+        "kelvin-voigt",
+        "hunt-crossley",
+        "herbert-mcwhannell",
+        "lee-wang",
+        "lankarani-nikravesh",
+        "gonthier",
+        "zhiying-qishao",
+        "flores",
+        "gharib-hurmuzlu",
+        "hu-guo",
+        "carvalho-martins",
+        "tsuji",
+    ];
+
+    #[test]
+    fn random_scenes_agree() {
+        let mut random = Random(0x1234_5678_9abc_def1);
+        let mut worst: f64 = 0.0;
+        for round in 0..3 {
+            for (i, law) in LAWS.iter().enumerate() {
+                let separation = if (round + i) % 2 == 0 { "penetration" } else { "force" };
+                let mass = random.log_uniform(1e-3, 10.0);
+                let speed = random.log_uniform(0.1, 10.0);
+                let stiffness = random.log_uniform(1e5, 1e10);
+                let restitution = random.uniform(0.3, 0.95);
+                let damping = if *law == "hertz" { String::new() } else { format!("restitution = {restitution}\n") };
+                // Kelvin–Voigt is linear (exponent 1); a numeric stiffness with n = 1.5 elsewhere.
+                let wall = round == 1;
+                let text = format!(
+                    "[[bodies]]\nradius = 0.01\nmass = {mass}\nvelocity = [{speed}, 0, 0]\n\n[[bodies]]\n\
+                     radius = {}\nmass = {}\nvelocity = [0, 0, 0]\n\n[contact]\nlaw = \"{law}\"\nstiffness = {stiffness}\n\
+                     {damping}separation = \"{separation}\"\n\n[solver]\nrtol = 1e-12\natol = 1e-14\n",
+                    if wall { "inf".to_string() } else { "0.02".to_string() },
+                    if wall { "inf".to_string() } else { format!("{}", 2.0 * mass) },
+                );
+                let scene = Scene::parse(&text, Path::new("random.toml")).unwrap_or_else(|e| panic!("{e}\n{text}"));
+                let report = simulate(&scene, Recording::Off).expect("Dop853 path").report;
+                let setup = Setup::new(&scene).expect("setup");
+                let request = Request {
+                    law: setup.law,
+                    scales: setup.scales,
+                    separation: scene.contact.separation,
+                    tolerance: 1e-10,
+                };
+                let out = simulate_normal(&request).expect("fast path");
+                let s = setup.scales;
+                let c = &report.contact;
+                assert_eq!(out.separated, c.separated, "{law}: {text}");
+                let start = c.start_time;
+                let mut pairs = vec![
+                    ("dmax", out.max_compression.penetration * s.length, c.max_penetration),
+                    ("t0", out.max_compression.time * s.time, c.max_compression_time - start),
+                    ("Fmax", out.peak_force * s.force, c.max_force),
+                    ("Jd", out.max_compression.impulse * s.impulse, c.deformation_impulse),
+                ];
+                if c.separated {
+                    pairs.extend([
+                        ("e", -out.end.rate, c.restitution_velocity_ratio.unwrap()),
+                        ("tc", out.end.time * s.time, c.duration.unwrap()),
+                        ("Jr", out.restitution_impulse * s.impulse, c.restitution_impulse.unwrap()),
+                    ]);
+                }
+                if *law != "hertz" {
+                    pairs.push(("D", out.end.dissipated * s.energy, report.energy.dissipated.unwrap()));
+                }
+                for (name, fast, dop) in pairs {
+                    worst = worst.max(rel(fast, dop));
+                    assert!(rel(fast, dop) < 1e-10, "{law} ({separation}): {name} {fast} vs {dop}\n{text}");
+                }
+                // The force peak's time: where the peak is flat, its time is sensitive (the force changes to
+                // second order only): agreement to 1e-7 of the contact time.
+                let peak_time = out.peak_force_time * s.time;
+                let dop_peak_time = c.max_force_time - start;
+                let span = c.duration.unwrap_or(c.max_compression_time - start);
+                assert!(
+                    (peak_time - dop_peak_time).abs() < 1e-7 * span,
+                    "{law}: peak time {peak_time} vs {dop_peak_time}"
+                );
+            }
+        }
+        println!("largest relative difference from the Dop853 path: {worst:.1e}");
+    }
+}
