@@ -13,7 +13,7 @@ use crate::dynamics::{ContactModel, Snapshot};
 use crate::history::{History, Recording};
 use crate::integrate::{Counters, Crossing, Direction, Ending, Event, IntegrationError, State, Stepper};
 use crate::report::Report;
-use crate::scene::Scene;
+use crate::scene::{Method, Scene};
 use crate::setup::{Motion, Setup, SetupError};
 use std::time::Instant;
 
@@ -60,8 +60,14 @@ pub struct Outcome {
     pub switches: u32,
     /// The integrator's work for the impact itself (before any resampling).
     pub counters: Counters,
-    /// The path that ran (`dop853`, ...).
+    /// The path that ran (`dop853`, `taylor`).
     pub method: &'static str,
+    /// The restitution impulse (N s) and the energy returned in restitution (J), when the path integrated them on
+    /// their own from maximum compression (accurate relative to themselves when e is small); otherwise they are the
+    /// differences of the snapshots' integrals.
+    pub restitution: Option<(f64, f64)>,
+    /// Why the path that ran did not separate the bodies, when it says more than `ending` (a note for the report).
+    pub note: Option<String>,
 }
 
 /// What a run computes beyond the impact itself.
@@ -96,9 +102,46 @@ pub fn simulate_prepared(
 ) -> Result<Simulation, SimulationError> {
     let recording = options.recording;
     let setup = *setup;
-    let (outcome, history) = match setup.motion {
-        Motion::Normal => run(&NormalContact::new(&scene.bodies, &setup), scene, setup.contact_time, recording)?,
-        Motion::Full => run(&PairContact::new(&scene.bodies, &setup), scene, setup.contact_time, recording)?,
+    let method = scene.solver.method;
+    let covered = setup.motion == Motion::Normal && crate::fast::covers(&setup.law);
+    if method == Method::Taylor && !covered {
+        return Err(SimulationError::Setup(SetupError {
+            key: "solver.method".into(),
+            message: if setup.motion != Motion::Normal {
+                "the taylor path integrates the normal contact alone: this impact needs the 3-D model (an oblique \
+                 impact of two spheres, or friction with slip); use \"auto\" or \"dop853\""
+                    .into()
+            } else {
+                format!(
+                    "the taylor path does not cover the `{}` law (its force is not smoothed by the regularisation); \
+                     use \"auto\" or \"dop853\"",
+                    setup.law.kind.name()
+                )
+            },
+        }));
+    }
+    // `auto` takes the fast path whenever it covers the scene and no history is asked for (it has no dense output:
+    // a history comes from Dop853, so that every view of one run is one solution). Asked for by name, it gives the
+    // report and Dop853 the history.
+    let fast = match method {
+        Method::Taylor => true,
+        Method::Auto => covered && recording == Recording::Off,
+        Method::Dop853 => false,
+    };
+    let normal = NormalContact::new(&scene.bodies, &setup);
+    let fast_outcome = if fast { Some(fast_outcome(&normal, scene, &setup)) } else { None };
+    let (outcome, history) = match (fast_outcome, setup.motion) {
+        (Some(Ok(outcome)), _) if recording == Recording::Off => (outcome, None),
+        (Some(Ok(outcome)), _) => (outcome, run(&normal, scene, setup.contact_time, recording)?.1),
+        (Some(Err(error)), _) if method == Method::Taylor => {
+            return Err(SimulationError::Integration(IntegrationError::Solver {
+                time: 0.0,
+                reason: error.to_string(),
+            }));
+        }
+        // (`auto` falls back on the general path if the fast one cannot finish.)
+        (_, Motion::Normal) => run(&normal, scene, setup.contact_time, recording)?,
+        (_, Motion::Full) => run(&PairContact::new(&scene.bodies, &setup), scene, setup.contact_time, recording)?,
     };
     let report = crate::report::build(scene, &setup, &outcome, options.reference, clock.elapsed().as_secs_f64());
     Ok(Simulation { report, history })
@@ -181,6 +224,8 @@ fn run<const N: usize, M: ContactModel<N>>(
         switches: phases.switches,
         counters: stepper.counters,
         method: "dop853",
+        restitution: None,
+        note: None,
     };
     let history = match recording {
         Recording::Off => None,
@@ -191,6 +236,57 @@ fn run<const N: usize, M: ContactModel<N>>(
         }
     };
     Ok((outcome, history))
+}
+
+/// The normal impact through the fast path ([`crate::fast`]), as an [`Outcome`] of the normal model's snapshots.
+fn fast_outcome(model: &NormalContact, scene: &Scene, setup: &Setup) -> Result<Outcome, crate::fast::FastError> {
+    use crate::dynamics::normal::{SIZE, index};
+    use crate::fast::{Ending as FastEnding, PhasePoint, Request};
+    let request = Request {
+        law: setup.law,
+        scales: setup.scales,
+        separation: scene.contact.separation,
+        tolerance: scene.solver.tolerances.rtol,
+    };
+    let fast = crate::fast::simulate_normal(&request)?;
+    let s = &setup.scales;
+    let snapshot = |point: &PhasePoint| {
+        let mut y = State::<SIZE>::zeros();
+        y[index::PENETRATION] = point.penetration;
+        y[index::RATE] = point.rate;
+        y[index::IMPULSE] = point.impulse;
+        y[index::WORK] = point.work;
+        y[index::DISSIPATED] = point.dissipated / model.dissipation_scale;
+        model.snapshot(point.time, &y)
+    };
+    let (ending, note) = match fast.ending {
+        FastEnding::Separated => (Ending::Event(0), None),
+        FastEnding::Settled => (Ending::Event(1), None),
+        FastEnding::NeverSeparates => (
+            Ending::Event(1),
+            Some(
+                "the bodies did not separate, and never will: the damping is at or above critical (zeta >= 1) and the contact ends \
+                 at zero penetration, which an overdamped linear motion never returns to (decided at maximum \
+                 compression)"
+                    .to_string(),
+            ),
+        ),
+        FastEnding::StepBudget => (Ending::GaveUp("the fast path's step budget was spent".into()), None),
+        FastEnding::TimeLimit => (Ending::TimeLimit, None),
+    };
+    Ok(Outcome {
+        max_compression: snapshot(&fast.max_compression),
+        end: snapshot(&fast.end),
+        peak_force: (fast.peak_force_time * s.time, fast.peak_force * s.force),
+        separated: fast.separated,
+        ending,
+        stick_duration: 0.0,
+        switches: 0,
+        counters: Counters { steps: fast.steps, rejected_steps: 0, evaluations: fast.force_evaluations },
+        method: "taylor",
+        restitution: Some((fast.restitution_impulse * s.impulse, fast.restitution_work * s.energy)),
+        note,
+    })
 }
 
 /// An event where `function` falls through zero.

@@ -376,12 +376,13 @@ mod against_dop853 {
                 let text = format!(
                     "[[bodies]]\nradius = 0.01\nmass = {mass}\nvelocity = [{speed}, 0, 0]\n\n[[bodies]]\n\
                      radius = {}\nmass = {}\nvelocity = [0, 0, 0]\n\n[contact]\nlaw = \"{law}\"\nstiffness = {stiffness}\n\
-                     {damping}separation = \"{separation}\"\n\n[solver]\nrtol = 1e-12\natol = 1e-14\n",
+                     {damping}separation = \"{separation}\"\n\n[solver]\nmethod = \"dop853\"\nrtol = 1e-12\natol = 1e-14\n",
                     if wall { "inf".to_string() } else { "0.02".to_string() },
                     if wall { "inf".to_string() } else { format!("{}", 2.0 * mass) },
                 );
                 let scene = Scene::parse(&text, Path::new("random.toml")).unwrap_or_else(|e| panic!("{e}\n{text}"));
                 let report = simulate(&scene, Recording::Off).expect("Dop853 path").report;
+                assert_eq!(report.solver.method, "dop853", "the comparison is with the general path");
                 let setup = Setup::new(&scene).expect("setup");
                 let request = Request {
                     law: setup.law,
@@ -426,5 +427,73 @@ mod against_dop853 {
             }
         }
         println!("largest relative difference from the Dop853 path: {worst:.1e}");
+    }
+}
+
+/// The report a user gets (`auto`, which takes the fast path for a normal impact of a covered law) against the report
+/// of the general Dop853 path at tight tolerances: every number of the contact, energy and velocities.
+#[test]
+fn auto_reports_agree_with_the_general_path() {
+    use impact::history::Recording;
+    use impact::impact::simulate;
+    use impact::scene::Scene;
+    use std::path::Path;
+    let laws = [
+        "law = \"hertz\"",
+        "law = \"hunt-crossley\"\nrestitution = 0.6",
+        "law = \"lankarani-nikravesh\"\nrestitution = 0.8\nstiffness = 1e9\nexponent = 2.2",
+        "law = \"flores\"\nrestitution = 0.3",
+        "law = \"carvalho-martins\"\nrestitution = 0.05",
+        "law = \"kelvin-voigt\"\nrestitution = 0.5\nstiffness = 1e6",
+        "law = \"tsuji\"\nrestitution = 0.7",
+    ];
+    for law in laws {
+        for separation in ["penetration", "force"] {
+            let text = |method: &str| {
+                format!(
+                    "[[bodies]]\nradius = 0.01\nmass = 0.03\nvelocity = [1.2, 0.4, 0.0]\nyoung = 2e11\npoisson = 0.3\n\n\
+                     [[bodies]]\nradius = inf\nmass = inf\nvelocity = [-0.3, 0.0, 0.0]\nyoung = inf\n\n[contact]\n{law}\n\
+                     separation = \"{separation}\"\n\n[solver]\nmethod = \"{method}\"\n{}",
+                    if method == "dop853" { "rtol = 1e-12\natol = 1e-14\n" } else { "" }
+                )
+            };
+            let run = |method: &str| {
+                let scene = Scene::parse(&text(method), Path::new("agree.toml")).unwrap();
+                simulate(&scene, Recording::Off).unwrap().report
+            };
+            let (fast, general) = (run("auto"), run("dop853"));
+            assert_eq!((fast.solver.method.as_str(), general.solver.method.as_str()), ("taylor", "dop853"));
+            let (f, g) = (&fast.contact, &general.contact);
+            let close = |what: &str, a: f64, b: f64, scale: f64| {
+                assert!((a - b).abs() <= 1e-9 * scale, "{law}, {separation}: {what} {a} against {b}");
+            };
+            let v0 = fast.approach_speed;
+            let impulse = fast.effective_mass * v0;
+            let energy = fast.energy.kinetic_before;
+            close("e", f.restitution_velocity_ratio.unwrap(), g.restitution_velocity_ratio.unwrap(), 1.0);
+            close("Poisson e", f.restitution_impulse_ratio.unwrap(), g.restitution_impulse_ratio.unwrap(), 1.0);
+            close("dmax", f.max_penetration, g.max_penetration, g.max_penetration);
+            close("t0", f.max_compression_time, g.max_compression_time, g.duration.unwrap());
+            close("tc", f.duration.unwrap(), g.duration.unwrap(), g.duration.unwrap());
+            close("Fmax", f.max_force, g.max_force, g.max_force);
+            close("V0", f.common_normal_velocity, g.common_normal_velocity, v0);
+            close("Jd", f.deformation_impulse, g.deformation_impulse, impulse);
+            close("Jr", f.restitution_impulse.unwrap(), g.restitution_impulse.unwrap(), impulse);
+            close("kinetic after", fast.energy.kinetic_after.unwrap(), general.energy.kinetic_after.unwrap(), energy);
+            close("dissipated", fast.energy.dissipated.unwrap(), general.energy.dissipated.unwrap(), energy);
+            let left =
+                (fast.energy.elastic_left_at_separation.unwrap(), general.energy.elastic_left_at_separation.unwrap());
+            close("elastic left", left.0, left.1, energy);
+            let work =
+                (fast.energy.work_of_immovable_bodies.unwrap(), general.energy.work_of_immovable_bodies.unwrap());
+            close("work of the wall", work.0, work.1, energy);
+            for i in 0..2 {
+                for j in 0..3 {
+                    let (a, b) =
+                        (fast.bodies[i].velocity_after.unwrap()[j], general.bodies[i].velocity_after.unwrap()[j]);
+                    close("velocity after", a, b, v0);
+                }
+            }
+        }
     }
 }

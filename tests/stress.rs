@@ -13,13 +13,23 @@ fn creeping_restitution_ends_with_a_note_within_the_step_budget() {
         "law = \"kelvin-voigt\"\ndamping = 1e6\nstiffness = 1e6",
         "law = \"brilliantov\"\ndamping = 10\nstiffness = 1e6",
     ] {
-        let report = on_wall(1.0, 1.0, contact);
+        // (The general path: the fast one follows x = 1e6 to its separation, below.)
+        let report = on_wall(1.0, 1.0, &format!("{contact}\n\n[solver]\nmethod = \"dop853\""));
         assert!(!report.contact.separated, "{contact}");
         let work = report.solver.steps + report.solver.rejected_steps;
         assert!(work <= STEP_BUDGET + 1000, "{contact}: {work} steps");
         assert!(report.notes.iter().any(|n| n.contains("did not separate")), "{contact}: {:?}", report.notes);
         assert!(report.contact.max_penetration.is_finite() && report.contact.max_force.is_finite());
     }
+}
+
+#[test]
+fn the_fast_path_follows_a_creeping_restitution_to_its_end() {
+    // x = 1e6: 1 - e x = (1 + x) exp(-x (1 + e)) is below 1e-400000, so e = 1/x to double precision.
+    let report = on_wall(1.0, 1.0, "law = \"hunt-crossley\"\ndamping = 1e6\nstiffness = 1e6");
+    assert_eq!(report.solver.method, "taylor");
+    assert!(report.contact.separated);
+    assert_close("e", report.contact.restitution_velocity_ratio.unwrap(), 1e-6, 1e-3);
 }
 
 #[test]

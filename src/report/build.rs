@@ -22,9 +22,9 @@ pub fn build(scene: &Scene, setup: &Setup, outcome: &Outcome, detail: ReferenceD
     let done = outcome.separated;
     let when = |value: f64| done.then_some(value);
     let deformation_impulse = max.normal_impulse;
-    let restitution_impulse = end.normal_impulse - deformation_impulse;
     let compression_work = max.normal_work;
-    let restitution_work = compression_work - end.normal_work;
+    let (restitution_impulse, restitution_work) =
+        outcome.restitution.unwrap_or((end.normal_impulse - deformation_impulse, compression_work - end.normal_work));
     let e_velocity = -end.rate / setup.approach_speed;
     // V0 read off a movable body's simulated velocity (its error is the impulse integral's).
     let moving = if a.is_immovable() { 1 } else { 0 };
@@ -79,7 +79,7 @@ pub fn build(scene: &Scene, setup: &Setup, outcome: &Outcome, detail: ReferenceD
     let fixed_normal = setup.motion == Motion::Normal || a.is_flat() || b.is_flat();
     let mut notes = Vec::new();
     if !done {
-        notes.push(stuck_note(outcome));
+        notes.push(outcome.note.clone().unwrap_or_else(|| stuck_note(outcome)));
     }
     let oblique = oblique(scene, setup, outcome, e_velocity, friction_work);
     if let Some(turn) = oblique.as_ref().and_then(|o| o.normal_turn_deg).filter(|_| !fixed_normal) {

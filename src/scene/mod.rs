@@ -78,11 +78,15 @@ pub enum Method {
     Auto,
     /// The general `ode_solvers` Dop853 path, always available.
     Dop853,
+    /// The Taylor-series integrator of the regularised normal contact (`crate::fast`): the 1-D normal impact of
+    /// every law but Brilliantov's.
+    Taylor,
 }
 
 impl Method {
     /// Every method, by its scene spelling.
-    pub const ALL: [(&'static str, Method); 2] = [("auto", Method::Auto), ("dop853", Method::Dop853)];
+    pub const ALL: [(&'static str, Method); 3] =
+        [("auto", Method::Auto), ("dop853", Method::Dop853), ("taylor", Method::Taylor)];
 
     /// The scene spelling.
     pub fn name(self) -> &'static str {
