@@ -15,7 +15,7 @@
 //!   maximum compression `v = 0` and the force peak `dF/dτ = 0` inside the step; the separation `w = 0`, or for
 //!   the laws that turn tensile under `separation = "force"` the zero of the force's continued expression
 //!   `w + c v`, where the step is cut.
-//! * **Time** (`quadrature.rs`). `t = ∫ w^(-γ) dτ` per step: exact singular series at the zeros of `w` (first
+//! * **Time** (`quadrature.rs`). `t = ∫ w^(-γ) dτ` per step: Gauss–Jacobi at the zeros of `w` (first
 //!   contact, penetration separation), Gauss–Legendre elsewhere with the nodes the distance to those zeros
 //!   asks for; steps are kept within twice their distance to a zero.
 //! * **Endings**: separation; `NeverSeparates` for an overdamped linear law with separation at zero penetration
@@ -32,7 +32,7 @@ mod taylor;
 
 use crate::dynamics::Scales;
 use crate::law::{ContactLaw, Family, Separation};
-use quadrature::{MAX_NODES, SingularSeries, gauss_power, nodes_needed};
+use quadrature::{JacobiRules, MAX_NODES, gauss_power, jacobi_sum, negative_power, nodes_needed};
 use regularised::{Expansion, Regularised, State};
 
 /// One normal impact to integrate.
@@ -155,7 +155,7 @@ pub fn simulate_normal(request: &Request) -> Result<Outcome, FastError> {
 #[derive(Default)]
 struct Workspace {
     expansion: Expansion,
-    series: SingularSeries,
+    jacobi: JacobiRules,
 }
 
 thread_local! {
@@ -224,24 +224,27 @@ const XI_MIN: f64 = 2.0;
 /// Which rule gives the time over a piece of a step.
 #[derive(Debug, Clone, Copy)]
 enum Piece {
-    /// The step starts at `w = 0` (first contact).
-    FromZero,
+    /// The step starts at `w = 0` (first contact); `right` is the offset of the next zero of `w` (an estimate,
+    /// or a lower bound).
+    FromZero { right: f64 },
     /// The step reaches `w = 0` at offset `zero`.
     ToZero { zero: f64 },
     /// `w > 0` over the step; `right` is the offset of the next zero of `w` (an estimate, or a lower bound).
     Inside { right: f64 },
 }
 
-/// A piece's time rule, set up once per step and asked for the time between offsets. The singular series live
-/// in [`Run::series`] (set up by [`Run::time_rule`]).
+/// A step's time rule, set up once per step and asked for the time from the step's start to offsets. The
+/// polynomial `Q` of the Gauss–Jacobi rules lives in [`Run::end_factor`] (set up by [`Run::time_rule`]).
 #[derive(Debug, Clone, Copy)]
 enum TimeRule {
     /// `γ = 0`: `t = τ`.
     Identity,
-    /// The series about the step's start, where `w = 0`.
-    FromZero,
-    /// The series about the zero of `w` at offset `zero`.
-    ToZero { zero: f64 },
+    /// The step starts where `w = 0`: `w = σ Q(σ)`; the time to `σ` is Gauss–Jacobi on `[0, σ]`. `right` is the
+    /// offset of the next zero of `w`.
+    FromZero { right: f64 },
+    /// `w = 0` at offset `zero`: `w = (zero - σ) Q(σ)`; the time from `σ` to the zero is Gauss–Jacobi on
+    /// `[σ, zero]`, `total` that from the step's start. `left` is the offset of the zero at first contact.
+    ToZero { zero: f64, left: f64, total: f64 },
     /// Gauss–Legendre; `left` and `right` are the offsets of the zeros of `w` on either side.
     Inside { left: f64, right: f64 },
 }
@@ -262,8 +265,10 @@ struct Run<'a> {
     expansion: &'a mut Expansion,
     /// Whether the run is past maximum compression (the step size then also measures v against itself).
     restituting: bool,
-    /// The singular time series of the current step (reused: no allocation per step).
-    series: &'a mut SingularSeries,
+    /// The Gauss–Jacobi rules of this `γ` (computed once per thread and `γ`).
+    jacobi: &'a mut JacobiRules,
+    /// `Q` of the current step's [`TimeRule::FromZero`] or [`TimeRule::ToZero`].
+    end_factor: taylor::Coefficients,
     steps: u64,
     /// Largest compressive force so far and its time.
     peak: (f64, f64),
@@ -282,7 +287,8 @@ impl<'a> Run<'a> {
             time: 0.0,
             time_carry: 0.0,
             expansion: &mut workspace.expansion,
-            series: &mut workspace.series,
+            jacobi: &mut workspace.jacobi,
+            end_factor: [0.0; taylor::MAX_ORDER + 1],
             restituting: false,
             steps: 0,
             peak: (0.0, 0.0),
@@ -360,8 +366,8 @@ impl<'a> Run<'a> {
         taylor::first_fall(value, |s| taylor::value_and_slope(w, s), from, 4.0 * h, w_from).unwrap_or(4.0 * h)
     }
 
-    /// Sets up the time rule of a piece of the current step; `None` if its singular series cannot be formed
-    /// (a zero of `w` with zero slope).
+    /// Sets up the time rule of a piece of the current step; `None` if it cannot reach the accuracy (a zero of
+    /// `w` with zero slope, or too near another zero: the caller shortens the step).
     fn time_rule(&mut self, piece: Piece) -> Option<TimeRule> {
         let gamma = self.system.time_exponent;
         if gamma == 0.0 {
@@ -369,43 +375,77 @@ impl<'a> Run<'a> {
         }
         let k = self.order;
         match piece {
-            Piece::FromZero => {
+            Piece::FromZero { right } => {
                 // w = σ Q(σ): Q_j = w_{j+1}.
-                self.series.reset(&self.expansion.w[1..=k], gamma).then_some(TimeRule::FromZero)
+                self.end_factor[..k].copy_from_slice(&self.expansion.w[1..=k]);
+                (self.end_factor[0] > 0.0).then_some(TimeRule::FromZero { right })
             }
             Piece::ToZero { zero } => {
-                // w about the zero, in s = zero - σ: w = s Q(s), Q_j = (-1)^(j+1) c_{j+1}(zero).
-                let mut c = self.expansion.w;
-                taylor::shift(&mut c[..=k], zero);
-                let mut q = [0.0; taylor::MAX_ORDER + 1];
-                for j in 0..k {
-                    q[j] = if j % 2 == 0 { -c[j + 1] } else { c[j + 1] };
+                // w = (σ - zero) R(σ) + w(zero), w(zero) = 0 to rounding: R by synthetic division from the top
+                // (it sums the tails Σ_{i>j} c_i zero^(i-j-1) of a convergent series, without cancellation).
+                // Q = -R > 0 (w falls through its zero).
+                let c = &self.expansion.w;
+                let mut r = c[k];
+                self.end_factor[k - 1] = -r;
+                for j in (1..k).rev() {
+                    r = c[j] + zero * r;
+                    self.end_factor[j - 1] = -r;
                 }
-                self.series.reset(&q[..k], gamma).then_some(TimeRule::ToZero { zero })
+                if !(self.end_factor[..k].iter().rev().fold(0.0, |acc, &q| acc * zero + q) > 0.0) {
+                    return None;
+                }
+                let left = -self.tau;
+                let total = self.time_to_zero(zero, left, 0.0)?;
+                Some(TimeRule::ToZero { zero, left, total })
             }
             Piece::Inside { right } => Some(TimeRule::Inside { left: -self.tau, right }),
         }
     }
 
-    /// Physical time between offsets `a < b` of the current step; `None` if the rule cannot reach the accuracy
-    /// (the caller shortens the step).
-    fn time_between(&mut self, rule: TimeRule, a: f64, b: f64) -> Option<f64> {
-        let eps = self.eps;
+    /// `∫_σ^zero w^(-γ)` for the [`TimeRule::ToZero`] set up in [`Run::end_factor`], `left` the other zero.
+    fn time_to_zero(&mut self, zero: f64, left: f64, sigma: f64) -> Option<f64> {
+        let length = zero - sigma;
+        if length <= 0.0 {
+            return Some(0.0);
+        }
+        let xi = (sigma + zero - 2.0 * left) / length;
+        self.jacobi_piece(xi, zero, -length)
+    }
+
+    /// `|span|^(1-γ) Σ W_i Q(start + span s_i)^(-γ)`: the Gauss–Jacobi sum of [`Run::end_factor`] on the
+    /// interval from the zero `start` over `span`, with the nodes a singularity at `xi` (half-lengths from the
+    /// interval's centre) asks for.
+    fn jacobi_piece(&mut self, xi: f64, start: f64, span: f64) -> Option<f64> {
+        let gamma = self.system.time_exponent;
+        let m = nodes_needed(xi, self.eps);
+        if m > MAX_NODES {
+            return None;
+        }
+        let (nodes, weights) = self.jacobi.rule(gamma, m);
+        let sum = jacobi_sum(&self.end_factor[..self.order], gamma, start, span, nodes, weights)?;
+        Some(negative_power(span.abs(), gamma - 1.0) * sum)
+    }
+
+    /// Physical time from the step's start to offset `b`, given that to offset `a <= b` (`elapsed`); `None` if
+    /// the rule cannot reach the accuracy (the caller shortens the step).
+    fn time_to(&mut self, rule: TimeRule, a: f64, b: f64, elapsed: f64) -> Option<f64> {
         match rule {
-            _ if b == a => Some(0.0),
-            TimeRule::Identity => Some(b - a),
-            TimeRule::FromZero => Some(self.series.integral(b, eps)? - self.series.integral(a, eps)?),
-            TimeRule::ToZero { zero } => {
-                Some(self.series.integral(zero - a, eps)? - self.series.integral((zero - b).max(0.0), eps)?)
+            _ if b == a => Some(elapsed),
+            TimeRule::Identity => Some(elapsed + (b - a)),
+            TimeRule::FromZero { right } => {
+                // The other singularity, the next zero, at (right - b/2)/(b/2) half-lengths.
+                let xi = 2.0 * right / b - 1.0;
+                self.jacobi_piece(xi, 0.0, b)
             }
+            TimeRule::ToZero { zero, left, total } => Some(total - self.time_to_zero(zero, left, b)?),
             TimeRule::Inside { left, right } => {
                 let distance = (a - left).min(right - b);
                 let xi = 1.0 + 2.0 * distance / (b - a);
-                let m = nodes_needed(xi, eps);
+                let m = nodes_needed(xi, self.eps);
                 if m > MAX_NODES {
                     return None;
                 }
-                gauss_power(self.w(), self.system.time_exponent, a, b, m)
+                Some(elapsed + gauss_power(self.w(), self.system.time_exponent, a, b, m)?)
             }
         }
     }
@@ -485,7 +525,7 @@ impl<'a> Run<'a> {
                 let restitution_from = if compressing { turn } else { Some(0.0) };
                 let zero = restitution_from.and_then(|a| fall(w, a, taylor::value(w, a)));
                 if from_zero && zero.is_some() {
-                    // The whole contact in one step: the time series about first contact would have to reach the
+                    // The whole contact in one step: the time rule about first contact would have to reach the
                     // other zero of w. Two steps at least.
                     self.shrink(&mut shrinks)?;
                     h = 0.5 * zero.unwrap_or(h);
@@ -495,7 +535,7 @@ impl<'a> Run<'a> {
                     (Some(zero), _) => zero,
                     (None, Some(_)) => {
                         // The next zero beyond the step: if near, end this step early enough for the Gauss rule
-                        // (`ξ >= XI_MIN`); the next step reaches the zero with the singular series.
+                        // (`ξ >= XI_MIN`); the next step reaches the zero with the Gauss–Jacobi rule.
                         let right = self.next_zero(h, h);
                         let limit = 2.0 * right / (XI_MIN + 1.0);
                         if limit < h {
@@ -524,7 +564,9 @@ impl<'a> Run<'a> {
                 };
                 let end = force_zero.or(zero).unwrap_or(h);
                 let piece = if from_zero {
-                    Piece::FromZero
+                    // With no zero found past a turn in this step, the next lies beyond twice the turn (restitution
+                    // is never shorter in τ than compression), so beyond 2h.
+                    Piece::FromZero { right: if right.is_finite() { right } else { 2.0 * h } }
                 } else if let Some(zero) = zero {
                     Piece::ToZero { zero }
                 } else {
@@ -556,12 +598,12 @@ impl<'a> Run<'a> {
                     let mut at_mark = [None, None];
                     for (slot, mark) in at_mark.iter_mut().zip(marks) {
                         if let Some(to) = mark {
-                            elapsed += self.time_between(rule, from, to)?;
+                            elapsed = self.time_to(rule, from, to, elapsed)?;
                             from = to;
                             *slot = Some((to, elapsed));
                         }
                     }
-                    let dt = elapsed + self.time_between(rule, from, end)?;
+                    let dt = self.time_to(rule, from, end, elapsed)?;
                     let find = |event: Option<f64>| at_mark.into_iter().flatten().find(|&(at, _)| Some(at) == event);
                     Some((dt, find(turn), find(peak_at)))
                 });
@@ -639,23 +681,22 @@ mod tests {
     use super::*;
     use crate::law::LawKind;
 
-    /// The first step's time series (about first contact, where `w = 0`) against an independent quadrature of
-    /// the same polynomial: `τ = s^5` turns `∫ τ^(-1/5) Q(τ)^(-1/5) dτ` into the smooth `∫ 5 s³ Q(s^5)^(-1/5) ds`,
-    /// summed by composite Gauss–Legendre. Hunt–Crossley x = 0.5, n = 3/2, whose `r_4` vanishes by accident
-    /// (a sum that stopped at two small terms was off by 2e-8 here).
+    /// The first step's time (from first contact, where `w = 0`), by the Gauss–Jacobi sum of `Q = w/σ`, against an
+    /// independent quadrature of the same polynomial: `τ = s^5` turns `∫ τ^(-1/5) Q(τ)^(-1/5) dτ` into the smooth
+    /// `∫ 5 s³ Q(s^5)^(-1/5) ds`, summed by composite Gauss–Legendre. Hunt–Crossley x = 0.5, n = 3/2.
     #[test]
-    fn first_step_series_agrees_with_a_smooth_quadrature() {
+    fn first_step_time_agrees_with_a_smooth_quadrature() {
         let law =
             ContactLaw { kind: LawKind::HuntCrossley, stiffness: 1.0, exponent: 1.5, damping: 0.5, tsuji_scale: 0.0 };
         let system = Regularised::new(&law, &Scales::new(1.0, 1.0, 1.5, 1.0)).unwrap();
         let mut e = Expansion::default();
         system.expand(&State::FIRST_CONTACT, 20, &mut e);
         let q = &e.w[1..=20];
-        let mut series = SingularSeries::default();
-        assert!(series.reset(q, 0.2));
+        let mut rules = JacobiRules::default();
         let (nodes, weights) = quadrature::gauss_legendre(24);
         for h in [0.1, 0.2, 0.3] {
-            let got = series.integral(h, 1e-17).unwrap();
+            let (jacobi_nodes, jacobi_weights) = rules.rule(0.2, 16);
+            let got = negative_power(h, -0.8) * jacobi_sum(q, 0.2, 0.0, h, jacobi_nodes, jacobi_weights).unwrap();
             let top = h.powf(0.2);
             let panels = 50;
             let mut exact = 0.0;

@@ -41,6 +41,7 @@ pub fn value_and_slope(c: &[f64], sigma: f64) -> (f64, f64) {
 
 /// Re-expands the polynomial `c` (in `σ`) about `sigma`: on return `c[k]` multiplies `(σ - sigma)^k`
 /// (repeated synthetic division, exact up to rounding).
+#[cfg(test)]
 pub fn shift(c: &mut [f64], sigma: f64) {
     let degree = c.len().saturating_sub(1);
     for start in 0..degree {
