@@ -79,6 +79,13 @@ impl Shape {
     }
 }
 
+/// Fastest turning of a sliding spring towards its loading, in radians per scaled time unit T (an elastic contact
+/// lasts about 3 T): faster turning is a quasi-static alignment, approximated at this rate.
+pub const MAX_TURN_RATE: f64 = 1e4;
+
+/// Angle (radians) between a sliding spring and its loading below which they count as aligned.
+pub const MISALIGNMENT: f64 = 1e-9;
+
 /// Whether the tangential spring holds (stick) or the contact slides at the Coulomb limit (slip).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Mode {
@@ -162,8 +169,19 @@ impl Tangential {
             Mode::Slip => {
                 let along = Tangential::direction(spring, &k.slip);
                 let cap_rate = self.friction * normal_force_rate;
-                let spring_rate = loading - along * loading.dot(&along) + along * cap_rate + turning;
-                TangentialForce { force: *spring, spring_rate }
+                // The spring turns towards the loading at the rate |loading across it| / |T|, which grows without
+                // bound where the Coulomb limit vanishes (the edges of the contact): faster than MAX_TURN_RATE it
+                // is taken as that rate, so that an explicit integrator is not held to ever shorter steps.
+                // A misalignment at the level of rounding is no misalignment: amplified by 1/|T| it would only feed
+                // noise to the step-size control (planar sliding keeps slip and spring exactly parallel).
+                let mut turn = loading - along * loading.dot(&along);
+                let (size, limit) = (turn.norm(), MAX_TURN_RATE * spring.norm());
+                if size <= MISALIGNMENT * loading.norm() {
+                    turn = Vector3::zeros();
+                } else if size > limit {
+                    turn *= limit / size;
+                }
+                TangentialForce { force: *spring, spring_rate: turn + along * cap_rate + turning }
             }
         }
     }

@@ -179,7 +179,15 @@ impl<'m, M: Model<N>, const N: usize> Stepper<'m, M, N> {
             let mut located: Vec<(usize, Crossing<N>)> = Vec::new();
             for (index, event) in events.iter().enumerate() {
                 if event.crosses(&left.1, &right.1) {
-                    let crossing = locate(event, index, &left, &right, |t| self.step_to(&left, t))?;
+                    let crossing = match locate(event, index, &left, &right, |t| self.step_to(&left, t)) {
+                        Ok(crossing) => crossing,
+                        // A stiff stretch where even re-stepping inside one accepted step runs out of steps: the run
+                        // ends there, said why, rather than failing the whole simulation.
+                        Err(IntegrationError::Solver { reason, .. }) => {
+                            let why = format!("the problem became stiff for an explicit method ({reason})");
+                            return Ok(RunEnd { time: left.0, state: left.1, ending: Ending::GaveUp(why), crossings });
+                        }
+                    };
                     located.push((index, crossing));
                 }
             }
@@ -269,7 +277,10 @@ impl<'m, M: Model<N>, const N: usize> Stepper<'m, M, N> {
             return Ok(from.1 + from.2 * h);
         }
         let adapter = Adapter { model: self.model, watch: None };
-        let mut solver = dop853(adapter, self.tolerances, from.0, from.1, t, h, 1000);
+        // A re-step inside one accepted step of a stiff contact may itself need many steps: it may use what is left of
+        // the run's budget (at least a thousand).
+        let left = STEP_BUDGET.saturating_sub(self.counters.steps + self.counters.rejected_steps).max(1000);
+        let mut solver = dop853(adapter, self.tolerances, from.0, from.1, t, h, left);
         let result = solver.integrate();
         let (_, state) = last_point(&solver, from.0, from.1);
         drop(solver);
