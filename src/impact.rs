@@ -11,7 +11,7 @@ use crate::dynamics::normal::NormalContact;
 use crate::dynamics::pair::PairContact;
 use crate::dynamics::{ContactModel, Snapshot};
 use crate::history::{History, Recording};
-use crate::integrate::{Counters, Crossing, Direction, Ending, Event, IntegrationError, State, Stepper};
+use crate::integrate::{Counters, Crossing, Direction, Ending, Event, IntegrationError, State, Stepper, Tolerances};
 use crate::report::Report;
 use crate::scene::{Method, Scene};
 use crate::setup::{Motion, Setup, SetupError};
@@ -154,7 +154,10 @@ fn run<const N: usize, M: ContactModel<N>>(
     contact_time: f64,
     recording: Recording,
 ) -> Result<(Outcome, Option<History>), SimulationError> {
-    let mut stepper = Stepper::new(model, scene.solver.tolerances, recording != Recording::Off);
+    let requested = scene.solver.tolerances;
+    let factor = model.tolerance_factor();
+    let tolerances = Tolerances { rtol: requested.rtol * factor, atol: requested.atol * factor };
+    let mut stepper = Stepper::new(model, tolerances, recording != Recording::Off);
     let start = model.start();
     let frictional = model.switch_function(&start).is_some();
     let mut phases =
