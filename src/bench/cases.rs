@@ -93,7 +93,8 @@ impl Case {
     }
 
     /// The scene of this impact for the general path: a unit mass at unit speed on a fixed wall, stiffness 1,
-    /// `[solver] method = "METHOD"` at `rtol` and `atol = rtol / 100` (the defaults' ratio).
+    /// `[solver] method = "METHOD"` at `rtol` and `atol = rtol / 100` (the defaults' ratio; at least 1e-14, the
+    /// smallest a scene takes).
     pub fn scene_text(&self, method: &str, rtol: f64) -> String {
         let (law, separation) = self.law();
         let contact = match self {
@@ -110,7 +111,7 @@ impl Case {
              method = \"{method}\"\nrtol = {rtol:e}\natol = {:e}\n",
             self.name(),
             separation.name(),
-            rtol * 1e-2
+            (rtol * 1e-2).max(1e-14)
         )
     }
 
@@ -129,5 +130,33 @@ impl Case {
     /// DEM's time scale, which a fixed step divides into N steps per contact.
     pub fn elastic_duration(&self) -> f64 {
         reference::hertz_elastic(self.law().0.exponent).duration
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::Scene;
+    use crate::setup::Setup;
+
+    /// Every reference case's scene is the case itself: its law, in units where m* = K = v0 = 1 (L = T = F0 = 1),
+    /// with an exact answer.
+    #[test]
+    fn the_scenes_are_the_cases_in_unit_scales() {
+        let cases = reference_cases();
+        assert_eq!(cases.len(), 26);
+        for case in cases {
+            let scene = Scene::parse(&case.scene_text("dop853", 1e-13), std::path::Path::new("case.toml")).unwrap();
+            let setup = Setup::new(&scene).unwrap();
+            let (law, separation) = case.law();
+            assert_eq!(setup.law, law, "{}", case.name());
+            assert_eq!(scene.contact.separation, separation);
+            let s = setup.scales;
+            for unit in [s.length, s.speed, s.time, s.force, s.impulse, s.energy] {
+                assert!((unit - 1.0).abs() < 1e-15, "{}: {s:?}", case.name());
+            }
+            assert!(case.exact().is_some_and(|r| r.duration.is_finite()), "{}", case.name());
+            assert_eq!(case.request(1e-10).law, law);
+        }
     }
 }

@@ -63,9 +63,13 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
         curves: Method::ALL
             .iter()
             .filter(|m| summaries.iter().any(|s| s.method == **m))
-            .map(|&method| Curve {
-                label: method.label().into(),
-                points: summaries.iter().filter(|s| s.method == method).map(|s| (s.median_seconds, s.error)).collect(),
+            .map(|&method| {
+                let own: Vec<_> = summaries.iter().filter(|s| s.method == method).collect();
+                let settings: Vec<Setting> = own.iter().map(|s| s.setting).collect();
+                Curve {
+                    label: format!("{}, {}", method.label(), Setting::range(&settings)),
+                    points: own.iter().map(|s| (s.median_seconds, s.error)).collect(),
+                }
             })
             .collect(),
     };

@@ -380,3 +380,45 @@ fn solve<M: Model<N>, const N: usize>(
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::integrate::{Direction, Event};
+
+    /// The harmonic oscillator y'' = -y from y = 0, y' = 1: y = sin t.
+    struct Oscillator;
+
+    impl Model<2> for Oscillator {
+        fn derivative(&self, _t: f64, y: &State<2>, dy: &mut State<2>) {
+            dy[0] = y[1];
+            dy[1] = -y[0];
+        }
+    }
+
+    /// Both schemes locate the first maximum (y' = 0 at pi/2) and the zero that follows (y = 0 at pi) on their own
+    /// solution, to the tolerance; Dopri5, of lower order, takes more steps for it.
+    #[test]
+    fn both_schemes_locate_events_on_their_own_solution() {
+        let rate = |y: &State<2>| y[1];
+        let position = |y: &State<2>| y[0];
+        let mut work = Vec::new();
+        for scheme in [Scheme::Dop853, Scheme::Dopri5] {
+            let tolerances = Tolerances { rtol: 1e-11, atol: 1e-13 };
+            let mut stepper = Stepper::new(&Oscillator, tolerances, false).scheme(scheme);
+            let peak = Event { function: &rate, direction: Direction::Falling, terminal: true };
+            let start = State::<2>::new(0.0, 1.0);
+            let top = stepper.run(0.0, start, 10.0, &[peak]).unwrap();
+            assert_eq!(top.ending, Ending::Event(0), "{scheme:?}");
+            assert!((top.time - std::f64::consts::FRAC_PI_2).abs() < 1e-9, "{scheme:?}: {}", top.time);
+            assert!((top.state[0] - 1.0).abs() < 1e-9 && top.state[1].abs() < 1e-12, "{scheme:?}");
+            let zero = Event { function: &position, direction: Direction::Falling, terminal: true };
+            let end = stepper.run(top.time, top.state, 10.0, &[zero]).unwrap();
+            assert!((end.time - std::f64::consts::PI).abs() < 1e-9, "{scheme:?}: {}", end.time);
+            assert!((end.state[1] + 1.0).abs() < 1e-9, "{scheme:?}");
+            assert!(stepper.counters.steps > 0 && stepper.counters.evaluations > 0);
+            work.push(stepper.counters.steps);
+        }
+        assert!(work[1] > work[0], "Dopri5 takes more steps than Dop853 at the same tolerance: {work:?}");
+    }
+}
