@@ -140,6 +140,18 @@ impl Tangential {
         }
     }
 
+    /// The direction of a sliding contact's spring force. Sliding keeps the spring at the cap, |T| = mu Fn; a spring
+    /// that has drifted below half of it (the integration's error, which near the contact's edges, where the cap
+    /// vanishes, can carry the spring through zero and reverse it) no longer gives a direction: the force then
+    /// opposes the slip, as Coulomb's law has it.
+    fn sliding_direction(spring: &Vector3<f64>, slip: &Vector3<f64>, cap: f64) -> Vector3<f64> {
+        if spring.norm() >= 0.5 * cap {
+            Tangential::direction(spring, slip)
+        } else {
+            Tangential::direction(&Vector3::zeros(), slip)
+        }
+    }
+
     /// The force and spring rate in `mode`, for the spring `spring` (in the tangent plane), the kinematics, the
     /// normal force `normal_force` and its rate `normal_force_rate`.
     pub fn evaluate(
@@ -167,7 +179,7 @@ impl Tangential {
             // at a rate that grows without bound as its length vanishes.
             Mode::Slip if normal_force <= 0.0 => TangentialForce { force: Vector3::zeros(), spring_rate: turning },
             Mode::Slip => {
-                let along = Tangential::direction(spring, &k.slip);
+                let along = Tangential::sliding_direction(spring, &k.slip, cap);
                 let cap_rate = self.friction * normal_force_rate;
                 // The spring turns towards the loading at the rate |loading across it| / |T|, which grows without
                 // bound where the Coulomb limit vanishes (the edges of the contact): faster than MAX_TURN_RATE it
@@ -203,7 +215,7 @@ impl Tangential {
             Mode::Slip if normal_force <= 0.0 => 1.0,
             Mode::Slip => {
                 let kt = self.stiffness_at(kinematics.penetration);
-                let along = Tangential::direction(spring, &kinematics.slip);
+                let along = Tangential::sliding_direction(spring, &kinematics.slip, self.friction * normal_force);
                 -kinematics.slip.dot(&along) * kt - self.friction * normal_force_rate
             }
         }
