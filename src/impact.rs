@@ -11,7 +11,9 @@ use crate::dynamics::normal::NormalContact;
 use crate::dynamics::pair::PairContact;
 use crate::dynamics::{ContactModel, Snapshot};
 use crate::history::{History, Recording};
-use crate::integrate::{Counters, Crossing, Direction, Ending, Event, IntegrationError, State, Stepper};
+use crate::integrate::{
+    Counters, Crossing, Direction, Ending, Event, IntegrationError, Scheme, State, Stepper, Tolerances,
+};
 use crate::report::Report;
 use crate::scene::{Method, Scene};
 use crate::setup::{Motion, Setup, SetupError};
@@ -38,7 +40,7 @@ pub enum SimulationError {
 /// Scaled time after which a contact that has not separated is declared stuck (elastic contacts last about 3).
 pub const TIME_LIMIT: f64 = 1e4;
 /// Scaled size of |d| + |d'| below which the relative motion counts as died out.
-const SETTLED: f64 = 1e-10;
+pub const SETTLED: f64 = 1e-10;
 /// Most stick–slip switches one impact may take before the run is abandoned as chattering.
 pub const MAX_SWITCHES: u32 = 10_000;
 
@@ -60,7 +62,7 @@ pub struct Outcome {
     pub switches: u32,
     /// The integrator's work for the impact itself (before any resampling).
     pub counters: Counters,
-    /// The path that ran (`dop853`, `taylor`).
+    /// The path that ran (`dop853`, `dopri5`, `taylor`).
     pub method: &'static str,
     /// The restitution impulse (N s) and the energy returned in restitution (J), when the path integrated them on
     /// their own from maximum compression (accurate relative to themselves when e is small); otherwise they are the
@@ -100,7 +102,23 @@ pub fn simulate_prepared(
     options: Options,
     clock: Instant,
 ) -> Result<Simulation, SimulationError> {
-    let recording = options.recording;
+    let (outcome, history) = through_phases(scene, setup, options.recording)?;
+    let report = crate::report::build(scene, setup, &outcome, options.reference, clock.elapsed().as_secs_f64());
+    Ok(Simulation { report, history })
+}
+
+/// The impact's [`Outcome`] alone, on the path [`simulate_prepared`] takes, without a history or a report: what
+/// `impact bench` times.
+pub fn outcome(scene: &Scene, setup: &Setup) -> Result<Outcome, SimulationError> {
+    through_phases(scene, setup, Recording::Off).map(|(outcome, _)| outcome)
+}
+
+/// The impact through its phases on the path the scene's `[solver] method` chooses, and its history if asked for.
+fn through_phases(
+    scene: &Scene,
+    setup: &Setup,
+    recording: Recording,
+) -> Result<(Outcome, Option<History>), SimulationError> {
     let setup = *setup;
     let method = scene.solver.method;
     let covered = setup.motion == Motion::Normal && crate::fast::covers(&setup.law);
@@ -126,11 +144,11 @@ pub fn simulate_prepared(
     let fast = match method {
         Method::Taylor => true,
         Method::Auto => covered && recording == Recording::Off,
-        Method::Dop853 => false,
+        Method::Dop853 | Method::Dopri5 => false,
     };
     let normal = NormalContact::new(&scene.bodies, &setup);
     let fast_outcome = if fast { Some(fast_outcome(&normal, scene, &setup)) } else { None };
-    let (outcome, history) = match (fast_outcome, setup.motion) {
+    Ok(match (fast_outcome, setup.motion) {
         (Some(Ok(outcome)), _) if recording == Recording::Off => (outcome, None),
         (Some(Ok(outcome)), _) => (outcome, run(&normal, scene, setup.contact_time, recording)?.1),
         (Some(Err(error)), _) if method == Method::Taylor => {
@@ -142,9 +160,7 @@ pub fn simulate_prepared(
         // (`auto` falls back on the general path if the fast one cannot finish.)
         (_, Motion::Normal) => run(&normal, scene, setup.contact_time, recording)?,
         (_, Motion::Full) => run(&PairContact::new(&scene.bodies, &setup), scene, setup.contact_time, recording)?,
-    };
-    let report = crate::report::build(scene, &setup, &outcome, options.reference, clock.elapsed().as_secs_f64());
-    Ok(Simulation { report, history })
+    })
 }
 
 /// The phases of one impact over `model`.
@@ -154,7 +170,12 @@ fn run<const N: usize, M: ContactModel<N>>(
     contact_time: f64,
     recording: Recording,
 ) -> Result<(Outcome, Option<History>), SimulationError> {
-    let mut stepper = Stepper::new(model, scene.solver.tolerances, recording != Recording::Off);
+    let requested = scene.solver.tolerances;
+    let factor = model.tolerance_factor();
+    let tolerances = Tolerances { rtol: requested.rtol * factor, atol: requested.atol * factor };
+    // Dopri5 when the scene names it; Dop853 otherwise (and for `taylor`'s history).
+    let scheme = if scene.solver.method == Method::Dopri5 { Scheme::Dopri5 } else { Scheme::Dop853 };
+    let mut stepper = Stepper::new(model, tolerances, recording != Recording::Off).scheme(scheme);
     let start = model.start();
     let frictional = model.switch_function(&start).is_some();
     let mut phases =
@@ -223,7 +244,7 @@ fn run<const N: usize, M: ContactModel<N>>(
             * model.scales().time,
         switches: phases.switches,
         counters: stepper.counters,
-        method: "dop853",
+        method: scheme.name(),
         restitution: None,
         note: None,
     };

@@ -2,6 +2,7 @@
 //! instantaneous-impact idealisation hides.
 
 pub mod accuracy;
+pub mod bench;
 pub mod body;
 pub mod calibrate;
 pub mod cli;

@@ -1,5 +1,6 @@
 //! The command line: one file per verb. Arguments become typed options before any work starts.
 
+mod bench;
 mod calibrate;
 mod demo;
 mod gallery;
@@ -33,6 +34,8 @@ pub enum Command {
     Merge(merge::MergeArgs),
     /// Find the damping for which the simulated e equals a target.
     Calibrate(calibrate::CalibrateArgs),
+    /// The work–precision study: every method's error against exact references and its time per impact.
+    Bench(bench::BenchArgs),
     /// Regenerate the README's figures in plots/.
     Gallery(gallery::GalleryArgs),
     /// Run random scenes over the whole accepted range, checking each against invariants and exact results.
@@ -54,6 +57,7 @@ pub fn dispatch(cli: Cli) -> anyhow::Result<()> {
         Some(Command::Merge(args)) => merge::run(&args),
         Some(Command::Calibrate(args)) => calibrate::run(&args),
         Some(Command::Gallery(args)) => gallery::run(&args),
+        Some(Command::Bench(args)) => bench::run(&args),
         Some(Command::Stress(args)) => stress::run(&args),
     }
 }

@@ -79,6 +79,13 @@ impl Shape {
     }
 }
 
+/// Fastest turning of a sliding spring towards its loading, in radians per scaled time unit T (an elastic contact
+/// lasts about 3 T): faster turning is a quasi-static alignment, approximated at this rate.
+pub const MAX_TURN_RATE: f64 = 1e4;
+
+/// Angle (radians) between a sliding spring and its loading below which they count as aligned.
+pub const MISALIGNMENT: f64 = 1e-9;
+
 /// Whether the tangential spring holds (stick) or the contact slides at the Coulomb limit (slip).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Mode {
@@ -133,6 +140,18 @@ impl Tangential {
         }
     }
 
+    /// The direction of a sliding contact's spring force. Sliding keeps the spring at the cap, |T| = mu Fn; a spring
+    /// that has drifted below half of it (the integration's error, which near the contact's edges, where the cap
+    /// vanishes, can carry the spring through zero and reverse it) no longer gives a direction: the force then
+    /// opposes the slip, as Coulomb's law has it.
+    fn sliding_direction(spring: &Vector3<f64>, slip: &Vector3<f64>, cap: f64) -> Vector3<f64> {
+        if spring.norm() >= 0.5 * cap {
+            Tangential::direction(spring, slip)
+        } else {
+            Tangential::direction(&Vector3::zeros(), slip)
+        }
+    }
+
     /// The force and spring rate in `mode`, for the spring `spring` (in the tangent plane), the kinematics, the
     /// normal force `normal_force` and its rate `normal_force_rate`.
     pub fn evaluate(
@@ -160,10 +179,21 @@ impl Tangential {
             // at a rate that grows without bound as its length vanishes.
             Mode::Slip if normal_force <= 0.0 => TangentialForce { force: Vector3::zeros(), spring_rate: turning },
             Mode::Slip => {
-                let along = Tangential::direction(spring, &k.slip);
+                let along = Tangential::sliding_direction(spring, &k.slip, cap);
                 let cap_rate = self.friction * normal_force_rate;
-                let spring_rate = loading - along * loading.dot(&along) + along * cap_rate + turning;
-                TangentialForce { force: *spring, spring_rate }
+                // The spring turns towards the loading at the rate |loading across it| / |T|, which grows without
+                // bound where the Coulomb limit vanishes (the edges of the contact): faster than MAX_TURN_RATE it
+                // is taken as that rate, so that an explicit integrator is not held to ever shorter steps.
+                // A misalignment at the level of rounding is no misalignment: amplified by 1/|T| it would only feed
+                // noise to the step-size control (planar sliding keeps slip and spring exactly parallel).
+                let mut turn = loading - along * loading.dot(&along);
+                let (size, limit) = (turn.norm(), MAX_TURN_RATE * spring.norm());
+                if size <= MISALIGNMENT * loading.norm() {
+                    turn = Vector3::zeros();
+                } else if size > limit {
+                    turn *= limit / size;
+                }
+                TangentialForce { force: *spring, spring_rate: turn + along * cap_rate + turning }
             }
         }
     }
@@ -185,7 +215,7 @@ impl Tangential {
             Mode::Slip if normal_force <= 0.0 => 1.0,
             Mode::Slip => {
                 let kt = self.stiffness_at(kinematics.penetration);
-                let along = Tangential::direction(spring, &kinematics.slip);
+                let along = Tangential::sliding_direction(spring, &kinematics.slip, self.friction * normal_force);
                 -kinematics.slip.dot(&along) * kt - self.friction * normal_force_rate
             }
         }

@@ -94,6 +94,10 @@ pub struct Snapshot {
 pub trait ContactModel<const N: usize>: Model<N> {
     /// The units of the scaled state.
     fn scales(&self) -> &Scales;
+    /// The fraction of the scene's tolerances this model integrates at (1: as asked).
+    fn tolerance_factor(&self) -> f64 {
+        1.0
+    }
     /// The state at first contact (scaled time 0), with the stick-or-slip mode it starts in.
     fn start(&self) -> State<N>;
     /// Scaled penetration d/L.

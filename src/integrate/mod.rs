@@ -1,4 +1,4 @@
-//! Driving the ODE: the `ode_solvers` Dop853 adapter, with events located on the integrator's own solution.
+//! Driving the ODE: the `ode_solvers` Dop853 (or Dopri5) adapter, with events located on the integrator's own solution.
 //!
 //! `ode_solvers` has no event location and no public interpolant, so a run stops (in `solout`) at the first
 //! accepted step across which an event function changes sign, and the crossing is then located by re-stepping:
@@ -10,7 +10,7 @@ mod events;
 mod stepper;
 
 pub use events::{Crossing, Direction, Event};
-pub use stepper::{Counters, Ending, STEP_BUDGET, Stepper, Tolerances};
+pub use stepper::{Counters, Ending, STEP_BUDGET, Scheme, Stepper, Tolerances};
 
 use nalgebra::SVector;
 

@@ -1,8 +1,10 @@
-//! The Dop853 adapter: runs between events, re-steps for event location, counts work.
+//! The `ode_solvers` adapter (Dop853, or Dopri5): runs between events, re-steps for event location, counts work.
 
 use super::events::{Crossing, Event, MAX_EVENTS, Point, falls, locate};
 use super::{IntegrationError, Model, State};
+use ode_solvers::dop_shared::{IntegrationError as SolverError, Stats};
 use ode_solvers::dop853::Dop853;
+use ode_solvers::dopri5::Dopri5;
 use ode_solvers::{OutputType, System};
 
 /// Error tolerances of the adaptive integrator, on the scaled state.
@@ -17,6 +19,35 @@ pub struct Tolerances {
 impl Default for Tolerances {
     fn default() -> Self {
         Tolerances { rtol: 1e-10, atol: 1e-12 }
+    }
+}
+
+/// Which `ode_solvers` Runge–Kutta pair integrates: both are explicit, adaptive, and driven the same way (same
+/// event location by re-stepping, same counters).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Scheme {
+    /// Dormand–Prince 8(5,3), 12 stages a step: the simulator's general path.
+    #[default]
+    Dop853,
+    /// Dormand–Prince 5(4), 6 stages a step (first same as last).
+    Dopri5,
+}
+
+impl Scheme {
+    /// The name a report and a benchmark give the path (`[solver] method`).
+    pub fn name(self) -> &'static str {
+        match self {
+            Scheme::Dop853 => "dop853",
+            Scheme::Dopri5 => "dopri5",
+        }
+    }
+
+    /// Right-hand-side evaluations per accepted step (for the work of a run the solver's statistics were lost for).
+    fn stages(self) -> u64 {
+        match self {
+            Scheme::Dop853 => 12,
+            Scheme::Dopri5 => 6,
+        }
     }
 }
 
@@ -58,10 +89,12 @@ pub struct RunEnd<const N: usize> {
     pub crossings: Vec<Crossing<N>>,
 }
 
-/// Integrates a model with Dop853, locating events; optionally records every accepted step.
+/// Integrates a model with Dop853 (or Dopri5, [`Stepper::scheme`]), locating events; optionally records every
+/// accepted step.
 pub struct Stepper<'m, M, const N: usize> {
     model: &'m M,
     tolerances: Tolerances,
+    scheme: Scheme,
     /// Work so far.
     pub counters: Counters,
     /// Accepted steps (time, state), kept only when a history was asked for.
@@ -78,7 +111,7 @@ struct Watch<'w, 'e, const N: usize> {
     record: Option<&'w mut Vec<(f64, State<N>)>>,
 }
 
-/// The `System` handed to Dop853: the model plus, optionally, a watch for events.
+/// The `System` handed to the solver: the model plus, optionally, a watch for events.
 struct Adapter<'a, 'w, 'e, M, const N: usize> {
     model: &'a M,
     watch: Option<&'a mut Watch<'w, 'e, N>>,
@@ -111,9 +144,20 @@ impl<M: Model<N>, const N: usize> System<f64, State<N>> for Adapter<'_, '_, '_, 
 }
 
 impl<'m, M: Model<N>, const N: usize> Stepper<'m, M, N> {
-    /// A stepper for `model`; `record` keeps every accepted step.
+    /// A Dop853 stepper for `model`; `record` keeps every accepted step.
     pub fn new(model: &'m M, tolerances: Tolerances, record: bool) -> Self {
-        Stepper { model, tolerances, counters: Counters::default(), record: record.then(Vec::new) }
+        Stepper {
+            model,
+            tolerances,
+            scheme: Scheme::Dop853,
+            counters: Counters::default(),
+            record: record.then(Vec::new),
+        }
+    }
+
+    /// The same stepper integrating with `scheme` (runs and re-steps alike).
+    pub fn scheme(self, scheme: Scheme) -> Self {
+        Stepper { scheme, ..self }
     }
 
     /// Adds a point (an event, the initial state) to the record, if one is kept. The record is sorted by
@@ -179,7 +223,15 @@ impl<'m, M: Model<N>, const N: usize> Stepper<'m, M, N> {
             let mut located: Vec<(usize, Crossing<N>)> = Vec::new();
             for (index, event) in events.iter().enumerate() {
                 if event.crosses(&left.1, &right.1) {
-                    let crossing = locate(event, index, &left, &right, |t| self.step_to(&left, t))?;
+                    let crossing = match locate(event, index, &left, &right, |t| self.step_to(&left, t)) {
+                        Ok(crossing) => crossing,
+                        // A stiff stretch where even re-stepping inside one accepted step runs out of steps: the run
+                        // ends there, said why, rather than failing the whole simulation.
+                        Err(IntegrationError::Solver { reason, .. }) => {
+                            let why = format!("the problem became stiff for an explicit method ({reason})");
+                            return Ok(RunEnd { time: left.0, state: left.1, ending: Ending::GaveUp(why), crossings });
+                        }
+                    };
                     located.push((index, crossing));
                 }
             }
@@ -204,7 +256,7 @@ impl<'m, M: Model<N>, const N: usize> Stepper<'m, M, N> {
         }
     }
 
-    /// One Dop853 run from `start` until a bracket of a sign change or `t_end`: (end time, end state, bracket,
+    /// One solver run from `start` until a bracket of a sign change or `t_end`: (end time, end state, bracket,
     /// last step size, why the integrator gave up if it did).
     #[allow(clippy::type_complexity)]
     fn advance(
@@ -224,12 +276,11 @@ impl<'m, M: Model<N>, const N: usize> Stepper<'m, M, N> {
         let (t, y) = (start.0, start.1);
         let adapter = Adapter { model: self.model, watch: Some(&mut watch) };
         let budget = STEP_BUDGET.saturating_sub(self.counters.steps + self.counters.rejected_steps);
-        let mut solver = dop853(adapter, self.tolerances, t, y, t_end, first_step, budget);
-        let result = solver.integrate();
-        let (time, state) = last_point(&solver, t, y);
-        let step = time - solver.x_out().iter().rev().nth(1).copied().unwrap_or(t);
-        let taken = solver.x_out().len().saturating_sub(1) as u64;
-        drop(solver);
+        let solved = solve(self.scheme, adapter, self.tolerances, t, y, t_end, first_step, budget);
+        let (time, state) = solved.last.unwrap_or((t, y));
+        let step = time - solved.before_last.unwrap_or(t);
+        let taken = solved.taken;
+        let result = solved.result;
         let bracket = watch.bracket;
         self.record = record;
         let gave_up = match result {
@@ -240,18 +291,14 @@ impl<'m, M: Model<N>, const N: usize> Stepper<'m, M, N> {
             Err(error) => {
                 // The solver's own statistics are lost with the error: count the accepted steps it left.
                 self.counters.steps += taken;
-                self.counters.evaluations += 12 * taken;
+                self.counters.evaluations += self.scheme.stages() * taken;
                 match error {
                     // ode_solvers reports an underflow when its last step lands within rounding of the end.
-                    ode_solvers::dop_shared::IntegrationError::StepSizeUnderflow { x }
-                        if (t_end - x).abs() <= 1e-12 * t_end.abs().max(1.0) =>
-                    {
-                        None
-                    }
-                    ode_solvers::dop_shared::IntegrationError::MaxNumStepReached { .. } => {
+                    SolverError::StepSizeUnderflow { x } if (t_end - x).abs() <= 1e-12 * t_end.abs().max(1.0) => None,
+                    SolverError::MaxNumStepReached { .. } => {
                         Some(format!("the budget of {STEP_BUDGET} steps was spent"))
                     }
-                    ode_solvers::dop_shared::IntegrationError::StiffnessDetected { .. } => {
+                    SolverError::StiffnessDetected { .. } => {
                         Some("the problem became stiff for an explicit method".into())
                     }
                     other => Some(other.to_string()),
@@ -261,70 +308,128 @@ impl<'m, M: Model<N>, const N: usize> Stepper<'m, M, N> {
         Ok((time, state, bracket, step, gave_up))
     }
 
-    /// The solution at `t` reached by one (or, if rejected, a few) Dop853 steps from `from`: the re-step used to
-    /// evaluate an event function between accepted steps.
+    /// The solution at `t` reached by one (or, if rejected, a few) steps of the scheme from `from`: the re-step
+    /// used to evaluate an event function between accepted steps.
     pub fn step_to(&mut self, from: &(f64, State<N>, State<N>), t: f64) -> Result<State<N>, IntegrationError> {
         let h = t - from.0;
         if h.abs() <= 16.0 * f64::EPSILON * from.0.abs().max(1.0) {
             return Ok(from.1 + from.2 * h);
         }
         let adapter = Adapter { model: self.model, watch: None };
-        let mut solver = dop853(adapter, self.tolerances, from.0, from.1, t, h, 1000);
-        let result = solver.integrate();
-        let (_, state) = last_point(&solver, from.0, from.1);
-        drop(solver);
-        let stats = result.map_err(|error| IntegrationError::Solver { time: t, reason: error.to_string() })?;
+        // A re-step inside one accepted step of a stiff contact may itself need many steps: it may use what is left of
+        // the run's budget (at least a thousand).
+        let left = STEP_BUDGET.saturating_sub(self.counters.steps + self.counters.rejected_steps).max(1000);
+        let solved = solve(self.scheme, adapter, self.tolerances, from.0, from.1, t, h, left);
+        let stats = solved.result.map_err(|error| IntegrationError::Solver { time: t, reason: error.to_string() })?;
         self.add(&stats);
-        Ok(state)
+        Ok(solved.last.map_or(from.1, |(_, state)| state))
     }
 
-    fn add(&mut self, stats: &ode_solvers::dop_shared::Stats) {
+    fn add(&mut self, stats: &Stats) {
         self.counters.steps += u64::from(stats.accepted_steps);
         self.counters.rejected_steps += u64::from(stats.rejected_steps);
         self.counters.evaluations += u64::from(stats.num_eval);
     }
 }
 
-/// A Dop853 solver from `(t, y)` to `t_end` with sparse output (dense output with dx = 0 never ends),
-/// initial step `first_step` (0: let the solver choose) and at most `max_steps` steps.
-fn dop853<'a, 'w, 'e, M: Model<N>, const N: usize>(
-    adapter: Adapter<'a, 'w, 'e, M, N>,
+/// What one solver run left: its statistics (or why it failed), its last two points, and the steps it took.
+struct Solved<const N: usize> {
+    result: Result<Stats, SolverError>,
+    /// The last point of the run (`None`: it took no step).
+    last: Option<(f64, State<N>)>,
+    /// The time of the point before it.
+    before_last: Option<f64>,
+    /// Accepted steps taken.
+    taken: u64,
+}
+
+impl<const N: usize> Solved<N> {
+    fn new(result: Result<Stats, SolverError>, times: &[f64], states: &[State<N>]) -> Solved<N> {
+        Solved {
+            result,
+            last: times.last().copied().zip(states.last().copied()),
+            before_last: times.iter().rev().nth(1).copied(),
+            taken: times.len().saturating_sub(1) as u64,
+        }
+    }
+}
+
+/// Runs `scheme` from `(t, y)` to `t_end` with sparse output (dense output with dx = 0 never ends), initial step
+/// `first_step` (0: let the solver choose), at most `max_steps` steps, and each pair's standard step-size control
+/// (Hairer's: safety 0.9; Dop853 without step-size memory, factors 0.333 to 6; Dopri5 with beta 0.04, factors 0.2
+/// to 10). The adapter (and what it borrows) is released on return.
+#[allow(clippy::too_many_arguments)]
+fn solve<M: Model<N>, const N: usize>(
+    scheme: Scheme,
+    adapter: Adapter<'_, '_, '_, M, N>,
     tolerances: Tolerances,
     t: f64,
     y: State<N>,
     t_end: f64,
     first_step: f64,
     max_steps: u64,
-) -> Dop853<f64, State<N>, Adapter<'a, 'w, 'e, M, N>> {
+) -> Solved<N> {
     let Tolerances { rtol, atol } = tolerances;
     let h_max = t_end - t;
     let h = first_step.min(h_max);
-    Dop853::from_param(
-        adapter,
-        t,
-        t_end,
-        0.0,
-        y,
-        rtol,
-        atol,
-        0.9,
-        0.0,
-        0.333,
-        6.0,
-        h_max,
-        h,
-        u32::try_from(max_steps).unwrap_or(u32::MAX),
-        1000,
-        OutputType::Sparse,
-    )
+    let n_max = u32::try_from(max_steps).unwrap_or(u32::MAX);
+    let sparse = OutputType::Sparse;
+    match scheme {
+        Scheme::Dop853 => {
+            let mut solver = Dop853::from_param(
+                adapter, t, t_end, 0.0, y, rtol, atol, 0.9, 0.0, 0.333, 6.0, h_max, h, n_max, 1000, sparse,
+            );
+            let result = solver.integrate();
+            Solved::new(result, solver.x_out(), solver.y_out())
+        }
+        Scheme::Dopri5 => {
+            let mut solver = Dopri5::from_param(
+                adapter, t, t_end, 0.0, y, rtol, atol, 0.9, 0.04, 0.2, 10.0, h_max, h, n_max, 1000, sparse,
+            );
+            let result = solver.integrate();
+            Solved::new(result, solver.x_out(), solver.y_out())
+        }
+    }
 }
 
-fn last_point<M, const N: usize>(solver: &Dop853<f64, State<N>, M>, t: f64, y: State<N>) -> (f64, State<N>)
-where
-    M: System<f64, State<N>>,
-{
-    match (solver.x_out().last(), solver.y_out().last()) {
-        (Some(&time), Some(&state)) => (time, state),
-        _ => (t, y),
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::integrate::{Direction, Event};
+
+    /// The harmonic oscillator y'' = -y from y = 0, y' = 1: y = sin t.
+    struct Oscillator;
+
+    impl Model<2> for Oscillator {
+        fn derivative(&self, _t: f64, y: &State<2>, dy: &mut State<2>) {
+            dy[0] = y[1];
+            dy[1] = -y[0];
+        }
+    }
+
+    /// Both schemes locate the first maximum (y' = 0 at pi/2) and the zero that follows (y = 0 at pi) on their own
+    /// solution, to the tolerance; Dopri5, of lower order, takes more steps for it.
+    #[test]
+    fn both_schemes_locate_events_on_their_own_solution() {
+        let rate = |y: &State<2>| y[1];
+        let position = |y: &State<2>| y[0];
+        let mut work = Vec::new();
+        for scheme in [Scheme::Dop853, Scheme::Dopri5] {
+            let tolerances = Tolerances { rtol: 1e-11, atol: 1e-13 };
+            let mut stepper = Stepper::new(&Oscillator, tolerances, false).scheme(scheme);
+            let peak = Event { function: &rate, direction: Direction::Falling, terminal: true };
+            let start = State::<2>::new(0.0, 1.0);
+            let top = stepper.run(0.0, start, 10.0, &[peak]).unwrap();
+            assert_eq!(top.ending, Ending::Event(0), "{scheme:?}");
+            assert!((top.time - std::f64::consts::FRAC_PI_2).abs() < 1e-9, "{scheme:?}: {}", top.time);
+            assert!((top.state[0] - 1.0).abs() < 1e-9 && top.state[1].abs() < 1e-12, "{scheme:?}");
+            let zero = Event { function: &position, direction: Direction::Falling, terminal: true };
+            let end = stepper.run(top.time, top.state, 10.0, &[zero]).unwrap();
+            assert!((end.time - std::f64::consts::PI).abs() < 1e-9, "{scheme:?}: {}", end.time);
+            assert!((end.state[1] + 1.0).abs() < 1e-9, "{scheme:?}");
+            assert!(stepper.counters.steps > 0 && stepper.counters.evaluations > 0);
+            work.push(stepper.counters.steps);
+        }
+        assert!(work[1] > work[0], "Dopri5 takes more steps than Dop853 at the same tolerance: {work:?}");
     }
 }

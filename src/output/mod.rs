@@ -1,5 +1,6 @@
 //! Views of the report: each a function of the [`crate::report::Report`] (or the history), none recomputing physics.
 
+pub mod bench_figure;
 pub mod chart;
 pub mod csv;
 pub mod figures;

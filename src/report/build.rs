@@ -88,6 +88,15 @@ pub fn build(scene: &Scene, setup: &Setup, outcome: &Outcome, detail: ReferenceD
              normal do not apply"
         ));
     }
+    // The bodies part at e v0: the separation time carries an error of about atol / e (in units of the contact's
+    // own time), the absolute tolerance on speeds over the speed they part with.
+    let resolution = scene.solver.tolerances.atol / e_velocity;
+    if done && resolution > 1e-9 {
+        notes.push(format!(
+            "the bodies part slowly (e = {e_velocity:.3e}): the contact's end, and so its duration, is resolved to \
+             about atol / e = {resolution:.1e} relative (a smaller [solver] atol sharpens it)"
+        ));
+    }
     if outcome.switches > 0 {
         notes.push(format!("the contact switched between sticking and sliding {} times", outcome.switches));
     }

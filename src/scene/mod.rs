@@ -78,6 +78,9 @@ pub enum Method {
     Auto,
     /// The general `ode_solvers` Dop853 path, always available.
     Dop853,
+    /// The general path with `ode_solvers`' Dopri5 (order 5) in place of Dop853: the same events, located the same
+    /// way; for comparison (`impact bench`).
+    Dopri5,
     /// The Taylor-series integrator of the regularised normal contact (`crate::fast`): the 1-D normal impact of
     /// every law but Brilliantov's.
     Taylor,
@@ -85,8 +88,8 @@ pub enum Method {
 
 impl Method {
     /// Every method, by its scene spelling.
-    pub const ALL: [(&'static str, Method); 3] =
-        [("auto", Method::Auto), ("dop853", Method::Dop853), ("taylor", Method::Taylor)];
+    pub const ALL: [(&'static str, Method); 4] =
+        [("auto", Method::Auto), ("dop853", Method::Dop853), ("dopri5", Method::Dopri5), ("taylor", Method::Taylor)];
 
     /// The scene spelling.
     pub fn name(self) -> &'static str {

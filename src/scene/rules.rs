@@ -13,8 +13,18 @@ use nalgebra::Vector3;
 
 type Checked = Result<(), SetupError>;
 
-fn fail(key: impl Into<String>, message: impl Into<String>) -> Checked {
-    Err(SetupError { key: key.into(), message: message.into() })
+fn fail(key: impl std::fmt::Display, message: impl Into<String>) -> Checked {
+    Err(SetupError { key: key.to_string(), message: message.into() })
+}
+
+/// A body's key, written out only when a rule breaks (a sweep checks every point: most pass).
+#[derive(Clone, Copy)]
+struct BodyKey(usize, &'static str);
+
+impl std::fmt::Display for BodyKey {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "bodies.{}.{}", self.0, self.1)
+    }
 }
 
 /// What a number may be.
@@ -46,7 +56,7 @@ pub(super) fn shown(x: f64) -> String {
 }
 
 /// Checks that `x` is what `range` allows; the message says what was expected and what was given.
-pub(super) fn number(key: &str, x: f64, range: Allowed) -> Checked {
+pub(super) fn number(key: impl std::fmt::Display, x: f64, range: Allowed) -> Checked {
     if x.is_nan() {
         return fail(key, "NaN is not a valid value");
     }
@@ -74,7 +84,7 @@ pub(super) fn number(key: &str, x: f64, range: Allowed) -> Checked {
 }
 
 /// Every component finite.
-fn vector(key: &str, v: &Vector3<f64>) -> Checked {
+fn vector(key: impl std::fmt::Display + Copy, v: &Vector3<f64>) -> Checked {
     for (i, x) in v.iter().enumerate() {
         if !x.is_finite() {
             return fail(key, format!("component {i} must be a finite number, got {}", shown(*x)));
@@ -99,11 +109,11 @@ pub fn check(scene: &Scene) -> Checked {
 }
 
 fn check_body(i: usize, body: &Body) -> Checked {
-    let key = |leaf: &str| format!("bodies.{i}.{leaf}");
-    number(&key("radius"), body.radius, Allowed::PositiveOrInfinite)?;
+    let key = |leaf: &'static str| BodyKey(i, leaf);
+    number(key("radius"), body.radius, Allowed::PositiveOrInfinite)?;
     match body.density {
         Some(density) => {
-            number(&key("density"), density, Allowed::Positive)?;
+            number(key("density"), density, Allowed::Positive)?;
             if body.radius.is_infinite() {
                 return fail(
                     key("density"),
@@ -121,18 +131,18 @@ fn check_body(i: usize, body: &Body) -> Checked {
                 );
             }
         }
-        None => number(&key("mass"), body.mass, Allowed::PositiveOrInfinite)?,
+        None => number(key("mass"), body.mass, Allowed::PositiveOrInfinite)?,
     }
-    vector(&key("velocity"), &body.velocity)?;
+    vector(key("velocity"), &body.velocity)?;
     if let Some(position) = &body.position {
-        vector(&key("position"), position)?;
+        vector(key("position"), position)?;
     }
-    vector(&key("angular_velocity"), &body.angular_velocity)?;
+    vector(key("angular_velocity"), &body.angular_velocity)?;
     if body.angular_velocity != Vector3::zeros() && body.radius.is_infinite() {
         return fail(key("angular_velocity"), "a flat body (radius = inf) cannot spin: use [0, 0, 0] or leave it out");
     }
     if let Some(inertia) = body.inertia_given {
-        number(&key("inertia"), inertia, Allowed::Positive)?;
+        number(key("inertia"), inertia, Allowed::Positive)?;
         let why = if body.mass.is_infinite() {
             Some("an immovable body (mass = inf) does not rotate")
         } else if body.radius.is_infinite() {
@@ -145,10 +155,10 @@ fn check_body(i: usize, body: &Body) -> Checked {
         }
     }
     if let Some(young) = body.young {
-        number(&key("young"), young, Allowed::PositiveOrInfinite)?;
+        number(key("young"), young, Allowed::PositiveOrInfinite)?;
     }
     if let Some(nu) = body.poisson {
-        number(&key("poisson"), nu, Allowed::Any)?;
+        number(key("poisson"), nu, Allowed::Any)?;
         if !(nu > -1.0 && nu <= 0.5) {
             return fail(key("poisson"), format!("expected a number in (-1, 0.5], got {}", shown(nu)));
         }

@@ -188,6 +188,12 @@ pub fn push_number(text: &mut String, x: f64) {
         return;
     }
     let mut buffer = ryu::Buffer::new();
+    if (1e-4..1e6).contains(&x.abs()) {
+        // Here ryu writes the plain decimal itself ("123.45", "0.000123"), with ".0" after a whole number.
+        let plain = buffer.format_finite(x);
+        text.push_str(plain.strip_suffix(".0").unwrap_or(plain));
+        return;
+    }
     let shortest = buffer.format_finite(x.abs()).as_bytes();
     // ryu writes "123.45", "0.000123" or "1.5e-7": read off the significant digits and the decimal exponent k of
     // the first one (x = d.ddd × 10^k).

@@ -1,0 +1,94 @@
+//! `impact bench [--quick] [--out DIR]`: the work–precision study ([`crate::bench`]). Writes `DIR/bench.csv`
+//! (one row per method, setting and case) and the figure `DIR/bench.png` and `DIR/bench.svg` (the largest error
+//! over the cases against the median time per impact, one line per method); prints the machine, a summary per
+//! method and setting, and the fast path's targets. Runs on one thread; timings are medians over batches.
+
+use super::BadInput;
+use crate::bench::{self, Method, Setting};
+use crate::output::bench_figure::{self, BenchFigure, Curve};
+use crate::output::files::{figure_folder_problem, write_atomically};
+use crate::output::render;
+use anyhow::Context;
+use clap::Args;
+use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use std::path::PathBuf;
+
+#[derive(Debug, Args)]
+pub struct BenchArgs {
+    /// A short run: four cases (one per law family), a few settings per method, fewer repeats.
+    #[arg(long)]
+    pub quick: bool,
+    /// Folder for bench.csv, bench.png and bench.svg (created if missing).
+    #[arg(long, value_name = "DIR", default_value = "out/bench")]
+    pub out: PathBuf,
+    /// Only the cases whose name contains TEXT (repeatable; names as in the CSV, e.g. "hunt-crossley x=0.5 n=1.5").
+    #[arg(long = "case", value_name = "TEXT")]
+    pub cases: Vec<String>,
+}
+
+pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
+    if let Some(why) = figure_folder_problem(&args.out) {
+        return Err(BadInput(format!("--out {}: {why}", args.out.display())).into());
+    }
+    let all = if args.quick { bench::quick_cases() } else { bench::reference_cases() };
+    let cases: Vec<_> = all
+        .into_iter()
+        .filter(|case| args.cases.is_empty() || args.cases.iter().any(|text| case.name().contains(text.as_str())))
+        .collect();
+    if cases.is_empty() {
+        let names: Vec<String> = bench::reference_cases().iter().map(|c| c.name()).collect();
+        return Err(BadInput(format!("--case: no case matches; the cases are: {}", names.join(", "))).into());
+    }
+    let plan = bench::settings(args.quick);
+    let timing = if args.quick { bench::Timing::QUICK } else { bench::Timing::FULL };
+    let machine = bench::machine();
+    let bar =
+        ProgressBar::with_draw_target(Some((cases.len() * plan.len()) as u64), ProgressDrawTarget::stderr_with_hz(4));
+    bar.set_style(
+        ProgressStyle::with_template("{bar:40} {pos}/{len} {msg}").unwrap_or_else(|_| ProgressStyle::default_bar()),
+    );
+    let rows = bench::study(&cases, &plan, timing, |row| {
+        bar.set_message(format!("{} {}", row.method.name(), row.setting));
+        if let Some(why) = &row.failure {
+            bar.suspend(|| eprintln!("impact bench: {} {} on {}: {why}", row.method.name(), row.setting, row.case));
+        }
+        bar.inc(1);
+    });
+    bar.finish_and_clear();
+    let summaries = bench::summarise(&rows);
+    let figure = BenchFigure {
+        title: format!("Work–precision of one impact: {} reference impacts with exact answers", cases.len()),
+        x_label: "median time per impact over the cases (s, one core)".into(),
+        y_label: "largest relative error over the cases and quantities".into(),
+        curves: Method::ALL
+            .iter()
+            .filter(|m| summaries.iter().any(|s| s.method == **m))
+            .map(|&method| {
+                let own: Vec<_> = summaries.iter().filter(|s| s.method == method).collect();
+                let settings: Vec<Setting> = own.iter().map(|s| s.setting).collect();
+                Curve {
+                    label: format!("{}, {}", method.label(), Setting::range(&settings)),
+                    points: own.iter().map(|s| (s.median_seconds, s.error)).collect(),
+                }
+            })
+            .collect(),
+    };
+    let svg = bench_figure::svg(&figure);
+    let png = render::png(&svg).context("cannot render bench.png")?;
+    let csv = bench::csv(&rows);
+    for (name, bytes) in [("bench.csv", csv.as_bytes()), ("bench.svg", svg.as_bytes()), ("bench.png", png.as_slice())] {
+        write_atomically(&args.out.join(name), bytes)?;
+    }
+    println!("machine: {machine} (at the start); load average at the end {}", bench::load_average());
+    println!("cases: {}\n", cases.iter().map(|c| c.name()).collect::<Vec<_>>().join(", "));
+    print!("{}", bench::summary_table(&summaries));
+    if summaries.iter().any(|s| s.method == Method::Taylor && matches!(s.setting, Setting::Tolerance(_))) {
+        println!("\nfast path targets (issue 8), over these cases:");
+        print!("{}", bench::targets(&summaries));
+    }
+    println!(
+        "\nwrote {}",
+        ["bench.csv", "bench.png", "bench.svg"].map(|n| args.out.join(n).display().to_string()).join(", ")
+    );
+    Ok(())
+}

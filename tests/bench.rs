@@ -1,0 +1,77 @@
+//! `impact bench`: the work–precision study writes its CSV (the columns, one row per method, setting and
+//! case) and its figure, and its errors are the methods' own against the exact references; Dopri5 as a
+//! `[solver] method`. Speed is measured by the study, never asserted here.
+
+mod common;
+
+use common::binary::{Scratch, assert_success, describe, impact, stdout};
+use common::{assert_close, on_wall};
+
+#[test]
+fn the_study_writes_its_table_and_figure() {
+    let scratch = Scratch::new("quick");
+    let output = impact(scratch.path(), &["bench", "--quick", "--case", "hertz", "--out", "study"]);
+    assert_success(&output);
+    let text = stdout(&output);
+    assert!(text.contains("machine:") && text.contains("load average"), "{text}");
+    for method in ["taylor", "dop853", "dopri5", "rk4", "verlet"] {
+        assert!(text.lines().any(|l| l.starts_with(method)), "{method} missing from the summary:\n{text}");
+    }
+    let csv = scratch.read("study/bench.csv");
+    let mut lines = csv.lines();
+    let header: Vec<&str> = lines.next().expect("a header").split(',').collect();
+    for column in ["method", "case", "tolerance", "error", "seconds_per_impact", "force_evaluations"] {
+        assert!(header.contains(&column), "no column {column}: {header:?}");
+    }
+    let column = |name: &str| header.iter().position(|c| *c == name).expect("a column");
+    let rows: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();
+    // Quick: the fast path at 3 tolerances, Dop853 and Dopri5 at 2, RK4 and Verlet at 2 step counts; one case.
+    assert_eq!(rows.len(), 11, "{csv}");
+    for row in &rows {
+        assert_eq!(row.len(), header.len(), "{row:?}");
+        assert_eq!(row[column("case")], "hertz n=1.5");
+        let seconds: f64 = row[column("seconds_per_impact")].parse().expect("a time");
+        assert!(seconds > 0.0 && seconds < 1.0, "{row:?}");
+        let evaluations: u64 = row[column("force_evaluations")].parse().expect("a count");
+        assert!(evaluations > 0, "{row:?}");
+        let error: f64 = row[column("error")].parse().expect("an error");
+        // The largest error is the largest of the quantities' own.
+        let own = (column("error_e")..=column("error_jr")).map(|i| row[i].parse::<f64>().expect("an error"));
+        assert_eq!(own.fold(0.0, f64::max), error, "{row:?}");
+        // Accuracy, not speed: each method meets its tolerance against Hertz's closed forms.
+        let tolerance = row[column("tolerance")];
+        let bound = match (row[column("method")], tolerance) {
+            ("taylor", _) => 10.0 * tolerance.parse::<f64>().expect("a tolerance") + 1e-14,
+            ("dop853" | "dopri5", _) => 1e3 * tolerance.parse::<f64>().expect("a tolerance"),
+            ("rk4", _) => 1e-5,
+            // Events at the first step past them: a time late by up to a step of tc/N.
+            ("verlet", _) => 4.0 / row[column("steps")].parse::<f64>().expect("steps"),
+            (other, _) => panic!("unknown method {other}"),
+        };
+        assert!(error <= bound, "{row:?}: {error:e} > {bound:e}");
+    }
+    assert!(scratch.read("study/bench.svg").starts_with("<svg"));
+    let png = std::fs::read(scratch.path().join("study/bench.png")).expect("the PNG");
+    assert_eq!(&png[1..4], b"PNG");
+}
+
+#[test]
+fn a_case_filter_that_matches_nothing_is_refused() {
+    let scratch = Scratch::new("no-case");
+    let output = impact(scratch.path(), &["bench", "--quick", "--case", "no such law", "--out", "study"]);
+    assert_eq!(output.status.code(), Some(2), "{}", describe(&output));
+    assert!(describe(&output).contains("hunt-crossley x=0.5 n=1.5"), "the message lists the cases");
+    assert!(!scratch.exists("study"));
+}
+
+#[test]
+fn dopri5_is_a_solver_method_named_in_the_report() {
+    // Hertz's closed forms (docs/references.md): the report's reference section holds the errors.
+    let report = on_wall(1.0, 1.0, "law = \"hertz\"\nstiffness = 1e6\n\n[solver]\nmethod = \"dopri5\"\nrtol = 1e-10");
+    assert_eq!(report.solver.method, "dopri5");
+    let errors = report.reference.expect("Hertz has an exact reference").errors;
+    for (what, error) in [("e", errors.restitution), ("dmax", errors.max_penetration), ("tc", errors.duration)] {
+        assert!(error.expect("an error") < 1e-8, "{what}: {error:?}");
+    }
+    assert_close("e", report.contact.restitution_velocity_ratio.unwrap(), 1.0, 1e-8);
+}
