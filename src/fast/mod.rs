@@ -391,7 +391,9 @@ impl<'a> Run<'a> {
                     r = c[j] + zero * r;
                     self.end_factor[j - 1] = -r;
                 }
-                if !(self.end_factor[..k].iter().rev().fold(0.0, |acc, &q| acc * zero + q) > 0.0) {
+                // Q(zero) > 0, or no rule (also for a NaN).
+                let at_zero = self.end_factor[..k].iter().rev().fold(0.0, |acc, &q| acc * zero + q);
+                if at_zero.is_nan() || at_zero <= 0.0 {
                     return None;
                 }
                 let left = -self.tau;

@@ -145,18 +145,19 @@ const TWO_52: f64 = 4_503_599_627_370_496.0;
 const TWO_52_BITS: u64 = 0x4330_0000_0000_0000;
 /// 1.5·2^52: adding it rounds to an integer kept in the low bits of the mantissa.
 const ROUNDER: f64 = 6_755_399_441_055_744.0;
-/// `ln 2` split so that `k LN2_HI` is exact for `|k| < 2^11` (fdlibm).
-const LN2_HI: f64 = 6.931_471_803_691_238_164_90e-1;
-const LN2_LO: f64 = 1.908_214_929_270_587_700_02e-10;
+/// `ln 2` split so that `k LN2_HI` is exact for `|k| < 2^11` (fdlibm's `ln2_hi`, `ln2_lo`: 0x3fe62e42fee00000,
+/// 0x3dea39ef35793c76, as their shortest decimals).
+const LN2_HI: f64 = 6.931_471_803_691_238e-1;
+const LN2_LO: f64 = 1.908_214_929_270_587_7e-10;
 /// fdlibm's `Lg1..Lg7`: `ln m = 2s + s R(s²)`, `|R - (2s³/3 + …)/s| < 2^-58.45` on `|s| <= 0.1716`.
 const LG: [f64; 7] = [
-    6.666_666_666_666_735_130e-1,
-    3.999_999_999_940_941_908e-1,
-    2.857_142_874_366_239_149e-1,
-    2.222_219_843_214_978_396e-1,
-    1.818_357_216_161_805_012e-1,
-    1.531_383_769_920_937_332e-1,
-    1.479_819_860_511_658_591e-1,
+    6.666_666_666_666_735e-1,
+    3.999_999_999_940_942e-1,
+    2.857_142_874_366_239e-1,
+    2.222_219_843_214_978_4e-1,
+    1.818_357_216_161_805e-1,
+    1.531_383_769_920_937_3e-1,
+    1.479_819_860_511_658_6e-1,
 ];
 /// `1/j!` for `j = 0..=13`: the degree-13 Taylor polynomial of `exp` on `|r| <= ln2/2` (remainder < 5e-18).
 const EXP_TAYLOR: [f64; 14] = {
@@ -431,7 +432,7 @@ mod tests {
             }
         }
         assert!(worst < 1.0, "{worst}");
-        for x in [1.0, 0.5, 2.0, 0.7071067811865476, 1.4142135623730951, 3.0] {
+        for x in [1.0, 0.5, 2.0, std::f64::consts::FRAC_1_SQRT_2, std::f64::consts::SQRT_2, 3.0] {
             assert!((negative_power(x, 0.2) / x.powf(-0.2) - 1.0).abs() < 5e-16, "{x}");
         }
         assert_eq!(negative_power(1.0, 0.2), 1.0);
