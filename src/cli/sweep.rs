@@ -120,9 +120,10 @@ pub fn run(args: &SweepArgs) -> anyhow::Result<()> {
         indices,
         &pool,
         || bar.inc(1),
-        |row| {
-            tally.add(&row.status);
-            put(&table::line(&row))
+        |row| (table::line(&row), row.status),
+        |(line, status)| {
+            tally.add(&status);
+            put(&line)
         },
     )?;
     bar.finish_and_clear();

@@ -235,36 +235,52 @@ impl Sweep {
         (first.min(self.rows())..self.rows()).step_by(step)
     }
 
-    /// Runs the rows `indices` on `pool`, [`CHUNK`] rows at a time in parallel, calling `done` after each row and
-    /// passing the rows to `write` in the order of `indices` as soon as their chunk is done. So the output does not
-    /// depend on the number of threads, and memory holds one chunk whatever the number of rows.
-    pub fn stream<E>(
+    /// Runs the rows `indices` on `pool`, [`CHUNK`] rows at a time in parallel, calling `done` after each row, and
+    /// passes each row, turned by `shape` (in parallel too: e.g. into its CSV line), to `write` in the order of
+    /// `indices`. `write` runs on a thread of its own, one chunk behind the computation, so that writing a chunk
+    /// overlaps computing the next. The output does not depend on the number of threads, and memory holds at most
+    /// three chunks whatever the number of rows. The first error of `write` stops the run and is returned.
+    pub fn stream<T: Send, E: Send>(
         &self,
         indices: impl Iterator<Item = usize>,
         pool: &rayon::ThreadPool,
         done: impl Fn() + Sync,
-        mut write: impl FnMut(Row) -> Result<(), E>,
+        shape: impl Fn(Row) -> T + Sync,
+        mut write: impl FnMut(T) -> Result<(), E> + Send,
     ) -> Result<(), E> {
-        let mut indices = indices.peekable();
-        let mut chunk = Vec::with_capacity(CHUNK);
-        while indices.peek().is_some() {
-            chunk.clear();
-            chunk.extend(indices.by_ref().take(CHUNK));
-            let rows: Vec<Row> = pool.install(|| {
-                chunk
-                    .par_iter()
-                    .map(|&index| {
-                        let row = self.evaluate(index);
-                        done();
-                        row
-                    })
-                    .collect()
+        let (send, receive) = std::sync::mpsc::sync_channel::<Vec<T>>(1);
+        std::thread::scope(|scope| {
+            let writer = scope.spawn(move || {
+                for rows in receive {
+                    for row in rows {
+                        write(row)?;
+                    }
+                }
+                Ok(())
             });
-            for row in rows {
-                write(row)?;
+            let mut indices = indices.peekable();
+            let mut chunk = Vec::with_capacity(CHUNK);
+            while indices.peek().is_some() {
+                chunk.clear();
+                chunk.extend(indices.by_ref().take(CHUNK));
+                let rows: Vec<T> = pool.install(|| {
+                    chunk
+                        .par_iter()
+                        .map(|&index| {
+                            let row = shape(self.evaluate(index));
+                            done();
+                            row
+                        })
+                        .collect()
+                });
+                // The writer has stopped on an error: it is returned below.
+                if send.send(rows).is_err() {
+                    break;
+                }
             }
-        }
-        Ok(())
+            drop(send);
+            writer.join().unwrap_or_else(|panic| std::panic::resume_unwind(panic))
+        })
     }
 
     /// Runs the rows `indices` on `threads` threads (`None`: one per core), calling `done` after each row; the rows
@@ -272,10 +288,16 @@ impl Sweep {
     pub fn run(&self, indices: &[usize], threads: Option<usize>, done: impl Fn() + Sync) -> anyhow::Result<Vec<Row>> {
         let pool = rayon::ThreadPoolBuilder::new().num_threads(threads.unwrap_or(0)).build()?;
         let mut rows = Vec::with_capacity(indices.len());
-        self.stream(indices.iter().copied(), &pool, done, |row| {
-            rows.push(row);
-            Ok::<(), std::convert::Infallible>(())
-        })?;
+        self.stream(
+            indices.iter().copied(),
+            &pool,
+            done,
+            |row| row,
+            |row| {
+                rows.push(row);
+                Ok::<(), std::convert::Infallible>(())
+            },
+        )?;
         Ok(rows)
     }
 
