@@ -32,7 +32,7 @@ mod taylor;
 
 use crate::dynamics::Scales;
 use crate::law::{ContactLaw, Family, Separation};
-use quadrature::{JacobiRules, MAX_NODES, gauss_power, jacobi_sum, negative_power, nodes_needed};
+use quadrature::{JacobiRules, MAX_NODES, gauss_power, jacobi_sum, negative_power, node_digits, nodes_needed};
 use regularised::{Expansion, Regularised, State};
 
 /// One normal impact to integrate.
@@ -252,10 +252,11 @@ enum TimeRule {
 /// The integration of one impact.
 struct Run<'a> {
     system: Regularised,
-    eps: f64,
     order: usize,
     /// `eps^(1/(order+1))`, for the step size.
     eps_root: f64,
+    /// `ln(1/eps)` and a margin, for the Gauss rules' node counts ([`nodes_needed`]).
+    node_digits: f64,
     state: State,
     /// Regularised time since first contact.
     tau: f64,
@@ -279,9 +280,9 @@ impl<'a> Run<'a> {
         let order = taylor::order_for(eps);
         Run {
             system,
-            eps,
             order,
             eps_root: eps.powf(1.0 / (order + 1) as f64),
+            node_digits: node_digits(eps),
             state: State::FIRST_CONTACT,
             tau: 0.0,
             time: 0.0,
@@ -419,7 +420,7 @@ impl<'a> Run<'a> {
     /// interval's centre) asks for.
     fn jacobi_piece(&mut self, xi: f64, start: f64, span: f64) -> Option<f64> {
         let gamma = self.system.time_exponent;
-        let m = nodes_needed(xi, self.eps);
+        let m = nodes_needed(xi, self.node_digits);
         if m > MAX_NODES {
             return None;
         }
@@ -443,7 +444,7 @@ impl<'a> Run<'a> {
             TimeRule::Inside { left, right } => {
                 let distance = (a - left).min(right - b);
                 let xi = 1.0 + 2.0 * distance / (b - a);
-                let m = nodes_needed(xi, self.eps);
+                let m = nodes_needed(xi, self.node_digits);
                 if m > MAX_NODES {
                     return None;
                 }
@@ -659,7 +660,8 @@ impl<'a> Run<'a> {
                 self.state.w = 0.0;
                 return Ok((point, if self.state.rate < 0.0 { Ending::Separated } else { Ending::Settled }));
             }
-            if system.penetration(self.state.w) + self.state.rate.abs() < SETTLED {
+            // (The penetration, a power, only once the rate alone is below the threshold.)
+            if self.state.rate.abs() < SETTLED && system.penetration(self.state.w) + self.state.rate.abs() < SETTLED {
                 return Ok((point, Ending::Settled));
             }
         }

@@ -13,6 +13,7 @@
 //!
 //! The powers `Q^(-γ)` and `w^(-γ)` at the nodes are [`negative_power`], four nodes at a time.
 
+use super::taylor::rough_log2;
 use std::sync::OnceLock;
 
 /// Largest Gauss–Legendre rule kept.
@@ -77,17 +78,25 @@ fn legendre_rule(m: usize, nodes: &mut [f64], weights: &mut [f64]) {
 
 /// Gauss–Legendre nodes for an integrand analytic inside the Bernstein ellipse through a point at distance
 /// `xi` (in half-interval units, from the interval's centre; `xi > 1`) on the real axis: the error of the
-/// `m`-node rule is about `ρ^(-2m)`, `ρ = xi + sqrt(xi² - 1)`, so `m = (ln(1/eps) + margin)/(2 ln ρ)`.
-pub fn nodes_needed(xi: f64, eps: f64) -> usize {
+/// `m`-node rule is about `ρ^(-2m)`, `ρ = xi + sqrt(xi² - 1)`, so `m = (ln(1/eps) + margin)/(2 ln ρ)`;
+/// `digits` is `ln(1/eps) + margin`, from [`node_digits`] (computed once per integration, not per piece).
+/// `ln ρ` is taken by [`rough_log2`] (to about 2e-5: a node count needs no more).
+pub fn nodes_needed(xi: f64, digits: f64) -> usize {
     if xi.is_infinite() {
         return 1;
     }
     let rho = xi + (xi * xi - 1.0).max(0.0).sqrt();
-    let m = ((1.0 / eps).ln() + NODE_MARGIN) / (2.0 * rho.ln());
+    let log_rho = if rho > 1.0 && rho <= f64::MAX { rough_log2(rho) * std::f64::consts::LN_2 } else { rho.ln() };
+    let m = digits / (2.0 * log_rho);
     if m.is_finite() { (m.ceil() as usize).max(2) } else { usize::MAX }
 }
 
-/// Added to `ln(1/eps)` in [`nodes_needed`]: the constant of the error bound (a branch point on the ellipse).
+/// `ln(1/eps)` plus the margin of [`nodes_needed`], for the local tolerance `eps`.
+pub fn node_digits(eps: f64) -> f64 {
+    (1.0 / eps).ln() + NODE_MARGIN
+}
+
+/// Added to `ln(1/eps)` in [`node_digits`]: the constant of the error bound (a branch point on the ellipse).
 const NODE_MARGIN: f64 = 2.0;
 
 /// `∫_a^b w(σ)^(-gamma) dσ` with the `m`-node Gauss–Legendre rule, `w` the polynomial `c`. `None` if `w <= 0`
@@ -523,7 +532,7 @@ mod tests {
         let mut rules = JacobiRules::default();
         for gamma in [0.2, 0.375] {
             let b = std::f64::consts::FRAC_PI_2;
-            let m = nodes_needed(2.0 * std::f64::consts::PI / b - 1.0, 1e-17);
+            let m = nodes_needed(2.0 * std::f64::consts::PI / b - 1.0, node_digits(1e-17));
             let (nodes, weights) = rules.rule(gamma, m);
             let got = b.powf(1.0 - gamma) * jacobi_sum(&q, gamma, 0.0, b, nodes, weights).unwrap();
             let exact = 0.5 * crate::reference::beta(0.5 * (1.0 - gamma), 0.5);
@@ -534,7 +543,7 @@ mod tests {
     #[test]
     fn gauss_power_integrates_a_shifted_power() {
         // ∫_1^2 σ^(-0.3) dσ = (2^0.7 - 1)/0.7, with w = σ written about 0.
-        let got = gauss_power(&[0.0, 1.0], 0.3, 1.0, 2.0, nodes_needed(3.0, 1e-16)).unwrap();
+        let got = gauss_power(&[0.0, 1.0], 0.3, 1.0, 2.0, nodes_needed(3.0, node_digits(1e-16))).unwrap();
         let exact = (2.0_f64.powf(0.7) - 1.0) / 0.7;
         assert!((got / exact - 1.0).abs() < 1e-15, "{got} vs {exact}");
     }
