@@ -221,6 +221,9 @@ const MAX_SHRINKS: u32 = 60;
 /// 1e-11). (Tighter limits cost steps, looser ones nodes; 2 to 3 measured best.)
 const XI_MIN: f64 = 2.0;
 
+/// Relative accuracy of [`Run::next_zero`]'s estimate (it sets a step limit and node counts, never an event).
+const ZERO_ESTIMATE: f64 = 1e-6;
+
 /// Which rule gives the time over a piece of a step.
 #[derive(Debug, Clone, Copy)]
 enum Piece {
@@ -364,7 +367,8 @@ impl<'a> Run<'a> {
         let w = self.w();
         let w_from = taylor::value(w, from);
         let value = |s: f64| taylor::value(w, s);
-        taylor::first_fall(value, |s| taylor::value_and_slope(w, s), from, 4.0 * h, w_from).unwrap_or(4.0 * h)
+        taylor::first_fall_within(value, |s| taylor::value_and_slope(w, s), from, 4.0 * h, w_from, ZERO_ESTIMATE)
+            .unwrap_or(4.0 * h)
     }
 
     /// Sets up the time rule of a piece of the current step; `None` if it cannot reach the accuracy (a zero of

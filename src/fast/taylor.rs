@@ -171,12 +171,25 @@ pub fn first_fall(
     to: f64,
     f_from: f64,
 ) -> Option<f64> {
+    first_fall_within(value, newton, from, to, f_from, 0.0)
+}
+
+/// [`first_fall`] with the root located only to the relative accuracy `precision` (0: to rounding), for an
+/// estimate.
+pub fn first_fall_within(
+    value: impl Fn(f64) -> f64,
+    newton: impl Fn(f64) -> (f64, f64),
+    from: f64,
+    to: f64,
+    f_from: f64,
+    precision: f64,
+) -> Option<f64> {
     let (mut lo, mut f_lo) = (from, f_from);
     for i in 1..=FALL_SAMPLES {
         let hi = if i == FALL_SAMPLES { to } else { from + (to - from) * (i as f64 / FALL_SAMPLES as f64) };
         let f_hi = value(hi);
         if f_hi <= 0.0 {
-            return Some(root(&newton, lo, hi, f_lo, f_hi));
+            return Some(root_within(&newton, lo, hi, f_lo, f_hi, precision));
         }
         (lo, f_lo) = (hi, f_hi);
     }
@@ -190,8 +203,23 @@ const FALL_SAMPLES: usize = 2;
 ///
 /// `f` returns its value and derivative. Newton's method, safeguarded by the bracket (a step that leaves it is
 /// replaced by bisection), started from the secant point; it stops when the bracket or the Newton step is down to
-/// rounding. Converges quadratically on a step's polynomial, where the root is simple.
-pub fn root(f: impl Fn(f64) -> (f64, f64), mut lo: f64, mut hi: f64, f_lo: f64, f_hi: f64) -> f64 {
+/// rounding, or when the next Newton step would be: once converging quadratically, each correction is about
+/// `C` times the square of the last, so after corrections `d_(i-1)`, `d_i` the next is about `d_i³/d_(i-1)²`.
+/// Converges quadratically on a step's polynomial, where the root is simple.
+#[cfg(test)]
+pub fn root(f: impl Fn(f64) -> (f64, f64), lo: f64, hi: f64, f_lo: f64, f_hi: f64) -> f64 {
+    root_within(f, lo, hi, f_lo, f_hi, 0.0)
+}
+
+/// [`root`] to the relative accuracy `precision` (rounding if smaller).
+pub fn root_within(
+    f: impl Fn(f64) -> (f64, f64),
+    mut lo: f64,
+    mut hi: f64,
+    f_lo: f64,
+    f_hi: f64,
+    precision: f64,
+) -> f64 {
     if f_hi == 0.0 {
         return hi;
     }
@@ -203,6 +231,9 @@ pub fn root(f: impl Fn(f64) -> (f64, f64), mut lo: f64, mut hi: f64, f_lo: f64, 
     if !(x > lo && x < hi) {
         x = 0.5 * (lo + hi);
     }
+    let relative = precision.max(2.0 * f64::EPSILON);
+    // The last Newton correction (0 before the first and after a bisection: no prediction from it).
+    let mut previous = 0.0;
     for _ in 0..100 {
         let (fx, slope) = f(x);
         if fx == 0.0 {
@@ -214,15 +245,18 @@ pub fn root(f: impl Fn(f64) -> (f64, f64), mut lo: f64, mut hi: f64, f_lo: f64, 
             lo = x;
         }
         let newton = x - fx / slope;
-        let small = 2.0 * f64::EPSILON * x.abs().max(f64::MIN_POSITIVE);
-        if (newton - x).abs() <= small {
-            // Converged: the Newton correction is down to rounding.
+        let small = relative * x.abs().max(f64::MIN_POSITIVE);
+        let correction = (newton - x).abs();
+        if correction <= small || correction * correction * correction <= small * previous * previous {
+            // Converged: the Newton correction, or the next one, is down to the accuracy.
             return newton.clamp(lo, hi);
         }
-        let next = if newton > lo && newton < hi { newton } else { 0.5 * (lo + hi) };
+        let inside = newton > lo && newton < hi;
+        let next = if inside { newton } else { 0.5 * (lo + hi) };
         if hi - lo <= small {
             return next;
         }
+        previous = if inside { correction } else { 0.0 };
         x = next;
     }
     x
