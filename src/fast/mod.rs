@@ -530,7 +530,8 @@ impl<'a> Run<'a> {
                 // Maximum compression, then (only after it) the zero of w, then the force's zero before that.
                 let turn = if compressing { fall(rate, 0.0, self.state.rate) } else { None };
                 let restitution_from = if compressing { turn } else { Some(0.0) };
-                let zero = restitution_from.and_then(|a| fall(w, a, taylor::value(w, a)));
+                // (At the step's start, w's value is its first coefficient.)
+                let zero = restitution_from.and_then(|a| fall(w, a, if a == 0.0 { w[0] } else { taylor::value(w, a) }));
                 if from_zero && zero.is_some() {
                     // The whole contact in one step: the time rule about first contact would have to reach the
                     // other zero of w. Two steps at least.
@@ -583,7 +584,8 @@ impl<'a> Run<'a> {
                 // every damped law).
                 let peak_at = if rising {
                     let until = turn.unwrap_or(end);
-                    let (g_start, _) = self.peak_at(0.0);
+                    // At the step's start: the polynomials' first two coefficients.
+                    let (g_start, _) = system.peak_function(w[0], w[1], rate[0], rate[1]);
                     if g_start > 0.0 {
                         taylor::first_fall(|s| self.peak_value(s), |s| self.peak_at(s), 0.0, until, g_start)
                     } else {

@@ -115,9 +115,10 @@ impl Expansion {
     /// The state at offset `sigma` in the step.
     pub fn state_at(&self, sigma: f64) -> State {
         let k = self.order;
-        let rate = taylor::value(&self.rate[..=k], sigma);
-        // v(σ) - v_0 without cancellation: σ Σ_{j>=1} v_j σ^(j-1).
+        // v(σ) - v_0 without cancellation: σ Σ_{j>=1} v_j σ^(j-1); v(σ) is v_0 plus it (Horner's last step, the
+        // same rounding).
         let change = sigma * taylor::value(&self.rate[1..=k], sigma);
+        let rate = self.rate[0] + change;
         let power = sigma.powi(k as i32 + 1);
         let top = self.force_top * power;
         let moment =
