@@ -158,7 +158,7 @@ pub fn dot2(a: &[f64], b: &[f64], c: &[f64]) -> (f64, f64) {
 }
 
 /// The first fall of a function through zero on `(from, to]`, from its value `f_from > 0` at `from`: it is
-/// sampled (`value`) at [`FALL_SAMPLES`] equally spaced points, and the root located ([`root`], with `newton`
+/// sampled (`value`) at [`FALL_SAMPLES`] equally spaced points, and the root located ([`root_within`], with `newton`
 /// giving value and slope) in the first interval that ends at a value `<= 0`. `None` if no sample is `<= 0`.
 ///
 /// Sampling inside the step keeps a function that falls and rises again within one step from being missed:
@@ -199,19 +199,20 @@ pub fn first_fall_within(
 /// Points at which [`first_fall`] samples its function.
 const FALL_SAMPLES: usize = 2;
 
-/// The root of `f` in `[lo, hi]`, where `f(lo)` and `f(hi)` have opposite signs (or `f(hi) = 0`).
-///
-/// `f` returns its value and derivative. Newton's method, safeguarded by the bracket (a step that leaves it is
-/// replaced by bisection), started from the secant point; it stops when the bracket or the Newton step is down to
-/// rounding, or when the next Newton step would be: once converging quadratically, each correction is about
-/// `C` times the square of the last, so after corrections `d_(i-1)`, `d_i` the next is about `d_i³/d_(i-1)²`.
-/// Converges quadratically on a step's polynomial, where the root is simple.
+/// [`root_within`] to rounding.
 #[cfg(test)]
 pub fn root(f: impl Fn(f64) -> (f64, f64), lo: f64, hi: f64, f_lo: f64, f_hi: f64) -> f64 {
     root_within(f, lo, hi, f_lo, f_hi, 0.0)
 }
 
-/// [`root`] to the relative accuracy `precision` (rounding if smaller).
+/// The root of `f` in `[lo, hi]`, where `f(lo)` and `f(hi)` have opposite signs (or `f(hi) = 0`), to the relative
+/// accuracy `precision` (rounding if smaller).
+///
+/// `f` returns its value and derivative. Newton's method, safeguarded by the bracket (a step that leaves it is
+/// replaced by bisection), started from the secant point; it stops when the bracket or the Newton step is down to
+/// the accuracy, or when the next Newton step would be: once converging quadratically, each correction is about
+/// `C` times the square of the last, so after corrections `d_(i-1)`, `d_i` the next is about `d_i³/d_(i-1)²`.
+/// Converges quadratically on a step's polynomial, where the root is simple.
 pub fn root_within(
     f: impl Fn(f64) -> (f64, f64),
     mut lo: f64,
