@@ -23,6 +23,9 @@ pub struct BenchFigure {
     pub curves: Vec<Curve>,
 }
 
+/// Room kept between the outermost points and the axes' ends, as a factor (0.03 decade, about a marker's radius).
+const MARKER_ROOM: f64 = 1.072;
+
 impl BenchFigure {
     /// The points that can be drawn (finite, positive time; the error floored at [`ERROR_FLOOR`]).
     fn drawn(points: &[(f64, f64)]) -> Vec<(f64, f64)> {
@@ -36,7 +39,8 @@ impl BenchFigure {
     fn range(&self, pick: impl Fn(&(f64, f64)) -> f64, fallback: (f64, f64)) -> (f64, f64) {
         let values = self.curves.iter().flat_map(|c| Self::drawn(&c.points)).map(|p| pick(&p));
         let (low, high) = values.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| (a.min(v), b.max(v)));
-        if low.is_finite() { (low, high) } else { fallback }
+        // A point within a marker's width of a decade moves the axis to the next decade, so no marker is cut.
+        if low.is_finite() { (low / MARKER_ROOM, high * MARKER_ROOM) } else { fallback }
     }
 }
 
