@@ -10,16 +10,18 @@
 #
 #   scripts/peers.sh PEERS_DIR [OUT_DIR]     # PEERS_DIR holds scipy_peer.py, numba_peer.py, diffrax_peer.py
 #
-# Installs scipy and numba with pip if they are missing. Run from the repository's root.
+# Installs scipy and numba with pip if they are missing (into the Python that PYTHON names, python3 by default).
 set -eu
 if [ $# -lt 1 ] || [ ! -f "$1/scipy_peer.py" ] || [ ! -f "$1/numba_peer.py" ]; then
     echo "usage: scripts/peers.sh PEERS_DIR [OUT_DIR]  (PEERS_DIR: the folder of scipy_peer.py and numba_peer.py)" >&2
     exit 2
 fi
-peers=$1
+peers=$(cd "$1" && pwd)
 out=${2:-out/peers}
-python=${PYTHON:-python3}
 mkdir -p "$out"
+out=$(cd "$out" && pwd)
+cd "$(dirname "$0")/.."   # the repository's root, wherever the script is called from
+python=${PYTHON:-python3}
 
 python3_has() { "$python" -c "import $1" 2>/dev/null; }
 for module in scipy numba; do

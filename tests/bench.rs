@@ -65,6 +65,25 @@ fn a_case_filter_that_matches_nothing_is_refused() {
 }
 
 #[test]
+fn its_outputs_are_checked_before_the_study_and_written_all_or_none() {
+    let scratch = Scratch::new("bench-outputs");
+    // An existing file named as the folder: refused before any work (exit 2), the file untouched.
+    scratch.write("taken", "a user's file\n");
+    let output = impact(scratch.path(), &["bench", "--quick", "--case", "hertz", "--out", "taken"]);
+    assert_eq!(output.status.code(), Some(2), "{}", describe(&output));
+    assert!(describe(&output).contains("not a folder"), "{}", describe(&output));
+    assert!(!stdout(&output).contains("machine:"), "the study ran before the refusal");
+    assert_eq!(scratch.read("taken"), "a user's file\n");
+    // One of the three outputs cannot be written (a folder has its name): nothing is written, not even the others.
+    std::fs::create_dir_all(scratch.path().join("study/bench.svg")).expect("a folder");
+    let output = impact(scratch.path(), &["bench", "--quick", "--case", "hertz", "--out", "study"]);
+    assert_ne!(output.status.code(), Some(0), "{}", describe(&output));
+    assert!(!stdout(&output).contains("machine:"), "the study ran before the refusal");
+    assert!(!scratch.exists("study/bench.csv") && !scratch.exists("study/bench.png"));
+    assert!(scratch.files().iter().all(|f| !f.contains("partial")), "{:?}", scratch.files());
+}
+
+#[test]
 fn dopri5_is_a_solver_method_named_in_the_report() {
     // Hertz's closed forms (docs/references.md): the report's reference section holds the errors.
     let report = on_wall(1.0, 1.0, "law = \"hertz\"\nstiffness = 1e6\n\n[solver]\nmethod = \"dopri5\"\nrtol = 1e-10");

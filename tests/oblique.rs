@@ -203,6 +203,24 @@ fn sliding_impacts_follow_rigid_body_theory_with_a_hertzian_exact_map() {
     }
 }
 
+/// Above the rigid sliding threshold (tan θ* = (7/2) mu (1 + e) = 32.5° here, docs/oblique.md) Carvalho–Martins'
+/// law, whose force grows like d^(3/2) from the first instant, slides throughout: no stick, not even for an instant
+/// at separation, where the Coulomb cap and the spring vanish together (an integration error there once reversed the
+/// spring and faked a stick of femtoseconds, at 60°).
+#[test]
+fn a_sliding_contact_never_sticks_at_its_edges() {
+    let e: f64 = 0.98;
+    let threshold = (3.5 * 0.092 * (1.0 + e)).atan().to_degrees();
+    for step in 0..18 {
+        let angle = 36.0 + 3.0 * step as f64;
+        assert!(angle > threshold);
+        let report = run(&sphere_on_wall(angle, 3.9, &format!("law = \"carvalho-martins\"\n{TEST_4}")));
+        let oblique = report.oblique.as_ref().unwrap();
+        assert_eq!(oblique.regime, "sliding", "{angle}: {:?}", report.notes);
+        assert!(report.notes.iter().all(|n| !n.contains("switched")), "{angle}: {:?}", report.notes);
+    }
+}
+
 #[test]
 fn tsujis_damping_term_makes_the_contact_stick_for_an_instant_before_it_slides() {
     // F = K d^(3/2) + a sqrt(m* K) d^(1/4) d': the damping term dominates as d -> 0, so at first contact mu F

@@ -4,14 +4,18 @@
 //! method and setting, and the fast path's targets. Runs on one thread; timings are medians over batches.
 
 use super::BadInput;
+use super::paths::{Origin, Paths};
 use crate::bench::{self, Method, Setting};
 use crate::output::bench_figure::{self, BenchFigure, Curve};
-use crate::output::files::{figure_folder_problem, write_atomically};
+use crate::output::files::{Destination, OutputFile, figure_folder_problem};
 use crate::output::render;
 use anyhow::Context;
 use clap::Args;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use std::path::PathBuf;
+
+/// The files the study writes into its folder.
+const OUTPUTS: [&str; 3] = ["bench.csv", "bench.png", "bench.svg"];
 
 #[derive(Debug, Args)]
 pub struct BenchArgs {
@@ -30,14 +34,34 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
     if let Some(why) = figure_folder_problem(&args.out) {
         return Err(BadInput(format!("--out {}: {why}", args.out.display())).into());
     }
+    // The outputs, checked by the rules of every verb before any work: a folder (or one to be made), three files.
+    if let Ok(meta) = std::fs::metadata(&args.out)
+        && !meta.is_dir()
+    {
+        return Err(BadInput(format!(
+            "--out {} is an existing file, not a folder: the study's CSV and figures need a folder to be written into",
+            args.out.display()
+        ))
+        .into());
+    }
+    let mut paths = Paths::default();
+    let outputs: Vec<(&str, Destination)> = OUTPUTS
+        .iter()
+        .map(|&name| {
+            let path = args.out.join(name);
+            let label = format!("--out {} ({})", args.out.display(), path.display());
+            Ok((name, paths.output(label, Origin::CommandLine, &path)?))
+        })
+        .collect::<anyhow::Result<_>>()?;
     let all = if args.quick { bench::quick_cases() } else { bench::reference_cases() };
+    let names: Vec<String> = all.iter().map(|c| c.name()).collect();
     let cases: Vec<_> = all
         .into_iter()
         .filter(|case| args.cases.is_empty() || args.cases.iter().any(|text| case.name().contains(text.as_str())))
         .collect();
     if cases.is_empty() {
-        let names: Vec<String> = bench::reference_cases().iter().map(|c| c.name()).collect();
-        return Err(BadInput(format!("--case: no case matches; the cases are: {}", names.join(", "))).into());
+        let which = if args.quick { "the cases of --quick" } else { "the cases" };
+        return Err(BadInput(format!("--case: no case matches; {which} are: {}", names.join(", "))).into());
     }
     let plan = bench::settings(args.quick);
     let timing = if args.quick { bench::Timing::QUICK } else { bench::Timing::FULL };
@@ -76,8 +100,20 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
     let svg = bench_figure::svg(&figure);
     let png = render::png(&svg).context("cannot render bench.png")?;
     let csv = bench::csv(&rows);
-    for (name, bytes) in [("bench.csv", csv.as_bytes()), ("bench.svg", svg.as_bytes()), ("bench.png", png.as_slice())] {
-        write_atomically(&args.out.join(name), bytes)?;
+    // All three or none: each is written to its temporary first, and only then are they moved into place.
+    let mut pending = Vec::new();
+    for (name, destination) in &outputs {
+        let bytes = match *name {
+            "bench.csv" => csv.as_bytes(),
+            "bench.svg" => svg.as_bytes(),
+            _ => png.as_slice(),
+        };
+        let mut file = OutputFile::create(destination)?;
+        file.write_bytes(bytes)?;
+        pending.push(file);
+    }
+    for file in pending {
+        file.finish()?;
     }
     println!("machine: {machine} (at the start); load average at the end {}", bench::load_average());
     println!("cases: {}\n", cases.iter().map(|c| c.name()).collect::<Vec<_>>().join(", "));
@@ -86,9 +122,6 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
         println!("\nfast path targets (issue 8), over these cases:");
         print!("{}", bench::targets(&summaries));
     }
-    println!(
-        "\nwrote {}",
-        ["bench.csv", "bench.png", "bench.svg"].map(|n| args.out.join(n).display().to_string()).join(", ")
-    );
+    println!("\nwrote {}", outputs.iter().map(|(_, d)| d.shown().to_string()).collect::<Vec<_>>().join(", "));
     Ok(())
 }

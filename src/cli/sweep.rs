@@ -49,7 +49,8 @@ pub struct SweepArgs {
     /// shard files with `impact merge`.
     #[arg(long, value_name = "I/N")]
     pub shard: Option<String>,
-    /// Number of threads (default: one per core). The CSV does not depend on it.
+    /// Number of worker threads computing rows (default: one per core; one more thread writes the CSV). The CSV does
+    /// not depend on it.
     #[arg(long, value_name = "N")]
     pub threads: Option<usize>,
 }

@@ -140,10 +140,11 @@ impl Tangential {
         }
     }
 
-    /// The direction of a sliding contact's spring force. Sliding keeps the spring at the cap, |T| = mu Fn; a spring
-    /// that has drifted below half of it (the integration's error, which near the contact's edges, where the cap
-    /// vanishes, can carry the spring through zero and reverse it) no longer gives a direction: the force then
-    /// opposes the slip, as Coulomb's law has it.
+    /// The direction a sliding spring is driven along and judged by. Sliding keeps the spring at the cap,
+    /// |T| = mu Fn; a spring that has drifted below half of it (the integration's error, which near the contact's
+    /// edges, where the cap vanishes, can carry the spring through zero and reverse it) no longer gives a
+    /// direction: the spring's rate and the stick–slip switch then take the direction against the slip, as
+    /// Coulomb's law has it. (The force stays the spring itself, below the integration's error there.)
     fn sliding_direction(spring: &Vector3<f64>, slip: &Vector3<f64>, cap: f64) -> Vector3<f64> {
         if spring.norm() >= 0.5 * cap {
             Tangential::direction(spring, slip)

@@ -237,7 +237,7 @@ impl Sweep {
 
     /// Runs the rows `indices` on `pool`, [`CHUNK`] rows at a time in parallel, calling `done` after each row, and
     /// passes each row, turned by `shape` (in parallel too: e.g. into its CSV line), to `write` in the order of
-    /// `indices`. `write` runs on a thread of its own, one chunk behind the computation, so that writing a chunk
+    /// `indices`. `write` runs on a thread of its own, a chunk or two behind the computation, so that writing a chunk
     /// overlaps computing the next. The output does not depend on the number of threads, and memory holds at most
     /// three chunks whatever the number of rows. The first error of `write` stops the run and is returned.
     pub fn stream<T: Send, E: Send>(
