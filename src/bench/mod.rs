@@ -112,7 +112,7 @@ impl Method {
             Method::Taylor => "Taylor series, regularised (fast path)",
             Method::Dop853 => "Dop853 (ode_solvers), events re-stepped",
             Method::Dopri5 => "Dopri5 (ode_solvers), events re-stepped",
-            Method::Rk4 => "RK4, fixed step, Hermite events",
+            Method::Rk4 => "RK4, fixed step, events located",
             Method::Verlet => "velocity Verlet (DEM), events at the step past",
         }
     }
@@ -420,7 +420,9 @@ pub fn summarise(rows: &[Row]) -> Vec<Summary> {
     groups
         .into_iter()
         .map(|(method, setting, rows)| {
-            let mut seconds: Vec<f64> = rows.iter().map(|r| r.seconds_per_impact).collect();
+            // Times of the runs that finished (a failed case has none; its infinite error marks the setting).
+            let mut seconds: Vec<f64> =
+                rows.iter().filter(|r| r.failure.is_none()).map(|r| r.seconds_per_impact).collect();
             let mut evaluations: Vec<f64> = rows.iter().map(|r| r.force_evaluations as f64).collect();
             Summary {
                 method,
