@@ -97,11 +97,27 @@ fn fall(g: impl Fn(f64) -> f64, mut a: f64, mut ga: f64, mut b: f64, mut gb: f64
     0.5 * (a + b)
 }
 
-/// Classical RK4 at `steps` steps per elastic contact, events located on the steps' Hermite interpolants.
-pub fn rk4(case: &Case, steps: u32) -> Run {
-    let (law, _) = case.law();
-    let on_force = case.force_criterion();
-    let h = case.elastic_duration() / f64::from(steps);
+/// What a fixed-step run needs of its case, prepared before it is timed: the law, the separation criterion and the
+/// step.
+#[derive(Debug, Clone, Copy)]
+pub struct Fixed {
+    law: ContactLaw,
+    /// Whether separation is at zero force (else at zero penetration).
+    on_force: bool,
+    /// The step, `tc / N`.
+    step: f64,
+}
+
+impl Fixed {
+    /// `case` at `steps` steps per elastic contact.
+    pub fn new(case: &Case, steps: u32) -> Fixed {
+        Fixed { law: case.law().0, on_force: case.force_criterion(), step: case.elastic_duration() / f64::from(steps) }
+    }
+}
+
+/// Classical RK4 at a fixed step, events located on the steps' Hermite interpolants, separation by re-stepping.
+pub fn rk4(fixed: &Fixed) -> Run {
+    let Fixed { law, on_force, step: h } = *fixed;
     let mut y: State = [0.0, 1.0, 0.0];
     let mut f = derivative(&law, &y);
     let mut evaluations = 1;
@@ -212,10 +228,8 @@ fn fall_between(
 /// `F = F(d, v½)`, `v = v½ - (dt/2) F`; maximum compression at the first step whose velocity is not positive (its
 /// overlap the largest seen), the force peak the largest force computed, separation at the first step whose
 /// overlap (or, under the force criterion, force) is not positive while the bodies move apart, `e = -v½` there.
-pub fn verlet(case: &Case, steps: u32) -> Run {
-    let (law, _) = case.law();
-    let on_force = case.force_criterion();
-    let dt = case.elastic_duration() / f64::from(steps);
+pub fn verlet(fixed: &Fixed) -> Run {
+    let Fixed { law, on_force, step: dt } = *fixed;
     let (mut d, mut v, mut f, mut t) = (0.0f64, 1.0f64, 0.0f64, 0.0f64);
     let mut evaluations = 0;
     let mut peak = (0.0f64, 0.0f64);
@@ -269,14 +283,14 @@ mod tests {
     #[test]
     fn rk4_converges_on_every_quantity() {
         let case = Case::HuntCrossley { x: 0.5, n: 1.5 };
-        let coarse = errors(rk4(&case, 100), &case);
-        let fine = errors(rk4(&case, 1000), &case);
+        let coarse = errors(rk4(&Fixed::new(&case, 100)), &case);
+        let fine = errors(rk4(&Fixed::new(&case, 1000)), &case);
         for (i, (c, f)) in coarse.iter().zip(&fine).enumerate() {
             assert!(*f < 1e-8, "{}: {f:e} at N = 1000", super::super::QUANTITIES[i]);
             assert!(*f < 1e-2 * c.max(1e-14) || *f < 1e-13, "{}: {c:e} -> {f:e}", super::super::QUANTITIES[i]);
         }
         let linear = Case::KelvinVoigt { zeta: 0.1, separation: Separation::Force };
-        let worst = errors(rk4(&linear, 1000), &linear).into_iter().fold(0.0, f64::max);
+        let worst = errors(rk4(&Fixed::new(&linear, 1000)), &linear).into_iter().fold(0.0, f64::max);
         assert!(worst < 1e-10, "Kelvin–Voigt at F = 0: {worst:e}");
     }
 
@@ -289,7 +303,7 @@ mod tests {
         let exact = case.exact().expect("exact");
         for n in [100, 1000] {
             let dt = case.elastic_duration() / f64::from(n);
-            let (measured, evaluations) = verlet(&case, n).expect("separates");
+            let (measured, evaluations) = verlet(&Fixed::new(&case, n)).expect("separates");
             let late = |got: f64, want: f64| got >= want && got < want + dt;
             assert!(late(measured.max_compression_time, exact.max_compression_time), "t0 at N = {n}");
             assert!(late(measured.duration, exact.duration), "tc at N = {n}");

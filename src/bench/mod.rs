@@ -175,8 +175,8 @@ pub fn settings(quick: bool) -> Vec<(Method, Setting)> {
 pub enum Runner {
     Taylor(Request),
     General(Box<(Scene, Setup)>),
-    Rk4(Case, u32),
-    Verlet(Case, u32),
+    Rk4(baselines::Fixed),
+    Verlet(baselines::Fixed),
 }
 
 impl Runner {
@@ -189,8 +189,8 @@ impl Runner {
                 let setup = Setup::new(&scene).map_err(|e| format!("{}: {}", e.key, e.message))?;
                 Ok(Runner::General(Box::new((scene, setup))))
             }
-            (Method::Rk4, Setting::Steps(n)) => Ok(Runner::Rk4(*case, n)),
-            (Method::Verlet, Setting::Steps(n)) => Ok(Runner::Verlet(*case, n)),
+            (Method::Rk4, Setting::Steps(n)) => Ok(Runner::Rk4(baselines::Fixed::new(case, n))),
+            (Method::Verlet, Setting::Steps(n)) => Ok(Runner::Verlet(baselines::Fixed::new(case, n))),
             _ => Err(format!("{} does not take {setting}", method.name())),
         }
     }
@@ -233,8 +233,8 @@ impl Runner {
                 };
                 Ok((measured, out.counters.evaluations))
             }
-            Runner::Rk4(case, n) => baselines::rk4(case, *n),
-            Runner::Verlet(case, n) => baselines::verlet(case, *n),
+            Runner::Rk4(fixed) => baselines::rk4(fixed),
+            Runner::Verlet(fixed) => baselines::verlet(fixed),
         }
     }
 }
