@@ -45,12 +45,12 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
         .into());
     }
     let mut paths = Paths::default();
-    let outputs: Vec<(&str, Destination)> = OUTPUTS
+    let outputs: Vec<Destination> = OUTPUTS
         .iter()
         .map(|&name| {
             let path = args.out.join(name);
             let label = format!("--out {} ({})", args.out.display(), path.display());
-            Ok((name, paths.output(label, Origin::CommandLine, &path)?))
+            paths.output(label, Origin::CommandLine, &path)
         })
         .collect::<anyhow::Result<_>>()?;
     let all = if args.quick { bench::quick_cases() } else { bench::reference_cases() };
@@ -102,12 +102,9 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
     let csv = bench::csv(&rows);
     // All three or none: each is written to its temporary first, and only then are they moved into place.
     let mut pending = Vec::new();
-    for (name, destination) in &outputs {
-        let bytes = match *name {
-            "bench.csv" => csv.as_bytes(),
-            "bench.svg" => svg.as_bytes(),
-            _ => png.as_slice(),
-        };
+    // In the order of OUTPUTS.
+    let contents = [csv.as_bytes(), png.as_slice(), svg.as_bytes()];
+    for (destination, bytes) in outputs.iter().zip(contents) {
         let mut file = OutputFile::create(destination)?;
         file.write_bytes(bytes)?;
         pending.push(file);
@@ -122,6 +119,6 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
         println!("\nfast path targets (issue 8), over these cases:");
         print!("{}", bench::targets(&summaries));
     }
-    println!("\nwrote {}", outputs.iter().map(|(_, d)| d.shown().to_string()).collect::<Vec<_>>().join(", "));
+    println!("\nwrote {}", outputs.iter().map(|d| d.shown().to_string()).collect::<Vec<_>>().join(", "));
     Ok(())
 }

@@ -132,12 +132,13 @@ impl Tangential {
     /// The direction of the spring's force: along the spring, or — an unloaded spring — against the slip.
     pub fn direction(spring: &Vector3<f64>, slip: &Vector3<f64>) -> Vector3<f64> {
         let length = spring.norm();
-        if length > 1e-300 {
-            spring / length
-        } else {
-            let speed = slip.norm();
-            if speed > 0.0 { -slip / speed } else { Vector3::zeros() }
-        }
+        if length > 1e-300 { spring / length } else { Tangential::against(slip) }
+    }
+
+    /// The unit vector against the slip (zero without slip).
+    fn against(slip: &Vector3<f64>) -> Vector3<f64> {
+        let speed = slip.norm();
+        if speed > 0.0 { -slip / speed } else { Vector3::zeros() }
     }
 
     /// The direction a sliding spring is driven along and judged by. Sliding keeps the spring at the cap,
@@ -146,11 +147,8 @@ impl Tangential {
     /// direction: the spring's rate and the stick–slip switch then take the direction against the slip, as
     /// Coulomb's law has it. (The force stays the spring itself, below the integration's error there.)
     fn sliding_direction(spring: &Vector3<f64>, slip: &Vector3<f64>, cap: f64) -> Vector3<f64> {
-        if spring.norm() >= 0.5 * cap {
-            Tangential::direction(spring, slip)
-        } else {
-            Tangential::direction(&Vector3::zeros(), slip)
-        }
+        let length = spring.norm();
+        if length >= 0.5 * cap && length > 1e-300 { spring / length } else { Tangential::against(slip) }
     }
 
     /// The force and spring rate in `mode`, for the spring `spring` (in the tangent plane), the kinematics, the

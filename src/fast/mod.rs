@@ -31,6 +31,8 @@ mod regularised;
 mod taylor;
 
 use crate::dynamics::Scales;
+// Scaled `δ + |v|` below which the relative motion counts as died out: the general path's level.
+use crate::impact::SETTLED;
 use crate::law::{ContactLaw, Family, Separation};
 use quadrature::{JacobiRules, MAX_NODES, gauss_power, jacobi_sum, negative_power, node_digits, nodes_needed};
 use regularised::{Expansion, Regularised, State};
@@ -208,8 +210,6 @@ const EPS_CEILING: f64 = 1e-4;
 const STEP_BUDGET: u64 = 200_000;
 /// Scaled time after which a contact that has not separated is declared stuck (elastic contacts last about 3).
 const TIME_LIMIT: f64 = 1e4;
-/// Scaled `δ + |v|` below which the relative motion counts as died out.
-const SETTLED: f64 = 1e-10;
 /// Smallest scale of the rate, relative to the state's, against which its series is measured in restitution
 /// (see [`Run::expand`]): at most `RATE_FLOOR^(-1/(K+1))`, about 1.3 times, more steps.
 const RATE_FLOOR: f64 = 0.01;

@@ -623,16 +623,8 @@ impl Chart {
     /// The chart as a standalone SVG document.
     pub fn svg(&self) -> String {
         let (frame, content) = self.content("plot-area");
-        let mut svg = String::with_capacity(64 * 1024);
-        let _ = write!(
-            svg,
-            "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{w}\" height=\"{h}\" viewBox=\"0 0 {w} {h}\" \
-             font-family=\"{FONT_FAMILY}, sans-serif\">\n<rect class=\"background\" width=\"{w}\" height=\"{h}\" \
-             fill=\"#ffffff\"/>\n{}",
-            clip_path("plot-area", &frame),
-            w = number(self.width),
-            h = number(self.height),
-        );
+        let mut svg = svg_document(self.width, self.height, 64 * 1024);
+        svg.push_str(&clip_path("plot-area", &frame));
         svg.push_str(&content);
         svg.push_str("</svg>\n");
         svg
@@ -887,6 +879,21 @@ impl Chart {
     }
 }
 
+/// The opening of a standalone SVG document of `width` by `height` pixels on a white background (the caller adds
+/// the content and `</svg>`), in a string of `capacity` bytes.
+fn svg_document(width: f64, height: f64, capacity: usize) -> String {
+    let mut svg = String::with_capacity(capacity);
+    let _ = write!(
+        svg,
+        "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{w}\" height=\"{h}\" viewBox=\"0 0 {w} {h}\" \
+         font-family=\"{FONT_FAMILY}, sans-serif\">\n<rect class=\"background\" width=\"{w}\" height=\"{h}\" \
+         fill=\"#ffffff\"/>\n",
+        w = number(width),
+        h = number(height),
+    );
+    svg
+}
+
 /// The definition of a clip path `id` over the plot area `frame`.
 fn clip_path(id: &str, frame: &Frame) -> String {
     format!(
@@ -927,15 +934,7 @@ impl Stack {
     /// data clipped by its own clip path.
     pub fn svg(&self) -> String {
         let (width, height) = self.size();
-        let mut svg = String::with_capacity(128 * 1024);
-        let _ = write!(
-            svg,
-            "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{w}\" height=\"{h}\" viewBox=\"0 0 {w} {h}\" \
-             font-family=\"{FONT_FAMILY}, sans-serif\">\n<rect class=\"background\" width=\"{w}\" height=\"{h}\" \
-             fill=\"#ffffff\"/>\n",
-            w = number(width),
-            h = number(height),
-        );
+        let mut svg = svg_document(width, height, 128 * 1024);
         let mut top = 0.0;
         for (i, panel) in self.aligned().iter().enumerate() {
             let id = format!("plot-area-{}", i + 1);

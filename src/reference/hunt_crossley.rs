@@ -62,6 +62,16 @@ impl HuntCrossleyState {
     }
 }
 
+/// `1 - e(x)` of the hysteresis family without the cancellation of `1 - e` for small `x`: [`E_SERIES`] less its
+/// first term up to [`SERIES_LIMIT`], `1 - `[`hunt_crossley_restitution`] above.
+pub fn hunt_crossley_loss(x: f64) -> f64 {
+    if x > 0.0 && x < SERIES_LIMIT {
+        -x * E_SERIES[1..].iter().rev().fold(0.0, |acc, c| acc * x + c)
+    } else {
+        1.0 - hunt_crossley_restitution(x)
+    }
+}
+
 /// Exact restitution `e(x)` of the whole hysteresis-damping family `F = K d^n (1 + alpha d')`, `x = alpha v0`
 /// (dimensionless), independent of `n`, `K`, `m*` (docs/references.md):
 /// the root of `x (1 + e) = ln((1 + x)/(1 - e x))`, i.e. `e = (1 + W0(-(1+x) e^(-(1+x))))/x`.

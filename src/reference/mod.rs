@@ -19,7 +19,7 @@ mod tsuji;
 pub use crate::law::damping::{kelvin_voigt_zeta, tsuji_damping};
 pub use brilliantov::{brilliantov_c1, brilliantov_c2, brilliantov_restitution_series};
 pub use hertz::hertz_elastic;
-pub use hunt_crossley::{hunt_crossley_chi, hunt_crossley_restitution};
+pub use hunt_crossley::{hunt_crossley_chi, hunt_crossley_loss, hunt_crossley_restitution};
 pub use hysteresis::hysteresis_contact;
 pub use kelvin_voigt::kelvin_voigt;
 pub use numerics::beta;

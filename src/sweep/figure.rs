@@ -29,12 +29,7 @@ use crate::output::text::{TITLE_CHARS, cut};
 pub fn from_csv(text: &str) -> Result<SweepFigure, SweepError> {
     let mut lines = text.lines().filter(|line| !line.starts_with('#'));
     let header: Vec<String> = split(lines.next().unwrap_or_default());
-    let column = |name: &str| {
-        header
-            .iter()
-            .position(|c| c == name)
-            .ok_or_else(|| SweepError::Usage(format!("the CSV has no `{name}` column")))
-    };
+    let column = |name: &str| find_column(&header, name);
     let (law, y, speed) = (column("law")?, column("restitution_velocity_ratio")?, column("approach_speed")?);
     // Varied keys are the dotted columns, in --vary order.
     let keys: Vec<usize> = (0..header.len()).filter(|&i| header[i].contains('.')).collect();
@@ -143,6 +138,11 @@ fn damping_label(curves: &[Curve]) -> (String, &'static str) {
     (quantity, unit)
 }
 
+/// The index of the column `name` of a sweep CSV's header, or the error that names it.
+fn find_column(header: &[String], name: &str) -> Result<usize, SweepError> {
+    header.iter().position(|c| c == name).ok_or_else(|| SweepError::Usage(format!("the CSV has no `{name}` column")))
+}
+
 /// What `impact sweep --plot` and `impact merge --plot` draw from a sweep's CSV: the oblique-impact figure when
 /// the first varied key is a body's angle of incidence (`bodies.I.incidence_deg`), the effective-e figure
 /// ([`from_csv`]) otherwise.
@@ -167,12 +167,7 @@ const ROLLING: f64 = 1e-9;
 pub fn incidence_from_csv(text: &str) -> Result<IncidenceFigure, SweepError> {
     let mut lines = text.lines().filter(|line| !line.starts_with('#'));
     let header: Vec<String> = split(lines.next().unwrap_or_default());
-    let column = |name: &str| {
-        header
-            .iter()
-            .position(|c| c == name)
-            .ok_or_else(|| SweepError::Usage(format!("the CSV has no `{name}` column")))
-    };
+    let column = |name: &str| find_column(&header, name);
     let law = column("law")?;
     let keys: Vec<usize> = (0..header.len()).filter(|&i| header[i].contains('.')).collect();
     let Some(&first) = keys.first() else { return Err(SweepError::Usage("the CSV has no varied key column".into())) };
