@@ -13,7 +13,7 @@
 //!
 //! The powers `Q^(-γ)` and `w^(-γ)` at the nodes are [`negative_power`], four nodes at a time.
 
-use super::taylor::rough_log2;
+use super::taylor::{mul_add, rough_log2};
 use std::sync::OnceLock;
 
 /// Largest Gauss–Legendre rule kept.
@@ -143,7 +143,7 @@ pub fn negative_power(x: f64, gamma: f64) -> f64 {
     let r = (y - j * LN2_HI) - j * LN2_LO;
     let mut p = EXP_TAYLOR[13];
     for &c in EXP_TAYLOR[..13].iter().rev() {
-        p = p * r + c;
+        p = mul_add(p, r, c);
     }
     let scale = f64::from_bits((shifted.to_bits().wrapping_sub(ROUNDER.to_bits()).wrapping_add(1023)) << 52);
     p * scale
@@ -357,7 +357,7 @@ fn power_sum(c: &[f64], gamma: f64, at: [f64; 4], weights: &[f64]) -> Option<f64
     let mut values = [0.0; 4];
     for &ck in c.iter().rev() {
         for l in 0..4 {
-            values[l] = values[l] * at[l] + ck;
+            values[l] = mul_add(values[l], at[l], ck);
         }
     }
     let lanes = weights.len();

@@ -90,9 +90,11 @@ pub struct Expansion {
     pub force_top: f64,
     /// The state the step starts from (its impulse and work are the integration constants).
     start: State,
-    /// Scratch: the series of `w v` (hysteresis), and `v` reversed ([`TOP`]).
+    /// Scratch: the series of `w v` (hysteresis), and the parts of the Cauchy products `w v` and `w v²` (resp.
+    /// `v²`) summed ahead ([`add_pairs`]).
     product: Coefficients,
-    reversed: Coefficients,
+    pending_product: Coefficients,
+    pending_dissipation: Coefficients,
 }
 
 impl Default for Expansion {
@@ -106,7 +108,8 @@ impl Default for Expansion {
             force_top: 0.0,
             start: State::FIRST_CONTACT,
             product: zero,
-            reversed: zero,
+            pending_product: zero,
+            pending_dissipation: zero,
         }
     }
 }
@@ -121,8 +124,11 @@ impl Expansion {
         let rate = self.rate[0] + change;
         let power = sigma.powi(k as i32 + 1);
         let top = self.force_top * power;
-        let moment =
-            self.rate[..=k].iter().enumerate().rev().fold(0.0, |acc, (j, &vj)| acc * sigma + vj * INVERSE[k + j + 1]);
+        let moment = self.rate[..=k]
+            .iter()
+            .enumerate()
+            .rev()
+            .fold(0.0, |acc, (j, &vj)| taylor::mul_add(acc, sigma, vj * INVERSE[k + j + 1]));
         State {
             w: taylor::value(&self.w[..=k], sigma),
             rate,
@@ -143,7 +149,7 @@ impl Expansion {
                 .iter()
                 .enumerate()
                 .rev()
-                .fold(0.0, |acc, (j, &vj)| acc * sigma + vj * INVERSE[k + j + 1]);
+                .fold(0.0, |acc, (j, &vj)| taylor::mul_add(acc, sigma, vj * INVERSE[k + j + 1]));
             sigma.powi(k as i32 + 1) * sum
         };
         let change = rate_b - rate_a;
@@ -159,9 +165,31 @@ impl Expansion {
     }
 }
 
-/// Index in a reversed copy of a series: `reversed[TOP - j]` holds coefficient `j`, so that the coefficient `k`
-/// of a product, `Σ_j a_j b_(k-j)`, is the contiguous `dot(a[..=k], reversed[TOP-k..])`.
-const TOP: usize = MAX_ORDER;
+/// Adds, once the coefficients `a_n` and `b_n` are known, their terms in the later coefficients of the Cauchy
+/// product `a b`: `a_n b_q + a_q b_n` to `pending[n + q]` for `1 <= q < n`, and `a_n b_n` to `pending[2n]`, up to
+/// `order`. The coefficient `m` of the product is then `pending[m] + a_m b_0 + a_0 b_m` (`a_0 b_0` for `m = 0`):
+/// the pairs with both indices below `m` were summed ahead, so the recursion waits only for the two newest
+/// terms, not for a whole dot product, before its next coefficient.
+#[inline(always)]
+fn add_pairs(pending: &mut Coefficients, a: &Coefficients, b: &Coefficients, n: usize, order: usize) {
+    if n == 0 || n >= order {
+        return;
+    }
+    let (a_n, b_n) = (a[n], b[n]);
+    let top = (n - 1).min(order - n);
+    for ((p, &a_q), &b_q) in pending[n + 1..=n + top].iter_mut().zip(&a[1..=top]).zip(&b[1..=top]) {
+        *p = taylor::mul_add(a_n, b_q, taylor::mul_add(a_q, b_n, *p));
+    }
+    if 2 * n <= order {
+        pending[2 * n] = taylor::mul_add(a_n, b_n, pending[2 * n]);
+    }
+}
+
+/// The coefficient `m` of the Cauchy product `a b`, with the pairs of lower indices in `pending[m]` ([`add_pairs`]).
+#[inline(always)]
+fn product_coefficient(pending: &Coefficients, a: &Coefficients, b: &Coefficients, m: usize) -> f64 {
+    if m == 0 { a[0] * b[0] } else { taylor::mul_add(a[0], b[m], taylor::mul_add(a[m], b[0], pending[m])) }
+}
 
 impl Regularised {
     /// The regularised system of `law` in the units `scales`. Errors: Brilliantov's law (not smoothed by the
@@ -257,6 +285,9 @@ impl Regularised {
     }
 
     /// Taylor coefficients of every component at `state`, to `order` (<= [`MAX_ORDER`]).
+    ///
+    /// The products `w v` and `w v²` (resp. `v²`) are Cauchy sums, formed ahead as each coefficient arrives
+    /// ([`add_pairs`]), so that each step of the recursion waits only for its newest terms.
     pub fn expand(&self, state: &State, order: usize, e: &mut Expansion) {
         debug_assert!(order <= MAX_ORDER);
         e.order = order;
@@ -265,49 +296,46 @@ impl Regularised {
         e.rate[0] = state.rate;
         e.dissipation[0] = state.dissipation;
         let (p, x) = (self.rate_factor, self.damping);
-        e.reversed[TOP] = state.rate;
+        e.pending_product[..=order].fill(0.0);
+        e.pending_dissipation[..=order].fill(0.0);
         match self.form {
             Form::Hysteresis => {
                 for k in 0..=order {
                     // P = w v; F̂ = w + x P; dD̃/dτ = P v.
-                    // Both sums over j < k in one pass; their j = k terms (w_k v_0 and P_k v_0) after.
-                    let v_reversed = &e.reversed[TOP - k..];
-                    let v0 = v_reversed[k];
-                    let (wv, wvv) = if x == 0.0 {
-                        (taylor::dot(&e.w[..k], v_reversed) + e.w[k] * v0, 0.0)
-                    } else {
-                        let (wv, partial) = taylor::dot2(&e.w[..k], &e.product[..k], v_reversed);
-                        let wv = wv + e.w[k] * v0;
-                        (wv, partial + wv * v0)
-                    };
+                    add_pairs(&mut e.pending_product, &e.w, &e.rate, k, order);
+                    let wv = product_coefficient(&e.pending_product, &e.w, &e.rate, k);
                     e.product[k] = wv;
-                    let force = e.w[k] + x * wv;
+                    let force = taylor::mul_add(x, wv, e.w[k]);
+                    if x != 0.0 {
+                        add_pairs(&mut e.pending_dissipation, &e.product, &e.rate, k, order);
+                    }
                     if k == order {
                         e.force_top = force;
                         break;
                     }
                     let inverse = INVERSE[k + 1];
                     e.w[k + 1] = p * e.rate[k] * inverse;
-                    let v_next = -force * inverse;
-                    e.rate[k + 1] = v_next;
-                    e.reversed[TOP - k - 1] = v_next;
-                    e.dissipation[k + 1] = wvv * inverse;
+                    e.rate[k + 1] = -force * inverse;
+                    e.dissipation[k + 1] = if x == 0.0 {
+                        0.0
+                    } else {
+                        product_coefficient(&e.pending_dissipation, &e.product, &e.rate, k) * inverse
+                    };
                 }
             }
             Form::Linear => {
                 for k in 0..=order {
                     // F̂ = w + c v; dD̃/dτ = v².
-                    let force = e.w[k] + x * e.rate[k];
+                    let force = taylor::mul_add(x, e.rate[k], e.w[k]);
                     if k == order {
                         e.force_top = force;
                         break;
                     }
-                    let vv = taylor::dot(&e.rate[..=k], &e.reversed[TOP - k..]);
+                    add_pairs(&mut e.pending_dissipation, &e.rate, &e.rate, k, order);
+                    let vv = product_coefficient(&e.pending_dissipation, &e.rate, &e.rate, k);
                     let inverse = INVERSE[k + 1];
                     e.w[k + 1] = p * e.rate[k] * inverse;
-                    let v_next = -force * inverse;
-                    e.rate[k + 1] = v_next;
-                    e.reversed[TOP - k - 1] = v_next;
+                    e.rate[k + 1] = -force * inverse;
                     e.dissipation[k + 1] = vv * inverse;
                 }
             }

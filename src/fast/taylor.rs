@@ -21,10 +21,18 @@ pub const INVERSE: [f64; 2 * MAX_ORDER + 2] = {
     table
 };
 
+/// `a b + c`: fused, with one rounding, where the build targets a processor with FMA instructions (the
+/// project's `.cargo/config.toml` builds for the machine it runs on), else a product and a sum. Horner's rule and
+/// the Cauchy sums are chains of these: fused, each link waits for one instruction instead of two.
+#[inline(always)]
+pub fn mul_add(a: f64, b: f64, c: f64) -> f64 {
+    if cfg!(target_feature = "fma") { a.mul_add(b, c) } else { a * b + c }
+}
+
 /// Value of the polynomial `c` at `sigma` (Horner).
 #[inline]
 pub fn value(c: &[f64], sigma: f64) -> f64 {
-    c.iter().rev().fold(0.0, |acc, &ck| acc * sigma + ck)
+    c.iter().rev().fold(0.0, |acc, &ck| mul_add(acc, sigma, ck))
 }
 
 /// Value and first derivative of the polynomial `c` at `sigma`.
@@ -33,8 +41,8 @@ pub fn value_and_slope(c: &[f64], sigma: f64) -> (f64, f64) {
     let mut value = 0.0;
     let mut slope = 0.0;
     for &ck in c.iter().rev() {
-        slope = slope * sigma + value;
-        value = value * sigma + ck;
+        slope = mul_add(slope, sigma, value);
+        value = mul_add(value, sigma, ck);
     }
     (value, slope)
 }
@@ -110,52 +118,8 @@ pub fn rough_exp2(y: f64) -> f64 {
     fraction * 2f64.powi(whole as i32)
 }
 
-/// `Σ a_j b_j` over the common length, with four partial sums (lane-wise, so that the compiler keeps them in
-/// vector registers and the additions do not wait for each other).
-#[inline(always)]
-pub fn dot(a: &[f64], b: &[f64]) -> f64 {
-    let n = a.len().min(b.len());
-    let (a, b) = (&a[..n], &b[..n]);
-    let (chunks_a, tail_a) = a.as_chunks::<4>();
-    let (chunks_b, tail_b) = b.as_chunks::<4>();
-    let mut sums = [0.0; 4];
-    for (x, y) in chunks_a.iter().zip(chunks_b) {
-        for l in 0..4 {
-            sums[l] += x[l] * y[l];
-        }
-    }
-    let tail = tail_a.iter().zip(tail_b).fold(0.0, |acc, (x, y)| acc + x * y);
-    ((sums[0] + sums[2]) + (sums[1] + sums[3])) + tail
-}
-
 /// Factor applied to the step of [`step_size`] (1: the first omitted term equals the tolerance).
 const STEP_SAFETY: f64 = 1.0;
-
-/// `(Σ a_j c_j, Σ b_j c_j)` over the common length, in one pass (each `c_j` loaded once), four partial sums each.
-#[inline(always)]
-pub fn dot2(a: &[f64], b: &[f64], c: &[f64]) -> (f64, f64) {
-    let n = a.len().min(b.len()).min(c.len());
-    let (a, b, c) = (&a[..n], &b[..n], &c[..n]);
-    let (chunks_a, tail_a) = a.as_chunks::<4>();
-    let (chunks_b, tail_b) = b.as_chunks::<4>();
-    let (chunks_c, tail_c) = c.as_chunks::<4>();
-    let (mut first, mut second) = ([0.0; 4], [0.0; 4]);
-    for ((x, y), z) in chunks_a.iter().zip(chunks_b).zip(chunks_c) {
-        for l in 0..4 {
-            first[l] += x[l] * z[l];
-            second[l] += y[l] * z[l];
-        }
-    }
-    let (mut tail_first, mut tail_second) = (0.0, 0.0);
-    for ((x, y), z) in tail_a.iter().zip(tail_b).zip(tail_c) {
-        tail_first += x * z;
-        tail_second += y * z;
-    }
-    (
-        ((first[0] + first[2]) + (first[1] + first[3])) + tail_first,
-        ((second[0] + second[2]) + (second[1] + second[3])) + tail_second,
-    )
-}
 
 /// The first fall of a function through zero on `(from, to]`, from its value `f_from > 0` at `from`: it is
 /// sampled (`value`) at [`FALL_SAMPLES`] equally spaced points, and the root located ([`root_within`], with `newton`
