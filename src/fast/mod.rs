@@ -365,9 +365,9 @@ impl<'a> Run<'a> {
     /// `4 h`, where it is still a fair estimate; `4 h` (a lower bound) if there is none so near.
     fn next_zero(&self, from: f64, h: f64) -> f64 {
         let w = self.w();
-        let w_from = taylor::value(w, from);
-        let value = |s: f64| taylor::value(w, s);
-        taylor::first_fall_within(value, |s| taylor::value_and_slope(w, s), from, 4.0 * h, w_from, ZERO_ESTIMATE)
+        let (middle, to) = (from + 0.5 * (4.0 * h - from), 4.0 * h);
+        let samples = taylor::values(w, [from, middle, to]);
+        taylor::fall_in_halves(|s| taylor::value_and_slope(w, s), [from, middle, to], samples, ZERO_ESTIMATE)
             .unwrap_or(4.0 * h)
     }
 
@@ -457,10 +457,10 @@ impl<'a> Run<'a> {
         }
     }
 
-    /// The force-peak function `g` at offset `sigma` (value only, for sampling).
-    fn peak_value(&self, sigma: f64) -> f64 {
-        let (w, v) = (taylor::value(self.w(), sigma), taylor::value(self.rate(), sigma));
-        self.system.peak_function(w, 0.0, v, 0.0).0
+    /// The force-peak function `g` at two offsets of the step (values only, for sampling).
+    fn peak_values(&self, at: [f64; 2]) -> [f64; 2] {
+        let (w, v) = (taylor::values(self.w(), at), taylor::values(self.rate(), at));
+        [0, 1].map(|i| self.system.peak_function(w[i], 0.0, v[i], 0.0).0)
     }
 
     /// The force-peak function `g` (falling zero at the peak) at offset `sigma` of the step, with its slope.
@@ -525,7 +525,7 @@ impl<'a> Run<'a> {
                 let (w, rate) = (self.w(), self.rate());
                 let value_slope = |c: &[f64], s: f64| taylor::value_and_slope(c, s);
                 let fall = |c: &[f64], from: f64, start: f64| {
-                    taylor::first_fall(|s| taylor::value(c, s), |s| value_slope(c, s), from, h, start)
+                    taylor::first_fall(|s| taylor::values(c, s), |s| value_slope(c, s), from, h, start)
                 };
                 // Maximum compression, then (only after it) the zero of w, then the force's zero before that.
                 let turn = if compressing { fall(rate, 0.0, self.state.rate) } else { None };
@@ -566,7 +566,11 @@ impl<'a> Run<'a> {
                             let (v, dv) = value_slope(rate, s);
                             (system.regular_force(w, v), dw + system.damping * dv)
                         };
-                        taylor::first_fall(|s| f(s).0, f, a, reach, f(a).0)
+                        let values = |at: [f64; 2]| {
+                            let [w, v] = [taylor::values(w, at), taylor::values(rate, at)];
+                            [0, 1].map(|i| system.regular_force(w[i], v[i]))
+                        };
+                        taylor::first_fall(values, f, a, reach, f(a).0)
                     }
                     _ => None,
                 };
@@ -587,7 +591,7 @@ impl<'a> Run<'a> {
                     // At the step's start: the polynomials' first two coefficients.
                     let (g_start, _) = system.peak_function(w[0], w[1], rate[0], rate[1]);
                     if g_start > 0.0 {
-                        taylor::first_fall(|s| self.peak_value(s), |s| self.peak_at(s), 0.0, until, g_start)
+                        taylor::first_fall(|s| self.peak_values(s), |s| self.peak_at(s), 0.0, until, g_start)
                     } else {
                         Some(0.0)
                     }

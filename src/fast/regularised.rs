@@ -91,7 +91,7 @@ pub struct Expansion {
     /// The state the step starts from (its impulse and work are the integration constants).
     start: State,
     /// Scratch: the series of `w v` (hysteresis), and the parts of the Cauchy products `w v` and `w v²` (resp.
-    /// `v²`) summed ahead ([`add_pairs`]).
+    /// `v²`) summed ahead ([`taylor::add_pairs`]).
     product: Coefficients,
     pending_product: Coefficients,
     pending_dissipation: Coefficients,
@@ -163,32 +163,6 @@ impl Expansion {
         let k = self.order;
         -taylor::value_and_slope(&self.rate[..=k], sigma).1 + self.force_top * sigma.powi(k as i32)
     }
-}
-
-/// Adds, once the coefficients `a_n` and `b_n` are known, their terms in the later coefficients of the Cauchy
-/// product `a b`: `a_n b_q + a_q b_n` to `pending[n + q]` for `1 <= q < n`, and `a_n b_n` to `pending[2n]`, up to
-/// `order`. The coefficient `m` of the product is then `pending[m] + a_m b_0 + a_0 b_m` (`a_0 b_0` for `m = 0`):
-/// the pairs with both indices below `m` were summed ahead, so the recursion waits only for the two newest
-/// terms, not for a whole dot product, before its next coefficient.
-#[inline(always)]
-fn add_pairs(pending: &mut Coefficients, a: &Coefficients, b: &Coefficients, n: usize, order: usize) {
-    if n == 0 || n >= order {
-        return;
-    }
-    let (a_n, b_n) = (a[n], b[n]);
-    let top = (n - 1).min(order - n);
-    for ((p, &a_q), &b_q) in pending[n + 1..=n + top].iter_mut().zip(&a[1..=top]).zip(&b[1..=top]) {
-        *p = taylor::mul_add(a_n, b_q, taylor::mul_add(a_q, b_n, *p));
-    }
-    if 2 * n <= order {
-        pending[2 * n] = taylor::mul_add(a_n, b_n, pending[2 * n]);
-    }
-}
-
-/// The coefficient `m` of the Cauchy product `a b`, with the pairs of lower indices in `pending[m]` ([`add_pairs`]).
-#[inline(always)]
-fn product_coefficient(pending: &Coefficients, a: &Coefficients, b: &Coefficients, m: usize) -> f64 {
-    if m == 0 { a[0] * b[0] } else { taylor::mul_add(a[0], b[m], taylor::mul_add(a[m], b[0], pending[m])) }
 }
 
 impl Regularised {
@@ -287,7 +261,7 @@ impl Regularised {
     /// Taylor coefficients of every component at `state`, to `order` (<= [`MAX_ORDER`]).
     ///
     /// The products `w v` and `w v²` (resp. `v²`) are Cauchy sums, formed ahead as each coefficient arrives
-    /// ([`add_pairs`]), so that each step of the recursion waits only for its newest terms.
+    /// ([`taylor::add_pairs`]), so that each step of the recursion waits only for its newest terms.
     pub fn expand(&self, state: &State, order: usize, e: &mut Expansion) {
         debug_assert!(order <= MAX_ORDER);
         e.order = order;
@@ -302,12 +276,12 @@ impl Regularised {
             Form::Hysteresis => {
                 for k in 0..=order {
                     // P = w v; F̂ = w + x P; dD̃/dτ = P v.
-                    add_pairs(&mut e.pending_product, &e.w, &e.rate, k, order);
-                    let wv = product_coefficient(&e.pending_product, &e.w, &e.rate, k);
+                    taylor::add_pairs(&mut e.pending_product, &e.w, &e.rate, k, order);
+                    let wv = taylor::product_coefficient(&e.pending_product, &e.w, &e.rate, k);
                     e.product[k] = wv;
                     let force = taylor::mul_add(x, wv, e.w[k]);
                     if x != 0.0 {
-                        add_pairs(&mut e.pending_dissipation, &e.product, &e.rate, k, order);
+                        taylor::add_pairs(&mut e.pending_dissipation, &e.product, &e.rate, k, order);
                     }
                     if k == order {
                         e.force_top = force;
@@ -319,7 +293,7 @@ impl Regularised {
                     e.dissipation[k + 1] = if x == 0.0 {
                         0.0
                     } else {
-                        product_coefficient(&e.pending_dissipation, &e.product, &e.rate, k) * inverse
+                        taylor::product_coefficient(&e.pending_dissipation, &e.product, &e.rate, k) * inverse
                     };
                 }
             }
@@ -331,8 +305,8 @@ impl Regularised {
                         e.force_top = force;
                         break;
                     }
-                    add_pairs(&mut e.pending_dissipation, &e.rate, &e.rate, k, order);
-                    let vv = product_coefficient(&e.pending_dissipation, &e.rate, &e.rate, k);
+                    taylor::add_pairs(&mut e.pending_dissipation, &e.rate, &e.rate, k, order);
+                    let vv = taylor::product_coefficient(&e.pending_dissipation, &e.rate, &e.rate, k);
                     let inverse = INVERSE[k + 1];
                     e.w[k + 1] = p * e.rate[k] * inverse;
                     e.rate[k + 1] = -force * inverse;

@@ -35,6 +35,18 @@ pub fn value(c: &[f64], sigma: f64) -> f64 {
     c.iter().rev().fold(0.0, |acc, &ck| mul_add(acc, sigma, ck))
 }
 
+/// Values of the polynomial `c` at `N` points at once (independent Horner chains side by side: the latency of one).
+#[inline(always)]
+pub fn values<const N: usize>(c: &[f64], at: [f64; N]) -> [f64; N] {
+    let mut result = [0.0; N];
+    for &ck in c.iter().rev() {
+        for (r, &x) in result.iter_mut().zip(&at) {
+            *r = mul_add(*r, x, ck);
+        }
+    }
+    result
+}
+
 /// Value and first derivative of the polynomial `c` at `sigma`.
 #[inline]
 pub fn value_and_slope(c: &[f64], sigma: f64) -> (f64, f64) {
@@ -118,50 +130,84 @@ pub fn rough_exp2(y: f64) -> f64 {
     fraction * 2f64.powi(whole as i32)
 }
 
+/// Adds, once the coefficients `a_n` and `b_n` are known, their terms in the later coefficients of the Cauchy
+/// product `a b`: `a_n b_q + a_q b_n` to `pending[n + q]` for `1 <= q < n`, and `a_n b_n` to `pending[2n]`, up to
+/// `order`. The coefficient `m` of the product is then `pending[m] + a_m b_0 + a_0 b_m` (`a_0 b_0` for `m = 0`):
+/// the pairs with both indices below `m` were summed ahead, so the recursion waits only for the two newest
+/// terms, not for a whole dot product, before its next coefficient.
+#[inline(always)]
+pub fn add_pairs(pending: &mut Coefficients, a: &Coefficients, b: &Coefficients, n: usize, order: usize) {
+    if n == 0 || n >= order {
+        return;
+    }
+    let (a_n, b_n) = (a[n], b[n]);
+    let top = (n - 1).min(order - n);
+    for ((p, &a_q), &b_q) in pending[n + 1..=n + top].iter_mut().zip(&a[1..=top]).zip(&b[1..=top]) {
+        *p = mul_add(a_n, b_q, mul_add(a_q, b_n, *p));
+    }
+    if 2 * n <= order {
+        pending[2 * n] = mul_add(a_n, b_n, pending[2 * n]);
+    }
+}
+
+/// The coefficient `m` of the Cauchy product `a b`, with the pairs of lower indices in `pending[m]` ([`add_pairs`]).
+#[inline(always)]
+pub fn product_coefficient(pending: &Coefficients, a: &Coefficients, b: &Coefficients, m: usize) -> f64 {
+    if m == 0 { a[0] * b[0] } else { mul_add(a[0], b[m], mul_add(a[m], b[0], pending[m])) }
+}
+
 /// Factor applied to the step of [`step_size`] (1: the first omitted term equals the tolerance).
 const STEP_SAFETY: f64 = 1.0;
 
 /// The first fall of a function through zero on `(from, to]`, from its value `f_from > 0` at `from`: it is
-/// sampled (`value`) at [`FALL_SAMPLES`] equally spaced points, and the root located ([`root_within`], with `newton`
-/// giving value and slope) in the first interval that ends at a value `<= 0`. `None` if no sample is `<= 0`.
+/// sampled (`values`, at two points at once) at the middle and the end, and the root located ([`root_within`],
+/// with `newton` giving value and slope) in the first half that ends at a value `<= 0`. `None` if neither sample
+/// is `<= 0`.
 ///
 /// Sampling inside the step keeps a function that falls and rises again within one step from being missed:
 /// with the order rule of [`order_for`] a step stays below about 0.75 of the fastest half-period of these
 /// contacts (`h ≈ K eps^(1/(K+1))/(e ω) < 2.4/ω`, the elastic oscillation `π/ω`), so two samples leave a factor 2.
 pub fn first_fall(
-    value: impl Fn(f64) -> f64,
+    values: impl Fn([f64; 2]) -> [f64; 2],
     newton: impl Fn(f64) -> (f64, f64),
     from: f64,
     to: f64,
     f_from: f64,
 ) -> Option<f64> {
-    first_fall_within(value, newton, from, to, f_from, 0.0)
+    first_fall_within(values, newton, from, to, f_from, 0.0)
 }
 
 /// [`first_fall`] with the root located only to the relative accuracy `precision` (0: to rounding), for an
 /// estimate.
 pub fn first_fall_within(
-    value: impl Fn(f64) -> f64,
+    values: impl Fn([f64; 2]) -> [f64; 2],
     newton: impl Fn(f64) -> (f64, f64),
     from: f64,
     to: f64,
     f_from: f64,
     precision: f64,
 ) -> Option<f64> {
-    let (mut lo, mut f_lo) = (from, f_from);
-    for i in 1..=FALL_SAMPLES {
-        let hi = if i == FALL_SAMPLES { to } else { from + (to - from) * (i as f64 / FALL_SAMPLES as f64) };
-        let f_hi = value(hi);
-        if f_hi <= 0.0 {
-            return Some(root_within(&newton, lo, hi, f_lo, f_hi, precision));
-        }
-        (lo, f_lo) = (hi, f_hi);
+    let middle = from + 0.5 * (to - from);
+    let [f_middle, f_to] = values([middle, to]);
+    fall_in_halves(newton, [from, middle, to], [f_from, f_middle, f_to], precision)
+}
+
+/// The first fall through zero among the samples `f` at the ascending points `at` (`f[0] > 0`), located to
+/// `precision` by [`root_within`]; `None` if no sample is `<= 0`.
+pub fn fall_in_halves(
+    newton: impl Fn(f64) -> (f64, f64),
+    at: [f64; 3],
+    f: [f64; 3],
+    precision: f64,
+) -> Option<f64> {
+    if f[1] <= 0.0 {
+        return Some(root_within(&newton, at[0], at[1], f[0], f[1], precision));
+    }
+    if f[2] <= 0.0 {
+        return Some(root_within(&newton, at[1], at[2], f[1], f[2], precision));
     }
     None
 }
-
-/// Points at which [`first_fall`] samples its function.
-const FALL_SAMPLES: usize = 2;
 
 /// [`root_within`] to rounding.
 #[cfg(test)]
@@ -269,9 +315,10 @@ mod tests {
     fn first_fall_finds_the_first_of_two_crossings() {
         // cos on (0, 5]: falls through zero at pi/2, rises through 3 pi/2; the end value is positive.
         let f = |x: f64| (x.cos(), -x.sin());
-        let r = first_fall(f64::cos, f, 0.0, 5.0, 1.0).expect("a fall");
+        let cosines = |at: [f64; 2]| at.map(f64::cos);
+        let r = first_fall(cosines, f, 0.0, 5.0, 1.0).expect("a fall");
         assert!((r - std::f64::consts::FRAC_PI_2).abs() <= 4e-16);
-        assert_eq!(first_fall(f64::cos, f, 0.0, 1.0, 1.0), None);
+        assert_eq!(first_fall(cosines, f, 0.0, 1.0, 1.0), None);
     }
 
     #[test]
