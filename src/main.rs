@@ -5,6 +5,11 @@ use clap::Parser;
 use impact::cli::{self, Cli};
 use std::process::ExitCode;
 
+// A sweep formats its rows on several threads and frees them on the writer's: mimalloc's per-thread heaps keep
+// that from growing and trimming the system allocator's arenas (a tenth of a million-row sweep's time).
+#[global_allocator]
+static ALLOCATOR: mimalloc::MiMalloc = mimalloc::MiMalloc;
+
 fn main() -> ExitCode {
     if let Err(error) = impact::output::files::remove_temporaries_on_signal() {
         // Outputs are still complete or absent; only an interrupted run could leave a temporary file behind.
