@@ -5,9 +5,9 @@
 //!   becomes a polynomial system in `(w, v)`, smooth through `δ = 0` — one system for every `n`, no fractional
 //!   power per step. Kelvin–Voigt and Tsuji become linear.
 //! * **Steps** (`taylor.rs`). Each step expands `w`, `v` and the dissipation in a Taylor series by the standard
-//!   recursions (the product `w v` and `w v²` by Cauchy sums), of order `K = ⌈ln(1/eps)/2⌉ + 6` (14 at 1e-6, 19
-//!   at 1e-10, 23 at 1e-13, 26 at the rounding floor; measured best, since a step's fixed work favours long
-//!   steps). Its size comes from the last two coefficients: `h = ρ eps^(1/(K+1))`, `ρ` the smaller of
+//!   recursions (the product `w v` and `w v²` by Cauchy sums), of order `K = ⌈ln(1/eps)/2⌉ + 6` (13, 18, 21 and
+//!   26 at a per-step eps of 1e-6, 1e-10, 1e-13 and the floor 1e-17; measured best, since a step's fixed work
+//!   favours long steps). Its size comes from the last two coefficients: `h = ρ eps^(1/(K+1))`, `ρ` the smaller of
 //!   `|c_K|^(-1/K)`, `|c_(K-1)|^(-1/(K-1))` relative to the state, so that the first omitted term is `eps`
 //!   (the per-step tolerance, a tenth of the requested one). In restitution the rate is also measured against
 //!   itself, so that a small e keeps its relative accuracy.

@@ -80,7 +80,7 @@ fn legendre_rule(m: usize, nodes: &mut [f64], weights: &mut [f64]) {
 /// `xi` (in half-interval units, from the interval's centre; `xi > 1`) on the real axis: the error of the
 /// `m`-node rule is about `ρ^(-2m)`, `ρ = xi + sqrt(xi² - 1)`, so `m = (ln(1/eps) + margin)/(2 ln ρ)`;
 /// `digits` is `ln(1/eps) + margin`, from [`node_digits`] (computed once per integration, not per piece).
-/// `ln ρ` is taken by [`rough_log2`] (to about 2e-5: a node count needs no more).
+/// `ln ρ` is taken by [`rough_log2`] (to 1.5e-5: a node count needs no more).
 pub fn nodes_needed(xi: f64, digits: f64) -> usize {
     if xi.is_infinite() {
         return 1;
@@ -141,7 +141,7 @@ pub fn negative_power(x: f64, gamma: f64) -> f64 {
     let shifted = y * std::f64::consts::LOG2_E + ROUNDER;
     let j = shifted - ROUNDER;
     let r = (y - j * LN2_HI) - j * LN2_LO;
-    // The polynomial by Estrin's scheme (pairs, then pairs of pairs): 5 multiply–adds deep instead of 13.
+    // The polynomial by Estrin's scheme (pairs, then pairs of pairs): 4 operations deep instead of 13.
     let c = &EXP_TAYLOR;
     let (r2, pair) = (r * r, |i: usize| mul_add(c[i + 1], r, c[i]));
     let r4 = r2 * r2;

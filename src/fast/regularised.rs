@@ -270,18 +270,24 @@ impl Regularised {
         e.rate[0] = state.rate;
         e.dissipation[0] = state.dissipation;
         let (p, x) = (self.rate_factor, self.damping);
+        // The dissipation's products are needed to order K - 1 (its series to K).
+        let below = order.saturating_sub(1);
         e.pending_product[..=order].fill(0.0);
         e.pending_dissipation[..=order].fill(0.0);
         match self.form {
             Form::Hysteresis => {
                 for k in 0..=order {
-                    // P = w v; F̂ = w + x P; dD̃/dτ = P v.
-                    taylor::add_pairs(&mut e.pending_product, &e.w, &e.rate, k, order);
-                    let wv = taylor::product_coefficient(&e.pending_product, &e.w, &e.rate, k);
+                    // P = w v; F̂ = w + x P; dD̃/dτ = P v (elastic, x = 0: F̂ = w, no products).
+                    let wv = if x == 0.0 {
+                        0.0
+                    } else {
+                        taylor::add_pairs(&mut e.pending_product, &e.w, &e.rate, k, order);
+                        taylor::product_coefficient(&e.pending_product, &e.w, &e.rate, k)
+                    };
                     e.product[k] = wv;
                     let force = taylor::mul_add(x, wv, e.w[k]);
                     if x != 0.0 {
-                        taylor::add_pairs(&mut e.pending_dissipation, &e.product, &e.rate, k, order);
+                        taylor::add_pairs(&mut e.pending_dissipation, &e.product, &e.rate, k, below);
                     }
                     if k == order {
                         e.force_top = force;
@@ -305,7 +311,7 @@ impl Regularised {
                         e.force_top = force;
                         break;
                     }
-                    taylor::add_pairs(&mut e.pending_dissipation, &e.rate, &e.rate, k, order);
+                    taylor::add_pairs(&mut e.pending_dissipation, &e.rate, &e.rate, k, below);
                     let vv = taylor::product_coefficient(&e.pending_dissipation, &e.rate, &e.rate, k);
                     let inverse = INVERSE[k + 1];
                     e.w[k + 1] = p * e.rate[k] * inverse;
@@ -436,6 +442,33 @@ mod tests {
             let (after, before) = (e.state_at(sigma + h), e.state_at(sigma - h));
             assert!(((after.impulse - before.impulse) / (2.0 * h) - force).abs() < 1e-9);
             assert!(((after.work - before.work) / (2.0 * h) - force * v).abs() < 1e-9);
+        }
+    }
+
+    /// The linear form's series satisfy `w' = p v`, `v' = -(w + c v)`, `dD̃/dτ = v²` (Tsuji's `p` and a damping).
+    #[test]
+    fn linear_series_satisfy_the_equations() {
+        let (p, c) = (1.25, 0.6);
+        let system = Regularised {
+            form: Form::Linear,
+            rate_factor: p,
+            damping: c,
+            exponent: 1.5,
+            time_exponent: 0.2,
+            penetration_exponent: 0.8,
+            elastic_factor: 0.4,
+        };
+        let mut e = Expansion::default();
+        let state = State { w: 0.3, rate: 0.7, impulse: 0.2, work: 0.1, dissipation: 0.05 };
+        system.expand(&state, 26, &mut e);
+        let k = e.order + 1;
+        for sigma in [0.05, 0.3, 0.6] {
+            let (w, dw) = taylor::value_and_slope(&e.w[..k], sigma);
+            let (v, dv) = taylor::value_and_slope(&e.rate[..k], sigma);
+            let (_, dd) = taylor::value_and_slope(&e.dissipation[..k], sigma);
+            assert!((dw - p * v).abs() < 1e-14, "w' at {sigma}");
+            assert!((dv + (w + c * v)).abs() < 1e-14, "v' at {sigma}");
+            assert!((dd - v * v).abs() < 1e-13, "D' at {sigma}: {dd} vs {}", v * v);
         }
     }
 
