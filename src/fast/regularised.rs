@@ -270,8 +270,6 @@ impl Regularised {
         e.rate[0] = state.rate;
         e.dissipation[0] = state.dissipation;
         let (p, x) = (self.rate_factor, self.damping);
-        // The dissipation's products are needed to order K - 1 (its series to K).
-        let below = order.saturating_sub(1);
         e.pending_product[..=order].fill(0.0);
         e.pending_dissipation[..=order].fill(0.0);
         match self.form {
@@ -287,7 +285,7 @@ impl Regularised {
                     e.product[k] = wv;
                     let force = taylor::mul_add(x, wv, e.w[k]);
                     if x != 0.0 {
-                        taylor::add_pairs(&mut e.pending_dissipation, &e.product, &e.rate, k, below);
+                        taylor::add_pairs(&mut e.pending_dissipation, &e.product, &e.rate, k, order);
                     }
                     if k == order {
                         e.force_top = force;
@@ -311,7 +309,7 @@ impl Regularised {
                         e.force_top = force;
                         break;
                     }
-                    taylor::add_pairs(&mut e.pending_dissipation, &e.rate, &e.rate, k, below);
+                    taylor::add_pairs(&mut e.pending_dissipation, &e.rate, &e.rate, k, order);
                     let vv = taylor::product_coefficient(&e.pending_dissipation, &e.rate, &e.rate, k);
                     let inverse = INVERSE[k + 1];
                     e.w[k + 1] = p * e.rate[k] * inverse;
