@@ -65,7 +65,7 @@ fn hermite(y0: &State, f0: &State, y1: &State, f1: &State, h: f64, s: f64) -> St
 
 /// The zero of `g` in `[a, b]` where it falls (`g(a) > 0 >= g(b)`), by the Illinois variant of regula falsi, to
 /// a few ulps.
-fn fall(g: impl Fn(f64) -> f64, mut a: f64, mut ga: f64, mut b: f64, mut gb: f64) -> f64 {
+fn fall(mut g: impl FnMut(f64) -> f64, mut a: f64, mut ga: f64, mut b: f64, mut gb: f64) -> f64 {
     if gb == 0.0 {
         return b;
     }
@@ -175,12 +175,11 @@ pub fn rk4(fixed: &Fixed) -> Run {
                 // the step's start to each trial point (a force that jumps at separation, Kelvin–Voigt's or
                 // Tsuji's at d = 0, makes the step across it, and so its interpolant, only first order there).
                 let hermite_root = fall_between(at, event, from, ga, 1.0, gb).unwrap_or(1.0);
-                let restep = |fraction: f64| {
+                let mut restep = |fraction: f64| {
                     evaluations += 4;
                     rk4_step(&law, &y, &f, fraction * h)
                 };
-                let restep = std::cell::RefCell::new(restep);
-                let on_solution = |fraction: f64| event(&(restep.borrow_mut())(fraction));
+                let mut on_solution = |fraction: f64| event(&restep(fraction));
                 let g = on_solution(hermite_root);
                 let s = if g > 0.0 {
                     fall(on_solution, hermite_root, g, 1.0, gb)
@@ -189,7 +188,7 @@ pub fn rk4(fixed: &Fixed) -> Run {
                 } else {
                     fall(on_solution, from, ga, hermite_root, g)
                 };
-                let z = (restep.borrow_mut())(s);
+                let z = restep(s);
                 let measured = Measured {
                     restitution: -z[1],
                     max_penetration: dmax,

@@ -34,7 +34,7 @@ use crate::dynamics::Scales;
 // Scaled `δ + |v|` below which the relative motion counts as died out: the general path's level.
 use crate::impact::SETTLED;
 use crate::law::{ContactLaw, Family, Separation};
-use quadrature::{JacobiRules, MAX_NODES, gauss_power, jacobi_sum, negative_power, node_digits, nodes_needed};
+use quadrature::{JacobiRules, MAX_NODES, gauss_power, negative_power, node_digits, nodes_needed, rule_sum};
 use regularised::{Expansion, Regularised, State};
 
 /// One normal impact to integrate.
@@ -397,7 +397,7 @@ impl<'a> Run<'a> {
                     self.end_factor[j - 1] = -r;
                 }
                 // Q(zero) > 0, or no rule (also for a NaN).
-                let at_zero = self.end_factor[..k].iter().rev().fold(0.0, |acc, &q| acc * zero + q);
+                let at_zero = taylor::value(&self.end_factor[..k], zero);
                 if at_zero.is_nan() || at_zero <= 0.0 {
                     return None;
                 }
@@ -407,6 +407,12 @@ impl<'a> Run<'a> {
             }
             Piece::Inside { right } => Some(TimeRule::Inside { left: -self.tau, right }),
         }
+    }
+
+    /// The nodes a Gauss rule needs for a singularity at `xi` half-lengths from its interval's centre; `None`
+    /// beyond the largest rule (the caller shortens the step).
+    fn nodes(&self, xi: f64) -> Option<usize> {
+        Some(nodes_needed(xi, self.node_digits)).filter(|&m| m <= MAX_NODES)
     }
 
     /// `∫_σ^zero w^(-γ)` for the [`TimeRule::ToZero`] set up in [`Run::end_factor`], `left` the other zero.
@@ -424,12 +430,9 @@ impl<'a> Run<'a> {
     /// interval's centre) asks for.
     fn jacobi_piece(&mut self, xi: f64, start: f64, span: f64) -> Option<f64> {
         let gamma = self.system.time_exponent;
-        let m = nodes_needed(xi, self.node_digits);
-        if m > MAX_NODES {
-            return None;
-        }
+        let m = self.nodes(xi)?;
         let (nodes, weights) = self.jacobi.rule(gamma, m);
-        let sum = jacobi_sum(&self.end_factor[..self.order], gamma, start, span, nodes, weights)?;
+        let sum = rule_sum(&self.end_factor[..self.order], gamma, start, span, nodes, weights)?;
         Some(negative_power(span.abs(), gamma - 1.0) * sum)
     }
 
@@ -447,11 +450,7 @@ impl<'a> Run<'a> {
             TimeRule::ToZero { zero, left, total } => Some(total - self.time_to_zero(zero, left, b)?),
             TimeRule::Inside { left, right } => {
                 let distance = (a - left).min(right - b);
-                let xi = 1.0 + 2.0 * distance / (b - a);
-                let m = nodes_needed(xi, self.node_digits);
-                if m > MAX_NODES {
-                    return None;
-                }
+                let m = self.nodes(1.0 + 2.0 * distance / (b - a))?;
                 Some(elapsed + gauss_power(self.w(), self.system.time_exponent, a, b, m)?)
             }
         }
@@ -710,7 +709,7 @@ mod tests {
         let (nodes, weights) = quadrature::gauss_legendre(24);
         for h in [0.1, 0.2, 0.3] {
             let (jacobi_nodes, jacobi_weights) = rules.rule(0.2, 16);
-            let got = negative_power(h, -0.8) * jacobi_sum(q, 0.2, 0.0, h, jacobi_nodes, jacobi_weights).unwrap();
+            let got = negative_power(h, -0.8) * rule_sum(q, 0.2, 0.0, h, jacobi_nodes, jacobi_weights).unwrap();
             let top = h.powf(0.2);
             let panels = 50;
             let mut exact = 0.0;

@@ -8,12 +8,12 @@
 //!
 //! * a piece that starts or ends at a zero `z` of `w`: `w = |σ - z| Q(σ)` with `Q` a polynomial, positive on the
 //!   piece, and `∫ |σ - z|^(-γ) Q^(-γ) dσ` is a Gauss–Jacobi sum for the weight `s^(-γ)` ([`JacobiRules`],
-//!   [`jacobi_sum`]): the singularity is integrated exactly, by `m` evaluations of `Q^(-γ)`;
+//!   [`rule_sum`]): the singularity is integrated exactly, by `m` evaluations of `Q^(-γ)`;
 //! * any other piece: Gauss–Legendre ([`gauss_power`]).
 //!
 //! The powers `Q^(-γ)` and `w^(-γ)` at the nodes are [`negative_power`], four nodes at a time.
 
-use super::taylor::{mul_add, rough_log2};
+use super::taylor::{self, rough_log2};
 use std::sync::OnceLock;
 
 /// Largest Gauss–Legendre rule kept.
@@ -104,16 +104,7 @@ const NODE_MARGIN: f64 = 2.0;
 pub fn gauss_power(c: &[f64], gamma: f64, a: f64, b: f64, m: usize) -> Option<f64> {
     let (nodes, weights) = gauss_legendre(m);
     let half = 0.5 * (b - a);
-    let middle = 0.5 * (a + b);
-    let mut sum = 0.0;
-    for (chunk_nodes, chunk_weights) in nodes.chunks(4).zip(weights.chunks(4)) {
-        let mut at = [middle; 4];
-        for (point, &x) in at.iter_mut().zip(chunk_nodes) {
-            *point = middle + half * x;
-        }
-        sum += power_sum(c, gamma, at, chunk_weights)?;
-    }
-    Some(half * sum)
+    Some(half * rule_sum(c, gamma, 0.5 * (a + b), half, nodes, weights)?)
 }
 
 /// `x^(-gamma)` for `x > 0` (normal, finite): `exp(-γ ln x)` with both functions written out (fdlibm's `ln`:
@@ -143,6 +134,7 @@ pub fn negative_power(x: f64, gamma: f64) -> f64 {
     let r = (y - j * LN2_HI) - j * LN2_LO;
     // The polynomial by Estrin's scheme (pairs, then pairs of pairs): 4 operations deep instead of 13.
     let c = &EXP_TAYLOR;
+    let mul_add = taylor::mul_add;
     let (r2, pair) = (r * r, |i: usize| mul_add(c[i + 1], r, c[i]));
     let r4 = r2 * r2;
     let low = mul_add(mul_add(pair(6), r2, pair(4)), r4, mul_add(pair(2), r2, pair(0)));
@@ -339,9 +331,10 @@ fn symmetric_tridiagonal_ql(d: &mut [f64], e: &mut [f64]) {
     }
 }
 
-/// `Σ_i weights_i q(start + span s_i)^(-gamma)` over the rule's nodes `s_i`: a Gauss–Jacobi sum for
-/// `∫ |span s|^(-γ) q^(-γ)` (the caller multiplies by `|span|^(1-γ)`). `None` if `q <= 0` at a node.
-pub fn jacobi_sum(q: &[f64], gamma: f64, start: f64, span: f64, nodes: &[f64], weights: &[f64]) -> Option<f64> {
+/// `Σ_i weights_i q(start + span s_i)^(-gamma)` over a rule's nodes `s_i`, four at a time: with a Gauss–Jacobi
+/// rule the sum for `∫ |span s|^(-γ) q^(-γ)` (the caller multiplies by `|span|^(1-γ)`), with Gauss–Legendre's
+/// ([`gauss_power`]) that for `∫ q^(-γ)` over `start ± span`. `None` if `q <= 0` at a node.
+pub fn rule_sum(q: &[f64], gamma: f64, start: f64, span: f64, nodes: &[f64], weights: &[f64]) -> Option<f64> {
     let mut sum = 0.0;
     for (chunk_nodes, chunk_weights) in nodes.chunks(4).zip(weights.chunks(4)) {
         let mut at = [start; 4];
@@ -357,12 +350,7 @@ pub fn jacobi_sum(q: &[f64], gamma: f64, start: f64, span: f64, nodes: &[f64], w
 /// them. Horner at four points at once (independent chains overlap and fill vector lanes), then the powers.
 #[inline(always)]
 fn power_sum(c: &[f64], gamma: f64, at: [f64; 4], weights: &[f64]) -> Option<f64> {
-    let mut values = [0.0; 4];
-    for &ck in c.iter().rev() {
-        for l in 0..4 {
-            values[l] = mul_add(values[l], at[l], ck);
-        }
-    }
+    let mut values = taylor::values(c, at);
     let lanes = weights.len();
     if values[..lanes].iter().any(|&v| v.is_nan() || v <= 0.0) {
         return None;
@@ -537,7 +525,7 @@ mod tests {
             let b = std::f64::consts::FRAC_PI_2;
             let m = nodes_needed(2.0 * std::f64::consts::PI / b - 1.0, node_digits(1e-17));
             let (nodes, weights) = rules.rule(gamma, m);
-            let got = b.powf(1.0 - gamma) * jacobi_sum(&q, gamma, 0.0, b, nodes, weights).unwrap();
+            let got = b.powf(1.0 - gamma) * rule_sum(&q, gamma, 0.0, b, nodes, weights).unwrap();
             let exact = 0.5 * crate::reference::beta(0.5 * (1.0 - gamma), 0.5);
             assert!((got / exact - 1.0).abs() < 1e-15, "γ = {gamma}: {got} vs {exact}");
         }

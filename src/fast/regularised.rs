@@ -280,13 +280,11 @@ impl Regularised {
                         0.0
                     } else {
                         taylor::add_pairs(&mut e.pending_product, &e.w, &e.rate, k, order);
-                        taylor::product_coefficient(&e.pending_product, &e.w, &e.rate, k)
-                    };
-                    e.product[k] = wv;
-                    let force = taylor::mul_add(x, wv, e.w[k]);
-                    if x != 0.0 {
+                        e.product[k] = taylor::product_coefficient(&e.pending_product, &e.w, &e.rate, k);
                         taylor::add_pairs(&mut e.pending_dissipation, &e.product, &e.rate, k, order);
-                    }
+                        e.product[k]
+                    };
+                    let force = taylor::mul_add(x, wv, e.w[k]);
                     if k == order {
                         e.force_top = force;
                         break;

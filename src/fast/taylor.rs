@@ -328,13 +328,8 @@ mod tests {
     /// and `b` filled one coefficient at a time as in the recursion (a product with itself too).
     #[test]
     fn products_summed_ahead_equal_the_double_sum() {
-        let mut state = 0x9e37_79b9_7f4a_7c15_u64;
-        let mut next = || {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            (state >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
-        };
+        let mut draw = crate::stress::Draw::new(1, 0);
+        let mut next = || draw.uniform(-1.0, 1.0);
         for order in 0..=MAX_ORDER {
             let (mut a, mut b) = ([0.0; MAX_ORDER + 1], [0.0; MAX_ORDER + 1]);
             let (mut pending, mut pending_square) = ([0.0; MAX_ORDER + 1], [0.0; MAX_ORDER + 1]);
