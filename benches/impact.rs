@@ -67,7 +67,7 @@ fn per_law(c: &mut Criterion) {
             largest_error(&report).map_or("n/a (no exact reference)".into(), |e| format!("{e:.1e}"))
         );
     }
-    let no_reference = Options { recording: Recording::Off, reference: ReferenceDetail::Off };
+    let no_reference = Options { recording: Recording::Off, reference: ReferenceDetail::Off, ..Options::default() };
     for group_name in ["one impact", "one impact, no exact reference", "one impact, outcome alone"] {
         let mut group = c.benchmark_group(group_name);
         group.warm_up_time(Duration::from_millis(200)).measurement_time(Duration::from_millis(700)).sample_size(20);

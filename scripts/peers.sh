@@ -5,6 +5,9 @@
 #   - by velocity Verlet at 100 steps per contact jitted with numba, over a sweep of x in [0.01, 2]
 #     (NUMBA_NUM_THREADS=1: one core),
 #   - by `impact bench` on the cases x = 0.01, 0.5, 2 (every method and setting of the study),
+#   - by `impact sweep` over the numba peer's sweep, writing e alone as the peers compute it: 1,000,000 impacts at
+#     tolerance 1e-6 on one core (pinned with taskset, the CSV writer included), and 1,000,000 at the default
+#     tolerance on all cores (the GPU peer's sweep), CSV written, each timed end to end,
 # and prints one table: method, error in e, time per impact. The GPU peer (JAX + diffrax) needs a GPU; where there
 # is none it is not run and its published figures are shown.
 #
@@ -40,6 +43,23 @@ echo "scipy DOP853 ..." >&2
 "$python" "$peers/scipy_peer.py" --method DOP853 --rtol 1e-10 --count 200 > "$out/scipy-1e-10.json"
 echo "numba velocity Verlet, 1 thread ..." >&2
 NUMBA_NUM_THREADS=1 "$python" "$peers/numba_peer.py" --steps 100 --count 1000000 > "$out/numba.json"
+# timed OUT.json COMMAND...: runs COMMAND; writes its wall time and peak memory (the largest child's) to OUT.json.
+timed() {
+    "$python" -c 'import json, resource, subprocess, sys, time
+start = time.perf_counter()
+subprocess.run(sys.argv[2:], check=True)
+wall = time.perf_counter() - start
+json.dump({"wall_s": wall, "peak_kb": resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss}, open(sys.argv[1], "w"))
+' "$@"
+}
+scene=scripts/peer-hunt-crossley.toml
+sweep="contact.damping=0.01:2:1000000"
+echo "impact sweep, e alone, tolerance 1e-6, one core ..." >&2
+timed "$out/sweep-one-core.json" taskset -c 0 "$impact" sweep "$scene" --vary solver.rtol=1e-6 --vary "$sweep" \
+    --columns restitution_velocity_ratio --threads 1 --out "$out/sweep-one-core.csv"
+echo "impact sweep, e alone, default tolerance, all cores ..." >&2
+timed "$out/sweep-all-cores.json" "$impact" sweep "$scene" --vary "$sweep" --columns restitution_velocity_ratio \
+    --out "$out/sweep-all-cores.csv"
 echo "impact bench ..." >&2
 "$impact" bench --case "hunt-crossley x=0.01 n=1.5" --case "hunt-crossley x=0.5 n=1.5" \
     --case "hunt-crossley x=2 n=1.5" --out "$out" > "$out/bench.txt"
@@ -49,10 +69,12 @@ if "$python" -c "import jax; import sys; sys.exit(0 if any(d.platform == 'gpu' f
 fi
 echo "load average at the end $(cut -d' ' -f1-3 /proc/loadavg)" >&2
 
-"$python" - "$out" <<'PYTHON'
+"$python" - "$out" "$peers" <<'PYTHON'
 import csv, json, os, sys
 
 out = sys.argv[1]
+sys.path.insert(0, sys.argv[2])
+from scipy_peer import exact_e  # the peers' own exact e (bisection on the Hunt–Crossley relation)
 rows = list(csv.DictReader(open(os.path.join(out, "bench.csv"))))
 table = []  # (method, error in e, seconds per impact, note)
 for name in ("scipy-1e-6", "scipy-1e-10"):
@@ -90,6 +112,22 @@ for method, settings in (("taylor", ["1e-4", "1e-6", "1e-8", "1e-10", "1e-13", "
             note = f"x = 0.5; largest error over all quantities {float(r['error']):.1e}"
             table.append((label(r), float(r["error_e"]), float(r["seconds_per_impact"]), note))
 
+def sweep_row(name, label):
+    """A timed `impact sweep` writing e: its time per impact, and its worst e error over 50 rows spread as the
+    numba peer spreads its check (np.linspace(0, count - 1, 50))."""
+    timing = json.load(open(os.path.join(out, name + ".json")))
+    rows = list(csv.DictReader(open(os.path.join(out, name + ".csv"))))
+    count = len(rows)
+    picks = [round(i * (count - 1) / 49) for i in range(50)]
+    worst = max(abs(float(rows[i]["restitution_velocity_ratio"]) / exact_e(float(rows[i]["contact.damping"])) - 1)
+                for i in picks)
+    note = (f"x in [0.01, 2], worst of 50; {count} impacts in {timing['wall_s']:.2f} s, CSV written, "
+            f"{timing['peak_kb'] / 1024:.0f} MB peak")
+    return (label, worst, timing["wall_s"] / count, note)
+
+table.append(sweep_row("sweep-one-core", "impact sweep, e alone, tolerance 1e-6, 1 core (taskset)"))
+table.append(sweep_row("sweep-all-cores", f"impact sweep, e alone, tolerance 1e-10, {os.cpu_count()} cores"))
+
 print(f"{'method':<58} {'error in e':>10} {'µs/impact':>11}  note")
 for method, error, seconds, note in table:
     shown = "n/a" if error != error else f"{error:.1e}"
@@ -120,4 +158,13 @@ if good:
     print(f"vs numba Verlet (worst e error {numba['worst_e_error']:.1e}, {numba['seconds_per_impact'] * 1e6:.2f} µs, "
           f"1 thread): impact taylor tol {float(t):.0e} reaches {worst:.1e} on every quantity of x = 0.01, 0.5, 2 "
           f"in {slowest * 1e6:.2f} µs (slowest case), {numba['seconds_per_impact'] / slowest:.2f} times the speed")
+one = next(t for t in table if t[0].startswith("impact sweep, e alone, tolerance 1e-6"))
+every = next(t for t in table if t[0].startswith("impact sweep, e alone, tolerance 1e-10"))
+print(f"vs numba Verlet on its own sweep, e alone, one core: impact sweep reaches {one[1]:.1e} (numba "
+      f"{numba['worst_e_error']:.1e}) in {one[2] * 1e6:.2f} µs an impact, CSV written (numba "
+      f"{numba['seconds_per_impact'] * 1e6:.2f} µs, nothing written): {numba['seconds_per_impact'] / one[2]:.2f} times "
+      f"the speed")
+wall = json.load(open(os.path.join(out, "sweep-all-cores.json")))["wall_s"]
+print(f"vs the GPU peer's 1,000,000 impacts in 3.2 s (e error 2e-10, nothing written): impact sweep on "
+      f"{os.cpu_count()} cores reaches {every[1]:.1e} in {wall:.2f} s, CSV written")
 PYTHON

@@ -10,6 +10,7 @@ use crate::accuracy::ReferenceDetail;
 use crate::dynamics::normal::NormalContact;
 use crate::dynamics::pair::PairContact;
 use crate::dynamics::{ContactModel, Snapshot};
+use crate::fast::Quantities;
 use crate::history::{History, Recording};
 use crate::integrate::{
     Counters, Crossing, Direction, Ending, Event, IntegrationError, Scheme, State, Stepper, Tolerances,
@@ -79,12 +80,16 @@ pub struct Options {
     pub recording: Recording,
     /// How much of the exact reference to compute.
     pub reference: ReferenceDetail,
+    /// What the fast path computes besides the motion and the impulses (a sweep row leaves out what none of its
+    /// columns shows). What it leaves out is NaN in the outcome and the report: a run's own report asks for all.
+    /// The general path computes everything whatever this says.
+    pub quantities: Quantities,
 }
 
 /// Simulates the scene's impact with the full report; `recording` says whether (and how) to keep the contact
 /// history.
 pub fn simulate(scene: &Scene, recording: Recording) -> Result<Simulation, SimulationError> {
-    simulate_with(scene, Options { recording, reference: ReferenceDetail::Full })
+    simulate_with(scene, Options { recording, reference: ReferenceDetail::Full, quantities: Quantities::ALL })
 }
 
 /// Simulates the scene's impact, computing what `options` ask for.
@@ -102,7 +107,7 @@ pub fn simulate_prepared(
     options: Options,
     clock: Instant,
 ) -> Result<Simulation, SimulationError> {
-    let (outcome, history) = through_phases(scene, setup, options.recording)?;
+    let (outcome, history) = through_phases(scene, setup, options.recording, options.quantities)?;
     let report = crate::report::build(scene, setup, &outcome, options.reference, clock.elapsed().as_secs_f64());
     Ok(Simulation { report, history })
 }
@@ -110,7 +115,7 @@ pub fn simulate_prepared(
 /// The impact's [`Outcome`] alone, on the path [`simulate_prepared`] takes, without a history or a report: what
 /// `impact bench` times.
 pub fn outcome(scene: &Scene, setup: &Setup) -> Result<Outcome, SimulationError> {
-    through_phases(scene, setup, Recording::Off).map(|(outcome, _)| outcome)
+    through_phases(scene, setup, Recording::Off, Quantities::ALL).map(|(outcome, _)| outcome)
 }
 
 /// The impact through its phases on the path the scene's `[solver] method` chooses, and its history if asked for.
@@ -118,6 +123,7 @@ fn through_phases(
     scene: &Scene,
     setup: &Setup,
     recording: Recording,
+    quantities: Quantities,
 ) -> Result<(Outcome, Option<History>), SimulationError> {
     let setup = *setup;
     let method = scene.solver.method;
@@ -147,7 +153,7 @@ fn through_phases(
         Method::Dop853 | Method::Dopri5 => false,
     };
     let normal = NormalContact::new(&scene.bodies, &setup);
-    let fast_outcome = if fast { Some(fast_outcome(&normal, scene, &setup)) } else { None };
+    let fast_outcome = if fast { Some(fast_outcome(&normal, scene, &setup, quantities)) } else { None };
     Ok(match (fast_outcome, setup.motion) {
         (Some(Ok(outcome)), _) if recording == Recording::Off => (outcome, None),
         (Some(Ok(outcome)), _) => (outcome, run(&normal, scene, setup.contact_time, recording)?.1),
@@ -260,7 +266,12 @@ fn run<const N: usize, M: ContactModel<N>>(
 }
 
 /// The normal impact through the fast path ([`crate::fast`]), as an [`Outcome`] of the normal model's snapshots.
-fn fast_outcome(model: &NormalContact, scene: &Scene, setup: &Setup) -> Result<Outcome, crate::fast::FastError> {
+fn fast_outcome(
+    model: &NormalContact,
+    scene: &Scene,
+    setup: &Setup,
+    quantities: Quantities,
+) -> Result<Outcome, crate::fast::FastError> {
     use crate::dynamics::normal::{SIZE, index};
     use crate::fast::{Ending as FastEnding, PhasePoint, Request};
     let request = Request {
@@ -268,6 +279,7 @@ fn fast_outcome(model: &NormalContact, scene: &Scene, setup: &Setup) -> Result<O
         scales: setup.scales,
         separation: scene.contact.separation,
         tolerance: scene.solver.tolerances.rtol,
+        quantities,
     };
     let fast = crate::fast::simulate_normal(&request)?;
     let s = &setup.scales;

@@ -5,7 +5,7 @@ mod fast_support;
 
 use fast_support::{Case, QUANTITIES, errors, reference_cases};
 use impact::dynamics::Scales;
-use impact::fast::{Ending, FastError, Outcome, Request, covers, simulate_normal};
+use impact::fast::{Ending, FastError, Outcome, Quantities, Request, covers, simulate_normal};
 use impact::law::{ContactLaw, LawKind, Separation};
 use impact::reference;
 
@@ -123,6 +123,46 @@ fn every_reference_impact_within_the_tolerance() {
     }
 }
 
+/// Asked for less (a sweep writing e alone), the fast path leaves out exactly what it was not asked for — NaN,
+/// never a plausible number — and computes the rest within the tolerance: every subset of {time, peak,
+/// dissipation}, on every reference impact, at three tolerances, against the exact values.
+#[test]
+fn quantities_left_out_are_nan_and_the_rest_within_the_tolerance() {
+    for (tolerance, bound) in [(1e-6, 1e-6), (1e-10, 1e-10), (1e-13, 2e-13)] {
+        for case in reference_cases() {
+            let Some(exact) = case.exact() else { continue };
+            for subset in 0..8 {
+                let asked = Quantities { time: subset & 1 != 0, peak: subset & 2 != 0, dissipation: subset & 4 != 0 };
+                let request = Request { quantities: asked, ..case.request(tolerance) };
+                let out = simulate_normal(&request).unwrap_or_else(|e| panic!("{}: {e}", case.name()));
+                assert!(out.separated, "{} {asked:?}", case.name());
+                for (error, name) in errors(&out, &exact).into_iter().zip(QUANTITIES) {
+                    let computed = match name {
+                        "t0" | "tc" => asked.time,
+                        "Fmax" => asked.peak,
+                        "t(Fmax)" => asked.peak && asked.time,
+                        "D" => asked.dissipation,
+                        _ => true,
+                    };
+                    if computed {
+                        assert!(
+                            error <= bound,
+                            "{} at {tolerance:e}, {asked:?}: {name} error {error:.2e}",
+                            case.name()
+                        );
+                    } else {
+                        assert!(
+                            error.is_nan(),
+                            "{} {asked:?}: {name} was not asked for, error {error:.2e}",
+                            case.name()
+                        );
+                    }
+                }
+            }
+        }
+    }
+}
+
 /// The rounding floor: at tolerance 1e-16, e, maximum penetration, time of maximum compression, duration and
 /// both impulses within 1e-15 of the exact values for every reference impact. The references are themselves
 /// good to about 1e-15 (a 40-digit quadrature puts the Tsuji e = 0.2, F = 0 duration of `reference::tsuji` 6e-16
@@ -202,6 +242,7 @@ fn light_damping_dissipation_is_accurate_relative_to_itself() {
         scales: Scales::new(1.0, 1.0, 1.5, 1.0),
         separation: Separation::Penetration,
         tolerance: 1e-10,
+        quantities: Quantities::ALL,
     };
     let out = simulate_normal(&request).unwrap();
     let exact = -(-2.0 * std::f64::consts::PI * zeta / (1.0 - zeta * zeta).sqrt()).exp_m1() / 2.0;
@@ -282,6 +323,7 @@ fn covers_every_law_but_brilliantov() {
         scales: Scales::new(1.0, 1.0, 1.5, 1.0),
         separation: Separation::Penetration,
         tolerance: 1e-10,
+        quantities: Quantities::ALL,
     };
     assert!(matches!(simulate_normal(&brilliantov), Err(FastError::NotCovered(_))));
 }
@@ -319,6 +361,7 @@ fn scaled_outcome_does_not_depend_on_the_units() {
         scales: Scales::new(mass, stiffness, 1.5, speed),
         separation: Separation::Penetration,
         tolerance: 1e-12,
+        quantities: Quantities::ALL,
     };
     let physical = simulate_normal(&request).unwrap();
     for (a, b) in [
@@ -336,7 +379,7 @@ mod against_dop853 {
     //! law, both criteria, masses, speeds and stiffnesses: the same impact to 1e-10.
 
     use super::{Random, rel};
-    use impact::fast::{Request, simulate_normal};
+    use impact::fast::{Quantities, Request, simulate_normal};
     use impact::history::Recording;
     use impact::impact::simulate;
     use impact::scene::Scene;
@@ -379,6 +422,7 @@ mod against_dop853 {
                     scales: setup.scales,
                     separation: scene.contact.separation,
                     tolerance: 1e-10,
+                    quantities: Quantities::ALL,
                 };
                 let out = simulate_normal(&request).expect("fast path");
                 let s = setup.scales;
@@ -400,6 +444,20 @@ mod against_dop853 {
                 }
                 if *law != "hertz" {
                     pairs.push(("D", out.end.dissipated * s.energy, report.energy.dissipated.unwrap()));
+                }
+                // The motion alone (what a sweep writing e asks for): e, the maximum penetration and both
+                // impulses agree as well.
+                let motion = simulate_normal(&Request { quantities: Quantities::MOTION, ..request }).expect("motion");
+                assert_eq!(motion.separated, c.separated, "{law}: {text}");
+                pairs.extend([
+                    ("dmax (motion)", motion.max_compression.penetration * s.length, c.max_penetration),
+                    ("Jd (motion)", motion.max_compression.impulse * s.impulse, c.deformation_impulse),
+                ]);
+                if c.separated {
+                    pairs.extend([
+                        ("e (motion)", -motion.end.rate, c.restitution_velocity_ratio.unwrap()),
+                        ("Jr (motion)", motion.restitution_impulse * s.impulse, c.restitution_impulse.unwrap()),
+                    ]);
                 }
                 for (name, fast, dop) in pairs {
                     worst = worst.max(rel(fast, dop));

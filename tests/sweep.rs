@@ -271,6 +271,54 @@ fn damping_sweep_replaces_restitution_and_matches_exact_hunt_crossley() {
     }
 }
 
+/// `--columns` writes the named result columns in the order named, after index, status, law and the varied keys;
+/// each row computes only what they show (e alone: no times, no force peak, no dissipated energy, no exact
+/// reference), and what it shows is as accurate: e against the exact Hunt–Crossley relation (the table of the test
+/// above), the duration against the full sweep's. Shards of such a sweep merge into its whole file.
+#[test]
+fn columns_choose_what_a_row_writes_and_computes() {
+    let scratch = Scratch::new("columns");
+    let scene = scratch.write("pair.toml", &steel_pair(1.0, -1.0, "law = \"hunt-crossley\"\nrestitution = 0.5"));
+    let vary = ["--vary", "contact.damping=0.25:1:3:log"];
+    run_ok(&scratch, &["sweep", &scene, vary[0], vary[1], "--out", "all.csv"]);
+    run_ok(&scratch, &["sweep", &scene, vary[0], vary[1], "--columns", "restitution_velocity_ratio", "--out", "e.csv"]);
+    let two = "duration,restitution_velocity_ratio";
+    run_ok(&scratch, &["sweep", &scene, vary[0], vary[1], "--columns", two, "--out", "two.csv"]);
+    let (all, e, both) =
+        (parse(&scratch.read("all.csv")), parse(&scratch.read("e.csv")), parse(&scratch.read("two.csv")));
+    assert_eq!(e.header, ["index", "status", "law", "contact.damping", "restitution_velocity_ratio"]);
+    assert_eq!(both.header, ["index", "status", "law", "contact.damping", "duration", "restitution_velocity_ratio"]);
+    let exact = [0.748434931597, 0.593624260040, 0.410719686061];
+    for (row, e_exact) in exact.into_iter().enumerate() {
+        for table in [&e, &both] {
+            assert_eq!(table.text(row, "status"), "ok");
+            assert_eq!(table.number(row, "contact.damping"), all.number(row, "contact.damping"));
+            let simulated = table.number(row, "restitution_velocity_ratio");
+            assert!((simulated - e_exact).abs() < 1e-8, "row {row}: e = {simulated}, exact {e_exact}");
+            let full = all.number(row, "restitution_velocity_ratio");
+            assert!((simulated - full).abs() < 1e-9 * full, "row {row}: e = {simulated}, full sweep {full}");
+        }
+        let (duration, full) = (both.number(row, "duration"), all.number(row, "duration"));
+        assert!((duration - full).abs() < 1e-9 * full, "row {row}: duration {duration}, full sweep {full}");
+    }
+    // Shards of a sweep with columns merge into its whole file, byte for byte.
+    for i in 1..=2 {
+        let shard = format!("{i}/2");
+        let out = format!("e{i}.csv");
+        let columns = ["--columns", "restitution_velocity_ratio"];
+        run_ok(
+            &scratch,
+            &["sweep", &scene, vary[0], vary[1], columns[0], columns[1], "--shard", &shard, "--out", &out],
+        );
+    }
+    run_ok(&scratch, &["merge", "merged.csv", "e1.csv", "e2.csv"]);
+    assert_eq!(scratch.read("merged.csv"), scratch.read("e.csv"));
+    // A figure needs its columns: with them, it is drawn.
+    let columns = "restitution_velocity_ratio,approach_speed";
+    run_ok(&scratch, &["sweep", &scene, vary[0], vary[1], "--columns", columns, "--plot", "e.png", "--out", "p.csv"]);
+    assert!(scratch.exists("e.png"));
+}
+
 /// A scene that gives `damping` takes a varied `restitution` (the damping is removed). The exact map
 /// (carvalho-martins) then gives e = the nominal value (docs/references.md).
 #[test]
@@ -608,6 +656,11 @@ fn bad_keys_ranges_laws_and_shard_specs_exit_2() {
     bad(&["--vary", "contact.restitution=0.1:0.9:18446744073709551615"], &["COUNT"]);
     bad(&["--vary", "contact.restitution=0.5", "--plot", "e.jpg"], &[".png or .svg"]);
     bad(&["--vary", "contact.restitution=0.5", "--plot", "e.png", "--shard", "1/2"], &["merge"]);
+    bad(&["--vary", "contact.restitution=0.5", "--columns", "e"], &["--columns", "`e`", "restitution_velocity_ratio"]);
+    bad(&["--vary", "contact.restitution=0.5", "--columns", "law"], &["--columns", "`law`", "always written"]);
+    bad(&["--vary", "contact.restitution=0.5", "--columns", "duration,duration"], &["`duration`", "twice"]);
+    bad(&["--vary", "contact.restitution=0.5", "--columns", ""], &["--columns"]);
+    bad(&["--vary", "contact.restitution=0.5", "--columns", "duration", "--plot", "e.png"], &["--plot", "--columns"]);
     assert_bad(
         &scratch,
         &["sweep", "nowhere.toml", "--vary", "contact.restitution=0.5", "--out", "o.csv"],

@@ -107,3 +107,50 @@ fn law_lists_give_the_same_rows() {
     assert!(errors > 0, "hertz takes no e below 1, brilliantov none at all, Gonthier's map fails at e = 0");
     assert_same_rows(&sweep(WALL, &["contact.damping=0.01,1e-5"], &laws));
 }
+
+/// A sweep writing one column computes only what that column shows (`--columns`), and shows it as the full row
+/// does: every result column alone, on central impacts that take the fast path (Hunt–Crossley, and Tsuji under
+/// the force criterion) and on an oblique one (the general path), equals the full row's cell — to 1e-9 relative
+/// where the runs differ in what they compute (their steps differ), exactly otherwise — and is never NaN.
+#[test]
+fn each_column_alone_equals_the_full_rows_cell() {
+    use impact::sweep::table::{Cell, Columns, RESULT_COLUMNS};
+    let central = |law: &str| {
+        format!(
+            "[[bodies]]\nradius = 0.01\nmass = 0.03\nvelocity = [1.5, 0.0, 0.0]\nyoung = 2e11\npoisson = 0.3\n\n\
+             [[bodies]]\nradius = inf\nmass = inf\nvelocity = [0.0, 0.0, 0.0]\nyoung = inf\n\n[contact]\n{law}\n"
+        )
+    };
+    let scenes = [
+        central("law = \"hunt-crossley\"\nrestitution = 0.6"),
+        central("law = \"tsuji\"\nrestitution = 0.4\nseparation = \"force\""),
+        SCENE.to_string(),
+    ];
+    for text in scenes {
+        let mut sweep = sweep(&text, &["contact.restitution=0.3,0.8"], &[]);
+        let full: Vec<_> = (0..2).map(|row| sweep.evaluate(row)).collect();
+        for (i, name) in RESULT_COLUMNS.iter().enumerate() {
+            sweep.select(Columns::parse(&[name.to_string()]).unwrap());
+            for (row, whole) in full.iter().enumerate() {
+                let alone = sweep.evaluate(row);
+                assert_eq!(alone.status, whole.status, "{name}\n{text}");
+                let (cell, expected) = (alone.results[0], whole.results[i]);
+                match (cell, expected) {
+                    (Cell::Number(a), Cell::Number(b)) => {
+                        assert!(a.is_finite(), "{name}: {a}\n{text}");
+                        // V0 (0 against a wall) and the velocity difference from the instantaneous model are
+                        // measured against the approach speed, as their errors are.
+                        let scale = match (*name, whole.results[0]) {
+                            ("common_normal_velocity" | "max_velocity_difference", Cell::Number(speed)) => speed,
+                            _ => b.abs(),
+                        };
+                        assert!((a - b).abs() <= 1e-9 * scale, "{name}: {a} alone, {b} in the full row\n{text}");
+                    }
+                    // The work done (steps, force evaluations) depends on what is computed.
+                    (Cell::Count(a), Cell::Count(b)) => assert!(a > 0 && b > 0, "{name}"),
+                    (a, b) => assert_eq!(a, b, "{name}\n{text}"),
+                }
+            }
+        }
+    }
+}

@@ -2,7 +2,7 @@
 //! `L = T = F0 = 1` and the exact references of [`crate::reference`] need no conversion).
 
 use crate::dynamics::Scales;
-use crate::fast::Request;
+use crate::fast::{Quantities, Request};
 use crate::law::{ContactLaw, LawKind, Separation};
 use crate::reference::{self, ContactReference};
 
@@ -89,7 +89,13 @@ impl Case {
     /// The fast path's request at `tolerance`.
     pub fn request(&self, tolerance: f64) -> Request {
         let (law, separation) = self.law();
-        Request { law, scales: Scales::new(1.0, 1.0, law.exponent, 1.0), separation, tolerance }
+        Request {
+            law,
+            scales: Scales::new(1.0, 1.0, law.exponent, 1.0),
+            separation,
+            tolerance,
+            quantities: Quantities::ALL,
+        }
     }
 
     /// The scene of this impact for the general path: a unit mass at unit speed on a fixed wall, stiffness 1,

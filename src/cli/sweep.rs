@@ -36,6 +36,12 @@ pub struct SweepArgs {
     /// without it, the scene's own law.
     #[arg(long, value_name = "LAW,LAW,...", value_delimiter = ',')]
     pub law: Vec<String>,
+    /// Write only these result columns (comma-separated, in this order; see docs/report.md for the 40 names) after
+    /// index, status, law and the varied keys. Each row then computes only what they show: e alone
+    /// (restitution_velocity_ratio) skips the contact's times, its force peak, the dissipated energy and the exact
+    /// reference. Default: all of them.
+    #[arg(long, value_name = "NAME,NAME,...", value_delimiter = ',')]
+    pub columns: Vec<String>,
     /// The CSV file to write (written completely or not at all); `-` writes it to stdout.
     #[arg(long, value_name = "FILE.csv")]
     pub out: PathBuf,
@@ -93,7 +99,18 @@ pub fn run(args: &SweepArgs) -> anyhow::Result<()> {
     };
     let text = std::fs::read_to_string(&args.scene)
         .map_err(|error| SceneError::file(&args.scene, format!("cannot read the scene: {error}")))?;
-    let sweep = Sweep::new(&args.scene, text, grid, laws).map_err(bad)?;
+    let mut sweep = Sweep::new(&args.scene, text, grid, laws).map_err(bad)?;
+    if !args.columns.is_empty() {
+        sweep.select(table::Columns::parse(&args.columns).map_err(bad)?);
+    }
+    let header = table::header(&sweep.keys(), sweep.columns());
+    if args.plot.is_some() {
+        // The figure reads its columns from the CSV: check that they will be there before any row runs.
+        sweeps::figure::check_columns(&header).map_err(|error| match error {
+            SweepError::Usage(why) => BadInput(format!("--plot: {why}; add it to --columns")).into(),
+            other => bad(other),
+        })?;
+    }
     let pool = rayon::ThreadPoolBuilder::new().num_threads(args.threads.unwrap_or(0)).build()?;
 
     let total = sweep.rows();
@@ -115,7 +132,7 @@ pub fn run(args: &SweepArgs) -> anyhow::Result<()> {
     if let Some(shard) = shard {
         put(&table::shard_comment(shard, total, sweep.fingerprint()))?;
     }
-    put(&(table::header(&sweep.keys()) + "\n"))?;
+    put(&(header + "\n"))?;
     let mut tally = Tally::default();
     sweep.stream(
         indices,

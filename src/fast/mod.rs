@@ -49,12 +49,41 @@ pub struct Request {
     /// Relative accuracy wanted on every reported quantity (e.g. 1e-10; a scene's `rtol` maps to it). Values
     /// below about 1e-15 ask for the rounding floor.
     pub tolerance: f64,
+    /// What to compute besides the motion, the impulses and the work.
+    pub quantities: Quantities,
+}
+
+/// What an integration computes besides the motion, the impulses and the work (which give e by all three
+/// definitions, `V0`, the maximum penetration and the kinetic energies). A quantity left out costs nothing and is
+/// NaN in the [`Outcome`]: a caller that asks for e alone (a sweep's `--columns`) skips the time quadrature and
+/// the step limits it needs, the force peak's location and the dissipation's series.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Quantities {
+    /// Physical times: of maximum compression, of separation, of the force peak.
+    pub time: bool,
+    /// The largest compressive force (its time also needs `time`).
+    pub peak: bool,
+    /// The energy dissipated by the damping (its own series, which then also takes part in the step size).
+    pub dissipation: bool,
+}
+
+impl Default for Quantities {
+    fn default() -> Quantities {
+        Quantities::ALL
+    }
+}
+
+impl Quantities {
+    /// Everything (a run's report).
+    pub const ALL: Quantities = Quantities { time: true, peak: true, dissipation: true };
+    /// The motion, the impulses and the work alone.
+    pub const MOTION: Quantities = Quantities { time: false, peak: false, dissipation: false };
 }
 
 /// The scaled state at an event.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct PhasePoint {
-    /// Time since first contact, in `T`.
+    /// Time since first contact, in `T` (NaN unless asked for: [`Quantities`]).
     pub time: f64,
     /// Penetration `d/L`.
     pub penetration: f64,
@@ -64,7 +93,7 @@ pub struct PhasePoint {
     pub impulse: f64,
     /// `∫ F d' dt` since first contact (kinetic energy of the relative motion lost so far), in `m* v0²`.
     pub work: f64,
-    /// `∫ F_dissipative d' dt` since first contact, in `m* v0²`.
+    /// `∫ F_dissipative d' dt` since first contact, in `m* v0²` (NaN unless asked for: [`Quantities`]).
     pub dissipated: f64,
     /// Elastic energy stored, `∫_0^d F_elastic dd`, in `m* v0²` (non-zero at the end only for a force separation).
     pub elastic: f64,
@@ -103,9 +132,9 @@ pub struct Outcome {
     /// Energy returned in restitution, `-∫ F d' dt` from maximum compression, in `m* v0²` (`e²/2` at a
     /// penetration separation); integrated on its own like `restitution_impulse`.
     pub restitution_work: f64,
-    /// Largest compressive force, in `F0`.
+    /// Largest compressive force, in `F0` (NaN unless asked for: [`Quantities`]).
     pub peak_force: f64,
-    /// When it acts, in `T` since first contact.
+    /// When it acts, in `T` since first contact (NaN unless the peak and the time are asked for).
     pub peak_force_time: f64,
     /// Whether the bodies parted (`ending == Ending::Separated`).
     pub separated: bool,
@@ -145,10 +174,11 @@ pub fn simulate_normal(request: &Request) -> Result<Outcome, FastError> {
     }
     let eps = (tolerance * TOLERANCE_FACTOR).clamp(EPS_FLOOR, EPS_CEILING);
     let force_criterion = request.separation == Separation::Force && system.can_turn_tensile();
+    let quantities = request.quantities;
     WORKSPACE.with(|cell| match cell.try_borrow_mut() {
-        Ok(mut workspace) => integrate(system, eps, force_criterion, &mut workspace),
+        Ok(mut workspace) => integrate(system, eps, force_criterion, quantities, &mut workspace),
         // Only if a caller re-entered on this thread (it cannot: nothing here calls back out).
-        Err(_) => integrate(system, eps, force_criterion, &mut Workspace::default()),
+        Err(_) => integrate(system, eps, force_criterion, quantities, &mut Workspace::default()),
     })
 }
 
@@ -169,11 +199,26 @@ fn integrate(
     system: Regularised,
     eps: f64,
     force_criterion: bool,
+    quantities: Quantities,
     workspace: &mut Workspace,
 ) -> Result<Outcome, FastError> {
-    let mut run = Run::new(system, eps, workspace);
-    let (max_compression, ending) = run.integrate(force_criterion)?;
-    let restitution = run.point();
+    let mut run = Run::new(system, eps, quantities, workspace);
+    let (mut max_compression, ending) = run.integrate(force_criterion)?;
+    let mut restitution = run.point();
+    // What was not computed is NaN, never a plausible number.
+    for point in [&mut max_compression, &mut restitution] {
+        if !quantities.time {
+            point.time = f64::NAN;
+        }
+        if !quantities.dissipation {
+            point.dissipated = f64::NAN;
+        }
+    }
+    let peak = match quantities {
+        Quantities { peak: false, .. } => (f64::NAN, f64::NAN),
+        Quantities { time: false, .. } => (run.peak.0, f64::NAN),
+        _ => run.peak,
+    };
     let (end, restitution_impulse, restitution_work) = if ending == Ending::NeverSeparates {
         (max_compression, 0.0, 0.0)
     } else {
@@ -190,8 +235,8 @@ fn integrate(
         end,
         restitution_impulse,
         restitution_work,
-        peak_force: run.peak.0,
-        peak_force_time: run.peak.1,
+        peak_force: peak.0,
+        peak_force_time: peak.1,
         separated: ending == Ending::Separated,
         ending,
         steps: run.steps,
@@ -255,6 +300,7 @@ enum TimeRule {
 /// The integration of one impact.
 struct Run<'a> {
     system: Regularised,
+    quantities: Quantities,
     order: usize,
     /// `eps^(1/(order+1))`, for the step size.
     eps_root: f64,
@@ -279,10 +325,11 @@ struct Run<'a> {
 }
 
 impl<'a> Run<'a> {
-    fn new(system: Regularised, eps: f64, workspace: &'a mut Workspace) -> Run<'a> {
+    fn new(system: Regularised, eps: f64, quantities: Quantities, workspace: &'a mut Workspace) -> Run<'a> {
         let order = taylor::order_for(eps);
         Run {
             system,
+            quantities,
             order,
             eps_root: eps.powf(1.0 / (order + 1) as f64),
             node_digits: node_digits(eps),
@@ -319,7 +366,8 @@ impl<'a> Run<'a> {
 
     /// Expands the solution at the current state; returns the step size its coefficients allow.
     fn expand(&mut self) -> f64 {
-        self.system.expand(&self.state, self.order, self.expansion);
+        let dissipation = self.quantities.dissipation;
+        self.system.expand(&self.state, self.order, dissipation, self.expansion);
         self.steps += 1;
         let e = &self.expansion;
         let k = self.order;
@@ -329,7 +377,8 @@ impl<'a> Run<'a> {
         // weighed as D̃ (relative to itself: D = x D̃ is then accurate relative to D for light damping) or as D
         // itself when the damping x > 1 multiplies D̃'s error. (The work is the exact integral of the step's
         // polynomials: as accurate as they are.)
-        let weight = self.system.damping.max(1.0);
+        // (Not computed: a zero series, weighed by nothing.)
+        let weight = if dissipation { self.system.damping.max(1.0) } else { 0.0 };
         let norm = |i: usize, rate_size: f64| {
             (e.w[i].abs().max(weight * e.dissipation[i].abs()) / size).max(e.rate[i].abs() / rate_size)
         };
@@ -496,10 +545,11 @@ impl<'a> Run<'a> {
     /// with the restitution's impulse and work counted from maximum compression).
     fn integrate(&mut self, force_criterion: bool) -> Result<(PhasePoint, Ending), FastError> {
         let system = self.system;
+        let Quantities { time: timed, peak: peaked, .. } = self.quantities;
         // The force at first contact is a candidate peak (Kelvin–Voigt's jump to c v0, its maximum for c >= 1).
         self.offer_peak(system.force(0.0, 1.0), 0.0);
         let (g0, _) = system.peak_function(0.0, system.rate_factor, 1.0, -system.regular_force(0.0, 1.0));
-        let mut rising = g0 > 0.0;
+        let mut rising = peaked && g0 > 0.0;
         let mut max_compression = None;
         loop {
             if self.steps >= STEP_BUDGET {
@@ -508,15 +558,17 @@ impl<'a> Run<'a> {
                     None => Err(FastError::Compression(self.steps)),
                 };
             }
+            // (Untimed, the regularised time stands in: the limit only guards against a contact without end.)
             if let Some(point) = max_compression
-                && self.time() > TIME_LIMIT
+                && (if timed { self.time() } else { self.tau }) > TIME_LIMIT
             {
                 return Ok((point, Ending::TimeLimit));
             }
             let compressing = max_compression.is_none();
             let from_zero = self.state.w == 0.0;
             let mut h = self.expand();
-            if !from_zero {
+            // (The limits for the time quadrature's sake apply only when the time is computed.)
+            if timed && !from_zero {
                 h = h.min(self.left_limit());
             }
             let mut shrinks = 0;
@@ -531,7 +583,7 @@ impl<'a> Run<'a> {
                 let restitution_from = if compressing { turn } else { Some(0.0) };
                 // (At the step's start, w's value is its first coefficient.)
                 let zero = restitution_from.and_then(|a| fall(w, a, if a == 0.0 { w[0] } else { taylor::value(w, a) }));
-                if from_zero && zero.is_some() {
+                if timed && from_zero && zero.is_some() {
                     // The whole contact in one step: the time rule about first contact would have to reach the
                     // other zero of w. Two steps at least.
                     self.shrink(&mut shrinks)?;
@@ -540,7 +592,7 @@ impl<'a> Run<'a> {
                 }
                 let right = match (zero, restitution_from) {
                     (Some(zero), _) => zero,
-                    (None, Some(_)) => {
+                    (None, Some(_)) if timed => {
                         // The next zero beyond the step: if near, end this step early enough for the Gauss rule
                         // (`ξ >= XI_MIN`); the next step reaches the zero with the Gauss–Jacobi rule.
                         let right = self.next_zero(h, h);
@@ -554,8 +606,8 @@ impl<'a> Run<'a> {
                     }
                     // All of the step compresses: the next zero of w lies beyond maximum compression, at least as
                     // far from the step as first contact is (restitution is never shorter in τ than compression),
-                    // so the Gauss rule's accuracy is set by the left zero alone.
-                    (None, None) => f64::INFINITY,
+                    // so the Gauss rule's accuracy is set by the left zero alone. (Untimed, no rule asks.)
+                    (None, _) => f64::INFINITY,
                 };
                 let reach = zero.unwrap_or(h);
                 let force_zero = match restitution_from {
@@ -597,28 +649,33 @@ impl<'a> Run<'a> {
                 } else {
                     None
                 };
-                let times = self.time_rule(piece).and_then(|rule| {
-                    // The events inside the step split it into pieces, each integrated on its own (a short piece
-                    // needs fewer Gauss nodes than an integral from the step's start would).
-                    let mut marks = [peak_at, turn];
-                    if let [Some(a), Some(b)] = marks
-                        && b < a
-                    {
-                        marks.swap(0, 1);
-                    }
-                    let (mut elapsed, mut from) = (0.0, 0.0);
-                    let mut at_mark = [None, None];
-                    for (slot, mark) in at_mark.iter_mut().zip(marks) {
-                        if let Some(to) = mark {
-                            elapsed = self.time_to(rule, from, to, elapsed)?;
-                            from = to;
-                            *slot = Some((to, elapsed));
+                let times = if !timed {
+                    Some((0.0, turn.map(|at| (at, 0.0)), peak_at.map(|at| (at, 0.0))))
+                } else {
+                    self.time_rule(piece).and_then(|rule| {
+                        // The events inside the step split it into pieces, each integrated on its own (a short piece
+                        // needs fewer Gauss nodes than an integral from the step's start would).
+                        let mut marks = [peak_at, turn];
+                        if let [Some(a), Some(b)] = marks
+                            && b < a
+                        {
+                            marks.swap(0, 1);
                         }
-                    }
-                    let dt = self.time_to(rule, from, end, elapsed)?;
-                    let find = |event: Option<f64>| at_mark.into_iter().flatten().find(|&(at, _)| Some(at) == event);
-                    Some((dt, find(turn), find(peak_at)))
-                });
+                        let (mut elapsed, mut from) = (0.0, 0.0);
+                        let mut at_mark = [None, None];
+                        for (slot, mark) in at_mark.iter_mut().zip(marks) {
+                            if let Some(to) = mark {
+                                elapsed = self.time_to(rule, from, to, elapsed)?;
+                                from = to;
+                                *slot = Some((to, elapsed));
+                            }
+                        }
+                        let dt = self.time_to(rule, from, end, elapsed)?;
+                        let find =
+                            |event: Option<f64>| at_mark.into_iter().flatten().find(|&(at, _)| Some(at) == event);
+                        Some((dt, find(turn), find(peak_at)))
+                    })
+                };
                 let Some((dt, turn, peak)) = times else {
                     self.shrink(&mut shrinks)?;
                     h = 0.5 * reach;
@@ -644,7 +701,9 @@ impl<'a> Run<'a> {
                     dissipated: system.damping * state.dissipation,
                     elastic: system.elastic_energy(state.w),
                 };
-                self.offer_peak(system.force(state.w, 0.0), point.time);
+                if peaked {
+                    self.offer_peak(system.force(state.w, 0.0), point.time);
+                }
                 max_compression = Some(point);
                 if !force_criterion && system.never_separates() {
                     // Overdamped linear law: w never returns to zero (see `Ending::NeverSeparates`).
@@ -703,7 +762,7 @@ mod tests {
             ContactLaw { kind: LawKind::HuntCrossley, stiffness: 1.0, exponent: 1.5, damping: 0.5, tsuji_scale: 0.0 };
         let system = Regularised::new(&law, &Scales::new(1.0, 1.0, 1.5, 1.0)).unwrap();
         let mut e = Expansion::default();
-        system.expand(&State::FIRST_CONTACT, 20, &mut e);
+        system.expand(&State::FIRST_CONTACT, 20, true, &mut e);
         let q = &e.w[1..=20];
         let mut rules = JacobiRules::default();
         let (nodes, weights) = quadrature::gauss_legendre(24);

@@ -258,11 +258,17 @@ impl Regularised {
         self.form == Form::Linear && self.damping * self.damping >= 4.0 * self.rate_factor
     }
 
-    /// Taylor coefficients of every component at `state`, to `order` (<= [`MAX_ORDER`]).
-    ///
-    /// The products `w v` and `w v²` (resp. `v²`) are Cauchy sums, formed ahead as each coefficient arrives
-    /// ([`taylor::add_pairs`]), so that each step of the recursion waits only for its newest terms.
-    pub fn expand(&self, state: &State, order: usize, e: &mut Expansion) {
+    /// Taylor coefficients of every component at `state`, to `order` (<= [`MAX_ORDER`]); the dissipation's series
+    /// only if `dissipation` (else it is held at its starting value).
+    pub fn expand(&self, state: &State, order: usize, dissipation: bool, e: &mut Expansion) {
+        // One copy of the recursion per case, so that the loop carries no test of what to compute.
+        if dissipation { self.expand_with::<true>(state, order, e) } else { self.expand_with::<false>(state, order, e) }
+    }
+
+    /// [`Regularised::expand`]. The products `w v` and `w v²` (resp. `v²`) are Cauchy sums, formed ahead as each
+    /// coefficient arrives ([`taylor::add_pairs`]), so that each step of the recursion waits only for its newest
+    /// terms.
+    fn expand_with<const DISSIPATION: bool>(&self, state: &State, order: usize, e: &mut Expansion) {
         debug_assert!(order <= MAX_ORDER);
         e.order = order;
         e.start = *state;
@@ -271,7 +277,11 @@ impl Regularised {
         e.dissipation[0] = state.dissipation;
         let (p, x) = (self.rate_factor, self.damping);
         e.pending_product[..=order].fill(0.0);
-        e.pending_dissipation[..=order].fill(0.0);
+        if DISSIPATION {
+            e.pending_dissipation[..=order].fill(0.0);
+        } else {
+            e.dissipation[1..=order].fill(0.0);
+        }
         match self.form {
             Form::Hysteresis => {
                 for k in 0..=order {
@@ -281,7 +291,9 @@ impl Regularised {
                     } else {
                         taylor::add_pairs(&mut e.pending_product, &e.w, &e.rate, k, order);
                         e.product[k] = taylor::product_coefficient(&e.pending_product, &e.w, &e.rate, k);
-                        taylor::add_pairs(&mut e.pending_dissipation, &e.product, &e.rate, k, order);
+                        if DISSIPATION {
+                            taylor::add_pairs(&mut e.pending_dissipation, &e.product, &e.rate, k, order);
+                        }
                         e.product[k]
                     };
                     let force = taylor::mul_add(x, wv, e.w[k]);
@@ -292,11 +304,13 @@ impl Regularised {
                     let inverse = INVERSE[k + 1];
                     e.w[k + 1] = p * e.rate[k] * inverse;
                     e.rate[k + 1] = -force * inverse;
-                    e.dissipation[k + 1] = if x == 0.0 {
-                        0.0
-                    } else {
-                        taylor::product_coefficient(&e.pending_dissipation, &e.product, &e.rate, k) * inverse
-                    };
+                    if DISSIPATION {
+                        e.dissipation[k + 1] = if x == 0.0 {
+                            0.0
+                        } else {
+                            taylor::product_coefficient(&e.pending_dissipation, &e.product, &e.rate, k) * inverse
+                        };
+                    }
                 }
             }
             Form::Linear => {
@@ -307,12 +321,14 @@ impl Regularised {
                         e.force_top = force;
                         break;
                     }
-                    taylor::add_pairs(&mut e.pending_dissipation, &e.rate, &e.rate, k, order);
-                    let vv = taylor::product_coefficient(&e.pending_dissipation, &e.rate, &e.rate, k);
                     let inverse = INVERSE[k + 1];
+                    if DISSIPATION {
+                        taylor::add_pairs(&mut e.pending_dissipation, &e.rate, &e.rate, k, order);
+                        let vv = taylor::product_coefficient(&e.pending_dissipation, &e.rate, &e.rate, k);
+                        e.dissipation[k + 1] = vv * inverse;
+                    }
                     e.w[k + 1] = p * e.rate[k] * inverse;
                     e.rate[k + 1] = -force * inverse;
-                    e.dissipation[k + 1] = vv * inverse;
                 }
             }
         }
@@ -397,7 +413,7 @@ mod tests {
     fn elastic_series_is_the_sine() {
         let system = hysteresis(0.0, 1.5);
         let mut e = Expansion::default();
-        system.expand(&State::FIRST_CONTACT, 30, &mut e);
+        system.expand(&State::FIRST_CONTACT, 30, true, &mut e);
         let omega = 1.25_f64.sqrt();
         for tau in [0.1, 0.5, 1.0] {
             let s = e.state_at(tau);
@@ -422,7 +438,7 @@ mod tests {
         let system = hysteresis(x, 2.2);
         let mut e = Expansion::default();
         let state = State { w: 0.4, rate: -0.3, impulse: 1.1, work: 0.45, dissipation: 0.02 };
-        system.expand(&state, 24, &mut e);
+        system.expand(&state, 24, true, &mut e);
         let k = e.order + 1;
         for sigma in [0.01, 0.05] {
             let (w, dw) = taylor::value_and_slope(&e.w[..k], sigma);
@@ -456,7 +472,7 @@ mod tests {
         };
         let mut e = Expansion::default();
         let state = State { w: 0.3, rate: 0.7, impulse: 0.2, work: 0.1, dissipation: 0.05 };
-        system.expand(&state, 26, &mut e);
+        system.expand(&state, 26, true, &mut e);
         let k = e.order + 1;
         for sigma in [0.05, 0.3, 0.6] {
             let (w, dw) = taylor::value_and_slope(&e.w[..k], sigma);

@@ -143,13 +143,43 @@ fn find_column(header: &[String], name: &str) -> Result<usize, SweepError> {
     header.iter().position(|c| c == name).ok_or_else(|| SweepError::Usage(format!("the CSV has no `{name}` column")))
 }
 
+/// The columns [`from_csv`] reads.
+const RESTITUTION_COLUMNS: [&str; 3] = ["law", "restitution_velocity_ratio", "approach_speed"];
+/// The columns [`incidence_from_csv`] reads.
+const INCIDENCE_COLUMNS: [&str; 11] = [
+    "law",
+    "restitution_velocity_ratio",
+    "incidence_from_normal_deg",
+    "tangential_restitution_centre",
+    "rigid_tangential_restitution_centre",
+    "spin_after_1",
+    "spin_after_2",
+    "rigid_spin_after_1",
+    "rigid_spin_after_2",
+    "rebound_from_normal_deg",
+    "rigid_rebound_from_normal_deg",
+];
+
+/// Whether a sweep whose CSV header line is `header` has the columns its figure ([`plot_from_csv`]) reads; the
+/// error names the first missing one. (`impact sweep --plot --columns ...` checks before any row runs.)
+pub fn check_columns(header: &str) -> Result<(), SweepError> {
+    let header = split(header);
+    let needed: &[&str] = if incidence_first(&header) { &INCIDENCE_COLUMNS } else { &RESTITUTION_COLUMNS };
+    needed.iter().try_for_each(|name| find_column(&header, name).map(|_| ()))
+}
+
+/// Whether the first varied key of a sweep's header is a body's angle of incidence.
+fn incidence_first(header: &[String]) -> bool {
+    let first = header.iter().find(|c| c.contains('.'));
+    first.is_some_and(|key| SceneKey::parse(key).is_ok_and(|k| k.is_incidence()))
+}
+
 /// What `impact sweep --plot` and `impact merge --plot` draw from a sweep's CSV: the oblique-impact figure when
 /// the first varied key is a body's angle of incidence (`bodies.I.incidence_deg`), the effective-e figure
 /// ([`from_csv`]) otherwise.
 pub fn plot_from_csv(text: &str) -> Result<SweepPlot, SweepError> {
     let header = text.lines().find(|line| !line.starts_with('#')).map(split).unwrap_or_default();
-    let first = header.iter().find(|c| c.contains('.'));
-    if first.is_some_and(|key| SceneKey::parse(key).is_ok_and(|k| k.is_incidence())) {
+    if incidence_first(&header) {
         incidence_from_csv(text).map(SweepPlot::Incidence)
     } else {
         from_csv(text).map(SweepPlot::Restitution)

@@ -16,7 +16,6 @@ pub mod merge;
 pub mod shard;
 pub mod table;
 
-use crate::accuracy::ReferenceDetail;
 use crate::history::Recording;
 use crate::impact::{Options, simulate_prepared};
 use crate::law::LawKind;
@@ -27,7 +26,7 @@ use grid::Grid;
 use rayon::prelude::*;
 use shard::Shard;
 use std::path::{Path, PathBuf};
-use table::{Cell, Row, Status};
+use table::{Cell, Columns, Row, Status};
 
 /// Why a sweep cannot start (bad arguments, a scene file that is not TOML) or shards cannot be merged.
 #[derive(Debug, thiserror::Error)]
@@ -63,6 +62,8 @@ pub struct Sweep {
     pub laws: Vec<LawKind>,
     /// For each law, the typed scene its points are applied to (see [`Sweep::base`]).
     bases: Vec<Option<Scene>>,
+    /// The result columns written (all unless [`Sweep::select`] chose some).
+    columns: Columns,
 }
 
 /// The laws named in `--law` (scene spellings), checked.
@@ -111,12 +112,30 @@ impl Sweep {
         for axis in &grid.axes {
             axis.key.check_in(&document)?;
         }
-        let mut sweep = Sweep { path: path.to_path_buf(), text, document, grid, laws, bases: Vec::new() };
+        let mut sweep = Sweep {
+            path: path.to_path_buf(),
+            text,
+            document,
+            grid,
+            laws,
+            bases: Vec::new(),
+            columns: Columns::default(),
+        };
         sweep.bases = (0..sweep.law_count()).map(|i| sweep.base(i)).collect();
         match sweep.grid.points().and_then(|points| points.checked_mul(sweep.law_count())) {
             Some(rows) if rows <= MAX_ROWS => Ok(sweep),
             _ => Err(SweepError::Usage(format!("the sweep has more than {MAX_ROWS} rows: split it into several"))),
         }
+    }
+
+    /// Writes only `columns` (`--columns`); each row then computes only what they show.
+    pub fn select(&mut self, columns: Columns) {
+        self.columns = columns;
+    }
+
+    /// The result columns written.
+    pub fn columns(&self) -> &Columns {
+        &self.columns
     }
 
     fn law_count(&self) -> usize {
@@ -190,17 +209,20 @@ impl Sweep {
                 Ok((scene, setup))
             }),
         };
-        // A row shows one reference value, the exact restitution: the quadratures of the others are not computed.
-        let options = Options { recording: Recording::Off, reference: ReferenceDetail::Restitution };
+        // A row shows at most one reference value, the exact restitution: the quadratures of the others are not
+        // computed; nor is anything its columns do not show.
+        let columns = &self.columns;
+        let options =
+            Options { recording: Recording::Off, reference: columns.reference(), quantities: columns.quantities() };
         let simulation = prepared.and_then(|(scene, setup)| {
             simulate_prepared(&scene, &setup, options, clock).map_err(|error| error.to_string())
         });
         let (status, results) = match simulation {
             Ok(simulation) => {
                 let status = if simulation.report.contact.separated { Status::Ok } else { Status::NotSeparated };
-                (status, table::results(&simulation.report))
+                (status, columns.pick(&table::results(&simulation.report)))
             }
-            Err(why) => (Status::Error(why), vec![Cell::Empty; table::RESULT_COLUMNS.len()]),
+            Err(why) => (Status::Error(why), vec![Cell::Empty; columns.len()]),
         };
         Row { index, status, law, values, results }
     }
@@ -301,8 +323,8 @@ impl Sweep {
         Ok(rows)
     }
 
-    /// A fingerprint of what the rows depend on (scene text, grid, laws), so that shards of different sweeps are
-    /// never merged. FNV-1a, stable across machines and builds.
+    /// A fingerprint of what the rows depend on (scene text, grid, laws, columns), so that shards of different
+    /// sweeps are never merged. FNV-1a, stable across machines and builds.
     pub fn fingerprint(&self) -> u64 {
         let mut hash = Fnv::default();
         hash.write(self.text.as_bytes());
@@ -314,6 +336,12 @@ impl Sweep {
         }
         for law in &self.laws {
             hash.write(law.name().as_bytes());
+        }
+        // (The default columns add nothing: the fingerprints of sweeps written before `--columns` stay valid.)
+        if self.columns != Columns::default() {
+            for name in self.columns.names() {
+                hash.write(name.as_bytes());
+            }
         }
         hash.0
     }

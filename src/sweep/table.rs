@@ -11,7 +11,11 @@
 //! (ID: a fingerprint of the scene text, the grid and the laws), so that `impact merge` can check that its shards
 //! come from one sweep and that none is missing. The whole sweep's file has no comment line.
 
+use super::SweepError;
 use super::shard::Shard;
+use crate::accuracy::ReferenceDetail;
+use crate::fast::Quantities;
+use crate::output::text::{MESSAGE_CHARS, cut};
 use crate::report::Report;
 use std::fmt::Write;
 
@@ -61,6 +65,99 @@ pub const RESULT_COLUMNS: [&str; 40] = [
     "rigid_spin_after_2",
 ];
 
+/// The result columns a sweep writes: every one of [`RESULT_COLUMNS`] (the default), or those `--columns` names, in
+/// its order. A row computes only what its columns show ([`Columns::quantities`], [`Columns::reference`]).
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Columns {
+    /// Indices into [`RESULT_COLUMNS`].
+    chosen: Vec<usize>,
+}
+
+/// The columns that show physical times (the fast path's time quadrature).
+const TIME_COLUMNS: [&str; 4] = ["max_compression_time", "duration", "max_force_time", "stick_duration"];
+/// The columns that show the force peak.
+const PEAK_COLUMNS: [&str; 2] = ["max_force", "max_force_time"];
+/// The columns that show the dissipated energy.
+const DISSIPATION_COLUMNS: [&str; 1] = ["dissipated"];
+/// The column that shows the exact reference.
+const REFERENCE_COLUMN: &str = "reference_restitution";
+
+impl Default for Columns {
+    fn default() -> Columns {
+        Columns { chosen: (0..RESULT_COLUMNS.len()).collect() }
+    }
+}
+
+impl Columns {
+    /// The columns `names` (from `--columns`), checked: each a result column, none twice, at least one.
+    pub fn parse(names: &[String]) -> Result<Columns, SweepError> {
+        let mut chosen = Vec::with_capacity(names.len());
+        for name in names {
+            let name = name.trim();
+            let Some(index) = RESULT_COLUMNS.iter().position(|&c| c == name) else {
+                let fixed = ["index", "status", "law"].contains(&name) || name.contains('.');
+                return Err(SweepError::Usage(if fixed {
+                    format!(
+                        "--columns: `{}` is always written (index, status, law and the varied keys come first); name \
+                         result columns only",
+                        cut(name, MESSAGE_CHARS)
+                    )
+                } else {
+                    format!(
+                        "--columns: unknown column `{}`; expected some of {}",
+                        cut(name, MESSAGE_CHARS),
+                        RESULT_COLUMNS.join(", ")
+                    )
+                }));
+            };
+            if chosen.contains(&index) {
+                return Err(SweepError::Usage(format!("--columns: `{name}` is given twice")));
+            }
+            chosen.push(index);
+        }
+        if chosen.is_empty() {
+            return Err(SweepError::Usage("--columns: name at least one result column".into()));
+        }
+        Ok(Columns { chosen })
+    }
+
+    /// The names, in the order written.
+    pub fn names(&self) -> impl Iterator<Item = &'static str> + '_ {
+        self.chosen.iter().map(|&i| RESULT_COLUMNS[i])
+    }
+
+    pub fn len(&self) -> usize {
+        self.chosen.len()
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.chosen.is_empty()
+    }
+
+    fn shows(&self, names: &[&str]) -> bool {
+        self.names().any(|name| names.contains(&name))
+    }
+
+    /// What a row's run must compute besides the motion and the impulses.
+    pub fn quantities(&self) -> Quantities {
+        Quantities {
+            time: self.shows(&TIME_COLUMNS),
+            peak: self.shows(&PEAK_COLUMNS),
+            dissipation: self.shows(&DISSIPATION_COLUMNS),
+        }
+    }
+
+    /// How much of the exact reference a row computes: the restitution if its column is written, else none.
+    pub fn reference(&self) -> ReferenceDetail {
+        if self.shows(&[REFERENCE_COLUMN]) { ReferenceDetail::Restitution } else { ReferenceDetail::Off }
+    }
+
+    /// The chosen cells of a report's [`results`], in the chosen order.
+    pub fn pick(&self, all: &[Cell]) -> Vec<Cell> {
+        self.chosen.iter().map(|&i| all[i]).collect()
+    }
+}
+
 /// One cell of a result column.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Cell {
@@ -107,7 +204,7 @@ pub struct Row {
     pub law: String,
     /// The varied keys' values, in --vary order.
     pub values: Vec<f64>,
-    /// [`RESULT_COLUMNS`], all empty for an error.
+    /// The sweep's result columns ([`Columns`]), all empty for an error.
     pub results: Vec<Cell>,
 }
 
@@ -288,12 +385,12 @@ fn quoted(text: &str) -> String {
     if text.contains([',', '"', '\n', '\r']) { format!("\"{}\"", text.replace('"', "\"\"")) } else { text.to_string() }
 }
 
-/// The header line (without its newline) for the varied keys `keys`.
-pub fn header(keys: &[String]) -> String {
-    let mut columns = vec!["index".to_string(), "status".into(), "law".into()];
-    columns.extend(keys.iter().cloned());
-    columns.extend(RESULT_COLUMNS.iter().map(|c| c.to_string()));
-    columns.join(",")
+/// The header line (without its newline) for the varied keys `keys` and the result columns `columns`.
+pub fn header(keys: &[String], columns: &Columns) -> String {
+    let mut names = vec!["index".to_string(), "status".into(), "law".into()];
+    names.extend(keys.iter().cloned());
+    names.extend(columns.names().map(str::to_string));
+    names.join(",")
 }
 
 /// One row as a CSV line, with its newline.
@@ -344,9 +441,9 @@ pub fn parse_shard_comment(line: &str) -> Option<ShardInfo> {
 }
 
 /// The whole CSV text: the shard comment (for a shard), the header, the rows.
-pub fn render(keys: &[String], rows: &[Row], shard: Option<(Shard, usize, u64)>) -> String {
+pub fn render(keys: &[String], columns: &Columns, rows: &[Row], shard: Option<(Shard, usize, u64)>) -> String {
     let mut text = shard.map(|(shard, total, id)| shard_comment(shard, total, id)).unwrap_or_default();
-    text += &header(keys);
+    text += &header(keys, columns);
     text.push('\n');
     for row in rows {
         text += &line(row);

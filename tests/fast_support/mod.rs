@@ -5,7 +5,7 @@
 #![allow(dead_code)]
 
 use impact::dynamics::Scales;
-use impact::fast::{Outcome, Request};
+use impact::fast::{Outcome, Quantities, Request};
 use impact::law::{ContactLaw, LawKind, Separation};
 use impact::reference::{self, ContactReference};
 use std::f64::consts::FRAC_PI_2;
@@ -47,6 +47,7 @@ impl Case {
             scales: Scales::new(1.0, 1.0, n, 1.0),
             separation,
             tolerance,
+            quantities: Quantities::ALL,
         }
     }
 
