@@ -98,7 +98,7 @@ fn sweep(c: &mut Criterion) {
     .expect("a grid");
     let sweep = Sweep::new(Path::new("bench.toml"), text, grid, Vec::new()).expect("a sweep");
     let indices: Vec<usize> = (0..sweep.rows()).collect();
-    let rows = sweep.run(&indices, Some(1), || {}).expect("the sweep runs");
+    let rows = sweep.run(&indices, Some(1), |_| {}).expect("the sweep runs");
     let column = |name: &str| impact::sweep::table::RESULT_COLUMNS.iter().position(|c| *c == name).expect("a column");
     let (e, exact) = (column("restitution_velocity_ratio"), column("reference_restitution"));
     let worst = rows
@@ -112,7 +112,7 @@ fn sweep(c: &mut Criterion) {
     let mut group = c.benchmark_group("sweep");
     group.sample_size(10).measurement_time(Duration::from_secs(3));
     group.bench_function(format!("{SWEEP_POINTS} points, one thread"), |b| {
-        b.iter(|| sweep.run(black_box(&indices), Some(1), || {}).expect("the sweep runs"))
+        b.iter(|| sweep.run(black_box(&indices), Some(1), |_| {}).expect("the sweep runs"))
     });
     group.finish();
 }

@@ -96,19 +96,26 @@ pub fn simulate(scene: &Scene, recording: Recording) -> Result<Simulation, Simul
 pub fn simulate_with(scene: &Scene, options: Options) -> Result<Simulation, SimulationError> {
     let clock = Instant::now();
     let setup = Setup::new(scene).map_err(SimulationError::Setup)?;
-    simulate_prepared(scene, &setup, options, clock)
+    simulate_prepared(scene, &setup, options, Some(clock))
 }
 
 /// Simulates the impact of a scene whose [`Setup`] is already resolved (a sweep's checked point); `clock` started
-/// when the run did, for the report's wall time.
+/// when the run did, for the report's wall time (`None`: not measured, NaN in the report — a sweep's row, which
+/// has no column for it).
 pub fn simulate_prepared(
     scene: &Scene,
     setup: &Setup,
     options: Options,
-    clock: Instant,
+    clock: Option<Instant>,
 ) -> Result<Simulation, SimulationError> {
     let (outcome, history) = through_phases(scene, setup, options.recording, options.quantities)?;
-    let report = crate::report::build(scene, setup, &outcome, options.reference, clock.elapsed().as_secs_f64());
+    let report = crate::report::build(
+        scene,
+        setup,
+        &outcome,
+        options.reference,
+        clock.map_or(f64::NAN, |clock| clock.elapsed().as_secs_f64()),
+    );
     Ok(Simulation { report, history })
 }
 

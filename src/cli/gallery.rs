@@ -87,7 +87,7 @@ fn incidence(folder: &Path) -> anyhow::Result<()> {
     let grid = Grid::new(vec![Axis::parse(OBLIQUE_VARY, Spacing::Linear)?])?;
     let sweep = Sweep::new(Path::new(path), text.to_string(), grid, sweeps::parse_laws(&[])?)?;
     let indices: Vec<usize> = (0..sweep.rows()).collect();
-    let rows = sweep.run(&indices, None, || {})?;
+    let rows = sweep.run(&indices, None, |_| {})?;
     let csv = table::render(&sweep.keys(), sweep.columns(), &rows, None);
     let mut figure = sweeps::figure::incidence_from_csv(&csv)?;
     figure.title = "Chung & Ooi test 4: Al2O3 sphere on a rigid wall, 3.9 m/s, mu = 0.092, e = 0.98".into();
@@ -106,7 +106,7 @@ fn effective_restitution(folder: &Path) -> anyhow::Result<()> {
     let laws = sweeps::parse_laws(&SWEEP_LAWS.map(String::from))?;
     let sweep = Sweep::new(Path::new(path), text.to_string(), grid, laws)?;
     let indices: Vec<usize> = (0..sweep.rows()).collect();
-    let rows = sweep.run(&indices, None, || {})?;
+    let rows = sweep.run(&indices, None, |_| {})?;
     let csv = table::render(&sweep.keys(), sweep.columns(), &rows, None);
     let figure = sweep_figure::SweepPlot::Restitution(sweeps::figure::from_csv(&csv)?);
     let written = sweep_figure::stage(&figure, &folder.join("effective_restitution.png"))?.commit()?;

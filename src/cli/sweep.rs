@@ -137,7 +137,7 @@ pub fn run(args: &SweepArgs) -> anyhow::Result<()> {
     sweep.stream(
         indices,
         &pool,
-        || bar.inc(1),
+        |rows| bar.inc(rows as u64),
         |row| (table::line(&row), row.status),
         |(line, status)| {
             tally.add(&status);

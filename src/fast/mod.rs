@@ -188,6 +188,25 @@ pub fn simulate_normal(request: &Request) -> Result<Outcome, FastError> {
 struct Workspace {
     expansion: Expansion,
     jacobi: JacobiRules,
+    /// The step constants of the last local tolerance (a sweep's rows share one).
+    constants: Option<Constants>,
+}
+
+/// What a local tolerance `eps` sets: the order, `eps^(1/(order+1))` for the step size, and the Gauss rules'
+/// digits ([`node_digits`]). (Computed once per tolerance and thread: three transcendental functions an impact.)
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Constants {
+    eps: f64,
+    order: usize,
+    eps_root: f64,
+    node_digits: f64,
+}
+
+impl Constants {
+    fn new(eps: f64) -> Constants {
+        let order = taylor::order_for(eps);
+        Constants { eps, order, eps_root: eps.powf(1.0 / (order + 1) as f64), node_digits: node_digits(eps) }
+    }
 }
 
 thread_local! {
@@ -326,13 +345,16 @@ struct Run<'a> {
 
 impl<'a> Run<'a> {
     fn new(system: Regularised, eps: f64, quantities: Quantities, workspace: &'a mut Workspace) -> Run<'a> {
-        let order = taylor::order_for(eps);
+        let constants = match workspace.constants {
+            Some(known) if known.eps.to_bits() == eps.to_bits() => known,
+            _ => *workspace.constants.insert(Constants::new(eps)),
+        };
         Run {
             system,
             quantities,
-            order,
-            eps_root: eps.powf(1.0 / (order + 1) as f64),
-            node_digits: node_digits(eps),
+            order: constants.order,
+            eps_root: constants.eps_root,
+            node_digits: constants.node_digits,
             state: State::FIRST_CONTACT,
             tau: 0.0,
             time: 0.0,

@@ -90,10 +90,11 @@ pub struct Expansion {
     pub force_top: f64,
     /// The state the step starts from (its impulse and work are the integration constants).
     start: State,
-    /// Scratch: the series of `w v` (hysteresis), and the parts of the Cauchy products `w v` and `w v²` (resp.
-    /// `v²`) summed ahead ([`taylor::add_pairs`]).
+    /// Scratch: the series `P` of `w v` (hysteresis).
     product: Coefficients,
-    pending_product: Coefficients,
+    /// Scratch: `reversed[MAX_ORDER - k] = v_k`, so that the sums of `P` run forward through both factors.
+    reversed: Coefficients,
+    /// Scratch: the pairs of the Cauchy product `P v` (resp. `v²`) summed ahead ([`taylor::add_pairs`]).
     pending_dissipation: Coefficients,
 }
 
@@ -108,7 +109,7 @@ impl Default for Expansion {
             force_top: 0.0,
             start: State::FIRST_CONTACT,
             product: zero,
-            pending_product: zero,
+            reversed: zero,
             pending_dissipation: zero,
         }
     }
@@ -265,9 +266,16 @@ impl Regularised {
         if dissipation { self.expand_with::<true>(state, order, e) } else { self.expand_with::<false>(state, order, e) }
     }
 
-    /// [`Regularised::expand`]. The products `w v` and `w v²` (resp. `v²`) are Cauchy sums, formed ahead as each
-    /// coefficient arrives ([`taylor::add_pairs`]), so that each step of the recursion waits only for its newest
-    /// terms.
+    /// [`Regularised::expand`].
+    ///
+    /// The recursion's critical path runs through `P = w v`: each `v_(k+1)` waits for `P_k = Σ w_j v_(k-j)`. Its
+    /// four outer terms (`j = 0, 1, k-1, k`, which hold the newest coefficients) are fused multiply-adds on values
+    /// in hand; the inner ones (`2 <= j <= k-2`, coefficients at least two steps old) a vectorised dot product
+    /// against `v` reversed, which the processor forms while the previous coefficients are still being computed.
+    /// (Summing the pairs ahead into the later coefficients instead, as the dissipation does, makes each step
+    /// re-load what the previous one just stored, a vector load the processor cannot forward from the store: 7 %
+    /// slower for the motion alone.) The dissipation's `P v` (resp. `v²`) is off the critical path: its pairs are
+    /// summed ahead as they arrive ([`taylor::add_pairs`]).
     fn expand_with<const DISSIPATION: bool>(&self, state: &State, order: usize, e: &mut Expansion) {
         debug_assert!(order <= MAX_ORDER);
         e.order = order;
@@ -276,40 +284,58 @@ impl Regularised {
         e.rate[0] = state.rate;
         e.dissipation[0] = state.dissipation;
         let (p, x) = (self.rate_factor, self.damping);
-        e.pending_product[..=order].fill(0.0);
         if DISSIPATION {
             e.pending_dissipation[..=order].fill(0.0);
         } else {
             e.dissipation[1..=order].fill(0.0);
         }
         match self.form {
+            Form::Hysteresis if x == 0.0 => {
+                // Elastic: F̂ = w, no products.
+                for k in 0..order {
+                    let inverse = INVERSE[k + 1];
+                    e.w[k + 1] = p * e.rate[k] * inverse;
+                    e.rate[k + 1] = -e.w[k] * inverse;
+                    if DISSIPATION {
+                        e.dissipation[k + 1] = 0.0;
+                    }
+                }
+                e.force_top = e.w[order];
+            }
             Form::Hysteresis => {
+                // P = w v (see above); F̂ = w + x P; dD̃/dτ = P v.
+                let top = MAX_ORDER;
+                let (w0, r0) = (e.w[0], e.rate[0]);
+                e.reversed[top] = r0;
                 for k in 0..=order {
-                    // P = w v; F̂ = w + x P; dD̃/dτ = P v (elastic, x = 0: F̂ = w, no products).
-                    let wv = if x == 0.0 {
-                        0.0
-                    } else {
-                        taylor::add_pairs(&mut e.pending_product, &e.w, &e.rate, k, order);
-                        e.product[k] = taylor::product_coefficient(&e.pending_product, &e.w, &e.rate, k);
-                        if DISSIPATION {
-                            taylor::add_pairs(&mut e.pending_dissipation, &e.product, &e.rate, k, order);
+                    let (wk, rk) = (e.w[k], e.rate[k]);
+                    let product = match k {
+                        0 => w0 * r0,
+                        1 => taylor::mul_add(w0, rk, wk * r0),
+                        2 => taylor::mul_add(w0, rk, taylor::mul_add(wk, r0, e.w[1] * e.rate[1])),
+                        _ => {
+                            let inner = taylor::dot(&e.w[2..k - 1], &e.reversed[top + 2 - k..top - 1]);
+                            let near =
+                                taylor::mul_add(e.w[1], e.rate[k - 1], taylor::mul_add(e.w[k - 1], e.rate[1], inner));
+                            taylor::mul_add(w0, rk, taylor::mul_add(wk, r0, near))
                         }
-                        e.product[k]
                     };
-                    let force = taylor::mul_add(x, wv, e.w[k]);
+                    e.product[k] = product;
+                    let force = taylor::mul_add(x, product, wk);
                     if k == order {
                         e.force_top = force;
                         break;
                     }
                     let inverse = INVERSE[k + 1];
-                    e.w[k + 1] = p * e.rate[k] * inverse;
-                    e.rate[k + 1] = -force * inverse;
+                    let next = -force * inverse;
+                    e.w[k + 1] = p * rk * inverse;
+                    e.rate[k + 1] = next;
+                    e.reversed[top - k - 1] = next;
                     if DISSIPATION {
-                        e.dissipation[k + 1] = if x == 0.0 {
-                            0.0
-                        } else {
-                            taylor::product_coefficient(&e.pending_dissipation, &e.product, &e.rate, k) * inverse
-                        };
+                        // (P v)_k, its pairs summed ahead (off the recursion's critical path).
+                        taylor::add_pairs(&mut e.pending_dissipation, &e.product, &e.rate, k, order);
+                        let sum = taylor::product_coefficient(&e.pending_dissipation, &e.product, &e.rate, k);
+                        e.dissipation[k + 1] = sum * inverse;
                     }
                 }
             }

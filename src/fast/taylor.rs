@@ -146,6 +146,23 @@ pub fn rough_exp2(y: f64) -> f64 {
     fraction * f64::from_bits(((whole as i64 + 1023) as u64) << 52)
 }
 
+/// `Σ a_i b_i` over two slices of equal length, in four interleaved sums (one vector of fused multiply-adds where
+/// the processor has them), then the sums added pairwise.
+#[inline(always)]
+pub fn dot(a: &[f64], b: &[f64]) -> f64 {
+    debug_assert_eq!(a.len(), b.len());
+    let mut sums = [0.0; 4];
+    let (a_chunks, a_tail) = a.as_chunks::<4>();
+    let (b_chunks, b_tail) = b.as_chunks::<4>();
+    for (x, y) in a_chunks.iter().zip(b_chunks) {
+        for lane in 0..4 {
+            sums[lane] = mul_add(x[lane], y[lane], sums[lane]);
+        }
+    }
+    let tail = a_tail.iter().zip(b_tail).fold(0.0, |acc, (&x, &y)| mul_add(x, y, acc));
+    ((sums[0] + sums[1]) + (sums[2] + sums[3])) + tail
+}
+
 /// Adds, once the coefficients `a_n` and `b_n` are known, their terms in the later coefficients of the Cauchy
 /// product `a b`: `a_n b_q + a_q b_n` to `pending[n + q]` for `1 <= q < n`, and `a_n b_n` to `pending[2n]`, up to
 /// `order`. The coefficient `m` of the product is then `pending[m] + a_m b_0 + a_0 b_m` (`a_0 b_0` for `m = 0`):

@@ -11,6 +11,11 @@ use serde::{Serialize, Serializer};
 pub type Vec3 = [f64; 3];
 
 /// Everything a run measured.
+///
+/// A run's own report (`impact run`) computes everything. A sweep's row may ask the fast path for less
+/// ([`crate::impact::Options::quantities`]: only what its columns show); what was not computed — the contact's
+/// times, its force peak, the dissipated energy and what follows from them, the wall time — is NaN here, and no view
+/// shows it (a row writes only its columns).
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Report {
     pub title: String,
@@ -224,6 +229,7 @@ pub struct SolverReport {
     pub steps: u64,
     pub rejected_steps: u64,
     pub force_evaluations: u64,
+    /// Wall-clock time of the run (setup, integration, report), s; NaN where it was not measured (a sweep row).
     pub wall_time_s: f64,
 }
 

@@ -197,7 +197,6 @@ impl Sweep {
     }
 
     fn evaluate_by(&self, index: usize, typed: bool) -> Row {
-        let clock = std::time::Instant::now();
         let (values, law) = self.point(index);
         let law = self.law_name(law);
         let base = self.bases[index % self.law_count()].as_ref().filter(|_| typed);
@@ -215,7 +214,8 @@ impl Sweep {
         let options =
             Options { recording: Recording::Off, reference: columns.reference(), quantities: columns.quantities() };
         let simulation = prepared.and_then(|(scene, setup)| {
-            simulate_prepared(&scene, &setup, options, clock).map_err(|error| error.to_string())
+            // (No column shows the run's wall time: not measured.)
+            simulate_prepared(&scene, &setup, options, None).map_err(|error| error.to_string())
         });
         let (status, results) = match simulation {
             Ok(simulation) => {
@@ -257,7 +257,8 @@ impl Sweep {
         (first.min(self.rows())..self.rows()).step_by(step)
     }
 
-    /// Runs the rows `indices` on `pool`, [`CHUNK`] rows at a time in parallel, calling `done` after each row, and
+    /// Runs the rows `indices` on `pool`, [`CHUNK`] rows at a time in parallel, calling `done` with the number of
+    /// rows after each chunk, and
     /// passes each row, turned by `shape` (in parallel too: e.g. into its CSV line), to `write` in the order of
     /// `indices`. `write` runs on a thread of its own, a chunk or two behind the computation, so that writing a chunk
     /// overlaps computing the next. The output does not depend on the number of threads, and memory holds at most
@@ -266,7 +267,7 @@ impl Sweep {
         &self,
         indices: impl Iterator<Item = usize>,
         pool: &rayon::ThreadPool,
-        done: impl Fn() + Sync,
+        done: impl Fn(usize) + Sync,
         shape: impl Fn(Row) -> T + Sync,
         mut write: impl FnMut(T) -> Result<(), E> + Send,
     ) -> Result<(), E> {
@@ -285,16 +286,9 @@ impl Sweep {
             while indices.peek().is_some() {
                 chunk.clear();
                 chunk.extend(indices.by_ref().take(CHUNK));
-                let rows: Vec<T> = pool.install(|| {
-                    chunk
-                        .par_iter()
-                        .map(|&index| {
-                            let row = shape(self.evaluate(index));
-                            done();
-                            row
-                        })
-                        .collect()
-                });
+                let rows: Vec<T> =
+                    pool.install(|| chunk.par_iter().map(|&index| shape(self.evaluate(index))).collect());
+                done(rows.len());
                 // The writer has stopped on an error: it is returned below.
                 if send.send(rows).is_err() {
                     break;
@@ -305,9 +299,15 @@ impl Sweep {
         })
     }
 
-    /// Runs the rows `indices` on `threads` threads (`None`: one per core), calling `done` after each row; the rows
+    /// Runs the rows `indices` on `threads` threads (`None`: one per core), calling `done` with the number of rows
+    /// after each chunk; the rows
     /// come back in the order of `indices`. (All in memory: [`Sweep::stream`] writes a large sweep as it goes.)
-    pub fn run(&self, indices: &[usize], threads: Option<usize>, done: impl Fn() + Sync) -> anyhow::Result<Vec<Row>> {
+    pub fn run(
+        &self,
+        indices: &[usize],
+        threads: Option<usize>,
+        done: impl Fn(usize) + Sync,
+    ) -> anyhow::Result<Vec<Row>> {
         let pool = rayon::ThreadPoolBuilder::new().num_threads(threads.unwrap_or(0)).build()?;
         let mut rows = Vec::with_capacity(indices.len());
         self.stream(

@@ -17,7 +17,6 @@ use crate::accuracy::ReferenceDetail;
 use crate::fast::Quantities;
 use crate::output::text::{MESSAGE_CHARS, cut};
 use crate::report::Report;
-use std::fmt::Write;
 
 /// The report's scalar results, after the varied keys.
 pub const RESULT_COLUMNS: [&str; 40] = [
@@ -291,28 +290,7 @@ pub fn push_number(text: &mut String, x: f64) {
         text.push_str(plain.strip_suffix(".0").unwrap_or(plain));
         return;
     }
-    let shortest = buffer.format_finite(x.abs()).as_bytes();
-    // ryu writes "123.45", "0.000123" or "1.5e-7": read off the significant digits and the decimal exponent k of
-    // the first one (x = d.ddd × 10^k).
-    let (mantissa, power) = match shortest.iter().position(|&b| b == b'e') {
-        Some(at) => (&shortest[..at], exponent_of(&shortest[at + 1..])),
-        None => (shortest, 0),
-    };
-    let point = mantissa.iter().position(|&b| b == b'.').unwrap_or(mantissa.len());
-    let mut digits = [0u8; 24];
-    let mut count = 0;
-    let mut exponent = power + point as i32 - 1;
-    for &byte in mantissa.iter().filter(|&&b| b != b'.') {
-        if count == 0 && byte == b'0' {
-            exponent -= 1;
-        } else if count < digits.len() {
-            digits[count] = byte;
-            count += 1;
-        }
-    }
-    while count > 1 && digits[count - 1] == b'0' {
-        count -= 1;
-    }
+    let (digits, count, exponent) = shortest_digits(x);
     let digits = &digits[..count];
     // At most 17 digits, 4 zeros of padding or 6 of a plain number's zeros, a sign, a point, "e-324": 40 bytes.
     let mut out = [0u8; 48];
@@ -371,6 +349,36 @@ pub fn push_number(text: &mut String, x: f64) {
     text.push_str(std::str::from_utf8(&out[..n]).unwrap_or_default());
 }
 
+/// The shortest decimal digits that read back as the finite, non-zero `x` (`ryu`'s), without the sign: the
+/// significant digits (no leading or trailing zeros; at most 17), their count, and the decimal exponent `k` of the
+/// first (`|x| = d.ddd × 10^k`).
+pub fn shortest_digits(x: f64) -> ([u8; 24], usize, i32) {
+    let mut buffer = ryu::Buffer::new();
+    let shortest = buffer.format_finite(x.abs()).as_bytes();
+    // ryu writes "123.45", "0.000123" or "1.5e-7": read off the significant digits and the decimal exponent k of
+    // the first one.
+    let (mantissa, power) = match shortest.iter().position(|&b| b == b'e') {
+        Some(at) => (&shortest[..at], exponent_of(&shortest[at + 1..])),
+        None => (shortest, 0),
+    };
+    let point = mantissa.iter().position(|&b| b == b'.').unwrap_or(mantissa.len());
+    let mut digits = [0u8; 24];
+    let mut count = 0;
+    let mut exponent = power + point as i32 - 1;
+    for &byte in mantissa.iter().filter(|&&b| b != b'.') {
+        if count == 0 && byte == b'0' {
+            exponent -= 1;
+        } else if count < digits.len() {
+            digits[count] = byte;
+            count += 1;
+        }
+    }
+    while count > 1 && digits[count - 1] == b'0' {
+        count -= 1;
+    }
+    (digits, count, exponent)
+}
+
 /// The decimal exponent ryu writes after its "e" ("-7", "21").
 fn exponent_of(bytes: &[u8]) -> i32 {
     let (sign, digits) = match bytes.first() {
@@ -380,9 +388,15 @@ fn exponent_of(bytes: &[u8]) -> i32 {
     sign * digits.iter().fold(0i32, |value, &b| value * 10 + i32::from(b - b'0'))
 }
 
-/// A cell as CSV: quoted when it holds a comma, a quote or a line break (RFC 4180).
-fn quoted(text: &str) -> String {
-    if text.contains([',', '"', '\n', '\r']) { format!("\"{}\"", text.replace('"', "\"\"")) } else { text.to_string() }
+/// Appends a cell as CSV: quoted when it holds a comma, a quote or a line break (RFC 4180).
+fn push_quoted(out: &mut String, text: &str) {
+    if text.contains([',', '"', '\n', '\r']) {
+        out.push('"');
+        out.push_str(&text.replace('"', "\"\""));
+        out.push('"');
+    } else {
+        out.push_str(text);
+    }
 }
 
 /// The header line (without its newline) for the varied keys `keys` and the result columns `columns`.
@@ -396,7 +410,17 @@ pub fn header(keys: &[String], columns: &Columns) -> String {
 /// One row as a CSV line, with its newline.
 pub fn line(row: &Row) -> String {
     let mut text = String::with_capacity(64 + 24 * (row.values.len() + row.results.len()));
-    let _ = write!(text, "{},{},{}", row.index, quoted(&row.status.text()), quoted(&row.law));
+    let mut integer = itoa::Buffer::new();
+    text.push_str(integer.format(row.index));
+    text.push(',');
+    match &row.status {
+        // (The common statuses without building their text.)
+        Status::Ok => text.push_str("ok"),
+        Status::NotSeparated => text.push_str("not separated"),
+        status => push_quoted(&mut text, &status.text()),
+    }
+    text.push(',');
+    push_quoted(&mut text, &row.law);
     for value in &row.values {
         text.push(',');
         push_number(&mut text, *value);
@@ -405,9 +429,7 @@ pub fn line(row: &Row) -> String {
         text.push(',');
         match cell {
             Cell::Number(x) => push_number(&mut text, *x),
-            Cell::Count(n) => {
-                let _ = write!(text, "{n}");
-            }
+            Cell::Count(n) => text.push_str(integer.format(*n)),
             Cell::Empty => {}
         }
     }
