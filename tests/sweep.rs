@@ -313,6 +313,9 @@ fn columns_choose_what_a_row_writes_and_computes() {
     }
     run_ok(&scratch, &["merge", "merged.csv", "e1.csv", "e2.csv"]);
     assert_eq!(scratch.read("merged.csv"), scratch.read("e.csv"));
+    // Their figure needs a column they do not have: refused before anything is written.
+    assert_bad(&scratch, &["merge", "m.csv", "e1.csv", "e2.csv", "--plot", "m.png"], &["--plot", "approach_speed"]);
+    assert!(!scratch.exists("m.csv") && !scratch.exists("m.png"));
     // A figure needs its columns: with them, it is drawn.
     let columns = "restitution_velocity_ratio,approach_speed";
     run_ok(&scratch, &["sweep", &scene, vary[0], vary[1], "--columns", columns, "--plot", "e.png", "--out", "p.csv"]);

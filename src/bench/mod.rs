@@ -17,7 +17,7 @@
 pub mod baselines;
 pub mod cases;
 
-use crate::fast::Request;
+use crate::fast::{Quantities, Request};
 use crate::reference::ContactReference;
 use crate::scene::Scene;
 use crate::setup::Setup;
@@ -82,6 +82,9 @@ fn largest(errors: &[f64]) -> f64 {
 pub enum Method {
     /// The Taylor-series fast path ([`crate::fast::simulate_normal`]) at a tolerance.
     Taylor,
+    /// The fast path asked for the motion alone ([`crate::fast::Quantities::MOTION`]: what a sweep writing e
+    /// computes): measured on e, the maximum penetration and both impulses (V0), not on the times or the peak force.
+    TaylorMotion,
     /// The general path with Dop853 at `rtol` (`atol = rtol / 100`).
     Dop853,
     /// The general path with Dopri5 at `rtol` (`atol = rtol / 100`).
@@ -93,12 +96,14 @@ pub enum Method {
 }
 
 impl Method {
-    pub const ALL: [Method; 5] = [Method::Taylor, Method::Dop853, Method::Dopri5, Method::Rk4, Method::Verlet];
+    pub const ALL: [Method; 6] =
+        [Method::Taylor, Method::TaylorMotion, Method::Dop853, Method::Dopri5, Method::Rk4, Method::Verlet];
 
     /// The name in the CSV.
     pub fn name(self) -> &'static str {
         match self {
             Method::Taylor => "taylor",
+            Method::TaylorMotion => "taylor-motion",
             Method::Dop853 => "dop853",
             Method::Dopri5 => "dopri5",
             Method::Rk4 => "rk4",
@@ -110,10 +115,19 @@ impl Method {
     pub fn label(self) -> &'static str {
         match self {
             Method::Taylor => "Taylor series, regularised (fast path)",
+            Method::TaylorMotion => "the same, the motion alone (error over e, dmax, V0, Jr)",
             Method::Dop853 => "Dop853 (ode_solvers), events re-stepped",
             Method::Dopri5 => "Dopri5 (ode_solvers), events re-stepped",
             Method::Rk4 => "RK4, fixed step, events located",
             Method::Verlet => "velocity Verlet (DEM), events at the step past",
+        }
+    }
+
+    /// Which of [`QUANTITIES`] the method measures (the motion alone leaves out the times and the peak force).
+    pub fn measures(self) -> [bool; 7] {
+        match self {
+            Method::TaylorMotion => [true, true, false, false, false, true, true],
+            _ => [true; 7],
         }
     }
 }
@@ -160,7 +174,8 @@ pub fn settings(quick: bool) -> Vec<(Method, Setting)> {
         taylor.push(Setting::Tolerance(1e-16));
         (taylor, tolerances(&decades), steps(&[30, 100, 300, 1000, 3000, 10000]))
     };
-    let mut all: Vec<(Method, Setting)> = taylor.into_iter().map(|s| (Method::Taylor, s)).collect();
+    let mut all: Vec<(Method, Setting)> = taylor.iter().map(|&s| (Method::Taylor, s)).collect();
+    all.extend(taylor.iter().map(|&s| (Method::TaylorMotion, s)));
     for method in [Method::Dop853, Method::Dopri5] {
         all.extend(general.iter().map(|&s| (method, s)));
     }
@@ -183,6 +198,9 @@ impl Runner {
     pub fn new(case: &Case, method: Method, setting: Setting) -> Result<Runner, String> {
         match (method, setting) {
             (Method::Taylor, Setting::Tolerance(tolerance)) => Ok(Runner::Taylor(case.request(tolerance))),
+            (Method::TaylorMotion, Setting::Tolerance(tolerance)) => {
+                Ok(Runner::Taylor(Request { quantities: Quantities::MOTION, ..case.request(tolerance) }))
+            }
             (Method::Dop853 | Method::Dopri5, Setting::Tolerance(rtol)) => {
                 let text = case.scene_text(method.name(), rtol);
                 let scene = Scene::parse(&text, Path::new("bench.toml")).map_err(|e| e.to_string())?;
@@ -293,9 +311,10 @@ pub struct Row {
     pub method: Method,
     pub case: String,
     pub setting: Setting,
-    /// The error of each of [`QUANTITIES`] (NaN when the run failed).
+    /// The error of each of [`QUANTITIES`] (NaN when the run failed, or for a quantity the method does not
+    /// measure: [`Method::measures`]).
     pub errors: [f64; 7],
-    /// The largest of them (infinite when the run failed).
+    /// The largest of those it measures (infinite when the run failed).
     pub error: f64,
     /// Median time of one impact, s (NaN when the run failed).
     pub seconds_per_impact: f64,
@@ -328,14 +347,21 @@ pub fn measure(case: &Case, method: Method, setting: Setting, timing: Timing) ->
         Ok(result) => result,
         Err(why) => return failed(why),
     };
-    let errors = measured.errors(&exact);
+    // What the method does not measure is NaN, not an error.
+    let mut errors = measured.errors(&exact);
+    for (error, measured) in errors.iter_mut().zip(method.measures()) {
+        if !measured {
+            *error = f64::NAN;
+        }
+    }
+    let counted: Vec<f64> = errors.iter().zip(method.measures()).filter(|(_, m)| *m).map(|(&e, _)| e).collect();
     let (seconds_per_impact, seconds_least) = median_seconds(|| runner.run(), timing);
     Row {
         method,
         case: case.name(),
         setting,
         errors,
-        error: largest(&errors),
+        error: largest(&counted),
         seconds_per_impact,
         seconds_least,
         force_evaluations,
@@ -452,13 +478,13 @@ pub fn summary_table(summaries: &[Summary]) -> String {
     let mut text = String::new();
     let _ = writeln!(
         text,
-        "{:<8} {:<11} {:>9} {:>9} {:>12} {:>12} {:>11}",
+        "{:<13} {:<11} {:>9} {:>9} {:>12} {:>12} {:>11}",
         "method", "setting", "error", "error e", "median µs", "slowest µs", "evaluations"
     );
     for s in summaries {
         let _ = writeln!(
             text,
-            "{:<8} {:<11} {:>9.1e} {:>9.1e} {:>12.3} {:>12.3} {:>11.0}",
+            "{:<13} {:<11} {:>9.1e} {:>9.1e} {:>12.3} {:>12.3} {:>11.0}",
             s.method.name(),
             s.setting.to_string(),
             s.error,

@@ -5,6 +5,7 @@ use super::BadInput;
 use super::paths::{Origin, Paths};
 use super::sweep::{bad, check_names, figure_output};
 use crate::output::files::OutputFile;
+use crate::sweep::SweepError;
 use crate::sweep::merge::{ShardFile, merge};
 use clap::Args;
 use std::path::PathBuf;
@@ -40,6 +41,13 @@ pub fn run(args: &MergeArgs) -> anyhow::Result<()> {
         shards.push(ShardFile { name: path.display().to_string(), text });
     }
     let merged = merge(&shards).map_err(bad)?;
+    if plot.is_some() {
+        // Shards written with --columns may lack what the figure reads: say so before drawing.
+        crate::sweep::figure::check_columns(merged.header).map_err(|error| match error {
+            SweepError::Usage(why) => BadInput(format!("--plot: {why} (the sweep was written with --columns)")).into(),
+            other => bad(other),
+        })?;
+    }
     let figure = match &plot {
         Some((path, destination)) => Some(figure_output(&merged.text(), path, destination)?),
         None => None,
