@@ -163,6 +163,43 @@ fn quantities_left_out_are_nan_and_the_rest_within_the_tolerance() {
     }
 }
 
+/// How a contact ends does not depend on what was asked for: very heavily damped contacts with steep exponents
+/// creep for longer than the time limit (10^4 elastic time units), and a run that does not compute the time must
+/// stop there too, not separate later (it is run again timed once its estimated time nears the limit).
+#[test]
+fn the_time_limit_applies_whatever_was_asked_for() {
+    let mut limited = 0;
+    for n in [0.6, 1.5, 4.0, 5.0, 8.0] {
+        for x in [1e3, 1e5, 3e5, 1e6] {
+            for tolerance in [1e-4, 1e-10] {
+                let law = ContactLaw {
+                    kind: LawKind::HuntCrossley,
+                    stiffness: 1.0,
+                    exponent: n,
+                    damping: x,
+                    tsuji_scale: 0.0,
+                };
+                let all = Request {
+                    law,
+                    scales: Scales::new(1.0, 1.0, n, 1.0),
+                    separation: Separation::Penetration,
+                    tolerance,
+                    quantities: Quantities::ALL,
+                };
+                let timed = simulate_normal(&all).unwrap();
+                let motion = simulate_normal(&Request { quantities: Quantities::MOTION, ..all }).unwrap();
+                assert_eq!(timed.ending, motion.ending, "n = {n}, x = {x}, tolerance {tolerance:e}");
+                limited += usize::from(timed.ending == Ending::TimeLimit);
+                if timed.separated {
+                    let (a, b) = (-timed.end.rate, -motion.end.rate);
+                    assert!(rel(b, a) < 1e3 * tolerance, "n = {n}, x = {x}: e {b} (motion) vs {a}");
+                }
+            }
+        }
+    }
+    assert!(limited > 0, "no case reached the time limit: the test would not see the difference");
+}
+
 /// The rounding floor: at tolerance 1e-16, e, maximum penetration, time of maximum compression, duration and
 /// both impulses within 1e-15 of the exact values for every reference impact. The references are themselves
 /// good to about 1e-15 (a 40-digit quadrature puts the Tsuji e = 0.2, F = 0 duration of `reference::tsuji` 6e-16

@@ -222,7 +222,18 @@ fn integrate(
     workspace: &mut Workspace,
 ) -> Result<Outcome, FastError> {
     let mut run = Run::new(system, eps, quantities, workspace);
-    let (mut max_compression, ending) = run.integrate(force_criterion)?;
+    let Some((mut max_compression, ending)) = run.integrate(force_criterion)? else {
+        // Untimed, the contact grew long enough that the time limit might apply: the same run timed, so that how
+        // it ends does not depend on what was asked for (the times then computed are still not reported).
+        let timed = Quantities { time: true, ..quantities };
+        return integrate(system, eps, force_criterion, timed, workspace).map(|mut outcome| {
+            for point in [&mut outcome.max_compression, &mut outcome.end] {
+                point.time = f64::NAN;
+            }
+            outcome.peak_force_time = f64::NAN;
+            outcome
+        });
+    };
     let mut restitution = run.point();
     // What was not computed is NaN, never a plausible number.
     for point in [&mut max_compression, &mut restitution] {
@@ -274,6 +285,9 @@ const EPS_CEILING: f64 = 1e-4;
 const STEP_BUDGET: u64 = 200_000;
 /// Scaled time after which a contact that has not separated is declared stuck (elastic contacts last about 3).
 const TIME_LIMIT: f64 = 1e4;
+/// Estimated physical time after which a run that does not compute the time is run again timed: a quarter of
+/// [`TIME_LIMIT`], far beyond any contact but a creeping one (elastic contacts last about 3).
+const LONG_UNTIMED: f64 = 0.25 * TIME_LIMIT;
 /// Smallest scale of the rate, relative to the state's, against which its series is measured in restitution
 /// (see [`Run::expand`]): at most `RATE_FLOOR^(-1/(K+1))`, about 1.3 times, more steps.
 const RATE_FLOOR: f64 = 0.01;
@@ -341,6 +355,8 @@ struct Run<'a> {
     steps: u64,
     /// Largest compressive force so far and its time.
     peak: (f64, f64),
+    /// Untimed, an estimate of the physical time elapsed (in `T`; see [`Run::untimed_span`]).
+    untimed: f64,
 }
 
 impl<'a> Run<'a> {
@@ -365,6 +381,7 @@ impl<'a> Run<'a> {
             restituting: false,
             steps: 0,
             peak: (0.0, 0.0),
+            untimed: 0.0,
         }
     }
 
@@ -554,6 +571,26 @@ impl<'a> Run<'a> {
         }
     }
 
+    /// An estimate of the physical time `∫ w^(-γ) dτ` a step of `length` in `τ` takes, from `w` at its ends, for a
+    /// run that does not compute the time. For `γ > 0` (n > 1): `length · w^(-γ)` at the smaller end (a bound where
+    /// `w` is monotone over the step, or has its maximum inside), and at a zero of `w`, crossed at a non-zero rate,
+    /// that of a linear approach, `length · w^(-γ) / (1 - γ)` at the other end; for `γ < 0`, `length · w^(-γ)` at
+    /// the larger end (a bound). Cheap (rough powers): it decides only whether the run should be timed after all
+    /// ([`LONG_UNTIMED`], a quarter of the limit, leaves room for the estimate's error).
+    fn untimed_span(&self, w_start: f64, w_end: f64, length: f64, zero_at_an_end: bool) -> f64 {
+        let gamma = self.system.time_exponent;
+        if gamma == 0.0 {
+            return length;
+        }
+        let larger = w_start.max(w_end);
+        let w = if gamma < 0.0 || zero_at_an_end { larger } else { w_start.min(w_end) };
+        if w.is_nan() || w <= 0.0 {
+            return f64::INFINITY;
+        }
+        let span = length * taylor::rough_exp2(-gamma * taylor::rough_log2(w));
+        if gamma > 0.0 && zero_at_an_end { span / (1.0 - gamma) } else { span }
+    }
+
     /// Shortens the step after a time piece failed (see [`MAX_SHRINKS`]).
     fn shrink(&self, shrinks: &mut u32) -> Result<(), FastError> {
         *shrinks += 1;
@@ -564,8 +601,9 @@ impl<'a> Run<'a> {
     /// force criterion, the force back to zero), or until the motion dies out. Maximum compression (`v = 0`) and
     /// the force peak are located inside the steps, on their polynomials; a step is cut only where the contact
     /// ends. Returns the maximum-compression point and how the contact ended (`self.state` then holds the end,
-    /// with the restitution's impulse and work counted from maximum compression).
-    fn integrate(&mut self, force_criterion: bool) -> Result<(PhasePoint, Ending), FastError> {
+    /// with the restitution's impulse and work counted from maximum compression); `None` when a run that does not
+    /// compute the time may be nearing the time limit ([`LONG_UNTIMED`]: the caller runs it again timed).
+    fn integrate(&mut self, force_criterion: bool) -> Result<Option<(PhasePoint, Ending)>, FastError> {
         let system = self.system;
         let Quantities { time: timed, peak: peaked, .. } = self.quantities;
         // The force at first contact is a candidate peak (Kelvin–Voigt's jump to c v0, its maximum for c >= 1).
@@ -576,18 +614,24 @@ impl<'a> Run<'a> {
         loop {
             if self.steps >= STEP_BUDGET {
                 return match max_compression {
-                    Some(point) => Ok((point, Ending::StepBudget)),
+                    Some(point) => Ok(Some((point, Ending::StepBudget))),
                     None => Err(FastError::Compression(self.steps)),
                 };
             }
-            // (Untimed, the regularised time stands in: the limit only guards against a contact without end.)
             if let Some(point) = max_compression
-                && (if timed { self.time() } else { self.tau }) > TIME_LIMIT
+                && timed
+                && self.time() > TIME_LIMIT
             {
-                return Ok((point, Ending::TimeLimit));
+                return Ok(Some((point, Ending::TimeLimit)));
+            }
+            // Untimed, a contact that may be nearing the time limit is handed back, to be run timed (so that the
+            // limit applies to it exactly as to a timed run).
+            if !timed && self.untimed > LONG_UNTIMED {
+                return Ok(None);
             }
             let compressing = max_compression.is_none();
             let from_zero = self.state.w == 0.0;
+            let w_start = self.state.w;
             let mut h = self.expand();
             // (The limits for the time quadrature's sake apply only when the time is computed.)
             if timed && !from_zero {
@@ -731,7 +775,7 @@ impl<'a> Run<'a> {
                     // Overdamped linear law: w never returns to zero (see `Ending::NeverSeparates`).
                     self.state = state;
                     self.advance_time(time);
-                    return Ok((point, Ending::NeverSeparates));
+                    return Ok(Some((point, Ending::NeverSeparates)));
                 }
                 // The restitution's integrals start from zero there, within this step.
                 let (impulse, work) = self.expansion.increments(at, step.end);
@@ -740,19 +784,23 @@ impl<'a> Run<'a> {
             } else {
                 self.state = self.expansion.state_at(step.end);
             }
+            if !timed {
+                let zero_at_an_end = from_zero || step.zero.is_some();
+                self.untimed += self.untimed_span(w_start, self.state.w, step.end, zero_at_an_end);
+            }
             self.tau += step.end;
             self.advance_time(step.dt);
             let Some(point) = max_compression else { continue };
             if step.force_zero.is_some() {
-                return Ok((point, Ending::Separated));
+                return Ok(Some((point, Ending::Separated)));
             }
             if step.zero.is_some() {
                 self.state.w = 0.0;
-                return Ok((point, if self.state.rate < 0.0 { Ending::Separated } else { Ending::Settled }));
+                return Ok(Some((point, if self.state.rate < 0.0 { Ending::Separated } else { Ending::Settled })));
             }
             // (The penetration, a power, only once the rate alone is below the threshold.)
             if self.state.rate.abs() < SETTLED && system.penetration(self.state.w) + self.state.rate.abs() < SETTLED {
-                return Ok((point, Ending::Settled));
+                return Ok(Some((point, Ending::Settled)));
             }
         }
     }

@@ -193,14 +193,16 @@ fn parse_range(spec: &str, range: &str, default: Spacing) -> Result<Values, Swee
 ///
 /// This is [`tidy_exactly`] (the correctly rounded 15-digit decimal, read back), found the quick way for all but a
 /// few values, since a million-point sweep computes a million of them. Let `S` be the shortest decimal that reads
-/// back as `x` (ryu's: of the shortest, the nearest `x`) and `u` the unit of `x`'s 15th significant digit. An ulp
-/// of `x` is at most `2^-52 |x|` and `u` at least `10^-15 |x|`, so `x` lies within `0.111 u` of `S`; nearer still
-/// when `S` has 16 digits (its nearest neighbours of that length are `0.1 u` apart: within `0.05 u`) or 17 (within
-/// `0.005 u`). So:
-/// * `S` of at most 15 digits is itself the 15-digit decimal nearest `x` (no other lies within `u` of it), which
-///   reads back as `x`: `x` is returned;
+/// back as `x` (ryu's: of the shortest, the nearest `x`) and `u` the unit of `x`'s 15th significant digit. The
+/// decimals of `S`'s length that read back as `x` include `S`'s neighbours only if they are as near, so `x` lies
+/// within half a step of that length from `S`: within `0.05 u` when `S` has 16 digits, `0.005 u` when it has 17.
+/// So:
+/// * `S` of at most 15 digits: the 15-digit decimal nearest `x` is no farther from `x` than `S`, so it too reads
+///   back as `x`: `x` is returned;
 /// * `S` of 16 or 17 digits rounds to 15 as `x` does unless the digits cut off are a half (`0.50 u`, `0.5 u`);
 ///   those within `0.05 u` of a half take the exact route (a tenfold margin for 17 digits).
+///
+/// (Checked bit for bit against the exact route in the tests, subnormals and powers of ten included.)
 fn tidy(x: f64) -> f64 {
     if x == 0.0 || !x.is_finite() {
         return tidy_exactly(x);
@@ -348,6 +350,17 @@ mod tests {
                 values.push(start + (stop - start) * t);
                 values.push(start.abs() * (stop.abs() / start.abs()).powf(t));
             }
+        }
+        // Powers of ten a few ulps either side (where the 15-digit rounding carries into a new decade), and
+        // subnormals.
+        for power in -323..=308 {
+            let ten = format!("1e{power}").parse::<f64>().unwrap();
+            for nudge in -3i64..=3 {
+                values.push(f64::from_bits((ten.to_bits() as i64 + nudge) as u64));
+            }
+        }
+        for _ in 0..20_000 {
+            values.push(f64::from_bits(next() % (1 << 52)));
         }
         for _ in 0..200_000 {
             let bits = next();
