@@ -3,9 +3,8 @@
 
 use super::BadInput;
 use super::paths::{Origin, Paths};
-use super::sweep::{bad, check_names, figure_output};
+use super::sweep::{bad, check_names, check_plot_columns, figure_output};
 use crate::output::files::OutputFile;
-use crate::sweep::SweepError;
 use crate::sweep::merge::{ShardFile, merge};
 use clap::Args;
 use std::path::PathBuf;
@@ -43,10 +42,7 @@ pub fn run(args: &MergeArgs) -> anyhow::Result<()> {
     let merged = merge(&shards).map_err(bad)?;
     if plot.is_some() {
         // Shards written with --columns may lack what the figure reads: say so before drawing.
-        crate::sweep::figure::check_columns(merged.header).map_err(|error| match error {
-            SweepError::Usage(why) => BadInput(format!("--plot: {why} (the sweep was written with --columns)")).into(),
-            other => bad(other),
-        })?;
+        check_plot_columns(merged.header, "the sweep was written with --columns without it")?;
     }
     let figure = match &plot {
         Some((path, destination)) => Some(figure_output(&merged.text(), path, destination)?),

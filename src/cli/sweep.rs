@@ -106,10 +106,7 @@ pub fn run(args: &SweepArgs) -> anyhow::Result<()> {
     let header = table::header(&sweep.keys(), sweep.columns());
     if args.plot.is_some() {
         // The figure reads its columns from the CSV: check that they will be there before any row runs.
-        sweeps::figure::check_columns(&header).map_err(|error| match error {
-            SweepError::Usage(why) => BadInput(format!("--plot: {why}; add it to --columns")).into(),
-            other => bad(other),
-        })?;
+        check_plot_columns(&header, "add it to --columns")?;
     }
     let pool = rayon::ThreadPoolBuilder::new().num_threads(args.threads.unwrap_or(0)).build()?;
 
@@ -217,6 +214,15 @@ pub(super) fn check_names(csv: &Path, option: &str, plot: Option<&Path>) -> anyh
         }
     }
     Ok(())
+}
+
+/// Whether a sweep's CSV whose header line is `header` has the columns its figure reads; the error (bad input)
+/// names the first missing one, followed by `hint`.
+pub(super) fn check_plot_columns(header: &str, hint: &str) -> anyhow::Result<()> {
+    sweeps::figure::check_columns(header).map_err(|error| match error {
+        SweepError::Usage(why) => BadInput(format!("--plot: {why}; {hint}")).into(),
+        other => bad(other),
+    })
 }
 
 /// The sweep's figure, drawn from its CSV `text` in a staging folder beside `path` and copied to `destination`;

@@ -176,9 +176,9 @@ pub fn simulate_normal(request: &Request) -> Result<Outcome, FastError> {
     let force_criterion = request.separation == Separation::Force && system.can_turn_tensile();
     let quantities = request.quantities;
     WORKSPACE.with(|cell| match cell.try_borrow_mut() {
-        Ok(mut workspace) => integrate(system, eps, force_criterion, quantities, &mut workspace),
+        Ok(mut workspace) => integrate(system, eps, force_criterion, quantities, quantities, &mut workspace),
         // Only if a caller re-entered on this thread (it cannot: nothing here calls back out).
-        Err(_) => integrate(system, eps, force_criterion, quantities, &mut Workspace::default()),
+        Err(_) => integrate(system, eps, force_criterion, quantities, quantities, &mut Workspace::default()),
     })
 }
 
@@ -188,63 +188,39 @@ pub fn simulate_normal(request: &Request) -> Result<Outcome, FastError> {
 struct Workspace {
     expansion: Expansion,
     jacobi: JacobiRules,
-    /// The step constants of the last local tolerance (a sweep's rows share one).
-    constants: Option<Constants>,
-}
-
-/// What a local tolerance `eps` sets: the order, `eps^(1/(order+1))` for the step size, and the Gauss rules'
-/// digits ([`node_digits`]). (Computed once per tolerance and thread: three transcendental functions an impact.)
-#[derive(Debug, Clone, Copy, PartialEq)]
-struct Constants {
-    eps: f64,
-    order: usize,
-    eps_root: f64,
-    node_digits: f64,
-}
-
-impl Constants {
-    fn new(eps: f64) -> Constants {
-        let order = taylor::order_for(eps);
-        Constants { eps, order, eps_root: eps.powf(1.0 / (order + 1) as f64), node_digits: node_digits(eps) }
-    }
 }
 
 thread_local! {
     static WORKSPACE: std::cell::RefCell<Workspace> = std::cell::RefCell::new(Workspace::default());
 }
 
-/// [`simulate_normal`] with its scratch space.
+/// [`simulate_normal`] with its scratch space: computes `computed` and reports `reported` (what was asked for; the
+/// rest is NaN, never a plausible number).
 fn integrate(
     system: Regularised,
     eps: f64,
     force_criterion: bool,
-    quantities: Quantities,
+    computed: Quantities,
+    reported: Quantities,
     workspace: &mut Workspace,
 ) -> Result<Outcome, FastError> {
-    let mut run = Run::new(system, eps, quantities, workspace);
+    let mut run = Run::new(system, eps, computed, workspace);
     let Some((mut max_compression, ending)) = run.integrate(force_criterion)? else {
         // Untimed, the contact grew long enough that the time limit might apply: the same run timed, so that how
-        // it ends does not depend on what was asked for (the times then computed are still not reported).
-        let timed = Quantities { time: true, ..quantities };
-        return integrate(system, eps, force_criterion, timed, workspace).map(|mut outcome| {
-            for point in [&mut outcome.max_compression, &mut outcome.end] {
-                point.time = f64::NAN;
-            }
-            outcome.peak_force_time = f64::NAN;
-            outcome
-        });
+        // it ends does not depend on what was asked for.
+        let timed = Quantities { time: true, ..computed };
+        return integrate(system, eps, force_criterion, timed, reported, workspace);
     };
     let mut restitution = run.point();
-    // What was not computed is NaN, never a plausible number.
     for point in [&mut max_compression, &mut restitution] {
-        if !quantities.time {
+        if !reported.time {
             point.time = f64::NAN;
         }
-        if !quantities.dissipation {
+        if !reported.dissipation {
             point.dissipated = f64::NAN;
         }
     }
-    let peak = match quantities {
+    let peak = match reported {
         Quantities { peak: false, .. } => (f64::NAN, f64::NAN),
         Quantities { time: false, .. } => (run.peak.0, f64::NAN),
         _ => run.peak,
@@ -361,16 +337,13 @@ struct Run<'a> {
 
 impl<'a> Run<'a> {
     fn new(system: Regularised, eps: f64, quantities: Quantities, workspace: &'a mut Workspace) -> Run<'a> {
-        let constants = match workspace.constants {
-            Some(known) if known.eps.to_bits() == eps.to_bits() => known,
-            _ => *workspace.constants.insert(Constants::new(eps)),
-        };
+        let order = taylor::order_for(eps);
         Run {
             system,
             quantities,
-            order: constants.order,
-            eps_root: constants.eps_root,
-            node_digits: constants.node_digits,
+            order,
+            eps_root: eps.powf(1.0 / (order + 1) as f64),
+            node_digits: node_digits(eps),
             state: State::FIRST_CONTACT,
             tau: 0.0,
             time: 0.0,
@@ -405,8 +378,7 @@ impl<'a> Run<'a> {
 
     /// Expands the solution at the current state; returns the step size its coefficients allow.
     fn expand(&mut self) -> f64 {
-        let dissipation = self.quantities.dissipation;
-        self.system.expand(&self.state, self.order, dissipation, self.expansion);
+        self.system.expand(&self.state, self.order, self.quantities.dissipation, self.expansion);
         self.steps += 1;
         let e = &self.expansion;
         let k = self.order;
@@ -415,9 +387,8 @@ impl<'a> Run<'a> {
         // integrand, a product, doubles and triples the frequency), so it takes part in the step size. It is
         // weighed as D̃ (relative to itself: D = x D̃ is then accurate relative to D for light damping) or as D
         // itself when the damping x > 1 multiplies D̃'s error. (The work is the exact integral of the step's
-        // polynomials: as accurate as they are.)
-        // (Not computed: a zero series, weighed by nothing.)
-        let weight = if dissipation { self.system.damping.max(1.0) } else { 0.0 };
+        // polynomials: as accurate as they are. A dissipation not computed is a zero series: it sets nothing.)
+        let weight = self.system.damping.max(1.0);
         let norm = |i: usize, rate_size: f64| {
             (e.w[i].abs().max(weight * e.dissipation[i].abs()) / size).max(e.rate[i].abs() / rate_size)
         };

@@ -284,21 +284,20 @@ impl Regularised {
         e.rate[0] = state.rate;
         e.dissipation[0] = state.dissipation;
         let (p, x) = (self.rate_factor, self.damping);
-        if DISSIPATION {
+        let elastic = self.form == Form::Hysteresis && x == 0.0;
+        if DISSIPATION && !elastic {
             e.pending_dissipation[..=order].fill(0.0);
         } else {
+            // Not computed, or nothing dissipated: D̃ stays at its starting value.
             e.dissipation[1..=order].fill(0.0);
         }
         match self.form {
-            Form::Hysteresis if x == 0.0 => {
-                // Elastic: F̂ = w, no products.
+            Form::Hysteresis if elastic => {
+                // F̂ = w, no products.
                 for k in 0..order {
                     let inverse = INVERSE[k + 1];
                     e.w[k + 1] = p * e.rate[k] * inverse;
                     e.rate[k + 1] = -e.w[k] * inverse;
-                    if DISSIPATION {
-                        e.dissipation[k + 1] = 0.0;
-                    }
                 }
                 e.force_top = e.w[order];
             }

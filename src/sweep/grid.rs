@@ -219,20 +219,15 @@ fn tidy(x: f64) -> f64 {
     }
     let kept = value(&digits[..15]) + u64::from(cut > 50);
     // kept × 10^(exponent - 14), read back (a carry to 10^15 reads as well).
-    let mut text = [0u8; 40];
-    let mut n = 0;
-    let mut put = |bytes: &[u8]| {
-        text[n..n + bytes.len()].copy_from_slice(bytes);
-        n += bytes.len();
-    };
+    let mut text = super::table::ShortText::default();
     if x < 0.0 {
-        put(b"-");
+        text.push(b"-");
     }
     let mut integer = itoa::Buffer::new();
-    put(integer.format(kept).as_bytes());
-    put(b"e");
-    put(integer.format(exponent - 14).as_bytes());
-    std::str::from_utf8(&text[..n]).ok().and_then(|t| t.parse().ok()).unwrap_or_else(|| tidy_exactly(x))
+    text.push(integer.format(kept).as_bytes());
+    text.push(b"e");
+    text.push(integer.format(exponent - 14).as_bytes());
+    text.as_str().parse().unwrap_or_else(|_| tidy_exactly(x))
 }
 
 /// `x` correctly rounded to 15 significant digits and read back: the definition [`tidy`] follows.

@@ -258,11 +258,11 @@ impl Sweep {
     }
 
     /// Runs the rows `indices` on `pool`, [`CHUNK`] rows at a time in parallel, calling `done` with the number of
-    /// rows after each chunk, and
-    /// passes each row, turned by `shape` (in parallel too: e.g. into its CSV line), to `write` in the order of
-    /// `indices`. `write` runs on a thread of its own, a chunk or two behind the computation, so that writing a chunk
-    /// overlaps computing the next. The output does not depend on the number of threads, and memory holds at most
-    /// three chunks whatever the number of rows. The first error of `write` stops the run and is returned.
+    /// rows after each chunk, and passes each row, turned by `shape` (in parallel too: e.g. into its CSV line), to
+    /// `write` in the order of `indices`. `write` runs on a thread of its own, a chunk or two behind the
+    /// computation, so that writing a chunk overlaps computing the next. The output does not depend on the number
+    /// of threads, and memory holds at most three chunks whatever the number of rows. The first error of `write`
+    /// stops the run and is returned.
     pub fn stream<T: Send, E: Send>(
         &self,
         indices: impl Iterator<Item = usize>,
@@ -300,8 +300,8 @@ impl Sweep {
     }
 
     /// Runs the rows `indices` on `threads` threads (`None`: one per core), calling `done` with the number of rows
-    /// after each chunk; the rows
-    /// come back in the order of `indices`. (All in memory: [`Sweep::stream`] writes a large sweep as it goes.)
+    /// after each chunk; the rows come back in the order of `indices`. (All in memory: [`Sweep::stream`] writes a
+    /// large sweep as it goes.)
     pub fn run(
         &self,
         indices: &[usize],

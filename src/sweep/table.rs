@@ -293,44 +293,39 @@ pub fn push_number(text: &mut String, x: f64) {
     let (digits, count, exponent) = shortest_digits(x);
     let digits = &digits[..count];
     // At most 17 digits, 4 zeros of padding or 6 of a plain number's zeros, a sign, a point, "e-324": 40 bytes.
-    let mut out = [0u8; 48];
-    let mut n = 0;
-    let mut put = |bytes: &[u8]| {
-        out[n..n + bytes.len()].copy_from_slice(bytes);
-        n += bytes.len();
-    };
+    let mut out = ShortText::default();
     if x < 0.0 {
-        put(b"-");
+        out.push(b"-");
     }
     if (1e-4..1e6).contains(&x.abs()) {
         if exponent >= 0 {
             let whole = exponent as usize + 1;
             if digits.len() <= whole {
-                put(digits);
+                out.push(digits);
                 for _ in digits.len()..whole {
-                    put(b"0");
+                    out.push(b"0");
                 }
             } else {
-                put(&digits[..whole]);
-                put(b".");
-                put(&digits[whole..]);
+                out.push(&digits[..whole]);
+                out.push(b".");
+                out.push(&digits[whole..]);
             }
         } else {
-            put(b"0.");
+            out.push(b"0.");
             for _ in 0..(-exponent - 1) {
-                put(b"0");
+                out.push(b"0");
             }
-            put(digits);
+            out.push(digits);
         }
     } else {
-        put(&digits[..1]);
+        out.push(&digits[..1]);
         if digits.len() > 1 {
-            put(b".");
-            put(&digits[1..]);
+            out.push(b".");
+            out.push(&digits[1..]);
         }
-        put(b"e");
+        out.push(b"e");
         if exponent < 0 {
-            put(b"-");
+            out.push(b"-");
         }
         let size = exponent.unsigned_abs();
         let mut decimal = [b'0'; 3];
@@ -344,9 +339,9 @@ pub fn push_number(text: &mut String, x: f64) {
         for (i, place) in decimal[..places].iter_mut().rev().enumerate() {
             *place = b'0' + (size / 10u32.pow(i as u32) % 10) as u8;
         }
-        put(&decimal[..places]);
+        out.push(&decimal[..places]);
     }
-    text.push_str(std::str::from_utf8(&out[..n]).unwrap_or_default());
+    text.push_str(out.as_str());
 }
 
 /// The shortest decimal digits that read back as the finite, non-zero `x` (`ryu`'s), without the sign: the
@@ -377,6 +372,31 @@ pub fn shortest_digits(x: f64) -> ([u8; 24], usize, i32) {
         count -= 1;
     }
     (digits, count, exponent)
+}
+
+/// A number's text assembled on the stack (digits, sign, point, exponent: at most 48 ASCII bytes), so that
+/// formatting one allocates nothing.
+pub struct ShortText {
+    bytes: [u8; 48],
+    len: usize,
+}
+
+impl Default for ShortText {
+    fn default() -> ShortText {
+        ShortText { bytes: [0; 48], len: 0 }
+    }
+}
+
+impl ShortText {
+    /// Appends ASCII `bytes` (the callers' pieces fit: see [`push_number`] and the grid's tidy).
+    pub fn push(&mut self, bytes: &[u8]) {
+        self.bytes[self.len..self.len + bytes.len()].copy_from_slice(bytes);
+        self.len += bytes.len();
+    }
+
+    pub fn as_str(&self) -> &str {
+        std::str::from_utf8(&self.bytes[..self.len]).unwrap_or_default()
+    }
 }
 
 /// The decimal exponent ryu writes after its "e" ("-7", "21").
