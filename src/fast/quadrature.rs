@@ -331,39 +331,52 @@ fn symmetric_tridiagonal_ql(d: &mut [f64], e: &mut [f64]) {
     }
 }
 
-/// `Σ_i weights_i q(start + span s_i)^(-gamma)` over a rule's nodes `s_i`, four at a time: with a Gauss–Jacobi
-/// rule the sum for `∫ |span s|^(-γ) q^(-γ)` (the caller multiplies by `|span|^(1-γ)`), with Gauss–Legendre's
-/// ([`gauss_power`]) that for `∫ q^(-γ)` over `start ± span`. `None` if `q <= 0` at a node.
+/// `Σ_i weights_i q(start + span s_i)^(-gamma)` over a rule's nodes `s_i`: with a Gauss–Jacobi rule the sum for
+/// `∫ |span s|^(-γ) q^(-γ)` (the caller multiplies by `|span|^(1-γ)`), with Gauss–Legendre's ([`gauss_power`])
+/// that for `∫ q^(-γ)` over `start ± span`. `None` if `q <= 0` at a node.
+///
+/// Every node at once, in lanes of a width chosen from the node count ([`lane_sum`]): the Horner chains and the
+/// powers of all nodes are independent, so the processor overlaps them, where four nodes at a time waited for
+/// one chain's latency after another (8 % of an impact with every quantity).
 pub fn rule_sum(q: &[f64], gamma: f64, start: f64, span: f64, nodes: &[f64], weights: &[f64]) -> Option<f64> {
-    let mut sum = 0.0;
-    for (chunk_nodes, chunk_weights) in nodes.chunks(4).zip(weights.chunks(4)) {
-        let mut at = [start; 4];
-        for (point, &s) in at.iter_mut().zip(chunk_nodes) {
-            *point = start + span * s;
-        }
-        sum += power_sum(q, gamma, at, chunk_weights)?;
+    match nodes.len() {
+        0..=4 => lane_sum::<4>(q, gamma, start, span, nodes, weights),
+        5..=8 => lane_sum::<8>(q, gamma, start, span, nodes, weights),
+        9..=12 => lane_sum::<12>(q, gamma, start, span, nodes, weights),
+        13..=16 => lane_sum::<16>(q, gamma, start, span, nodes, weights),
+        _ => lane_sum::<MAX_NODES>(q, gamma, start, span, nodes, weights),
     }
-    Some(sum)
 }
 
-/// `Σ_l weights_l c(at_l)^(-gamma)` over the first `weights.len() <= 4` lanes; `None` if `c <= 0` at one of
-/// them. Horner at four points at once (independent chains overlap and fill vector lanes), then the powers.
+/// [`rule_sum`] in `N >= nodes.len()` lanes (the unused ones evaluate `q` at `start` and are left out of the sum).
 #[inline(always)]
-fn power_sum(c: &[f64], gamma: f64, at: [f64; 4], weights: &[f64]) -> Option<f64> {
-    let mut values = taylor::values(c, at);
-    let lanes = weights.len();
-    if values[..lanes].iter().any(|&v| v.is_nan() || v <= 0.0) {
+fn lane_sum<const N: usize>(
+    q: &[f64],
+    gamma: f64,
+    start: f64,
+    span: f64,
+    nodes: &[f64],
+    weights: &[f64],
+) -> Option<f64> {
+    let m = nodes.len();
+    debug_assert!(m <= N && weights.len() == m);
+    let mut at = [start; N];
+    for (point, &s) in at.iter_mut().zip(nodes) {
+        *point = start + span * s;
+    }
+    let mut values = taylor::values(q, at);
+    if values[..m].iter().any(|&v| v.is_nan() || v <= 0.0) {
         return None;
     }
     // Unused lanes get 1 (a harmless power).
-    for v in &mut values[lanes..] {
+    for v in &mut values[m..] {
         *v = 1.0;
     }
-    let mut powers = [0.0; 4];
-    for l in 0..4 {
-        powers[l] = negative_power(values[l], gamma);
+    let mut powers = [0.0; N];
+    for (power, &v) in powers.iter_mut().zip(&values) {
+        *power = negative_power(v, gamma);
     }
-    Some(powers.iter().zip(weights).fold(0.0, |acc, (p, w)| acc + p * w))
+    Some(powers.iter().zip(weights).fold(0.0, |acc, (p, w)| taylor::mul_add(*p, *w, acc)))
 }
 
 #[cfg(test)]
