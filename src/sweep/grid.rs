@@ -192,7 +192,8 @@ fn parse_range(spec: &str, range: &str, default: Spacing) -> Result<Values, Swee
 /// 0.30000000000000004) and is the same on every machine.
 ///
 /// This is [`tidy_exactly`] (the correctly rounded 15-digit decimal, read back), found the quick way for all but a
-/// few values, since a million-point sweep computes a million of them. Let `S` be the shortest decimal that reads
+/// few values, since a million-point sweep computes a million of them: by scaling ([`tidy_by_scaling`]) where the
+/// scale is an exact power of ten, else from the shortest digits, as follows. Let `S` be the shortest decimal that reads
 /// back as `x` (ryu's: of the shortest, the nearest `x`) and `u` the unit of `x`'s 15th significant digit. The
 /// decimals of `S`'s length that read back as `x` include `S`'s neighbours only if they are as near, so `x` lies
 /// within half a step of that length from `S`: within `0.05 u` when `S` has 16 digits, `0.005 u` when it has 17.
@@ -207,6 +208,9 @@ fn tidy(x: f64) -> f64 {
     if x == 0.0 || !x.is_finite() {
         return tidy_exactly(x);
     }
+    if let Some(value) = tidy_by_scaling(x) {
+        return value;
+    }
     let (digits, count, exponent) = super::table::shortest_digits(x);
     if count <= 15 {
         return x;
@@ -218,7 +222,15 @@ fn tidy(x: f64) -> f64 {
         return tidy_exactly(x);
     }
     let kept = value(&digits[..15]) + u64::from(cut > 50);
-    // kept × 10^(exponent - 14), read back (a carry to 10^15 reads as well).
+    // kept × 10^(exponent - 14), read back (a carry to 10^15 reads as well). Both factors are exact doubles when
+    // the power is within 10^±22 (kept <= 10^15 < 2^53), so one product or quotient is the correctly rounded
+    // value, as reading the decimal gives (Clinger's fast path); other powers are read from text.
+    let power = exponent - 14;
+    if power.unsigned_abs() <= 22 {
+        let scale = EXACT_POWERS_OF_TEN[power.unsigned_abs() as usize];
+        let magnitude = if power >= 0 { kept as f64 * scale } else { kept as f64 / scale };
+        return if x < 0.0 { -magnitude } else { magnitude };
+    }
     let mut text = super::table::ShortText::default();
     if x < 0.0 {
         text.push(b"-");
@@ -229,6 +241,44 @@ fn tidy(x: f64) -> f64 {
     text.push(integer.format(exponent - 14).as_bytes());
     text.as_str().parse().unwrap_or_else(|_| tidy_exactly(x))
 }
+
+/// [`tidy`] for the values whose 15-digit scale `10^k` is an exact double (`|k| <= 22`: magnitudes from about
+/// `1e-8` to `1e36`, every grid a user writes), without the shortest digits: the product `|x| 10^k` (or quotient)
+/// with its exact remainder from a fused multiply-add gives `x`'s fraction of a 15th-digit unit to far better than
+/// `1e-3`; rounded to the nearest integer `n`, `n / 10^k` (or `n 10^-k`) is correctly rounded, both factors being
+/// exact (Clinger's fast path) — what reading the 15-digit decimal gives. `None` when it cannot decide: the scale
+/// estimated from `log10` was off by one, or the fraction is within `1e-3` of a half.
+fn tidy_by_scaling(x: f64) -> Option<f64> {
+    let magnitude = x.abs();
+    let k = 14 - magnitude.log10().floor() as i32;
+    let scale = *EXACT_POWERS_OF_TEN.get(k.unsigned_abs() as usize)?;
+    // |x| 10^k = scaled + rest exactly (rest only approximately, for k < 0: enough to decide the rounding). The
+    // remainders need a true fused multiply-add (f64::mul_add is one on every target, in software if need be).
+    let (scaled, rest) = if k >= 0 {
+        let scaled = magnitude * scale;
+        (scaled, magnitude.mul_add(scale, -scaled))
+    } else {
+        let scaled = magnitude / scale;
+        (scaled, (-scaled).mul_add(scale, magnitude) / scale)
+    };
+    if !(1e14..1e15).contains(&scaled) {
+        return None;
+    }
+    let whole = scaled.floor();
+    let fraction = (scaled - whole) + rest;
+    if (fraction - 0.5).abs() < 1e-3 {
+        return None;
+    }
+    let n = if fraction > 0.5 { whole + 1.0 } else { whole };
+    let value = if k >= 0 { n / scale } else { n * scale };
+    Some(if x < 0.0 { -value } else { value })
+}
+
+/// `10^k` for `k = 0..=22`: every one an exact double (`5^22 < 2^53`).
+const EXACT_POWERS_OF_TEN: [f64; 23] = [
+    1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15, 1e16, 1e17, 1e18, 1e19, 1e20,
+    1e21, 1e22,
+];
 
 /// `x` correctly rounded to 15 significant digits and read back: the definition [`tidy`] follows.
 fn tidy_exactly(x: f64) -> f64 {
