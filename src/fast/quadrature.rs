@@ -546,6 +546,23 @@ mod tests {
         }
     }
 
+    /// The lane-wise sum at every node count a rule may have (each lane width, its unused lanes) against the plain
+    /// sum of `w_i q(x_i)^(-γ)` with `powf`, and a rule beyond the largest kept refused.
+    #[test]
+    fn rule_sums_equal_the_plain_sum_at_every_node_count() {
+        let q = [0.7, 0.3, -0.05, 0.01];
+        let (gamma, start, span) = (0.375, 0.2, 0.9);
+        for m in 1..=MAX_NODES {
+            let (nodes, weights) = gauss_legendre(m);
+            let plain: f64 =
+                nodes.iter().zip(weights).map(|(&s, &w)| w * taylor::value(&q, start + span * s).powf(-gamma)).sum();
+            let got = rule_sum(&q, gamma, start, span, nodes, weights).expect("q > 0 at every node");
+            assert!((got / plain - 1.0).abs() < 1e-14, "{m} nodes: {got} vs {plain}");
+        }
+        let (nodes, weights) = ([0.1; MAX_NODES + 1], [0.01; MAX_NODES + 1]);
+        assert_eq!(rule_sum(&q, gamma, start, span, &nodes, &weights), None);
+    }
+
     #[test]
     fn gauss_power_integrates_a_shifted_power() {
         // ∫_1^2 σ^(-0.3) dσ = (2^0.7 - 1)/0.7, with w = σ written about 0.
