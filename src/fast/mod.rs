@@ -36,6 +36,7 @@ use crate::impact::SETTLED;
 use crate::law::{ContactLaw, Family, Separation};
 use quadrature::{JacobiRules, MAX_NODES, gauss_power, negative_power, node_digits, nodes_needed, rule_sum};
 use regularised::{Expansion, Regularised, State};
+pub use taylor::HARDWARE_FMA;
 
 /// One normal impact to integrate.
 #[derive(Debug, Clone, Copy, PartialEq)]

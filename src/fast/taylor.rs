@@ -21,13 +21,17 @@ pub const INVERSE: [f64; 2 * MAX_ORDER + 2] = {
     table
 };
 
-/// `a b + c`: fused, with one rounding, where the build targets a processor with FMA instructions (x86-64 with
-/// FMA — the project's `.cargo/config.toml` builds for the machine that builds — and every aarch64), else a product
-/// and a sum (without the instruction, `f64::mul_add` would be a slow library call). Horner's rule and the Cauchy
-/// sums are chains of these: fused, each link waits for one instruction instead of two.
+/// Whether the build targets a processor with fused multiply-add instructions (x86-64 with FMA — the project's
+/// `.cargo/config.toml` builds for the machine that builds — and every aarch64). Without them `f64::mul_add` is a
+/// slow library call.
+pub const HARDWARE_FMA: bool = cfg!(any(target_feature = "fma", target_arch = "aarch64"));
+
+/// `a b + c`: fused, with one rounding, where the processor has the instruction ([`HARDWARE_FMA`]), else a product
+/// and a sum. Horner's rule and the Cauchy sums are chains of these: fused, each link waits for one instruction
+/// instead of two.
 #[inline(always)]
 pub fn mul_add(a: f64, b: f64, c: f64) -> f64 {
-    if cfg!(any(target_feature = "fma", target_arch = "aarch64")) { a.mul_add(b, c) } else { a * b + c }
+    if HARDWARE_FMA { a.mul_add(b, c) } else { a * b + c }
 }
 
 /// Value of the polynomial `c` at `sigma` (Horner).

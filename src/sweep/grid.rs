@@ -194,11 +194,10 @@ fn parse_range(spec: &str, range: &str, default: Spacing) -> Result<Values, Swee
 /// This is [`tidy_exactly`] (the correctly rounded 15-digit decimal, read back), found the quick way for all but a
 /// few values, since a million-point sweep computes a million of them: by scaling ([`tidy_by_scaling`]) where the
 /// scale is an exact power of ten and the processor has a fused multiply-add, else from the shortest digits, as
-/// follows. Let `S` be the shortest decimal that reads
-/// back as `x` (ryu's: of the shortest, the nearest `x`) and `u` the unit of `x`'s 15th significant digit. The
-/// decimals of `S`'s length that read back as `x` include `S`'s neighbours only if they are as near, so `x` lies
-/// within half a step of that length from `S`: within `0.05 u` when `S` has 16 digits, `0.005 u` when it has 17.
-/// So:
+/// follows. Let `S` be the shortest decimal that reads back as `x` (ryu's: of the shortest, the nearest `x`) and `u`
+/// the unit of `x`'s 15th significant digit. The decimals of `S`'s length that read back as `x` include `S`'s
+/// neighbours only if they are as near, so `x` lies within half a step of that length from `S`: within `0.05 u`
+/// when `S` has 16 digits, `0.005 u` when it has 17. So:
 /// * `S` of at most 15 digits: the 15-digit decimal nearest `x` is no farther from `x` than `S`, so it too reads
 ///   back as `x`: `x` is returned;
 /// * `S` of 16 or 17 digits rounds to 15 as `x` does unless the digits cut off are a half (`0.50 u`, `0.5 u`);
@@ -211,7 +210,7 @@ fn tidy(x: f64) -> f64 {
     }
     // (The scaling needs a fused multiply-add: where the processor has none, the library's software one costs more
     // than the shortest digits.)
-    if cfg!(any(target_feature = "fma", target_arch = "aarch64"))
+    if crate::fast::HARDWARE_FMA
         && let Some(value) = tidy_by_scaling(x)
     {
         return value;
@@ -227,14 +226,9 @@ fn tidy(x: f64) -> f64 {
         return tidy_exactly(x);
     }
     let kept = value(&digits[..15]) + u64::from(cut > 50);
-    // kept × 10^(exponent - 14), read back (a carry to 10^15 reads as well). Both factors are exact doubles when
-    // the power is within 10^±22 (kept <= 10^15 < 2^53), so one product or quotient is the correctly rounded
-    // value, as reading the decimal gives (Clinger's fast path); other powers are read from text.
-    let power = exponent - 14;
-    if power.unsigned_abs() <= 22 {
-        let scale = EXACT_POWERS_OF_TEN[power.unsigned_abs() as usize];
-        let magnitude = if power >= 0 { kept as f64 * scale } else { kept as f64 / scale };
-        return if x < 0.0 { -magnitude } else { magnitude };
+    // kept × 10^(exponent - 14), read back (a carry to 10^15 reads as well; powers beyond 10^±22 from text).
+    if let Some(magnitude) = times_power_of_ten(kept as f64, exponent - 14) {
+        return magnitude.copysign(x);
     }
     let mut text = super::table::ShortText::default();
     if x < 0.0 {
@@ -251,7 +245,7 @@ fn tidy(x: f64) -> f64 {
 /// `1e-8` to `1e36`, every grid a user writes), without the shortest digits: the product `|x| 10^k` (or quotient)
 /// with its exact remainder from a fused multiply-add gives `x`'s fraction of a 15th-digit unit to far better than
 /// `1e-3`; rounded to the nearest integer `n`, `n / 10^k` (or `n 10^-k`) is correctly rounded, both factors being
-/// exact (Clinger's fast path) — what reading the 15-digit decimal gives. `None` when it cannot decide: the scale
+/// exact ([`times_power_of_ten`]) — what reading the 15-digit decimal gives. `None` when it cannot decide: the scale
 /// estimated from `log10` was off by one, or the fraction is within `1e-3` of a half.
 fn tidy_by_scaling(x: f64) -> Option<f64> {
     let magnitude = x.abs();
@@ -275,8 +269,14 @@ fn tidy_by_scaling(x: f64) -> Option<f64> {
         return None;
     }
     let n = if fraction > 0.5 { whole + 1.0 } else { whole };
-    let value = if k >= 0 { n / scale } else { n * scale };
-    Some(if x < 0.0 { -value } else { value })
+    Some(times_power_of_ten(n, -k)?.copysign(x))
+}
+
+/// `n 10^power` correctly rounded, for an integer `n < 2^53` and `|power| <= 22`: both factors are exact doubles,
+/// so one product or quotient gives what reading the decimal gives (Clinger's fast path). `None` beyond `10^±22`.
+fn times_power_of_ten(n: f64, power: i32) -> Option<f64> {
+    let scale = *EXACT_POWERS_OF_TEN.get(power.unsigned_abs() as usize)?;
+    Some(if power >= 0 { n * scale } else { n / scale })
 }
 
 /// `10^k` for `k = 0..=22`: every one an exact double (`5^22 < 2^53`).
