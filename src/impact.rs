@@ -160,20 +160,25 @@ fn through_phases(
         Method::Dop853 | Method::Dopri5 => false,
     };
     let normal = NormalContact::new(&scene.bodies, &setup);
-    let fast_outcome = if fast { Some(fast_outcome(&normal, scene, &setup, quantities)) } else { None };
-    Ok(match (fast_outcome, setup.motion) {
-        (Some(Ok(outcome)), _) if recording == Recording::Off => (outcome, None),
-        (Some(Ok(outcome)), _) => (outcome, run(&normal, scene, setup.contact_time, recording)?.1),
-        (Some(Err(error)), _) if method == Method::Taylor => {
-            return Err(SimulationError::Integration(IntegrationError::Solver {
-                time: 0.0,
-                reason: error.to_string(),
-            }));
+    if fast {
+        match fast_outcome(&normal, scene, &setup, quantities) {
+            // (Returned from here, the outcome is written once into the caller's place: a sweep row's path.)
+            Ok(outcome) if recording == Recording::Off => return Ok((outcome, None)),
+            Ok(outcome) => return Ok((outcome, run(&normal, scene, setup.contact_time, recording)?.1)),
+            Err(error) if method == Method::Taylor => {
+                return Err(SimulationError::Integration(IntegrationError::Solver {
+                    time: 0.0,
+                    reason: error.to_string(),
+                }));
+            }
+            // (`auto` falls back on the general path if the fast one cannot finish.)
+            Err(_) => {}
         }
-        // (`auto` falls back on the general path if the fast one cannot finish.)
-        (_, Motion::Normal) => run(&normal, scene, setup.contact_time, recording)?,
-        (_, Motion::Full) => run(&PairContact::new(&scene.bodies, &setup), scene, setup.contact_time, recording)?,
-    })
+    }
+    match setup.motion {
+        Motion::Normal => run(&normal, scene, setup.contact_time, recording),
+        Motion::Full => run(&PairContact::new(&scene.bodies, &setup), scene, setup.contact_time, recording),
+    }
 }
 
 /// The phases of one impact over `model`.
@@ -297,7 +302,7 @@ fn fast_outcome(
         y[index::IMPULSE] = point.impulse;
         y[index::WORK] = point.work;
         y[index::DISSIPATED] = point.dissipated / model.dissipation_scale;
-        model.snapshot(point.time, &y)
+        model.snapshot_with(point.time, &y, point.force * s.force, point.elastic * s.energy)
     };
     let (ending, note) = match fast.ending {
         FastEnding::Separated => (Ending::Event(0), None),

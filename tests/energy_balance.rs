@@ -130,7 +130,7 @@ fn exact(report: &Report, force: bool) -> (f64, f64, f64) {
     let law = &report.law;
     let (m, v0) = (report.effective_mass, report.approach_speed);
     let unit = m * v0 * v0;
-    let (e, dissipated, left) = match law.name.as_str() {
+    let (e, dissipated, left) = match law.name {
         "hertz" => (1.0, 0.0, 0.0),
         "kelvin-voigt" => oscillator(law.damping / (2.0 * (law.stiffness * m).sqrt()), 1.0, force),
         "tsuji" => oscillator(law.damping / 2.0, 1.25, force),

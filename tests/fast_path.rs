@@ -547,7 +547,7 @@ fn auto_reports_agree_with_the_general_path() {
                 simulate(&scene, Recording::Off).unwrap().report
             };
             let (fast, general) = (run("auto"), run("dop853"));
-            assert_eq!((fast.solver.method.as_str(), general.solver.method.as_str()), ("taylor", "dop853"));
+            assert_eq!((fast.solver.method, general.solver.method), ("taylor", "dop853"));
             let (f, g) = (&fast.contact, &general.contact);
             let close = |what: &str, a: f64, b: f64, scale: f64| {
                 assert!((a - b).abs() <= 1e-9 * scale, "{law}, {separation}: {what} {a} against {b}");

@@ -127,6 +127,15 @@ impl ContactModel<SIZE> for NormalContact<'_> {
     }
 
     fn snapshot(&self, t: f64, y: &State<SIZE>) -> Snapshot {
+        let elastic_energy = self.law.elastic_energy(y[index::PENETRATION] * self.scales.length);
+        self.snapshot_with(t, y, self.force(y) * self.scales.force, elastic_energy)
+    }
+}
+
+impl NormalContact<'_> {
+    /// [`ContactModel::snapshot`] with the contact force (N) and the elastic energy (J) already known: the fast
+    /// path has them from its own variables, without the law's powers.
+    pub fn snapshot_with(&self, t: f64, y: &State<SIZE>, normal_force: f64, elastic_energy: f64) -> Snapshot {
         let s = &self.scales;
         let setup = self.setup;
         let n = setup.normal;
@@ -154,7 +163,7 @@ impl ContactModel<SIZE> for NormalContact<'_> {
             time,
             penetration,
             rate: y[index::RATE] * s.speed,
-            normal_force: self.force(y) * s.force,
+            normal_force,
             normal: n,
             tangential_force: nalgebra::Vector3::zeros(),
             slip: setup.initial_slip,
@@ -166,7 +175,7 @@ impl ContactModel<SIZE> for NormalContact<'_> {
             dissipated_normal: y[index::DISSIPATED] * s.energy * self.dissipation_scale,
             tangential_work: 0.0,
             work_of_immovable_bodies,
-            elastic_energy: self.law.elastic_energy(penetration),
+            elastic_energy,
             tangential_elastic_energy: 0.0,
         }
     }

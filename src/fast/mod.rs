@@ -98,6 +98,8 @@ pub struct PhasePoint {
     pub dissipated: f64,
     /// Elastic energy stored, `∫_0^d F_elastic dd`, in `m* v0²` (non-zero at the end only for a force separation).
     pub elastic: f64,
+    /// Contact force, in `F0`.
+    pub force: f64,
 }
 
 /// How the integration ended.
@@ -366,14 +368,16 @@ impl<'a> Run<'a> {
     /// The current state as a reported point.
     fn point(&self) -> PhasePoint {
         let s = &self.state;
+        let penetration = self.system.penetration(s.w);
         PhasePoint {
             time: self.time(),
-            penetration: self.system.penetration(s.w),
+            penetration,
             rate: s.rate,
             impulse: s.impulse,
             work: s.work,
             dissipated: self.system.damping * s.dissipation,
             elastic: self.system.elastic_energy(s.w),
+            force: self.system.force_at(s.w, penetration, s.rate),
         }
     }
 
@@ -612,15 +616,24 @@ impl<'a> Run<'a> {
             let mut shrinks = 0;
             let step = loop {
                 let (w, rate) = (self.w(), self.rate());
+                // The state at the step's end and w, v at its middle, in one pass: the samples of the events'
+                // search from the step's start, and the state it ends in when no event lies inside.
+                let probe = self.expansion.probe(h);
                 let value_slope = |c: &[f64], s: f64| taylor::value_and_slope(c, s);
-                let fall = |c: &[f64], from: f64, start: f64| {
-                    taylor::first_fall(|s| taylor::values(c, s), |s| value_slope(c, s), from, h, start)
+                let fall = |c: &[f64], from: f64, start: f64, probed: [f64; 2]| {
+                    // (From the step's start, the samples are the probe's: first_fall samples at (from + h)/2, h.)
+                    let values = |at: [f64; 2]| if from == 0.0 { probed } else { taylor::values(c, at) };
+                    taylor::first_fall(values, |s| value_slope(c, s), from, h, start)
                 };
+                let (middle, end) = (probe.middle, probe.state);
                 // Maximum compression, then (only after it) the zero of w, then the force's zero before that.
-                let turn = if compressing { fall(rate, 0.0, self.state.rate) } else { None };
+                let turn = if compressing { fall(rate, 0.0, self.state.rate, [middle[1], end.rate]) } else { None };
                 let restitution_from = if compressing { turn } else { Some(0.0) };
                 // (At the step's start, w's value is its first coefficient.)
-                let zero = restitution_from.and_then(|a| fall(w, a, if a == 0.0 { w[0] } else { taylor::value(w, a) }));
+                let zero = restitution_from.and_then(|a| {
+                    let start = if a == 0.0 { w[0] } else { taylor::value(w, a) };
+                    fall(w, a, start, [middle[0], end.w])
+                });
                 if timed && from_zero && zero.is_some() {
                     // The whole contact in one step: the time rule about first contact would have to reach the
                     // other zero of w. Two steps at least.
@@ -719,7 +732,7 @@ impl<'a> Run<'a> {
                     h = 0.5 * reach;
                     continue;
                 };
-                break Step { end, dt, turn, peak, zero, force_zero };
+                break Step { end, dt, turn, peak, zero, force_zero, probe: probe.state };
             };
             let now = self.time();
             if let Some((at, time)) = step.peak {
@@ -730,17 +743,19 @@ impl<'a> Run<'a> {
             if let Some((at, time)) = step.turn {
                 // The event's definition: the rate is zero there (the polynomial leaves an ulp).
                 let state = State { rate: 0.0, ..self.expansion.state_at(at) };
+                let penetration = system.penetration(state.w);
                 let point = PhasePoint {
                     time: now + time,
-                    penetration: system.penetration(state.w),
+                    penetration,
                     rate: 0.0,
                     impulse: state.impulse,
                     work: state.work,
                     dissipated: system.damping * state.dissipation,
                     elastic: system.elastic_energy(state.w),
+                    force: system.force_at(state.w, penetration, 0.0),
                 };
                 if peaked {
-                    self.offer_peak(system.force(state.w, 0.0), point.time);
+                    self.offer_peak(point.force, point.time);
                 }
                 max_compression = Some(point);
                 if !force_criterion && system.never_separates() {
@@ -751,10 +766,10 @@ impl<'a> Run<'a> {
                 }
                 // The restitution's integrals start from zero there, within this step.
                 let (impulse, work) = self.expansion.increments(at, step.end);
-                self.state = State { impulse, work, ..self.expansion.state_at(step.end) };
+                self.state = State { impulse, work, ..step.state_at_end(self.expansion) };
                 self.restituting = true;
             } else {
-                self.state = self.expansion.state_at(step.end);
+                self.state = step.state_at_end(self.expansion);
             }
             if !timed {
                 let zero_at_an_end = from_zero || step.zero.is_some();
@@ -788,6 +803,15 @@ struct Step {
     peak: Option<(f64, f64)>,
     zero: Option<f64>,
     force_zero: Option<f64>,
+    /// The state at the step's full length (its end unless a zero ends it sooner).
+    probe: State,
+}
+
+impl Step {
+    /// The state at the step's end: the probe's, unless a zero of `w` or of the force ended the step sooner.
+    fn state_at_end(&self, expansion: &Expansion) -> State {
+        if self.zero.is_none() && self.force_zero.is_none() { self.probe } else { expansion.state_at(self.end) }
+    }
 }
 
 #[cfg(test)]

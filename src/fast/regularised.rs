@@ -98,6 +98,15 @@ pub struct Expansion {
     pending_dissipation: Coefficients,
 }
 
+/// What [`Expansion::probe`] finds at an offset `σ` of a step.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Probe {
+    /// The state at `σ`.
+    pub state: State,
+    /// `w` and `v` at `σ/2`.
+    pub middle: [f64; 2],
+}
+
 impl Default for Expansion {
     fn default() -> Self {
         let zero = [0.0; MAX_ORDER + 1];
@@ -120,30 +129,47 @@ impl Expansion {
     ///
     /// Every component's Horner chain in one loop: the chains are independent, so they take the time of one.
     pub fn state_at(&self, sigma: f64) -> State {
+        self.probe(sigma).state
+    }
+
+    /// The state at offset `sigma`, and `w` and `v` at its middle, `sigma/2`: what a step looks at when no event
+    /// lies inside it (the samples of [`taylor::first_fall`] and the state it ends in), in one pass over the
+    /// coefficients. Every component's Horner chain runs in the same loop: the chains are independent, so they
+    /// take the time of one. `state` is [`Expansion::state_at`]'s; the middle values are `taylor::value`'s.
+    pub fn probe(&self, sigma: f64) -> Probe {
         let k = self.order;
         let mul_add = taylor::mul_add;
+        let half = 0.5 * sigma;
         // `tail` = Σ_{j>=1} v_j σ^(j-1), so that v(σ) - v_0 = σ tail without cancellation (v(σ) is v_0 plus it:
         // Horner's last step, the same rounding); `moment` = Σ_j v_j σ^j/(K+j+1), the work's truncation term.
         let (mut w, mut tail, mut moment, mut dissipation) = (0.0, 0.0, 0.0, 0.0);
+        let (mut w_half, mut rate_half) = (0.0, 0.0);
+        // σ^(K+1), the truncation terms' power, a product alongside (the library's powi is a call).
+        let mut power = sigma;
         for j in (1..=k).rev() {
+            power *= sigma;
             w = mul_add(w, sigma, self.w[j]);
             tail = mul_add(tail, sigma, self.rate[j]);
             moment = mul_add(moment, sigma, self.rate[j] * INVERSE[k + j + 1]);
             dissipation = mul_add(dissipation, sigma, self.dissipation[j]);
+            w_half = mul_add(w_half, half, self.w[j]);
+            rate_half = mul_add(rate_half, half, self.rate[j]);
         }
+        let middle = [mul_add(w_half, half, self.w[0]), mul_add(rate_half, half, self.rate[0])];
         let w = mul_add(w, sigma, self.w[0]);
         let moment = mul_add(moment, sigma, self.rate[0] * INVERSE[k + 1]);
         let dissipation = mul_add(dissipation, sigma, self.dissipation[0]);
         let change = sigma * tail;
         let rate = self.rate[0] + change;
-        let top = self.force_top * sigma.powi(k as i32 + 1);
-        State {
+        let top = self.force_top * power;
+        let state = State {
             w,
             rate,
             impulse: self.start.impulse - change + top * INVERSE[k + 1],
             work: self.start.work - 0.5 * change * (rate + self.start.rate) + top * moment,
             dissipation,
-        }
+        };
+        Probe { state, middle }
     }
 
     /// The impulse and the work integrated from offset `a` to offset `b` of the step, formed without the totals
@@ -383,6 +409,21 @@ impl Regularised {
         if self.time_exponent == 0.0 { regular } else { w.powf(self.time_exponent) * regular }
     }
 
+    /// [`Regularised::force`] where the penetration `δ = w^β` is known: `w^γ = w/δ` (`γ = 1 - β` for every
+    /// covered law), so no power is taken.
+    pub fn force_at(&self, w: f64, penetration: f64, rate: f64) -> f64 {
+        let w = w.max(0.0);
+        let regular = self.regular_force(w, rate);
+        if self.time_exponent == 0.0 {
+            regular
+        } else if penetration > 0.0 {
+            w / penetration * regular
+        } else {
+            // w^γ = 0 at w = 0.
+            0.0
+        }
+    }
+
     /// Scaled penetration `δ = w^β` (`w` clamped at 0).
     pub fn penetration(&self, w: f64) -> f64 {
         let w = w.max(0.0);
@@ -462,6 +503,24 @@ mod tests {
         }
     }
 
+    /// A probe's middle values are Horner's values of the series at half the offset, bit for bit (they stand for
+    /// [`taylor::values`] in the events' sampling), and its state at the offset agrees with the series' own values.
+    #[test]
+    fn probe_samples_the_middle_and_the_end() {
+        let system = hysteresis(0.9, 1.5);
+        let mut e = Expansion::default();
+        let state = State { w: 0.35, rate: -0.2, impulse: 1.1, work: 0.45, dissipation: 0.02 };
+        system.expand(&state, 19, true, &mut e);
+        let k = e.order + 1;
+        for sigma in [0.0, 0.013, 0.2, 0.41] {
+            let probe = e.probe(sigma);
+            assert_eq!(probe.middle, [taylor::value(&e.w[..k], 0.5 * sigma), taylor::value(&e.rate[..k], 0.5 * sigma)]);
+            assert_eq!(probe.state.w, taylor::value(&e.w[..k], sigma));
+            assert!((probe.state.rate - taylor::value(&e.rate[..k], sigma)).abs() <= 2e-16);
+            assert!((probe.state.dissipation - taylor::value(&e.dissipation[..k], sigma)).abs() <= 2e-16);
+        }
+    }
+
     /// The series satisfy their equations: the derivative of each polynomial equals the right-hand side
     /// evaluated on the polynomials, up to the truncation order.
     #[test]
@@ -513,6 +572,39 @@ mod tests {
             assert!((dw - p * v).abs() < 1e-14, "w' at {sigma}");
             assert!((dv + (w + c * v)).abs() < 1e-14, "v' at {sigma}");
             assert!((dd - v * v).abs() < 1e-13, "D' at {sigma}: {dd} vs {}", v * v);
+        }
+    }
+
+    /// The force from the known penetration (`w/δ` for `w^γ`) against the power itself, for every form's `γ`,
+    /// across penetrations from 1e-12 to 3 and rates of both signs; zero at `w = 0` unless `γ = 0`.
+    #[test]
+    fn force_from_the_penetration_is_the_power_law() {
+        let linear = |p: f64, c: f64, gamma: f64, beta: f64| Regularised {
+            form: Form::Linear,
+            rate_factor: p,
+            damping: c,
+            exponent: 1.0 + 0.5 * gamma / 0.2,
+            time_exponent: gamma,
+            penetration_exponent: beta,
+            elastic_factor: 0.5,
+        };
+        let systems = [hysteresis(0.7, 1.5), hysteresis(2.0, 2.2), hysteresis(0.0, 1.0), linear(1.25, 0.4, 0.2, 0.8)];
+        let mut draw = crate::stress::Draw::new(3, 0);
+        for system in systems {
+            for _ in 0..2000 {
+                let w = 10f64.powf(draw.uniform(-12.0, 0.5));
+                let rate = draw.uniform(-2.0, 2.0);
+                let penetration = system.penetration(w);
+                let power = w.powf(system.time_exponent) * system.regular_force(w, rate);
+                let got = system.force_at(w, penetration, rate);
+                // A few ulps, and the rounding of γ and β in binary (each within 1.1e-16; for n = 3/2, γ + β =
+                // 1 + 5.6e-17): w/δ is w^(1 - β), the power w^γ, and they differ by w^(γ + β - 1).
+                let tolerance = (6e-16 + 2.2e-16 * w.ln().abs()) * power.abs();
+                assert!((got - power).abs() <= tolerance, "{system:?} w {w} v {rate}: {got} vs {power}");
+            }
+            let at_zero = system.force_at(0.0, 0.0, 0.5);
+            let expected = if system.time_exponent == 0.0 { system.regular_force(0.0, 0.5) } else { 0.0 };
+            assert_eq!(at_zero, expected);
         }
     }
 

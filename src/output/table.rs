@@ -135,7 +135,7 @@ pub fn render(report: &Report) -> String {
 fn law(report: &Report) -> Section {
     let law = &report.law;
     // The law's formula and family are catalogue facts, looked up by name (no physics is computed here).
-    let info = LawKind::from_name(&law.name).map(|kind| kind.info());
+    let info = LawKind::from_name(law.name).map(|kind| kind.info());
     let formula = info.map_or("?", |i| i.formula);
     let family = info.map(|i| i.family);
     let mut section = Section::new(format!("law: {}, F = {formula}", law.name));
@@ -395,5 +395,5 @@ fn maybe(value: Option<f64>, show: impl Fn(f64) -> String) -> String {
 }
 
 fn family(report: &Report) -> Option<Family> {
-    LawKind::from_name(&report.law.name).map(LawKind::family)
+    LawKind::from_name(report.law.name).map(LawKind::family)
 }

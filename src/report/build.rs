@@ -103,12 +103,12 @@ pub fn build(scene: &Scene, setup: &Setup, outcome: &Outcome, detail: ReferenceD
     Report {
         title: scene.title.clone(),
         law: LawReport {
-            name: setup.law.kind.name().into(),
+            name: setup.law.kind.name(),
             stiffness: setup.law.stiffness,
             exponent: setup.law.exponent,
             damping: setup.law.damping,
             restitution_nominal: nominal,
-            separation: scene.contact.separation.name().into(),
+            separation: scene.contact.separation.name(),
         },
         effective_mass: setup.effective_mass,
         approach_speed: setup.approach_speed,
@@ -142,7 +142,7 @@ pub fn build(scene: &Scene, setup: &Setup, outcome: &Outcome, detail: ReferenceD
         instantaneous_nominal: nominal.map(compare),
         reference: if fixed_normal { accuracy::reference(scene, setup, measured, detail) } else { None },
         solver: SolverReport {
-            method: outcome.method.into(),
+            method: outcome.method,
             rtol: scene.solver.tolerances.rtol,
             atol: scene.solver.tolerances.atol,
             steps: outcome.counters.steps,

@@ -45,7 +45,7 @@ pub struct Report {
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct LawReport {
     /// Scene spelling of the law.
-    pub name: String,
+    pub name: &'static str,
     /// K in N/m^n.
     pub stiffness: f64,
     /// n.
@@ -55,7 +55,7 @@ pub struct LawReport {
     /// The nominal e asked for (1 for hertz); null when `damping` was given.
     pub restitution_nominal: Option<f64>,
     /// "penetration" or "force".
-    pub separation: String,
+    pub separation: &'static str,
 }
 
 /// The contact phases and what was measured in them. Times in s from the scene's t = 0.
@@ -223,7 +223,7 @@ pub struct ReferenceErrors {
 
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct SolverReport {
-    pub method: String,
+    pub method: &'static str,
     pub rtol: f64,
     pub atol: f64,
     pub steps: u64,

@@ -25,6 +25,7 @@ use crate::setup::Setup;
 use grid::Grid;
 use rayon::prelude::*;
 use shard::Shard;
+use std::borrow::Cow;
 use std::path::{Path, PathBuf};
 use table::{Cell, Columns, Row, Status};
 
@@ -64,6 +65,8 @@ pub struct Sweep {
     bases: Vec<Option<Scene>>,
     /// The result columns written (all unless [`Sweep::select`] chose some).
     columns: Columns,
+    /// The scene's own law as its file writes it (the `law` column without `--law`).
+    written_law: Cow<'static, str>,
 }
 
 /// The laws named in `--law` (scene spellings), checked.
@@ -115,6 +118,7 @@ impl Sweep {
         let mut sweep = Sweep {
             path: path.to_path_buf(),
             text,
+            written_law: Sweep::written_law(&document),
             document,
             grid,
             laws,
@@ -174,13 +178,20 @@ impl Sweep {
     }
 
     /// The law's name for row `index`: from `--law`, or as the scene file writes it.
-    fn law_name(&self, law: Option<LawKind>) -> String {
+    fn law_name(&self, law: Option<LawKind>) -> Cow<'static, str> {
         match law {
-            Some(law) => law.name().into(),
-            None => {
-                let written = self.document.get("contact").and_then(|c| c.get("law")).and_then(|l| l.as_str());
-                written.unwrap_or_default().into()
-            }
+            Some(law) => Cow::Borrowed(law.name()),
+            None => self.written_law.clone(),
+        }
+    }
+
+    /// The law as the document writes it: the catalogue's own spelling where it is one (so that a row borrows it
+    /// rather than copying it), else the text itself.
+    fn written_law(document: &toml::Table) -> Cow<'static, str> {
+        let written = document.get("contact").and_then(|c| c.get("law")).and_then(|l| l.as_str()).unwrap_or_default();
+        match LawKind::from_name(written).map(LawKind::name) {
+            Some(name) if name == written => Cow::Borrowed(name),
+            _ => Cow::Owned(written.into()),
         }
     }
 
@@ -199,25 +210,16 @@ impl Sweep {
     fn evaluate_by(&self, index: usize, typed: bool) -> Row {
         let (values, law) = self.point(index);
         let law = self.law_name(law);
-        let base = self.bases[index % self.law_count()].as_ref().filter(|_| typed);
-        let prepared = match base {
-            Some(base) => self.typed_point(base, &values),
-            None => self.scene_text(index).and_then(|text| {
-                let scene = Scene::parse(&text, &self.path).map_err(scene_message)?;
-                let setup = Setup::new(&scene).map_err(|error| format!("{}: {}", error.key, error.message))?;
-                Ok((scene, setup))
-            }),
-        };
         // A row shows at most one reference value, the exact restitution: the quadratures of the others are not
         // computed; nor is anything its columns do not show.
         let columns = &self.columns;
         let options =
             Options { recording: Recording::Off, reference: columns.reference(), quantities: columns.quantities() };
-        // The cells are taken from the report where it was built (a report is 1.7 kB: moving it out of the
-        // closure and through a Result cost more than the cells).
-        let cells = prepared.and_then(|(scene, setup)| {
+        // The cells are taken from the report where it was built, and the scene and its setup stay where they were
+        // made (a report is 1.7 kB, a scene 0.7: moving them out through Results cost more than the cells).
+        let cells_of = |scene: &Scene, setup: &Setup| {
             // (No column shows the run's wall time: not measured.)
-            match simulate_prepared(&scene, &setup, options, None) {
+            match simulate_prepared(scene, setup, options, None) {
                 Ok(simulation) => {
                     let report = &simulation.report;
                     let status = if report.contact.separated { Status::Ok } else { Status::NotSeparated };
@@ -225,7 +227,19 @@ impl Sweep {
                 }
                 Err(error) => Err(error.to_string()),
             }
-        });
+        };
+        let base = self.bases[index % self.law_count()].as_ref().filter(|_| typed);
+        let cells = match base {
+            Some(base) => {
+                let mut scene = base.clone();
+                self.apply_point(&mut scene, &values).and_then(|setup| cells_of(&scene, &setup))
+            }
+            None => self.scene_text(index).and_then(|text| {
+                let scene = Scene::parse(&text, &self.path).map_err(scene_message)?;
+                let setup = Setup::new(&scene).map_err(|error| format!("{}: {}", error.key, error.message))?;
+                cells_of(&scene, &setup)
+            }),
+        };
         let (status, results) = cells.unwrap_or_else(|why| (Status::Error(why), vec![Cell::Empty; columns.len()]));
         Row { index, status, law, values, results }
     }
@@ -242,16 +256,14 @@ impl Sweep {
         Scene::convert(&text, &self.path).ok()
     }
 
-    /// A point applied to a law's typed scene and checked by the rules a scene file obeys: the same scene, and the
-    /// same error text, as writing the point into the document and reading it back.
-    fn typed_point(&self, base: &Scene, values: &[f64]) -> Result<(Scene, Setup), String> {
-        let mut scene = base.clone();
+    /// A point applied to (a copy of) a law's typed scene and checked by the rules a scene file obeys: the same scene,
+    /// and the same error text, as writing the point into the document and reading it back. Returns its setup.
+    fn apply_point(&self, scene: &mut Scene, values: &[f64]) -> Result<Setup, String> {
         for (axis, &value) in self.grid.axes.iter().zip(values) {
-            axis.key.apply(&mut scene, value).map_err(|why| format!("{}: {why}", axis.key))?;
+            axis.key.apply(scene, value).map_err(|why| format!("{}: {why}", axis.key))?;
         }
         scene.resolve();
-        let setup = scene.check().map_err(|error| format!("{}: {}", error.key, error.message))?;
-        Ok((scene, setup))
+        scene.check().map_err(|error| format!("{}: {}", error.key, error.message))
     }
 
     /// The global indices of the rows of `shard` (all rows without one), in increasing order.

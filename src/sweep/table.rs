@@ -200,7 +200,7 @@ pub struct Row {
     pub index: usize,
     pub status: Status,
     /// The law's scene spelling (as the file writes it when no --law is given).
-    pub law: String,
+    pub law: std::borrow::Cow<'static, str>,
     /// The varied keys' values, in --vary order.
     pub values: Vec<f64>,
     /// The sweep's result columns ([`Columns`]), all empty for an error.
@@ -208,11 +208,11 @@ pub struct Row {
 }
 
 /// The result cells of a report, in [`RESULT_COLUMNS`] order.
-pub fn results(report: &Report) -> Vec<Cell> {
+pub fn results(report: &Report) -> [Cell; RESULT_COLUMNS.len()] {
     let c = &report.contact;
     let law = &report.law;
     let number = Cell::Number;
-    let mut cells = vec![
+    let central: [Cell; 27] = [
         number(report.approach_speed),
         number(report.effective_mass),
         number(law.stiffness),
@@ -245,7 +245,7 @@ pub fn results(report: &Report) -> Vec<Cell> {
     let rigid = oblique.and_then(|o| o.rigid_body.as_ref());
     let size = |v: &[f64; 3]| (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
     let spin = |i: usize| report.bodies[i].angular_velocity_after.as_ref().map(size);
-    cells.extend::<[Cell; 13]>([
+    let turned: [Cell; 13] = [
         oblique.map(|o| o.incidence_from_normal_deg).into(),
         oblique.and_then(|o| o.rebound_from_normal_deg).into(),
         oblique.and_then(|o| o.tangential_restitution_centre).into(),
@@ -259,7 +259,12 @@ pub fn results(report: &Report) -> Vec<Cell> {
         rigid.and_then(|r| r.tangential_restitution_centre).into(),
         rigid.map(|r| size(&r.angular_velocity_after[0])).into(),
         rigid.map(|r| size(&r.angular_velocity_after[1])).into(),
-    ]);
+    ];
+    // (On the stack: a row's cells allocate nothing until the chosen ones are picked.)
+    let mut cells = [Cell::Empty; RESULT_COLUMNS.len()];
+    let (first, rest) = cells.split_at_mut(central.len());
+    first.copy_from_slice(&central);
+    rest.copy_from_slice(&turned);
     cells
 }
 
