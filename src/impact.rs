@@ -460,4 +460,43 @@ mod tests {
             }
         }
     }
+
+    /// The fast path's snapshots take the force and the elastic energy from its own variables (`w^γ = w/δ`,
+    /// `w²/(n+1)`): they must be the law's own force and elastic energy at the snapshot's penetration and rate, at
+    /// maximum compression and at the end, for every family it covers and both separations (the end of a force
+    /// separation leaves a penetration, Kelvin–Voigt's end a tensile c d').
+    #[test]
+    fn fast_snapshots_carry_the_law_force_and_elastic_energy() {
+        let laws = [
+            "law = \"hertz\"",
+            "law = \"hunt-crossley\"\nrestitution = 0.6",
+            "law = \"gonthier\"\nrestitution = 0.3",
+            "law = \"hunt-crossley\"\nexponent = 0.5\nstiffness = 1e4\ndamping = 0.2",
+            "law = \"kelvin-voigt\"\nrestitution = 0.5\nstiffness = 1e6\nexponent = 1.0",
+            "law = \"tsuji\"\nrestitution = 0.4",
+        ];
+        for law in laws {
+            for separation in ["penetration", "force"] {
+                let text = format!(
+                    "[[bodies]]\nradius = 0.01\nmass = 0.03\nvelocity = [1.5, 0.0, 0.0]\nyoung = 2e11\npoisson = 0.3\n\n\
+                     [[bodies]]\nradius = inf\nmass = inf\nvelocity = [0.0, 0.0, 0.0]\nyoung = 7e10\npoisson = 0.33\n\n\
+                     [contact]\n{law}\nseparation = \"{separation}\"\n"
+                );
+                let scene = Scene::parse(&text, std::path::Path::new("snapshots.toml")).unwrap();
+                let setup = Setup::new(&scene).unwrap();
+                let normal = NormalContact::new(&scene.bodies, &setup);
+                let outcome = fast_outcome(&normal, &scene, &setup, Quantities::ALL).unwrap();
+                let scale = outcome.max_compression.normal_force;
+                for point in [&outcome.max_compression, &outcome.end] {
+                    let parts = setup.law.split_force(point.penetration.max(0.0), point.rate);
+                    let force = parts.elastic + parts.dissipative;
+                    let what = format!("{law}, {separation}: {} vs {force}", point.normal_force);
+                    assert!((point.normal_force - force).abs() <= 1e-13 * scale, "{what}");
+                    let elastic = setup.law.elastic_energy(point.penetration);
+                    assert!((point.elastic_energy - elastic).abs() <= 1e-13 * elastic.max(1e-300), "{law}: {elastic}");
+                }
+                assert!(scale > 0.0, "{law}");
+            }
+        }
+    }
 }

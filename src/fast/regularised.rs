@@ -141,7 +141,8 @@ impl Expansion {
         let mul_add = taylor::mul_add;
         let half = 0.5 * sigma;
         // `tail` = Σ_{j>=1} v_j σ^(j-1), so that v(σ) - v_0 = σ tail without cancellation (v(σ) is v_0 plus it:
-        // Horner's last step, the same rounding); `moment` = Σ_j v_j σ^j/(K+j+1), the work's truncation term.
+        // Horner's last step, rounded twice where Horner's fuses — within an ulp of `taylor::value`, and exactly
+        // the rate the next step starts from); `moment` = Σ_j v_j σ^j/(K+j+1), the work's truncation term.
         let (mut w, mut tail, mut moment, mut dissipation) = (0.0, 0.0, 0.0, 0.0);
         let (mut w_half, mut rate_half) = (0.0, 0.0);
         // σ^(K+1), the truncation terms' power, a product alongside (the library's powi is a call).
@@ -432,6 +433,8 @@ impl Regularised {
 
     /// Elastic energy stored at `w`, in `m* v0²`.
     pub fn elastic_energy(&self, w: f64) -> f64 {
+        // (w clamped at 0, as the penetration is: a located zero may sit an ulp below.)
+        let w = w.max(0.0);
         self.elastic_factor * w * w
     }
 
@@ -504,7 +507,8 @@ mod tests {
     }
 
     /// A probe's middle values are Horner's values of the series at half the offset, bit for bit (they stand for
-    /// [`taylor::values`] in the events' sampling), and its state at the offset agrees with the series' own values.
+    /// [`taylor::values`] in the events' sampling), and its state at the offset agrees with the series' own values
+    /// (`w` bit for bit; the rate `v_0 + σ tail` within an ulp, rounded twice where Horner's last step fuses).
     #[test]
     fn probe_samples_the_middle_and_the_end() {
         let system = hysteresis(0.9, 1.5);
@@ -588,7 +592,14 @@ mod tests {
             penetration_exponent: beta,
             elastic_factor: 0.5,
         };
-        let systems = [hysteresis(0.7, 1.5), hysteresis(2.0, 2.2), hysteresis(0.0, 1.0), linear(1.25, 0.4, 0.2, 0.8)];
+        // (n = 1/2: γ < 0, β > 1.)
+        let systems = [
+            hysteresis(0.7, 1.5),
+            hysteresis(2.0, 2.2),
+            hysteresis(0.0, 1.0),
+            hysteresis(1.3, 0.5),
+            linear(1.25, 0.4, 0.2, 0.8),
+        ];
         let mut draw = crate::stress::Draw::new(3, 0);
         for system in systems {
             for _ in 0..2000 {

@@ -67,6 +67,8 @@ pub struct Sweep {
     columns: Columns,
     /// The scene's own law as its file writes it (the `law` column without `--law`).
     written_law: Cow<'static, str>,
+    /// What a row's run computes: what [`Sweep::columns`] show (found once, not a row at a time).
+    options: Options,
 }
 
 /// The laws named in `--law` (scene spellings), checked.
@@ -124,6 +126,7 @@ impl Sweep {
             laws,
             bases: Vec::new(),
             columns: Columns::default(),
+            options: Sweep::row_options(&Columns::default()),
         };
         sweep.bases = (0..sweep.law_count()).map(|i| sweep.base(i)).collect();
         match sweep.grid.points().and_then(|points| points.checked_mul(sweep.law_count())) {
@@ -134,7 +137,14 @@ impl Sweep {
 
     /// Writes only `columns` (`--columns`); each row then computes only what they show.
     pub fn select(&mut self, columns: Columns) {
+        self.options = Sweep::row_options(&columns);
         self.columns = columns;
+    }
+
+    /// What a row's run computes for `columns`: no history; of the exact reference at most the restitution (the
+    /// quadratures of the others are not computed); nothing the columns do not show.
+    fn row_options(columns: &Columns) -> Options {
+        Options { recording: Recording::Off, reference: columns.reference(), quantities: columns.quantities() }
     }
 
     /// The result columns written.
@@ -210,11 +220,7 @@ impl Sweep {
     fn evaluate_by(&self, index: usize, typed: bool) -> Row {
         let (values, law) = self.point(index);
         let law = self.law_name(law);
-        // A row shows at most one reference value, the exact restitution: the quadratures of the others are not
-        // computed; nor is anything its columns do not show.
-        let columns = &self.columns;
-        let options =
-            Options { recording: Recording::Off, reference: columns.reference(), quantities: columns.quantities() };
+        let (columns, options) = (&self.columns, self.options);
         // The cells are taken from the report where it was built, and the scene and its setup stay where they were
         // made (a report is 1.7 kB, a scene 0.7: moving them out through Results cost more than the cells).
         let cells_of = |scene: &Scene, setup: &Setup| {
