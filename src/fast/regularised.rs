@@ -125,9 +125,7 @@ impl Default for Expansion {
 }
 
 impl Expansion {
-    /// The state at offset `sigma` in the step.
-    ///
-    /// Every component's Horner chain in one loop: the chains are independent, so they take the time of one.
+    /// The state at offset `sigma` in the step ([`Expansion::probe`]'s).
     pub fn state_at(&self, sigma: f64) -> State {
         self.probe(sigma).state
     }
@@ -135,7 +133,7 @@ impl Expansion {
     /// The state at offset `sigma`, and `w` and `v` at its middle, `sigma/2`: what a step looks at when no event
     /// lies inside it (the samples of [`taylor::first_fall`] and the state it ends in), in one pass over the
     /// coefficients. Every component's Horner chain runs in the same loop: the chains are independent, so they
-    /// take the time of one. `state` is [`Expansion::state_at`]'s; the middle values are `taylor::value`'s.
+    /// take the time of one. The middle values are `taylor::value`'s, bit for bit.
     pub fn probe(&self, sigma: f64) -> Probe {
         let k = self.order;
         let mul_add = taylor::mul_add;
