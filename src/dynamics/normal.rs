@@ -74,6 +74,53 @@ impl<'a> NormalContact<'a> {
         let parts = self.law.split_force(penetration * s.length, y[index::RATE] * s.speed);
         (parts.elastic / s.force, parts.dissipative / s.force)
     }
+
+    /// [`ContactModel::snapshot`] with the contact force (N) and the elastic energy (J) already known: the fast
+    /// path has them from its own variables, without the law's powers.
+    pub fn snapshot_with(&self, t: f64, y: &State<SIZE>, normal_force: f64, elastic_energy: f64) -> Snapshot {
+        let s = &self.scales;
+        let setup = self.setup;
+        let n = setup.normal;
+        let [a, b] = self.bodies;
+        let time = t * s.time;
+        let penetration = y[index::PENETRATION] * s.length;
+        let impulse = y[index::IMPULSE] * s.impulse;
+        // The force moves the bodies apart from their free flight by (v0 t - d) along the normal, shared in the
+        // ratio of the inverse masses (m*/m_i).
+        let pushed = n * (setup.approach_speed * time - penetration);
+        let share = |body: &Body| setup.effective_mass * body.inverse_mass();
+        let positions = [
+            setup.positions[0] + a.velocity * time - pushed * share(a),
+            setup.positions[1] + b.velocity * time + pushed * share(b),
+        ];
+        // Work by an immovable body: minus the work the contact force does on it (its velocity is constant).
+        let work_of_immovable_bodies = if b.is_immovable() {
+            -impulse * b.velocity.dot(&n)
+        } else if a.is_immovable() {
+            impulse * a.velocity.dot(&n)
+        } else {
+            0.0
+        };
+        Snapshot {
+            time,
+            penetration,
+            rate: y[index::RATE] * s.speed,
+            normal_force,
+            normal: n,
+            tangential_force: nalgebra::Vector3::zeros(),
+            slip: setup.initial_slip,
+            velocities: after_normal_impulse(self.bodies, &n, impulse),
+            spins: [a.angular_velocity, b.angular_velocity],
+            positions,
+            normal_impulse: impulse,
+            normal_work: y[index::WORK] * s.energy,
+            dissipated_normal: y[index::DISSIPATED] * s.energy * self.dissipation_scale,
+            tangential_work: 0.0,
+            work_of_immovable_bodies,
+            elastic_energy,
+            tangential_elastic_energy: 0.0,
+        }
+    }
 }
 
 impl Model<SIZE> for NormalContact<'_> {
@@ -129,54 +176,5 @@ impl ContactModel<SIZE> for NormalContact<'_> {
     fn snapshot(&self, t: f64, y: &State<SIZE>) -> Snapshot {
         let elastic_energy = self.law.elastic_energy(y[index::PENETRATION] * self.scales.length);
         self.snapshot_with(t, y, self.force(y) * self.scales.force, elastic_energy)
-    }
-}
-
-impl NormalContact<'_> {
-    /// [`ContactModel::snapshot`] with the contact force (N) and the elastic energy (J) already known: the fast
-    /// path has them from its own variables, without the law's powers.
-    pub fn snapshot_with(&self, t: f64, y: &State<SIZE>, normal_force: f64, elastic_energy: f64) -> Snapshot {
-        let s = &self.scales;
-        let setup = self.setup;
-        let n = setup.normal;
-        let [a, b] = self.bodies;
-        let time = t * s.time;
-        let penetration = y[index::PENETRATION] * s.length;
-        let impulse = y[index::IMPULSE] * s.impulse;
-        // The force moves the bodies apart from their free flight by (v0 t - d) along the normal, shared in the
-        // ratio of the inverse masses (m*/m_i).
-        let pushed = n * (setup.approach_speed * time - penetration);
-        let share = |body: &Body| setup.effective_mass * body.inverse_mass();
-        let positions = [
-            setup.positions[0] + a.velocity * time - pushed * share(a),
-            setup.positions[1] + b.velocity * time + pushed * share(b),
-        ];
-        // Work by an immovable body: minus the work the contact force does on it (its velocity is constant).
-        let work_of_immovable_bodies = if b.is_immovable() {
-            -impulse * b.velocity.dot(&n)
-        } else if a.is_immovable() {
-            impulse * a.velocity.dot(&n)
-        } else {
-            0.0
-        };
-        Snapshot {
-            time,
-            penetration,
-            rate: y[index::RATE] * s.speed,
-            normal_force,
-            normal: n,
-            tangential_force: nalgebra::Vector3::zeros(),
-            slip: setup.initial_slip,
-            velocities: after_normal_impulse(self.bodies, &n, impulse),
-            spins: [a.angular_velocity, b.angular_velocity],
-            positions,
-            normal_impulse: impulse,
-            normal_work: y[index::WORK] * s.energy,
-            dissipated_normal: y[index::DISSIPATED] * s.energy * self.dissipation_scale,
-            tangential_work: 0.0,
-            work_of_immovable_bodies,
-            elastic_energy,
-            tangential_elastic_energy: 0.0,
-        }
     }
 }

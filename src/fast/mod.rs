@@ -625,14 +625,14 @@ impl<'a> Run<'a> {
                     let values = |at: [f64; 2]| if from == 0.0 { probed } else { taylor::values(c, at) };
                     taylor::first_fall(values, |s| value_slope(c, s), from, h, start)
                 };
-                let (middle, end) = (probe.middle, probe.state);
+                let (middle, full) = (probe.middle, probe.state);
                 // Maximum compression, then (only after it) the zero of w, then the force's zero before that.
-                let turn = if compressing { fall(rate, 0.0, self.state.rate, [middle[1], end.rate]) } else { None };
+                let turn = if compressing { fall(rate, 0.0, self.state.rate, [middle[1], full.rate]) } else { None };
                 let restitution_from = if compressing { turn } else { Some(0.0) };
                 // (At the step's start, w's value is its first coefficient.)
                 let zero = restitution_from.and_then(|a| {
                     let start = if a == 0.0 { w[0] } else { taylor::value(w, a) };
-                    fall(w, a, start, [middle[0], end.w])
+                    fall(w, a, start, [middle[0], full.w])
                 });
                 if timed && from_zero && zero.is_some() {
                     // The whole contact in one step: the time rule about first contact would have to reach the
@@ -732,7 +732,7 @@ impl<'a> Run<'a> {
                     h = 0.5 * reach;
                     continue;
                 };
-                break Step { end, dt, turn, peak, zero, force_zero, probe: probe.state };
+                break Step { end, dt, turn, peak, zero, force_zero, probe: full };
             };
             let now = self.time();
             if let Some((at, time)) = step.peak {

@@ -212,7 +212,11 @@ pub fn results(report: &Report) -> [Cell; RESULT_COLUMNS.len()] {
     let c = &report.contact;
     let law = &report.law;
     let number = Cell::Number;
-    let central: [Cell; 27] = [
+    // The columns of every impact, then the oblique section's: their counts add up to the header's, or this does
+    // not compile.
+    const CENTRAL: usize = 27;
+    const OBLIQUE: usize = RESULT_COLUMNS.len() - CENTRAL;
+    let central: [Cell; CENTRAL] = [
         number(report.approach_speed),
         number(report.effective_mass),
         number(law.stiffness),
@@ -245,7 +249,7 @@ pub fn results(report: &Report) -> [Cell; RESULT_COLUMNS.len()] {
     let rigid = oblique.and_then(|o| o.rigid_body.as_ref());
     let size = |v: &[f64; 3]| (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
     let spin = |i: usize| report.bodies[i].angular_velocity_after.as_ref().map(size);
-    let turned: [Cell; 13] = [
+    let turned: [Cell; OBLIQUE] = [
         oblique.map(|o| o.incidence_from_normal_deg).into(),
         oblique.and_then(|o| o.rebound_from_normal_deg).into(),
         oblique.and_then(|o| o.tangential_restitution_centre).into(),
@@ -262,7 +266,7 @@ pub fn results(report: &Report) -> [Cell; RESULT_COLUMNS.len()] {
     ];
     // (On the stack: a row's cells allocate nothing until the chosen ones are picked.)
     let mut cells = [Cell::Empty; RESULT_COLUMNS.len()];
-    let (first, rest) = cells.split_at_mut(central.len());
+    let (first, rest) = cells.split_at_mut(CENTRAL);
     first.copy_from_slice(&central);
     rest.copy_from_slice(&turned);
     cells
