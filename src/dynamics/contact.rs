@@ -221,10 +221,13 @@ impl Tangential {
     }
 
     /// The mode at first contact (T = 0, d = 0): sliding when the spring would outgrow the Coulomb cap from the
-    /// start. Both grow from zero; their ratio tends to a limit, read at a tiny penetration `probe` (scaled) from the
-    /// leading terms: a spring loaded at the initial slip over the time the penetration took, against mu F(probe).
-    pub fn initial_mode(&self, slip: f64, rate: f64, probe: f64, normal_force: f64) -> Mode {
-        if slip == 0.0 {
+    /// start. Where the normal force at first contact, `contact_force` (scaled, at d = 0 and the approach rate), is
+    /// compressive — Kelvin–Voigt's jump to c v0 — the cap starts above the unloaded spring: sticking, until the
+    /// spring reaches the cap (an event). Otherwise both grow from zero; their ratio tends to a limit, read at a
+    /// tiny penetration `probe` (scaled) from the leading terms: a spring loaded at the initial slip over the time
+    /// the penetration took, against mu F(probe) (`normal_force`).
+    pub fn initial_mode(&self, slip: f64, rate: f64, probe: f64, contact_force: f64, normal_force: f64) -> Mode {
+        if slip == 0.0 || (self.friction > 0.0 && contact_force > 0.0) {
             return Mode::Stick;
         }
         // d = rate t and kt = k d^a give |T| = k d^(a+1) slip / ((a + 1) rate).

@@ -226,8 +226,9 @@ impl ContactModel<SIZE> for PairContact<'_> {
         if let Some(t) = &self.tangential {
             let slip = self.setup.initial_slip.norm() / self.scales.speed;
             let s = &self.scales;
+            let contact_force = self.law.force(0.0, s.speed) / s.force;
             let probe_force = self.law.force(PROBE * s.length, s.speed) / s.force;
-            set_mode(&mut y, t.initial_mode(slip, 1.0, PROBE, probe_force));
+            set_mode(&mut y, t.initial_mode(slip, 1.0, PROBE, contact_force, probe_force));
         }
         y
     }
