@@ -344,22 +344,31 @@ impl Regularised {
                         0 => w0 * r0,
                         1 => taylor::mul_add(w0, rk, wk * r0),
                         2 => taylor::mul_add(w0, rk, taylor::mul_add(wk, r0, e.w[1] * e.rate[1])),
-                        _ => {
+                        3 | 4 => {
                             let inner = taylor::dot(&e.w[2..k - 1], &e.reversed[top + 2 - k..top - 1]);
+                            let near =
+                                taylor::mul_add(e.w[1], e.rate[k - 1], taylor::mul_add(e.w[k - 1], e.rate[1], inner));
+                            taylor::mul_add(w0, rk, taylor::mul_add(wk, r0, near))
+                        }
+                        _ => {
+                            let inner = taylor::dot(&e.w[3..k - 2], &e.reversed[top + 3 - k..top - 2]);
+                            let inner =
+                                taylor::mul_add(e.w[2], e.rate[k - 2], taylor::mul_add(e.w[k - 2], e.rate[2], inner));
                             let near =
                                 taylor::mul_add(e.w[1], e.rate[k - 1], taylor::mul_add(e.w[k - 1], e.rate[1], inner));
                             taylor::mul_add(w0, rk, taylor::mul_add(wk, r0, near))
                         }
                     };
                     e.product[k] = product;
-                    let force = taylor::mul_add(x, product, wk);
                     if k == order {
-                        e.force_top = force;
+                        e.force_top = taylor::mul_add(x, product, wk);
                         break;
                     }
                     let inverse = INVERSE[k + 1];
-                    let next = -force * inverse;
-                    e.w[k + 1] = p * rk * inverse;
+                    // v_(k+1) = -(w_k + x P_k)/(k+1), as one fused step from P_k: the factors -x/(k+1) and
+                    // -w_k/(k+1) are formed off the critical path (w_k is known a coefficient ahead of P_k).
+                    let next = taylor::mul_add(-x * inverse, product, -wk * inverse);
+                    e.w[k + 1] = rk * (p * inverse);
                     e.rate[k + 1] = next;
                     e.reversed[top - k - 1] = next;
                     if DISSIPATION {
