@@ -292,7 +292,7 @@ fn kelvin_voigts_jump_makes_the_contact_stick_for_an_instant_then_slide_on_the_c
         let rate = vn / root * (-zeta * phase / root).exp() * (root * phase.cos() - zeta * phase.sin());
         let compressive = vn - rate;
         assert!(rate < 0.0 && relative(compressive, (1.0 + e) * vn) < 2.0 * zeta * zeta, "{angle}: {rate}");
-        // (The instant of sticking takes mu c vn stick / 2 off the friction impulse: below 1e-12 of it here.)
+        // (The instant of sticking takes about mu c vn stick / 2 off the friction impulse: 1e-10 of it here.)
         let after = report.bodies[0].velocity_after.unwrap();
         let spin = report.bodies[0].angular_velocity_after.unwrap();
         let (expected_vt, expected_spin) = (vt - mu * compressive, 2.5 * mu * compressive / r);

@@ -41,6 +41,21 @@ fn a_short_stress_run_passes_every_check() {
     }
 }
 
+/// Full-range scenes 633 and 3022 of seed 13: a damped Kelvin–Voigt sphere sliding on a moving wall, whose force
+/// jumps to c v0 at first contact. It sticks for an instant there (under a picosecond), so its regime reads
+/// "sticking", yet it must still be checked against rigid-body sliding — the check that found it once starting to
+/// slide with an unloaded spring, 3.8e-9 and 3e-8 of v0 short of it.
+#[test]
+fn a_kelvin_voigt_contact_sliding_after_its_first_instant_is_checked_against_rigid_body_theory() {
+    for case in [633, 3022] {
+        let summary = stress::run(13, case, 1, false, &|| {});
+        assert_eq!(summary.failures, 0, "case {case}:\n{}", summary.failed.join("\n"));
+        for quantity in ["rigid_body.velocity_after", "rigid_body.angular_velocity_after"] {
+            assert!(summary.worst.contains_key(quantity), "case {case}: {quantity} not checked");
+        }
+    }
+}
+
 #[test]
 fn the_checks_catch_a_wrong_energy_a_lost_momentum_and_a_nan() {
     // A passing report, then the same report with one number spoiled: each spoiling must be reported.

@@ -80,7 +80,7 @@ fn legendre_rule(m: usize, nodes: &mut [f64], weights: &mut [f64]) {
 /// `xi` (in half-interval units, from the interval's centre; `xi > 1`) on the real axis: the error of the
 /// `m`-node rule is about `ρ^(-2m)`, `ρ = xi + sqrt(xi² - 1)`, so `m = (ln(1/eps) + margin)/(2 ln ρ)`;
 /// `digits` is `ln(1/eps) + margin`, from [`node_digits`] (computed once per integration, not per piece).
-/// `ln ρ` is taken by [`rough_log2`] (to 5e-4: a node count needs no more).
+/// `ln ρ` is taken by [`rough_log2`] (to 5.1e-4: a node count needs no more; the callers keep `ξ >= 2`, `ln ρ >= 1.3`).
 pub fn nodes_needed(xi: f64, digits: f64) -> usize {
     if xi.is_infinite() {
         return 1;

@@ -301,9 +301,11 @@ impl Regularised {
     /// [`Regularised::expand`].
     ///
     /// The recursion's critical path runs through `P = w v`: each `v_(k+1)` waits for `P_k = Σ w_j v_(k-j)`. Its
-    /// four outer terms (`j = 0, 1, k-1, k`, which hold the newest coefficients) are fused multiply-adds on values
-    /// in hand; the inner ones (`2 <= j <= k-2`, coefficients at least two steps old) a vectorised dot product
-    /// against `v` reversed, which the processor forms while the previous coefficients are still being computed.
+    /// outer terms (`j = 0, 1, 2, k-2, k-1, k`, which hold the newest coefficients; only `0, 1, k-1, k` for
+    /// `k <= 4`) are fused multiply-adds on values in hand; the inner ones (`3 <= j <= k-3`, coefficients at least
+    /// three steps old) a vectorised dot product against `v` reversed, which the processor forms while the
+    /// previous coefficients are still being computed (from coefficients two steps old, its loads sometimes had
+    /// to wait for the stores of the step before).
     /// (Summing the pairs ahead into the later coefficients instead, as the dissipation does, makes each step
     /// re-load what the previous one just stored, a vector load the processor cannot forward from the store: 7 %
     /// slower for the motion alone.) The dissipation's `P v` (resp. `v²`) is off the critical path: its pairs are
