@@ -216,6 +216,9 @@ fn run<const N: usize, M: ContactModel<N>>(
     let compressed = phases.run(&mut stepper, model, 0.0, start, &compression, frictional)?;
     if compressed.ending != Ending::Event(0) {
         return Err(SimulationError::Compression(match compressed.ending {
+            Ending::GaveUp(reason) if frictional => {
+                format!("{reason} ({})", crate::report::stiffness_causes(true))
+            }
             Ending::GaveUp(reason) => reason,
             _ => format!("no maximum compression within {TIME_LIMIT} elastic time units"),
         }));

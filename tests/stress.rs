@@ -24,6 +24,23 @@ fn creeping_restitution_ends_with_a_note_within_the_step_budget() {
 }
 
 #[test]
+fn a_tangential_spring_far_stiffer_than_the_normal_contact_is_named_when_the_budget_runs_out() {
+    // Two free spheres sliding across each other, the tangential spring 1000 times the normal one (Mindlin's is
+    // about as stiff): the work grows with kt (236 steps at kt = 1e6, 23,457 at 1e8), and at 1e9 the compression
+    // outruns the step budget. The message says so and names the likely causes, not heavy damping alone (e = 0.8).
+    let text = "[[bodies]]\nradius = 0.01\nmass = 0.02\nvelocity = [3.0, 8.0, 0.0]\nangular_velocity = [0.0, 0.0, 50.0]\n\n\
+                [[bodies]]\nradius = 0.015\nmass = 0.05\nvelocity = [-1.0, -0.5, 0.3]\n\n\
+                [contact]\nlaw = \"kelvin-voigt\"\nstiffness = 1e6\nexponent = 1.0\nrestitution = 0.8\n\
+                friction = 0.05\ntangential_stiffness = 1e9\nnormal = [1.0, 0.0, 0.0]\n";
+    let scene = impact::scene::Scene::parse(text, std::path::Path::new("stiff.toml")).expect("a valid scene");
+    let Err(error) = impact::impact::simulate(&scene, impact::history::Recording::Off) else {
+        panic!("the budget should run out");
+    };
+    let message = error.to_string();
+    assert!(message.contains("budget") && message.contains("tangential spring"), "{message}");
+}
+
+#[test]
 fn the_fast_path_follows_a_creeping_restitution_to_its_end() {
     // x = 1e6: 1 - e x = (1 + x) exp(-x (1 + e)) is below 1e-400000, so e = 1/x to double precision.
     let report = on_wall(1.0, 1.0, "law = \"hunt-crossley\"\ndamping = 1e6\nstiffness = 1e6");

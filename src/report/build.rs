@@ -79,7 +79,7 @@ pub fn build(scene: &Scene, setup: &Setup, outcome: &Outcome, detail: ReferenceD
     let fixed_normal = setup.motion == Motion::Normal || a.is_flat() || b.is_flat();
     let mut notes = Vec::new();
     if !done {
-        notes.push(outcome.note.clone().unwrap_or_else(|| stuck_note(outcome)));
+        notes.push(outcome.note.clone().unwrap_or_else(|| stuck_note(outcome, scene.contact.friction > 0.0)));
     }
     let oblique = oblique(scene, setup, outcome, e_velocity, friction_work);
     if let Some(turn) = oblique.as_ref().and_then(|o| o.normal_turn_deg).filter(|_| !fixed_normal) {
@@ -236,21 +236,31 @@ fn angle_from_tangent(velocity: &Vector3<f64>, normal: &Vector3<f64>) -> Option<
     (velocity.norm() > 0.0).then(|| along.atan2(across).to_degrees())
 }
 
-fn stuck_note(outcome: &Outcome) -> String {
+/// Why the bodies did not part. `frictional`: the contact has a tangential spring, whose stiffness can also make
+/// the equations stiff.
+fn stuck_note(outcome: &Outcome, frictional: bool) -> String {
     let end = &outcome.end;
     let how = match &outcome.ending {
         Ending::Event(0) => "the penetration returned to zero with no separation speed".to_string(),
         Ending::Event(_) => "the relative motion died out".to_string(),
         Ending::TimeLimit => format!("the time limit ({TIME_LIMIT} elastic time units) was reached"),
-        Ending::GaveUp(reason) => format!(
-            "the integration stopped ({reason}; a creeping, stiff restitution is typical of very heavy damping)"
-        ),
+        Ending::GaveUp(reason) => format!("the integration stopped ({reason}; {})", stiffness_causes(frictional)),
     };
     format!(
         "the bodies did not separate: {how} {:.6e} s after first contact with penetration {:.6e} m and \
          penetration rate {:.6e} m/s still in contact",
         end.time, end.penetration, end.rate
     )
+}
+
+/// What typically makes a contact's equations too stiff for the step budget.
+pub fn stiffness_causes(frictional: bool) -> &'static str {
+    if frictional {
+        "stiff equations are typical of very heavy damping and of a tangential spring far stiffer than the normal \
+         contact"
+    } else {
+        "a creeping, stiff restitution is typical of very heavy damping"
+    }
 }
 
 fn instantaneous_report(ideal: &Instantaneous, simulated: Option<&[Vector3<f64>; 2]>) -> InstantaneousReport {

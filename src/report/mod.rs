@@ -3,7 +3,7 @@
 
 mod build;
 
-pub use build::build;
+pub use build::{build, stiffness_causes};
 
 use serde::{Serialize, Serializer};
 
