@@ -38,6 +38,16 @@ pub enum SimulationError {
     Compression(String),
 }
 
+/// What typically makes a contact's equations too stiff for the step budget.
+pub fn stiffness_causes(frictional: bool) -> &'static str {
+    if frictional {
+        "stiff equations are typical of very heavy damping and of a tangential spring far stiffer than the normal \
+         contact"
+    } else {
+        "a creeping, stiff restitution is typical of very heavy damping"
+    }
+}
+
 /// Scaled time after which a contact that has not separated is declared stuck (elastic contacts last about 3).
 pub const TIME_LIMIT: f64 = 1e4;
 /// Scaled size of |d| + |d'| below which the relative motion counts as died out.
@@ -217,7 +227,7 @@ fn run<const N: usize, M: ContactModel<N>>(
     if compressed.ending != Ending::Event(0) {
         return Err(SimulationError::Compression(match compressed.ending {
             Ending::GaveUp(reason) if frictional => {
-                format!("{reason} ({})", crate::report::stiffness_causes(true))
+                format!("{reason} ({})", stiffness_causes(true))
             }
             Ending::GaveUp(reason) => reason,
             _ => format!("no maximum compression within {TIME_LIMIT} elastic time units"),

@@ -591,10 +591,7 @@ fn expected_contact(scene: &Scene, report: &Report) -> Option<(f64, f64)> {
             let x = law.damping * report.approach_speed;
             (x <= 1e3).then(|| reference::hysteresis_contact(x, law.exponent))
         }
-        Family::Linear => {
-            let zeta = law.damping / (2.0 * (law.stiffness * report.effective_mass).sqrt());
-            reference::kelvin_voigt(zeta, separation)
-        }
+        Family::Linear => reference::kelvin_voigt(kelvin_voigt_zeta(report), separation),
         Family::Tsuji => reference::tsuji(law.damping, separation),
         Family::Elastic => Some(reference::hertz_elastic(law.exponent)),
         Family::Viscoelastic => None,
@@ -817,11 +814,18 @@ fn slides_as_rigid_bodies(scene: &Scene, report: &Report, oblique: &crate::repor
     if scene.contact.law.family() != Family::Linear || oblique.regime != "sticking" {
         return false;
     }
-    let (Some(stick), mu) = (oblique.stick_duration, oblique.friction) else { return false };
+    let Some(stick) = oblique.stick_duration else { return false };
+    let mu = oblique.friction;
     let missed = mu * law.damping * stick / report.effective_mass;
-    let zeta = law.damping / (2.0 * (law.stiffness * report.effective_mass).sqrt());
+    let zeta = kelvin_voigt_zeta(report);
     let tensile = if scene.contact.separation == crate::law::Separation::Force { 0.0 } else { 2.0 * mu * zeta * zeta };
     missed <= 1e-11 && tensile <= 1e-11
+}
+
+/// Kelvin–Voigt's damping ratio `c / (2 sqrt(k m*))` from the report's law and effective mass.
+fn kelvin_voigt_zeta(report: &Report) -> f64 {
+    let law = &report.law;
+    law.damping / (2.0 * (law.stiffness * report.effective_mass).sqrt())
 }
 
 /// The comment in which the generator writes the flight time to first contact.
@@ -849,10 +853,7 @@ pub fn exact_energies(scene: &Scene, report: &Report) -> Option<(f64, f64)> {
             let loss = reference::hunt_crossley_loss(x);
             (0.5 * loss * (2.0 - loss), 0.0)
         }
-        Family::Linear => {
-            let zeta = law.damping / (2.0 * (law.stiffness * report.effective_mass).sqrt());
-            oscillator_energies(zeta, 1.0, force)?
-        }
+        Family::Linear => oscillator_energies(kelvin_voigt_zeta(report), 1.0, force)?,
         Family::Tsuji => oscillator_energies(law.damping / 2.0, 1.25, force)?,
         Family::Viscoelastic => return None,
     };

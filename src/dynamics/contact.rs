@@ -227,7 +227,7 @@ impl Tangential {
     /// tiny penetration `probe` (scaled) from the leading terms: a spring loaded at the initial slip over the time
     /// the penetration took, against mu F(probe) (`normal_force`).
     pub fn initial_mode(&self, slip: f64, rate: f64, probe: f64, contact_force: f64, normal_force: f64) -> Mode {
-        if slip == 0.0 || (self.friction > 0.0 && contact_force > 0.0) {
+        if slip == 0.0 || contact_force > 0.0 {
             return Mode::Stick;
         }
         // d = rate t and kt = k d^a give |T| = k d^(a+1) slip / ((a + 1) rate).

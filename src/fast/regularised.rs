@@ -346,16 +346,13 @@ impl Regularised {
                         0 => w0 * r0,
                         1 => taylor::mul_add(w0, rk, wk * r0),
                         2 => taylor::mul_add(w0, rk, taylor::mul_add(wk, r0, e.w[1] * e.rate[1])),
-                        3 | 4 => {
-                            let inner = taylor::dot(&e.w[2..k - 1], &e.reversed[top + 2 - k..top - 1]);
-                            let near =
-                                taylor::mul_add(e.w[1], e.rate[k - 1], taylor::mul_add(e.w[k - 1], e.rate[1], inner));
-                            taylor::mul_add(w0, rk, taylor::mul_add(wk, r0, near))
-                        }
                         _ => {
-                            let inner = taylor::dot(&e.w[3..k - 2], &e.reversed[top + 3 - k..top - 2]);
-                            let inner =
-                                taylor::mul_add(e.w[2], e.rate[k - 2], taylor::mul_add(e.w[k - 2], e.rate[2], inner));
+                            let inner = if k <= 4 {
+                                taylor::dot(&e.w[2..k - 1], &e.reversed[top + 2 - k..top - 1])
+                            } else {
+                                let old = taylor::dot(&e.w[3..k - 2], &e.reversed[top + 3 - k..top - 2]);
+                                taylor::mul_add(e.w[2], e.rate[k - 2], taylor::mul_add(e.w[k - 2], e.rate[2], old))
+                            };
                             let near =
                                 taylor::mul_add(e.w[1], e.rate[k - 1], taylor::mul_add(e.w[k - 1], e.rate[1], inner));
                             taylor::mul_add(w0, rk, taylor::mul_add(wk, r0, near))

@@ -7,7 +7,7 @@ use super::{
 };
 use crate::accuracy::{self, Measured, ReferenceDetail};
 use crate::body::Body;
-use crate::impact::{Outcome, TIME_LIMIT};
+use crate::impact::{Outcome, TIME_LIMIT, stiffness_causes};
 use crate::instantaneous::{Instantaneous, direct_impact, rigid_body_impact};
 use crate::integrate::Ending;
 use crate::scene::{DampingSpec, Scene};
@@ -251,16 +251,6 @@ fn stuck_note(outcome: &Outcome, frictional: bool) -> String {
          penetration rate {:.6e} m/s still in contact",
         end.time, end.penetration, end.rate
     )
-}
-
-/// What typically makes a contact's equations too stiff for the step budget.
-pub fn stiffness_causes(frictional: bool) -> &'static str {
-    if frictional {
-        "stiff equations are typical of very heavy damping and of a tangential spring far stiffer than the normal \
-         contact"
-    } else {
-        "a creeping, stiff restitution is typical of very heavy damping"
-    }
 }
 
 fn instantaneous_report(ideal: &Instantaneous, simulated: Option<&[Vector3<f64>; 2]>) -> InstantaneousReport {

@@ -3,7 +3,7 @@
 
 mod build;
 
-pub use build::{build, stiffness_causes};
+pub use build::build;
 
 use serde::{Serialize, Serializer};
 

@@ -21,7 +21,7 @@ use crate::impact::{Options, simulate_prepared};
 use crate::law::LawKind;
 use crate::output::text::{MESSAGE_CHARS, cut};
 use crate::scene::{Scene, SceneError};
-use crate::setup::Setup;
+use crate::setup::{Setup, SetupError};
 use grid::Grid;
 use rayon::prelude::*;
 use shard::Shard;
@@ -242,7 +242,7 @@ impl Sweep {
             }
             None => self.scene_text(index).and_then(|text| {
                 let scene = Scene::parse(&text, &self.path).map_err(scene_message)?;
-                let setup = Setup::new(&scene).map_err(|error| format!("{}: {}", error.key, error.message))?;
+                let setup = Setup::new(&scene).map_err(setup_message)?;
                 cells_of(&scene, &setup)
             }),
         };
@@ -269,7 +269,7 @@ impl Sweep {
             axis.key.apply(scene, value).map_err(|why| format!("{}: {why}", axis.key))?;
         }
         scene.resolve();
-        scene.check().map_err(|error| format!("{}: {}", error.key, error.message))
+        scene.check().map_err(setup_message)
     }
 
     /// The global indices of the rows of `shard` (all rows without one), in increasing order.
@@ -369,6 +369,11 @@ impl Sweep {
 }
 
 /// A point's scene error without file and line (they would point into the edited text, not the user's file).
+/// A setup's error as a row's error cell: the key, then what is wrong.
+fn setup_message(error: SetupError) -> String {
+    format!("{}: {}", error.key, error.message)
+}
+
 fn scene_message(error: SceneError) -> String {
     match error.key {
         Some(key) => format!("{key}: {}", error.message),
