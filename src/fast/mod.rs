@@ -4,13 +4,16 @@
 //! * **Equations** (`regularised.rs`). With `w = δ^((n+1)/2)` and `dτ = δ^((n-1)/2) dt` every covered law
 //!   becomes a polynomial system in `(w, v)`, smooth through `δ = 0` — one system for every `n`, no fractional
 //!   power per step. Kelvin–Voigt and Tsuji become linear.
-//! * **Steps** (`taylor.rs`). Each step expands `w`, `v` and the dissipation in a Taylor series by the standard
-//!   recursions (the product `w v` and `w v²` by Cauchy sums), of order `K = ⌈ln(1/eps)/2⌉ + 6` (13, 18, 21 and
+//! * **Steps** (`taylor.rs`). Each step expands `w` and `v` in a Taylor series by the standard recursions (the
+//!   product `w v` by Cauchy sums), of order `K = ⌈ln(1/eps)/2⌉ + 6` (13, 18, 21 and
 //!   26 at a per-step eps of 1e-6, 1e-10, 1e-13 and the floor 1e-17; measured best, since a step's fixed work
 //!   favours long steps). Its size comes from the last two coefficients: `h = ρ eps^(1/(K+1))`, `ρ` the smaller of
 //!   `|c_K|^(-1/K)`, `|c_(K-1)|^(-1/(K-1))` relative to the state, so that the first omitted term is `eps`
 //!   (the per-step tolerance, a tenth of the requested one). In restitution the rate is also measured against
-//!   itself, so that a small e keeps its relative accuracy.
+//!   itself, so that a small e keeps its relative accuracy. The impulse and the work follow from the rate
+//!   (momentum and energy: `J + v` and `W + v²/2` are constant); the dissipation is a Gauss–Legendre integral of
+//!   its integrand on the step's polynomials, with the few nodes the step's distance to its singularities asks
+//!   for ([`Run::dissipated`]).
 //! * **Events**, located on the step's polynomials (safeguarded Newton), never at the first step past them:
 //!   maximum compression `v = 0` and the force peak `dF/dτ = 0` inside the step; the separation `w = 0`, or for
 //!   the laws that turn tensile under `separation = "force"` the zero of the force's continued expression
@@ -57,14 +60,14 @@ pub struct Request {
 /// What an integration computes besides the motion, the impulses and the work (which give e by all three
 /// definitions, `V0`, the maximum penetration and the kinetic energies). A quantity left out costs nothing and is
 /// NaN in the [`Outcome`]: a caller that asks for e alone (a sweep's `--columns`) skips the time quadrature and
-/// the step limits it needs, the force peak's location and the dissipation's series.
+/// the step limits it needs, the force peak's location and the dissipation's quadrature.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Quantities {
     /// Physical times: of maximum compression, of separation, of the force peak.
     pub time: bool,
     /// The largest compressive force (its time also needs `time`).
     pub peak: bool,
-    /// The energy dissipated by the damping (its own series, which then also takes part in the step size).
+    /// The energy dissipated by the damping (a Gauss–Legendre integral over each step).
     pub dissipation: bool,
 }
 
@@ -332,6 +335,13 @@ struct Run<'a> {
     /// `Q` of the current step's [`TimeRule::FromZero`] or [`TimeRule::ToZero`].
     end_factor: taylor::Coefficients,
     steps: u64,
+    /// Gauss–Legendre nodes for the dissipation over a step or a piece of it ([`Run::dissipated`]). A step is at
+    /// most `eps_root` times the radius of convergence `ρ` of its series, so the integrand is analytic within
+    /// `ρ >= h/eps_root` of the step's start: the Bernstein ellipse through `ξ = 1/eps_root` half-lengths lies well
+    /// inside (the disc's nearest point is at `ξ = 2/eps_root - 1`; the smaller ellipse keeps the integrand
+    /// bounded on it). One node more than that ellipse asks for ([`nodes_needed`]): 8 nodes at a per-step
+    /// tolerance of 1e-10, 11 at 1e-17.
+    dissipation_nodes: usize,
     /// Largest compressive force so far and its time.
     peak: (f64, f64),
     /// Untimed, an estimate of the physical time elapsed (in `T`; see [`Run::untimed_span`]).
@@ -341,12 +351,15 @@ struct Run<'a> {
 impl<'a> Run<'a> {
     fn new(system: Regularised, eps: f64, quantities: Quantities, workspace: &'a mut Workspace) -> Run<'a> {
         let order = taylor::order_for(eps);
+        let eps_root = eps.powf(1.0 / (order + 1) as f64);
+        let node_digits = node_digits(eps);
+        let dissipation_nodes = nodes_needed(1.0 / eps_root, node_digits) + 1;
         Run {
             system,
             quantities,
             order,
-            eps_root: eps.powf(1.0 / (order + 1) as f64),
-            node_digits: node_digits(eps),
+            eps_root,
+            node_digits,
             state: State::FIRST_CONTACT,
             tau: 0.0,
             time: 0.0,
@@ -356,6 +369,7 @@ impl<'a> Run<'a> {
             end_factor: [0.0; taylor::MAX_ORDER + 1],
             restituting: false,
             steps: 0,
+            dissipation_nodes,
             peak: (0.0, 0.0),
             untimed: 0.0,
         }
@@ -383,20 +397,14 @@ impl<'a> Run<'a> {
 
     /// Expands the solution at the current state; returns the step size its coefficients allow.
     fn expand(&mut self) -> f64 {
-        self.system.expand(&self.state, self.order, self.quantities.dissipation, self.expansion);
+        self.system.expand(&self.state, self.order, self.expansion);
         self.steps += 1;
         let e = &self.expansion;
         let k = self.order;
         let size = self.state.w.abs().max(self.state.rate.abs());
-        // The dissipation's series converges more slowly than w's and v's when the solution is entire (its
-        // integrand, a product, doubles and triples the frequency), so it takes part in the step size. It is
-        // weighed as D̃ (relative to itself: D = x D̃ is then accurate relative to D for light damping) or as D
-        // itself when the damping x > 1 multiplies D̃'s error. (The work is the exact integral of the step's
-        // polynomials: as accurate as they are. A dissipation not computed is a zero series: it sets nothing.)
-        let weight = self.system.damping.max(1.0);
-        let norm = |i: usize, rate_size: f64| {
-            (e.w[i].abs().max(weight * e.dissipation[i].abs()) / size).max(e.rate[i].abs() / rate_size)
-        };
+        // (The impulse, the work and the dissipation are integrals of the step's polynomials: as accurate as they
+        // are, so that w and v alone set the step.)
+        let norm = |i: usize, rate_size: f64| (e.w[i].abs() / size).max(e.rate[i].abs() / rate_size);
         let h = taylor::step_size(norm(k - 1, size), norm(k, size), k, self.eps_root);
         if !self.restituting {
             return h;
@@ -533,6 +541,15 @@ impl<'a> Run<'a> {
         self.system.peak_function(w, dw, v, dv)
     }
 
+    /// `D̃` gained from offset `a` to `b` of the step: zero unless the dissipation is asked for and the law damps.
+    fn dissipated(&self, a: f64, b: f64) -> f64 {
+        if self.quantities.dissipation && self.system.damping > 0.0 {
+            self.expansion.dissipation_between(self.system.form, a, b, self.dissipation_nodes)
+        } else {
+            0.0
+        }
+    }
+
     /// Adds `dt` to the physical time (Neumaier summation: the time is a sum of a few to thousands of pieces).
     fn advance_time(&mut self, dt: f64) {
         let sum = self.time + dt;
@@ -614,6 +631,10 @@ impl<'a> Run<'a> {
                 h = h.min(self.left_limit());
             }
             let mut shrinks = 0;
+            // What an earlier, longer try of this step found (the step only ever shrinks): its events, and the
+            // next zero of w beyond it (see the loop).
+            let mut found: Option<(Option<f64>, Option<f64>)> = None;
+            let mut known_right = None;
             let step = loop {
                 let (w, rate) = (self.w(), self.rate());
                 // The state at the step's end and w, v at its middle, in one pass: the samples of the events'
@@ -626,14 +647,25 @@ impl<'a> Run<'a> {
                     taylor::first_fall(values, |s| value_slope(c, s), from, h, start)
                 };
                 let (middle, full) = (probe.middle, probe.state);
-                // Maximum compression, then (only after it) the zero of w, then the force's zero before that.
-                let turn = if compressing { fall(rate, 0.0, self.state.rate, [middle[1], full.rate]) } else { None };
+                // Maximum compression, then (only after it) the zero of w, then the force's zero before that. After
+                // a shrink, an event the longer try found is the same event if the shorter step still reaches it and
+                // none otherwise, and no event in the longer step means none in the shorter: not searched again.
+                let (turn, zero) = match found {
+                    Some((turn, zero)) => (turn.filter(|&at| at <= h), zero.filter(|&at| at <= h)),
+                    None => {
+                        let turn =
+                            if compressing { fall(rate, 0.0, self.state.rate, [middle[1], full.rate]) } else { None };
+                        let restitution_from = if compressing { turn } else { Some(0.0) };
+                        // (At the step's start, w's value is its first coefficient.)
+                        let zero = restitution_from.and_then(|a| {
+                            let start = if a == 0.0 { w[0] } else { taylor::value(w, a) };
+                            fall(w, a, start, [middle[0], full.w])
+                        });
+                        (turn, zero)
+                    }
+                };
+                found = Some((turn, zero));
                 let restitution_from = if compressing { turn } else { Some(0.0) };
-                // (At the step's start, w's value is its first coefficient.)
-                let zero = restitution_from.and_then(|a| {
-                    let start = if a == 0.0 { w[0] } else { taylor::value(w, a) };
-                    fall(w, a, start, [middle[0], full.w])
-                });
                 if timed && from_zero && zero.is_some() {
                     // The whole contact in one step: the time rule about first contact would have to reach the
                     // other zero of w. Two steps at least.
@@ -646,7 +678,8 @@ impl<'a> Run<'a> {
                     (None, Some(_)) if timed => {
                         // The next zero beyond the step: if near, end this step early enough for the Gauss rule
                         // (`ξ >= XI_MIN`); the next step reaches the zero with the Gauss–Jacobi rule.
-                        let right = self.next_zero(h, h);
+                        // (Once estimated, the same zero for a shorter try: no zero lies between the two ends.)
+                        let right = *known_right.get_or_insert_with(|| self.next_zero(h, h));
                         let limit = 2.0 * right / (XI_MIN + 1.0);
                         if limit < h {
                             self.shrink(&mut shrinks)?;
@@ -742,7 +775,8 @@ impl<'a> Run<'a> {
             }
             if let Some((at, time)) = step.turn {
                 // The event's definition: the rate is zero there (the polynomial leaves an ulp).
-                let state = State { rate: 0.0, ..self.expansion.state_at(at) };
+                let mut state = State { rate: 0.0, ..self.expansion.state_at(at) };
+                state.dissipation += self.dissipated(0.0, at);
                 let penetration = system.penetration(state.w);
                 let point = PhasePoint {
                     time: now + time,
@@ -766,10 +800,12 @@ impl<'a> Run<'a> {
                 }
                 // The restitution's integrals start from zero there, within this step.
                 let (impulse, work) = self.expansion.increments(at, step.end);
-                self.state = State { impulse, work, ..step.state_at_end(self.expansion) };
+                let dissipation = state.dissipation + self.dissipated(at, step.end);
+                self.state = State { impulse, work, dissipation, ..step.state_at_end(self.expansion) };
                 self.restituting = true;
             } else {
-                self.state = step.state_at_end(self.expansion);
+                let dissipation = self.state.dissipation + self.dissipated(0.0, step.end);
+                self.state = State { dissipation, ..step.state_at_end(self.expansion) };
             }
             if !timed {
                 let zero_at_an_end = from_zero || step.zero.is_some();
@@ -828,7 +864,7 @@ mod tests {
             ContactLaw { kind: LawKind::HuntCrossley, stiffness: 1.0, exponent: 1.5, damping: 0.5, tsuji_scale: 0.0 };
         let system = Regularised::new(&law, &Scales::new(1.0, 1.0, 1.5, 1.0)).unwrap();
         let mut e = Expansion::default();
-        system.expand(&State::FIRST_CONTACT, 20, true, &mut e);
+        system.expand(&State::FIRST_CONTACT, 20, &mut e);
         let q = &e.w[1..=20];
         let mut rules = JacobiRules::default();
         let (nodes, weights) = quadrature::gauss_legendre(24);

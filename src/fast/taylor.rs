@@ -173,32 +173,6 @@ pub fn dot(a: &[f64], b: &[f64]) -> f64 {
     ((sums[0] + sums[1]) + (sums[2] + sums[3])) + tail
 }
 
-/// Adds, once the coefficients `a_n` and `b_n` are known, their terms in the later coefficients of the Cauchy
-/// product `a b`: `a_n b_q + a_q b_n` to `pending[n + q]` for `1 <= q < n`, and `a_n b_n` to `pending[2n]`, up to
-/// `order`. The coefficient `m` of the product is then `pending[m] + a_m b_0 + a_0 b_m` (`a_0 b_0` for `m = 0`):
-/// the pairs with both indices below `m` were summed ahead, so the recursion waits only for the two newest
-/// terms, not for a whole dot product, before its next coefficient.
-#[inline(always)]
-pub fn add_pairs(pending: &mut Coefficients, a: &Coefficients, b: &Coefficients, n: usize, order: usize) {
-    if n == 0 || n >= order {
-        return;
-    }
-    let (a_n, b_n) = (a[n], b[n]);
-    let top = (n - 1).min(order - n);
-    for ((p, &a_q), &b_q) in pending[n + 1..=n + top].iter_mut().zip(&a[1..=top]).zip(&b[1..=top]) {
-        *p = mul_add(a_n, b_q, mul_add(a_q, b_n, *p));
-    }
-    if 2 * n <= order {
-        pending[2 * n] = mul_add(a_n, b_n, pending[2 * n]);
-    }
-}
-
-/// The coefficient `m` of the Cauchy product `a b`, with the pairs of lower indices in `pending[m]` ([`add_pairs`]).
-#[inline(always)]
-pub fn product_coefficient(pending: &Coefficients, a: &Coefficients, b: &Coefficients, m: usize) -> f64 {
-    if m == 0 { a[0] * b[0] } else { mul_add(a[0], b[m], mul_add(a[m], b[0], pending[m])) }
-}
-
 /// Factor applied to the step of [`step_size`] (1: the first omitted term equals the tolerance).
 const STEP_SAFETY: f64 = 1.0;
 
@@ -351,29 +325,6 @@ mod tests {
         let r = first_fall(cosines, f, 0.0, 5.0, 1.0).expect("a fall");
         assert!((r - std::f64::consts::FRAC_PI_2).abs() <= 4e-16);
         assert_eq!(first_fall(cosines, f, 0.0, 1.0, 1.0), None);
-    }
-
-    /// The Cauchy sums formed ahead equal the plain double sum `Σ_(j<=m) a_j b_(m-j)` at every order, with `a`
-    /// and `b` filled one coefficient at a time as in the recursion (a product with itself too).
-    #[test]
-    fn products_summed_ahead_equal_the_double_sum() {
-        let mut draw = crate::stress::Draw::new(1, 0);
-        let mut next = || draw.uniform(-1.0, 1.0);
-        for order in 0..=MAX_ORDER {
-            let (mut a, mut b) = ([0.0; MAX_ORDER + 1], [0.0; MAX_ORDER + 1]);
-            let (mut pending, mut pending_square) = ([0.0; MAX_ORDER + 1], [0.0; MAX_ORDER + 1]);
-            for m in 0..=order {
-                a[m] = next();
-                b[m] = next();
-                add_pairs(&mut pending, &a, &b, m, order);
-                add_pairs(&mut pending_square, &a, &a, m, order);
-                let (plain, square) = (0..=m).fold((0.0, 0.0), |(p, s), j| (p + a[j] * b[m - j], s + a[j] * a[m - j]));
-                let (got, got_square) =
-                    (product_coefficient(&pending, &a, &b, m), product_coefficient(&pending_square, &a, &a, m));
-                assert!((got - plain).abs() < 1e-14, "order {order}, coefficient {m}: {got} vs {plain}");
-                assert!((got_square - square).abs() < 1e-14, "order {order}, square {m}: {got_square} vs {square}");
-            }
-        }
     }
 
     #[test]
