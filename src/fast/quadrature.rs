@@ -366,7 +366,7 @@ fn lane_sum<const N: usize>(
     for (point, &s) in at.iter_mut().zip(nodes) {
         *point = start + span * s;
     }
-    let mut values = taylor::values(q, at);
+    let mut values = taylor::values_split(q, at);
     if values[..m].iter().any(|&v| v.is_nan() || v <= 0.0) {
         return None;
     }
@@ -378,7 +378,8 @@ fn lane_sum<const N: usize>(
     for (power, &v) in powers.iter_mut().zip(&values) {
         *power = negative_power(v, gamma);
     }
-    Some(powers.iter().zip(weights).fold(0.0, |acc, (p, w)| taylor::mul_add(*p, *w, acc)))
+    // (In four interleaved sums: the chain of m fused multiply-adds was a quarter of the rule's latency.)
+    Some(taylor::dot(&powers[..m], weights))
 }
 
 #[cfg(test)]

@@ -179,13 +179,13 @@ impl Expansion {
         for (point, &s) in at.iter_mut().zip(nodes) {
             *point = taylor::mul_add(half, s, centre);
         }
-        let rate = taylor::values(&self.rate[..=k], at);
-        let w = if form == Form::Hysteresis { taylor::values(&self.w[..=k], at) } else { [1.0; N] };
-        let mut sum = 0.0;
-        for i in 0..m {
-            sum = taylor::mul_add(weights[i], w[i] * rate[i] * rate[i], sum);
+        let rate = taylor::values_split(&self.rate[..=k], at);
+        let w = if form == Form::Hysteresis { taylor::values_split(&self.w[..=k], at) } else { [1.0; N] };
+        let mut integrand = [0.0; N];
+        for i in 0..N {
+            integrand[i] = w[i] * rate[i] * rate[i];
         }
-        half * sum
+        half * taylor::dot(&integrand[..m], weights)
     }
 }
 

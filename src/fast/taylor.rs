@@ -52,6 +52,28 @@ pub fn values<const N: usize>(c: &[f64], at: [f64; N]) -> [f64; N] {
     result
 }
 
+/// Values of the polynomial `c` at `N` points at once, each as `E(x²) + x O(x²)` from its even and odd
+/// coefficients: two independent Horner chains of half the length a point, so that the last value arrives after
+/// about half the latency of [`values`] (for the quadrature rules, where nothing else overlaps the chains).
+#[inline(always)]
+pub fn values_split<const N: usize>(c: &[f64], at: [f64; N]) -> [f64; N] {
+    let squares = at.map(|x| x * x);
+    let (pairs, top) = c.as_chunks::<2>();
+    let mut even = [top.first().copied().unwrap_or(0.0); N];
+    let mut odd = [0.0; N];
+    for pair in pairs.iter().rev() {
+        for i in 0..N {
+            even[i] = mul_add(even[i], squares[i], pair[0]);
+            odd[i] = mul_add(odd[i], squares[i], pair[1]);
+        }
+    }
+    let mut result = [0.0; N];
+    for i in 0..N {
+        result[i] = mul_add(at[i], odd[i], even[i]);
+    }
+    result
+}
+
 /// Value and first derivative of the polynomial `c` at `sigma`.
 #[inline]
 pub fn value_and_slope(c: &[f64], sigma: f64) -> (f64, f64) {
@@ -325,6 +347,23 @@ mod tests {
         let r = first_fall(cosines, f, 0.0, 5.0, 1.0).expect("a fall");
         assert!((r - std::f64::consts::FRAC_PI_2).abs() <= 4e-16);
         assert_eq!(first_fall(cosines, f, 0.0, 1.0, 1.0), None);
+    }
+
+    /// The even–odd evaluation agrees with Horner's to a few ulps of the terms' sizes, for every coefficient count
+    /// (odd and even) and points of both signs inside and at the radius of convergence.
+    #[test]
+    fn values_split_agree_with_horner() {
+        let mut draw = crate::stress::Draw::new(3, 0);
+        for len in 1..=MAX_ORDER + 1 {
+            let c: Vec<f64> = (0..len).map(|k| draw.uniform(-1.0, 1.0) * 0.7f64.powi(k as i32)).collect();
+            let at = [-1.4, -0.3, 0.0, 0.5, 1.0, 1.4, 0.01, -0.9];
+            let got = values_split(&c, at);
+            for (x, g) in at.into_iter().zip(got) {
+                let want = value(&c, x);
+                let scale: f64 = c.iter().enumerate().map(|(k, ck)| ck.abs() * x.abs().powi(k as i32)).sum();
+                assert!((g - want).abs() <= 8.0 * f64::EPSILON * scale, "{len} coefficients at {x}: {g} vs {want}");
+            }
+        }
     }
 
     #[test]
