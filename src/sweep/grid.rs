@@ -194,7 +194,7 @@ fn parse_range(spec: &str, range: &str, default: Spacing) -> Result<Values, Swee
 /// This is [`tidy_exactly`] (the correctly rounded 15-digit decimal, read back), found the quick way for all but a
 /// few values, since a million-point sweep computes a million of them: by scaling ([`tidy_by_scaling`]) where the
 /// scale is an exact power of ten and the processor has a fused multiply-add, else from the shortest digits, as
-/// follows. Let `S` be the shortest decimal that reads back as `x` (ryu's: of the shortest, the nearest `x`) and `u`
+/// follows. Let `S` be the shortest decimal that reads back as `x` (zmij's, as ryu's: of the shortest, the nearest `x`) and `u`
 /// the unit of `x`'s 15th significant digit. The decimals of `S`'s length that read back as `x` include `S`'s
 /// neighbours only if they are as near, so `x` lies within half a step of that length from `S`: within `0.05 u`
 /// when `S` has 16 digits, `0.005 u` when it has 17. So:

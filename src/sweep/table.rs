@@ -279,7 +279,7 @@ pub fn number(x: f64) -> String {
     text
 }
 
-/// Appends [`number`]`(x)` to `text`: the shortest digits that read back as `x` (`ryu`'s; where several strings of
+/// Appends [`number`]`(x)` to `text`: the shortest digits that read back as `x` (`zmij`'s; where several strings of
 /// that length would, it may pick another than the standard library), written as `format!("{x}")` writes them for
 /// magnitudes in [1e-4, 1e6) and as `format!("{x:e}")` outside — without the formatting machinery, since a sweep
 /// writes tens of numbers per row and millions of rows.
@@ -292,9 +292,9 @@ pub fn push_number(text: &mut String, x: f64) {
         text.push_str(&format!("{x}"));
         return;
     }
-    let mut buffer = ryu::Buffer::new();
+    let mut buffer = zmij::Buffer::new();
     if (1e-4..1e6).contains(&x.abs()) {
-        // Here ryu writes the plain decimal itself ("123.45", "0.000123"), with ".0" after a whole number.
+        // Here zmij writes the plain decimal itself ("123.45", "0.000123"), with ".0" after a whole number.
         let plain = buffer.format_finite(x);
         text.push_str(plain.strip_suffix(".0").unwrap_or(plain));
         return;
@@ -353,13 +353,13 @@ pub fn push_number(text: &mut String, x: f64) {
     text.push_str(out.as_str());
 }
 
-/// The shortest decimal digits that read back as the finite, non-zero `x` (`ryu`'s), without the sign: the
+/// The shortest decimal digits that read back as the finite, non-zero `x` (`zmij`'s, the same as `ryu`'s), without the sign: the
 /// significant digits (no leading or trailing zeros; at most 17), their count, and the decimal exponent `k` of the
 /// first (`|x| = d.ddd × 10^k`).
 pub fn shortest_digits(x: f64) -> ([u8; 24], usize, i32) {
-    let mut buffer = ryu::Buffer::new();
+    let mut buffer = zmij::Buffer::new();
     let shortest = buffer.format_finite(x.abs()).as_bytes();
-    // ryu writes "123.45", "0.000123" or "1.5e-7": read off the significant digits and the decimal exponent k of
+    // zmij writes "123.45", "0.000123", "1.5e-7" or "1.5e+21": read off the significant digits and the decimal exponent k of
     // the first one.
     let (mantissa, power) = match shortest.iter().position(|&b| b == b'e') {
         Some(at) => (&shortest[..at], exponent_of(&shortest[at + 1..])),
@@ -408,10 +408,11 @@ impl ShortText {
     }
 }
 
-/// The decimal exponent ryu writes after its "e" ("-7", "21").
+/// The decimal exponent zmij writes after its "e" ("-7", "+21").
 fn exponent_of(bytes: &[u8]) -> i32 {
     let (sign, digits) = match bytes.first() {
         Some(b'-') => (-1, &bytes[1..]),
+        Some(b'+') => (1, &bytes[1..]),
         _ => (1, bytes),
     };
     sign * digits.iter().fold(0i32, |value, &b| value * 10 + i32::from(b - b'0'))
