@@ -679,7 +679,10 @@ impl<'a> Run<'a> {
                         // The next zero beyond the step: if near, end this step early enough for the Gauss rule
                         // (`ξ >= XI_MIN`); the next step reaches the zero with the Gauss–Jacobi rule.
                         // (Once estimated, the same zero for a shorter try: no zero lies between the two ends.)
-                        let right = *known_right.get_or_insert_with(|| self.next_zero(h, h));
+                        let right = *known_right.get_or_insert_with(|| {
+                            let bound = h + system.zero_distance_bound(full.w, full.rate);
+                            if bound >= 0.5 * (XI_MIN + 1.0) * h { bound } else { self.next_zero(h, h) }
+                        });
                         let limit = 2.0 * right / (XI_MIN + 1.0);
                         if limit < h {
                             self.shrink(&mut shrinks)?;
