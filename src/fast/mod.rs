@@ -729,7 +729,16 @@ impl<'a> Run<'a> {
                     // At the step's start: the polynomials' first two coefficients.
                     let (g_start, _) = system.peak_function(w[0], w[1], rate[0], rate[1]);
                     if g_start > 0.0 {
-                        taylor::first_fall(|s| self.peak_values(s), |s| self.peak_at(s), 0.0, until, g_start)
+                        // Sampled at until/2 and until: the probe's points when the step runs its full length.
+                        let samples = |at: [f64; 2]| {
+                            if until == h {
+                                let g = |w: f64, v: f64| system.peak_function(w, 0.0, v, 0.0).0;
+                                [g(middle[0], middle[1]), g(full.w, full.rate)]
+                            } else {
+                                self.peak_values(at)
+                            }
+                        };
+                        taylor::first_fall(samples, |s| self.peak_at(s), 0.0, until, g_start)
                     } else {
                         Some(0.0)
                     }
