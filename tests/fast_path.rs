@@ -374,6 +374,40 @@ fn creeping_restitution_keeps_its_impulse_and_work_within_the_tolerance() {
     }
 }
 
+/// Late in a damped Tsuji restitution (separation at zero penetration) `w` is small beside its series' truncation
+/// a few steps out, where the search for its next zero looks: a zero just past the step went unseen, and the time
+/// rule was then taken over a step whose singularity sat at its end (the duration 1.3e-3 off at a = 2.085375,
+/// tolerance 1.16e-7). The contact's duration against the exact one (`reference::tsuji`), within twice the
+/// tolerance, over dampings up to zeta = 0.94 and tolerances from 1e-4 to 1e-8; and the two cases a review found.
+#[test]
+fn tsuji_durations_stay_within_the_tolerance_late_in_a_damped_restitution() {
+    let duration = |a: f64, tolerance: f64| {
+        let request = Request {
+            law: ContactLaw { kind: LawKind::Tsuji, stiffness: 1.0, exponent: 1.5, damping: a, tsuji_scale: 1.0 },
+            scales: Scales::new(1.0, 1.0, 1.5, 1.0),
+            separation: Separation::Penetration,
+            tolerance,
+            quantities: Quantities::ALL,
+        };
+        let out = simulate_normal(&request).unwrap();
+        assert!(out.separated, "a = {a}, tolerance {tolerance:e}");
+        out.end.time
+    };
+    for (a, tolerance) in [(2.085375, 1.156_112_242_192_100_4e-7), (1.475_387_927_790_619_4, 4.46e-6)] {
+        let exact = reference::tsuji(a, Separation::Penetration).unwrap().duration;
+        let got = duration(a, tolerance);
+        assert!(rel(got, exact) < 2.0 * tolerance, "a = {a}, tolerance {tolerance:e}: {got} vs {exact}");
+    }
+    for i in 0..40 {
+        let a = 0.3 + 1.8 * (i as f64 + 0.5) / 40.0;
+        let exact = reference::tsuji(a, Separation::Penetration).unwrap().duration;
+        for tolerance in [1e-4, 3e-5, 1e-5, 3e-6, 1e-6, 3e-7, 1e-7, 1e-8] {
+            let got = duration(a, tolerance);
+            assert!(rel(got, exact) < 2.0 * tolerance, "a = {a}, tolerance {tolerance:e}: {got} vs {exact}");
+        }
+    }
+}
+
 #[test]
 fn covers_every_law_but_brilliantov() {
     use impact::law::catalogue::LAWS;

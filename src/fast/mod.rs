@@ -433,14 +433,15 @@ impl<'a> Run<'a> {
         2.0 * self.tau / (XI_MIN - 1.0)
     }
 
-    /// Offset of the next zero of `w` after `from` (where `w > 0`), looked for on the step's polynomial up to
-    /// `4 h`, where it is still a fair estimate; `4 h` (a lower bound) if there is none so near.
-    fn next_zero(&self, from: f64, h: f64) -> f64 {
+    /// Offset of the next zero of `w` after `from` (where `w > 0`), looked for on the step's polynomial up to `4 h`
+    /// (an estimate: the polynomial is near its radius of convergence there). `None` if its samples show none: that
+    /// rules nothing out — where `w` is small beside its series' truncation so far out, a zero just beyond the step
+    /// can hide (the caller then takes a lower bound instead).
+    fn next_zero(&self, from: f64, h: f64) -> Option<f64> {
         let w = self.w();
         let (middle, to) = (from + 0.5 * (4.0 * h - from), 4.0 * h);
         let samples = taylor::values(w, [from, middle, to]);
         taylor::fall_in_halves(|s| taylor::value_and_slope(w, s), [from, middle, to], samples, ZERO_ESTIMATE)
-            .unwrap_or(4.0 * h)
     }
 
     /// Sets up the time rule of a piece of the current step; `None` if it cannot reach the accuracy (a zero of
@@ -675,13 +676,20 @@ impl<'a> Run<'a> {
                 }
                 let right = match (zero, restitution_from) {
                     (Some(zero), _) => zero,
-                    (None, Some(_)) if timed => {
+                    (None, Some(_)) if timed && system.time_exponent != 0.0 => {
                         // The next zero beyond the step: if near, end this step early enough for the Gauss rule
                         // (`ξ >= XI_MIN`); the next step reaches the zero with the Gauss–Jacobi rule.
                         // (Once estimated, the same zero for a shorter try: no zero lies between the two ends.)
+                        // A lower bound on it from the state at the step's end, where that already shows it far; else
+                        // the search, and where the search finds none, the bound (the step then ends within
+                        // reach of the rule, and the next one looks again from nearer).
                         let right = *known_right.get_or_insert_with(|| {
                             let bound = h + system.zero_distance_bound(full.w, full.rate);
-                            if bound >= 0.5 * (XI_MIN + 1.0) * h { bound } else { self.next_zero(h, h) }
+                            if bound >= 0.5 * (XI_MIN + 1.0) * h {
+                                bound
+                            } else {
+                                self.next_zero(h, h).unwrap_or(bound)
+                            }
                         });
                         let limit = 2.0 * right / (XI_MIN + 1.0);
                         if limit < h {
@@ -693,7 +701,8 @@ impl<'a> Run<'a> {
                     }
                     // All of the step compresses: the next zero of w lies beyond maximum compression, at least as
                     // far from the step as first contact is (restitution is never shorter in τ than compression),
-                    // so the Gauss rule's accuracy is set by the left zero alone. (Untimed, no rule asks.)
+                    // so the Gauss rule's accuracy is set by the left zero alone. (Untimed, or with `t = τ` (n = 1,
+                    // Kelvin–Voigt), no rule asks.)
                     (None, _) => f64::INFINITY,
                 };
                 let reach = zero.unwrap_or(h);
