@@ -532,7 +532,7 @@ impl<'a> Run<'a> {
     /// The force-peak function `g` at two offsets of the step (values only, for sampling).
     fn peak_values(&self, at: [f64; 2]) -> [f64; 2] {
         let (w, v) = (taylor::values(self.w(), at), taylor::values(self.rate(), at));
-        [0, 1].map(|i| self.system.peak_function(w[i], 0.0, v[i], 0.0).0)
+        [0, 1].map(|i| self.system.peak_value(w[i], v[i]))
     }
 
     /// The force-peak function `g` (falling zero at the peak) at offset `sigma` of the step, with its slope.
@@ -678,20 +678,17 @@ impl<'a> Run<'a> {
                     (Some(zero), _) => zero,
                     (None, Some(_)) if timed && system.time_exponent != 0.0 => {
                         // The next zero beyond the step: if near, end this step early enough for the Gauss rule
-                        // (`ξ >= XI_MIN`); the next step reaches the zero with the Gauss–Jacobi rule.
-                        // (Once estimated, the same zero for a shorter try: no zero lies between the two ends.)
-                        // A lower bound on it from the state at the step's end, where that already shows it far; else
-                        // the search, and where the search finds none, the bound (the step then ends within
-                        // reach of the rule, and the next one looks again from nearer).
+                        // (`ξ >= XI_MIN`); the next step reaches the zero with the Gauss–Jacobi rule. Its offset is
+                        // a lower bound from the state at the step's end where that already allows the step; else
+                        // the search's, and where the search finds none, the bound (the step then ends within the
+                        // rule's reach, and the next one looks again from nearer). Once known, the same zero for a
+                        // shorter try: no zero lies between the two ends.
+                        let limit_for = |right: f64| 2.0 * right / (XI_MIN + 1.0);
                         let right = *known_right.get_or_insert_with(|| {
                             let bound = h + system.zero_distance_bound(full.w, full.rate);
-                            if bound >= 0.5 * (XI_MIN + 1.0) * h {
-                                bound
-                            } else {
-                                self.next_zero(h, h).unwrap_or(bound)
-                            }
+                            if limit_for(bound) >= h { bound } else { self.next_zero(h, h).unwrap_or(bound) }
                         });
-                        let limit = 2.0 * right / (XI_MIN + 1.0);
+                        let limit = limit_for(right);
                         if limit < h {
                             self.shrink(&mut shrinks)?;
                             h = limit;
@@ -741,8 +738,7 @@ impl<'a> Run<'a> {
                         // Sampled at until/2 and until: the probe's points when the step runs its full length.
                         let samples = |at: [f64; 2]| {
                             if until == h {
-                                let g = |w: f64, v: f64| system.peak_function(w, 0.0, v, 0.0).0;
-                                [g(middle[0], middle[1]), g(full.w, full.rate)]
+                                [system.peak_value(middle[0], middle[1]), system.peak_value(full.w, full.rate)]
                             } else {
                                 self.peak_values(at)
                             }

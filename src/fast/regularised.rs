@@ -19,6 +19,7 @@
 //! the `w^(-γ)` singularities at the ends of the contact.
 
 use super::FastError;
+use super::quadrature::{self, MAX_NODES};
 use super::taylor::{self, Coefficients, INVERSE, MAX_ORDER};
 use crate::dynamics::Scales;
 use crate::law::{ContactLaw, Family};
@@ -166,14 +167,14 @@ impl Expansion {
             5..=8 => self.dissipation_lanes::<8>(form, a, b, m),
             9..=12 => self.dissipation_lanes::<12>(form, a, b, m),
             13..=16 => self.dissipation_lanes::<16>(form, a, b, m),
-            _ => self.dissipation_lanes::<24>(form, a, b, m.min(24)),
+            _ => self.dissipation_lanes::<MAX_NODES>(form, a, b, m.min(MAX_NODES)),
         }
     }
 
     #[inline(always)]
     fn dissipation_lanes<const N: usize>(&self, form: Form, a: f64, b: f64, m: usize) -> f64 {
         let k = self.order;
-        let (nodes, weights) = super::quadrature::gauss_legendre(m);
+        let (nodes, weights) = quadrature::gauss_legendre(m);
         let (centre, half) = (0.5 * (a + b), 0.5 * (b - a));
         let mut at = [centre; N];
         for (point, &s) in at.iter_mut().zip(nodes) {
@@ -377,10 +378,7 @@ impl Regularised {
     pub fn zero_distance_bound(&self, w: f64, rate: f64) -> f64 {
         let p = self.rate_factor;
         let force = self.regular_force(w, rate);
-        if !(w > 0.0 && rate < 0.0) {
-            return 0.0;
-        }
-        if force.is_nan() {
+        if !(w > 0.0 && rate < 0.0) || force.is_nan() {
             return 0.0;
         }
         if force <= 0.0 {
@@ -426,6 +424,11 @@ impl Regularised {
         self.elastic_factor * w * w
     }
 
+    /// [`Regularised::peak_function`]'s value alone at a state (`w`, `v`), for sampling.
+    pub fn peak_value(&self, w: f64, rate: f64) -> f64 {
+        self.peak_function(w, 0.0, rate, 0.0).0
+    }
+
     /// A function whose falling zero is the force peak (`dF/dτ = 0`), with its derivative along `τ`, from `w`,
     /// `v` and their `τ`-derivatives. Positive while the force rises.
     ///
@@ -469,6 +472,32 @@ mod tests {
             time_exponent: (n - 1.0) / (n + 1.0),
             penetration_exponent: 2.0 / (n + 1.0),
             elastic_factor: 1.0 / (n + 1.0),
+        }
+    }
+
+    /// Tsuji's regularised system (`p = 5/4`, `γ = 1/5`) with damping `a`.
+    fn tsuji(a: f64) -> Regularised {
+        Regularised {
+            form: Form::Linear,
+            rate_factor: 1.25,
+            damping: a,
+            exponent: 1.5,
+            time_exponent: 0.2,
+            penetration_exponent: 0.8,
+            elastic_factor: 0.4,
+        }
+    }
+
+    /// Kelvin–Voigt's regularised system (`p = 1`, `t = τ`) with damping `c = 2 zeta`.
+    fn kelvin_voigt(c: f64) -> Regularised {
+        Regularised {
+            form: Form::Linear,
+            rate_factor: 1.0,
+            damping: c,
+            exponent: 1.0,
+            time_exponent: 0.0,
+            penetration_exponent: 1.0,
+            elastic_factor: 0.5,
         }
     }
 
@@ -542,15 +571,7 @@ mod tests {
     #[test]
     fn linear_series_satisfy_the_equations() {
         let (p, c) = (1.25, 0.6);
-        let system = Regularised {
-            form: Form::Linear,
-            rate_factor: p,
-            damping: c,
-            exponent: 1.5,
-            time_exponent: 0.2,
-            penetration_exponent: 0.8,
-            elastic_factor: 0.4,
-        };
+        let system = tsuji(c);
         let mut e = Expansion::default();
         let state = State { w: 0.3, rate: 0.7, impulse: 0.2, work: 0.1, dissipation: 0.05 };
         system.expand(&state, 26, &mut e);
@@ -588,15 +609,7 @@ mod tests {
     #[test]
     fn dissipation_integral_agrees_with_the_polynomials_multiplied_out() {
         let hysteresis_system = hysteresis(2.0, 1.5);
-        let linear_system = Regularised {
-            form: Form::Linear,
-            rate_factor: 1.0,
-            damping: 0.6,
-            exponent: 1.0,
-            time_exponent: 0.0,
-            penetration_exponent: 1.0,
-            elastic_factor: 0.5,
-        };
+        let linear_system = kelvin_voigt(0.6);
         let state = State { w: 0.3, rate: 0.7, impulse: 0.2, work: 0.1, dissipation: 0.05 };
         let order = 10;
         for system in [hysteresis_system, linear_system] {
@@ -632,16 +645,7 @@ mod tests {
     /// useless (at least a fifth of the distance).
     #[test]
     fn zero_distance_bound_is_a_lower_bound() {
-        let linear = |c: f64| Regularised {
-            form: Form::Linear,
-            rate_factor: 1.25,
-            damping: c,
-            exponent: 1.5,
-            time_exponent: 0.2,
-            penetration_exponent: 0.8,
-            elastic_factor: 0.4,
-        };
-        let systems = [hysteresis(0.0, 1.5), hysteresis(0.5, 2.2), hysteresis(10.0, 1.0), linear(0.3), linear(1.5)];
+        let systems = [hysteresis(0.0, 1.5), hysteresis(0.5, 2.2), hysteresis(10.0, 1.0), tsuji(0.3), tsuji(1.5)];
         let mut draw = crate::stress::Draw::new(5, 0);
         for system in systems {
             let mut checked = 0;
@@ -684,7 +688,7 @@ mod tests {
         // Outside its premises (not restituting) it claims nothing.
         let system = hysteresis(0.5, 1.5);
         assert_eq!(system.zero_distance_bound(0.3, 0.2), 0.0);
-        assert_eq!(linear(3.0).zero_distance_bound(0.1, 0.5), 0.0);
+        assert_eq!(tsuji(3.0).zero_distance_bound(0.1, 0.5), 0.0);
     }
 
     /// The force from the known penetration (`w/δ` for `w^γ`) against the power itself, for every form's `γ`,
@@ -730,15 +734,7 @@ mod tests {
     #[test]
     fn peak_function_matches_the_force_derivative() {
         // Tsuji: compare g / w^(1-γ) with a central difference of F along the exact flow's derivatives.
-        let system = Regularised {
-            form: Form::Linear,
-            rate_factor: 1.25,
-            damping: 0.3,
-            exponent: 1.5,
-            time_exponent: 0.2,
-            penetration_exponent: 0.8,
-            elastic_factor: 0.4,
-        };
+        let system = tsuji(0.3);
         let (w, v) = (0.5, 0.4);
         let (dw, dv) = (1.25 * v, -(w + 0.3 * v));
         let h = 1e-6;
