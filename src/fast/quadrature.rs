@@ -1,17 +1,11 @@
-//! Physical time from the regularised time: `t = ∫ w(τ)^(-γ) dτ` over each step, where `w` is the step's Taylor
-//! polynomial.
+//! Gauss rules and the power they sum, for the fast path's integrals over a step or a phase.
 //!
-//! The integrand is singular where `w` vanishes — at first contact and at a penetration separation — and analytic
-//! elsewhere. Two kinds of Gauss rule cover a step, both with as many nodes as the distance to the nearest other
-//! zero of `w` asks for (the error of an `m`-node rule falls like `ρ^(-2m)`, `ρ` the Bernstein ellipse through
-//! the singularity, [`nodes_needed`]):
-//!
-//! * a piece that starts or ends at a zero `z` of `w`: `w = |σ - z| Q(σ)` with `Q` a polynomial, positive on the
-//!   piece, and `∫ |σ - z|^(-γ) Q^(-γ) dσ` is a Gauss–Jacobi sum for the weight `s^(-γ)` ([`JacobiRules`],
-//!   [`rule_sum`]): the singularity is integrated exactly, by `m` evaluations of `Q^(-γ)`;
-//! * any other piece: Gauss–Legendre ([`gauss_power`]).
-//!
-//! The powers `Q^(-γ)` and `w^(-γ)` at the nodes are [`negative_power`], four nodes at a time.
+//! * Gauss–Legendre rules ([`gauss_legendre`]), and the node count an integrand analytic inside a Bernstein
+//!   ellipse asks for ([`nodes_needed`]: the error of an `m`-node rule falls like `ρ^(-2m)`);
+//! * Gauss–Jacobi rules for the weight `s^(-γ)` on `(0, 1)` ([`JacobiRules`]): the time's integrand `w^(-γ)` at a
+//!   zero of `w`, `w = |σ - z| Q(σ)`, is `|σ - z|^(-γ)` times the smooth `Q^(-γ)`, so the singularity is
+//!   integrated exactly by `m` evaluations of `Q^(-γ)`;
+//! * the power itself, `x^(-γ)` ([`negative_power`]), branch-free so that a rule's nodes are taken in vector lanes.
 
 use super::taylor::{self, rough_log2};
 use std::sync::OnceLock;
@@ -98,14 +92,6 @@ pub fn node_digits(eps: f64) -> f64 {
 
 /// Added to `ln(1/eps)` in [`node_digits`]: the constant of the error bound (a branch point on the ellipse).
 const NODE_MARGIN: f64 = 2.0;
-
-/// `∫_a^b w(σ)^(-gamma) dσ` with the `m`-node Gauss–Legendre rule, `w` the polynomial `c`. `None` if `w <= 0`
-/// at a node (the interval reaches a zero of `w`: a caller's error, reported rather than a NaN).
-pub fn gauss_power(c: &[f64], gamma: f64, a: f64, b: f64, m: usize) -> Option<f64> {
-    let (nodes, weights) = gauss_legendre(m);
-    let half = 0.5 * (b - a);
-    Some(half * rule_sum(c, gamma, 0.5 * (a + b), half, nodes, weights)?)
-}
 
 /// `x^(-gamma)` for `x > 0` (normal, finite): `exp(-γ ln x)` with both functions written out (fdlibm's `ln`:
 /// the exponent from the bits, `ln m = 2 atanh s` by its minimax polynomial for the mantissa `m ∈ [√½, √2)`;
@@ -331,57 +317,6 @@ fn symmetric_tridiagonal_ql(d: &mut [f64], e: &mut [f64]) {
     }
 }
 
-/// `Σ_i weights_i q(start + span s_i)^(-gamma)` over a rule's nodes `s_i`: with a Gauss–Jacobi rule the sum for
-/// `∫ |span s|^(-γ) q^(-γ)` (the caller multiplies by `|span|^(1-γ)`), with Gauss–Legendre's ([`gauss_power`])
-/// that for `∫ q^(-γ)` over `start ± span`. `None` if `q <= 0` at a node.
-///
-/// Every node at once, in lanes of a width chosen from the node count ([`lane_sum`]): the Horner chains and the
-/// powers of all nodes are independent, so the processor overlaps them, where four nodes at a time waited for
-/// one chain's latency after another (8 % of an impact with every quantity).
-pub fn rule_sum(q: &[f64], gamma: f64, start: f64, span: f64, nodes: &[f64], weights: &[f64]) -> Option<f64> {
-    match nodes.len() {
-        0..=4 => lane_sum::<4>(q, gamma, start, span, nodes, weights),
-        5..=8 => lane_sum::<8>(q, gamma, start, span, nodes, weights),
-        9..=12 => lane_sum::<12>(q, gamma, start, span, nodes, weights),
-        13..=16 => lane_sum::<16>(q, gamma, start, span, nodes, weights),
-        17..=MAX_NODES => lane_sum::<MAX_NODES>(q, gamma, start, span, nodes, weights),
-        // No rule is kept beyond MAX_NODES: a piece that would need one is shortened by the caller.
-        _ => None,
-    }
-}
-
-/// [`rule_sum`] in `N >= nodes.len()` lanes (the unused ones evaluate `q` at `start` and are left out of the sum).
-#[inline(always)]
-fn lane_sum<const N: usize>(
-    q: &[f64],
-    gamma: f64,
-    start: f64,
-    span: f64,
-    nodes: &[f64],
-    weights: &[f64],
-) -> Option<f64> {
-    let m = nodes.len();
-    debug_assert!(m <= N && weights.len() == m);
-    let mut at = [start; N];
-    for (point, &s) in at.iter_mut().zip(nodes) {
-        *point = start + span * s;
-    }
-    let mut values = taylor::values_split(q, at);
-    if values[..m].iter().any(|&v| v.is_nan() || v <= 0.0) {
-        return None;
-    }
-    // Unused lanes get 1 (a harmless power).
-    for v in &mut values[m..] {
-        *v = 1.0;
-    }
-    let mut powers = [0.0; N];
-    for (power, &v) in powers.iter_mut().zip(&values) {
-        *power = negative_power(v, gamma);
-    }
-    // (In four interleaved sums: the chain of m fused multiply-adds was a quarter of the rule's latency.)
-    Some(taylor::dot(&powers[..m], weights))
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -524,51 +459,5 @@ mod tests {
                 }
             }
         }
-    }
-
-    /// `∫_0^{π/2} sin(σ)^(-γ) dσ = B((1-γ)/2, 1/2)/2` by a Gauss–Jacobi sum, with `sin σ = σ Q(σ)`,
-    /// `Q = Σ (-1)^j σ^(2j)/(2j+1)!` (the next zero of `sin`, at π, sets the nodes).
-    #[test]
-    fn gauss_jacobi_integrates_the_sine_power() {
-        let mut q = [0.0; 30];
-        let mut factorial = 1.0;
-        for j in 0..15 {
-            factorial *= if j == 0 { 1.0 } else { (2 * j) as f64 * (2 * j + 1) as f64 };
-            q[2 * j] = if j % 2 == 0 { 1.0 } else { -1.0 } / factorial;
-        }
-        let mut rules = JacobiRules::default();
-        for gamma in [0.2, 0.375] {
-            let b = std::f64::consts::FRAC_PI_2;
-            let m = nodes_needed(2.0 * std::f64::consts::PI / b - 1.0, node_digits(1e-17));
-            let (nodes, weights) = rules.rule(gamma, m);
-            let got = b.powf(1.0 - gamma) * rule_sum(&q, gamma, 0.0, b, nodes, weights).unwrap();
-            let exact = 0.5 * crate::reference::beta(0.5 * (1.0 - gamma), 0.5);
-            assert!((got / exact - 1.0).abs() < 1e-15, "γ = {gamma}: {got} vs {exact}");
-        }
-    }
-
-    /// The lane-wise sum at every node count a rule may have (each lane width, its unused lanes) against the plain
-    /// sum of `w_i q(x_i)^(-γ)` with `powf`, and a rule beyond the largest kept refused.
-    #[test]
-    fn rule_sums_equal_the_plain_sum_at_every_node_count() {
-        let q = [0.7, 0.3, -0.05, 0.01];
-        let (gamma, start, span) = (0.375, 0.2, 0.9);
-        for m in 1..=MAX_NODES {
-            let (nodes, weights) = gauss_legendre(m);
-            let plain: f64 =
-                nodes.iter().zip(weights).map(|(&s, &w)| w * taylor::value(&q, start + span * s).powf(-gamma)).sum();
-            let got = rule_sum(&q, gamma, start, span, nodes, weights).expect("q > 0 at every node");
-            assert!((got / plain - 1.0).abs() < 1e-14, "{m} nodes: {got} vs {plain}");
-        }
-        let (nodes, weights) = ([0.1; MAX_NODES + 1], [0.01; MAX_NODES + 1]);
-        assert_eq!(rule_sum(&q, gamma, start, span, &nodes, &weights), None);
-    }
-
-    #[test]
-    fn gauss_power_integrates_a_shifted_power() {
-        // ∫_1^2 σ^(-0.3) dσ = (2^0.7 - 1)/0.7, with w = σ written about 0.
-        let got = gauss_power(&[0.0, 1.0], 0.3, 1.0, 2.0, nodes_needed(3.0, node_digits(1e-16))).unwrap();
-        let exact = (2.0_f64.powf(0.7) - 1.0) / 0.7;
-        assert!((got / exact - 1.0).abs() < 1e-15, "{got} vs {exact}");
     }
 }

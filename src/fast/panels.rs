@@ -1,0 +1,550 @@
+//! The physical time over a phase of the contact, `t = ∫ w^(-γ) dτ`, by Gauss rules that span several steps.
+//!
+//! The integrand is analytic along a phase but for the zeros of `w` at the contact's ends (first contact, a
+//! penetration separation), where `w^(-γ)` has a branch point; the solution's own singularities (the poles of
+//! `1 + x v` of a heavy damping) lie off the real axis, no nearer to a step's start than the radius of convergence
+//! its coefficients show. So one Gauss rule may span many steps, each node evaluated on the polynomial of the step
+//! it falls in. Its error falls like `R^(-2m)` for `m` nodes, `R` the largest Bernstein ellipse about the panel
+//! that stays inside every step's disc of convergence and clear of the zeros of `w` ([`Segments::nodes`]); a zero
+//! at a panel's end is integrated exactly by the Gauss–Jacobi weight `s^(-γ)`, with `w = |τ - zero| Q(τ)` and
+//! `Q^(-γ)` smooth. A phase of a dozen steps takes one or two rules of 10 to 21 nodes; a rule for each step took
+//! 4 to 10 nodes a step, and steps were cut short so that each stayed clear of the next zero.
+//!
+//! The steps of the phase in progress are kept ([`Segments`], at most [`CAPACITY`]); their integrals are taken
+//! when the phase ends, or for the older half when the store is full (a creeping restitution of thousands of
+//! steps).
+
+use super::quadrature::{JacobiRules, MAX_NODES, gauss_legendre, negative_power};
+use super::regularised::Expansion;
+use super::taylor::{self, Coefficients, MAX_ORDER};
+
+/// Steps kept for the phase in progress (each its polynomial `w`: about 0.3 kB).
+pub const CAPACITY: usize = 32;
+
+/// Halvings of a panel within one step before the integral is given up: each halves the panel's length against
+/// its distance to a zero of `w` just beyond it (a force separation a hair before the penetration's).
+const MAX_HALVINGS: u32 = 60;
+
+/// One step's polynomial `w` over the part of the step that lies in the phase.
+#[derive(Debug, Clone, Copy)]
+struct Segment {
+    /// `τ` at the step's start, where its polynomial is expanded.
+    origin: f64,
+    /// The part of the step in the phase, in `τ`.
+    from: f64,
+    to: f64,
+    /// The radius of convergence that the step's coefficients show: `w` is analytic within it of `origin`.
+    radius: f64,
+    w: Coefficients,
+}
+
+const EMPTY: Segment = Segment { origin: 0.0, from: 0.0, to: 0.0, radius: 0.0, w: [0.0; MAX_ORDER + 1] };
+
+/// What lies at or beyond an end of an integrated range.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum End {
+    /// `w` vanishes at the end itself (first contact, a penetration separation): the Gauss–Jacobi weight takes it.
+    Zero,
+    /// The nearest zero of `w` on this side lies at this `τ` or farther (`±∞`: none that matters).
+    Clear(f64),
+}
+
+/// The steps of the phase in progress, oldest first.
+pub struct Segments {
+    list: [Segment; CAPACITY],
+    len: usize,
+    order: usize,
+    /// `Q` at a zero of `w` at an end of the panel being summed (scratch).
+    factor: Coefficients,
+}
+
+impl Default for Segments {
+    fn default() -> Self {
+        Segments { list: [EMPTY; CAPACITY], len: 0, order: 0, factor: [0.0; MAX_ORDER + 1] }
+    }
+}
+
+/// A panel's rule: which weight, over which range.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Weight {
+    Legendre,
+    /// `(τ - from)^(-γ)`: the zero of `w` at the panel's start.
+    ZeroAtStart,
+    /// `(to - τ)^(-γ)`: the zero of `w` at the panel's end.
+    ZeroAtEnd,
+}
+
+impl Segments {
+    /// Forgets every step (a new impact).
+    pub fn clear(&mut self, order: usize) {
+        self.len = 0;
+        self.order = order;
+    }
+
+    pub fn is_full(&self) -> bool {
+        self.len == CAPACITY
+    }
+
+    /// Keeps the part from `from` to `to` (`τ`) of the step expanded at `origin`, whose series converges within
+    /// `radius`.
+    pub fn push(&mut self, expansion: &Expansion, origin: f64, from: f64, to: f64, radius: f64) {
+        debug_assert!(self.len < CAPACITY && from <= to);
+        // (Whole arrays: a fixed-size copy, where the order's length would call memcpy.)
+        self.list[self.len] = Segment { origin, from, to, radius, w: expansion.w };
+        self.len += 1;
+    }
+
+    /// Drops the steps that end at or before `tau` (after their integrals were taken up to it).
+    pub fn drop_until(&mut self, tau: f64) {
+        let gone = self.list[..self.len].iter().take_while(|s| s.to <= tau).count();
+        self.list.copy_within(gone..self.len, 0);
+        self.len -= gone;
+    }
+
+    /// `τ` at the end of the older half of the steps kept (where a full store is integrated up to).
+    pub fn half_way(&self) -> f64 {
+        self.list[self.len / 2 - 1].to
+    }
+
+    /// `∫_a^b w^(-gamma) dτ` over the kept steps (`a`, `b` within their span), `start` and `end` saying where the
+    /// zeros of `w` lie. One rule over the whole range if [`MAX_NODES`] nodes suffice ([`Segments::nodes`]),
+    /// else the range split in two (between steps, or within one step) and each part taken the same way.
+    /// `digits` is `ln(1/eps)` and a margin ([`super::quadrature::node_digits`]). `None` if `w <= 0` at a node of
+    /// the time's rule, or if no part near a zero of `w` just beyond `b` is short enough.
+    #[allow(clippy::too_many_arguments)]
+    pub fn integral(
+        &mut self,
+        gamma: f64,
+        a: f64,
+        b: f64,
+        start: End,
+        end: End,
+        digits: f64,
+        jacobi: &mut JacobiRules,
+    ) -> Option<f64> {
+        if b <= a {
+            return Some(0.0);
+        }
+        let first = self.list[..self.len].iter().position(|s| s.to > a)?;
+        let last = first + self.list[first..self.len].iter().position(|s| s.to >= b).unwrap_or(self.len - 1 - first);
+        let range = Range { from: a, to: b, first, last, start, end };
+        self.range_integral(gamma, range, digits, jacobi, 0)
+    }
+
+    /// [`Segments::integral`] over one range, split while it needs more than [`MAX_NODES`] nodes (`depth` splits
+    /// so far).
+    fn range_integral(
+        &mut self,
+        gamma: f64,
+        range: Range,
+        digits: f64,
+        jacobi: &mut JacobiRules,
+        depth: u32,
+    ) -> Option<f64> {
+        let Range { from, to, first, last, start, end } = range;
+        let weight = match (start, end) {
+            (End::Zero, _) => Weight::ZeroAtStart,
+            (_, End::Zero) => Weight::ZeroAtEnd,
+            _ => Weight::Legendre,
+        };
+        let m = self.nodes(&range, weight, digits);
+        if m <= MAX_NODES {
+            return self.panel(gamma, first..=last, from, to, weight, m, jacobi);
+        }
+        if depth >= MAX_HALVINGS {
+            return None;
+        }
+        // Between the two steps nearest the middle, or the one step's piece halved; the new ends are clear of the
+        // zeros beyond the old ones.
+        let middle = from + 0.5 * (to - from);
+        let (cut, left_last) = if first < last {
+            let k = (first..last)
+                .min_by(|&i, &j| (self.list[i].to - middle).abs().total_cmp(&(self.list[j].to - middle).abs()))?;
+            (self.list[k].to, k)
+        } else {
+            (middle, first)
+        };
+        let right_first = if cut >= self.list[left_last].to { left_last + 1 } else { left_last };
+        let zero_left = match start {
+            End::Zero => End::Clear(from),
+            clear => clear,
+        };
+        let zero_right = match end {
+            End::Zero => End::Clear(to),
+            clear => clear,
+        };
+        let left = Range { from, to: cut, first, last: left_last, start, end: zero_right };
+        let right = Range { from: cut, to, first: right_first, last, start: zero_left, end };
+        Some(
+            self.range_integral(gamma, left, digits, jacobi, depth + 1)?
+                + self.range_integral(gamma, right, digits, jacobi, depth + 1)?,
+        )
+    }
+
+    /// The nodes a rule over `range` needs: `m = ln(1/eps)/(2 ln R)` (`digits` is `ln(1/eps)` and a margin), `R`
+    /// the largest Bernstein ellipse about the range that lies inside the union of its steps' discs of
+    /// convergence and clear of the zeros of `w` (but one at a weighted end); more than [`MAX_NODES`] if none
+    /// is wide enough.
+    ///
+    /// With `s = (R + 1/R)/2` the ellipse about `[c - L, c + L]` has semi-axes `L s` and `L sqrt(s² - 1)`; each
+    /// constraint bounds `s`:
+    /// * a zero of `w` at `z`: the semi-major axis below `|z - c|`;
+    /// * a step's piece `[lo, hi]` of the range, its disc of radius `ρ` about the step's origin: the ellipse
+    ///   above the piece, at most `sqrt(s² - 1) sqrt(L² - u²/s²)` high (`u` the piece's distance from `c`), within
+    ///   `ρ` of the origin with the piece's farthest end `dx` away: `(s² - 1)(L² - u²/s²) < ρ² - dx²`, a quadratic
+    ///   in `s²`;
+    /// * the ellipse's ends beyond the range, in the first and the last step's discs: within `e + L (s - 1)` of
+    ///   the origin along the axis (`e` its distance from the range's end) and at most
+    ///   `L (s - 1/s) <= 2 L (s - 1)` high: `(e + y)² + 4 y² < ρ²` for `y = L (s - 1)`.
+    fn nodes(&self, range: &Range, weight: Weight, digits: f64) -> usize {
+        let Range { from, to, first, last, start, end } = *range;
+        let half = 0.5 * (to - from);
+        let centre = from + half;
+        let mut s2 = f64::INFINITY;
+        // The zeros of w.
+        for (zero, weighted) in [(start, weight == Weight::ZeroAtStart), (end, weight == Weight::ZeroAtEnd)] {
+            if let (End::Clear(z), false) = (zero, weighted) {
+                s2 = s2.min(((z - centre) / half).powi(2));
+            }
+        }
+        // The steps' pieces.
+        for segment in &self.list[first..=last] {
+            let (lo, hi) = (segment.from.max(from), segment.to.min(to));
+            let dx = (lo - segment.origin).abs().max((hi - segment.origin).abs());
+            let room = segment.radius * segment.radius - dx * dx;
+            if room <= 0.0 {
+                return usize::MAX;
+            }
+            let u = if lo <= centre && centre <= hi { 0.0 } else { (lo - centre).abs().min((hi - centre).abs()) };
+            let (l2, u2) = (half * half, u * u);
+            let sum = l2 + u2 + room;
+            s2 = s2.min((sum + (sum * sum - 4.0 * l2 * u2).max(0.0).sqrt()) / (2.0 * l2));
+        }
+        // The ellipse's ends.
+        for (segment, e) in
+            [(&self.list[first], from - self.list[first].origin), (&self.list[last], to - self.list[last].origin)]
+        {
+            let e = e.abs();
+            let y = (-e + (5.0 * segment.radius * segment.radius - 4.0 * e * e).max(0.0).sqrt()) / 5.0;
+            if y <= 0.0 {
+                return usize::MAX;
+            }
+            s2 = s2.min((1.0 + y / half).powi(2));
+        }
+        if s2.is_nan() || s2 <= 1.0 {
+            return usize::MAX;
+        }
+        let s = s2.sqrt();
+        let r = s + (s2 - 1.0).sqrt();
+        let m = digits / (2.0 * taylor::rough_log2(r) * std::f64::consts::LN_2);
+        if m.is_finite() { (m.ceil() as usize).max(2) } else { usize::MAX }
+    }
+
+    /// One panel's rule of `m` nodes.
+    #[allow(clippy::too_many_arguments)]
+    fn panel(
+        &mut self,
+        gamma: f64,
+        steps: std::ops::RangeInclusive<usize>,
+        from: f64,
+        to: f64,
+        weight: Weight,
+        m: usize,
+        jacobi: &mut JacobiRules,
+    ) -> Option<f64> {
+        match m {
+            0..=4 => self.panel_lanes::<4>(gamma, steps, from, to, weight, m, jacobi),
+            5..=8 => self.panel_lanes::<8>(gamma, steps, from, to, weight, m, jacobi),
+            9..=12 => self.panel_lanes::<12>(gamma, steps, from, to, weight, m, jacobi),
+            13..=16 => self.panel_lanes::<16>(gamma, steps, from, to, weight, m, jacobi),
+            _ => self.panel_lanes::<MAX_NODES>(gamma, steps, from, to, weight, m, jacobi),
+        }
+    }
+
+    /// [`Segments::panel`] in `N >= m` lanes: the nodes in `τ` order, each step's nodes on its polynomial ([`LANES`]
+    /// at once: one vector Horner chain in even and odd parts, [`taylor::values_split`]), then the power at every
+    /// node at once, then the weighted sum. (The arrays are written and read in whole vectors: a vector read of
+    /// lanes just written one by one waits for the stores.)
+    #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
+    fn panel_lanes<const N: usize>(
+        &mut self,
+        gamma: f64,
+        steps: std::ops::RangeInclusive<usize>,
+        from: f64,
+        to: f64,
+        weight: Weight,
+        m: usize,
+        jacobi: &mut JacobiRules,
+    ) -> Option<f64> {
+        let k = self.order;
+        let (first, last) = (*steps.start(), *steps.end());
+        let length = to - from;
+        // The nodes in ascending τ with their weights (the lanes past m at the last node), and the factor.
+        let (nodes, rule_weights) = match weight {
+            Weight::Legendre => gauss_legendre(m),
+            _ => jacobi.rule(gamma, m),
+        };
+        let mut at = [0.0; PADDED];
+        let mut weights = [0.0; N];
+        for i in 0..m {
+            (at[i], weights[i]) = match weight {
+                Weight::Legendre => (taylor::mul_add(0.5 * length, nodes[i], from + 0.5 * length), rule_weights[i]),
+                Weight::ZeroAtStart => (taylor::mul_add(length, nodes[i], from), rule_weights[i]),
+                Weight::ZeroAtEnd => (taylor::mul_add(-length, nodes[m - 1 - i], to), rule_weights[m - 1 - i]),
+            };
+        }
+        for i in m..PADDED {
+            at[i] = at[m - 1];
+        }
+        let scale = match weight {
+            Weight::Legendre => 0.5 * length,
+            _ => negative_power(length, gamma - 1.0),
+        };
+        // Q at a weighted end: w = (τ - from) Q about a zero at the first step's origin (Q_j = w_(j+1)), or
+        // w = (to - τ) Q at a zero inside the last step (synthetic division: Q = -R, w = (σ - z) R + w(z)).
+        match weight {
+            Weight::ZeroAtStart => {
+                let s = &self.list[first];
+                debug_assert!(s.origin == from);
+                self.factor[..k].copy_from_slice(&s.w[1..=k]);
+                self.factor[k] = 0.0;
+            }
+            Weight::ZeroAtEnd => {
+                let s = &self.list[last];
+                let zero = to - s.origin;
+                let mut r = s.w[k];
+                self.factor[k] = 0.0;
+                self.factor[k - 1] = -r;
+                for j in (1..k).rev() {
+                    r = taylor::mul_add(zero, r, s.w[j]);
+                    self.factor[j - 1] = -r;
+                }
+            }
+            Weight::Legendre => {}
+        }
+        // Each step's nodes on its polynomial (or Q), LANES lanes from the step's first node: the lanes beyond its
+        // nodes are written over by the next step's.
+        let mut w = [1.0; PADDED];
+        let mut node = 0;
+        for step in first..=last {
+            let segment = &self.list[step];
+            let end =
+                if step == last { m } else { node + at[node..m].iter().take_while(|&&t| t <= segment.to).count() };
+            let uses_factor = match weight {
+                Weight::ZeroAtStart => step == first,
+                Weight::ZeroAtEnd => step == last,
+                Weight::Legendre => false,
+            };
+            let polynomial = if uses_factor { &self.factor } else { &segment.w };
+            while node < end {
+                let lanes: &[f64; LANES] = at[node..node + LANES].try_into().expect("PADDED >= MAX_NODES + LANES");
+                let offsets = lanes.map(|tau| tau - segment.origin);
+                let mut values = taylor::values_split(&polynomial[..=k], offsets);
+                // w into Q off the weighted end's step.
+                if !uses_factor && weight != Weight::Legendre {
+                    for (value, &tau) in values.iter_mut().zip(lanes) {
+                        *value /= if weight == Weight::ZeroAtStart { tau - from } else { to - tau };
+                    }
+                }
+                w[node..node + LANES].copy_from_slice(&values);
+                node = end.min(node + LANES);
+            }
+        }
+        if w[..m].iter().any(|&q| q.is_nan() || q <= 0.0) {
+            return None;
+        }
+        let mut values = [0.0; N];
+        for i in 0..N {
+            values[i] = negative_power(w[i], gamma);
+        }
+        Some(scale * taylor::dot(&values[..m], &weights[..m]))
+    }
+}
+
+/// Nodes of one step evaluated at once (a step holds two or three of a panel's nodes as a rule: one vector).
+const LANES: usize = 4;
+/// Lanes of a panel's node arrays: the largest rule and a vector beyond it.
+const PADDED: usize = MAX_NODES + LANES;
+
+/// A range to integrate: `τ` from `from` to `to`, over the kept steps `first..=last`, the zeros of `w` at or
+/// beyond its ends.
+#[derive(Debug, Clone, Copy)]
+struct Range {
+    from: f64,
+    to: f64,
+    first: usize,
+    last: usize,
+    start: End,
+    end: End,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::fast::quadrature::node_digits;
+
+    /// Steps over `sin τ` (exact Taylor coefficients about each break, order 24, so that the polynomials are
+    /// `sin` to rounding), each with a radius of convergence three times its length, as a Taylor step sees it.
+    fn sine(breaks: &[f64]) -> Segments {
+        let order = 24;
+        let mut segments = Segments::default();
+        segments.clear(order);
+        let mut expansion = Expansion::default();
+        for pair in breaks.windows(2) {
+            let (origin, to) = (pair[0], pair[1]);
+            let mut factorial = 1.0;
+            for k in 0..=order {
+                if k > 0 {
+                    factorial *= k as f64;
+                }
+                expansion.w[k] = (origin + k as f64 * std::f64::consts::FRAC_PI_2).sin() / factorial;
+            }
+            segments.push(&expansion, origin, origin, to, 3.0 * (to - origin));
+        }
+        segments
+    }
+
+    /// `∫_0^δ sin(u)^(-γ) du` by the substitution `u = s^p`, `p = 1/(1 - γ)`, which turns it into the smooth
+    /// `p ∫_0^(δ^(1-γ)) (sin(s^p)/s^p)^(-γ) ds`, summed by composite Gauss–Legendre (independent of the panels).
+    fn sine_power_near_zero(delta: f64, gamma: f64) -> f64 {
+        let p = 1.0 / (1.0 - gamma);
+        let top = delta.powf(1.0 - gamma);
+        let (nodes, weights) = gauss_legendre(20);
+        let pieces = 40;
+        let mut sum = 0.0;
+        for i in 0..pieces {
+            let (a, b) = (top * i as f64 / pieces as f64, top * (i + 1) as f64 / pieces as f64);
+            for (x, w) in nodes.iter().zip(weights) {
+                let s = 0.5 * (a + b) + 0.5 * (b - a) * x;
+                let u = s.powf(p);
+                let ratio = if u == 0.0 { 1.0 } else { u.sin() / u };
+                sum += 0.5 * (b - a) * w * p * ratio.powf(-gamma);
+            }
+        }
+        sum
+    }
+
+    /// `∫_0^(π/2) sin^(-γ) = ∫_(π/2)^π sin^(-γ) = B((1-γ)/2, 1/2)/2`: the zero at first contact and the one at
+    /// separation, each under the Gauss–Jacobi weight, over several steps.
+    #[test]
+    fn the_sine_power_over_either_half_is_the_beta_function() {
+        let pi = std::f64::consts::PI;
+        let breaks = [0.0, 0.3, 0.7, 1.2, 0.5 * pi, 2.0, 2.6, 2.95, pi];
+        let mut jacobi = JacobiRules::default();
+        for gamma in [0.2, 0.375, -0.3] {
+            let exact = 0.5 * crate::reference::beta(0.5 * (1.0 - gamma), 0.5);
+            for eps in [1e-10, 1e-17] {
+                let mut segments = sine(&breaks);
+                let digits = node_digits(eps);
+                let compression =
+                    segments.integral(gamma, 0.0, 0.5 * pi, End::Zero, End::Clear(pi), digits, &mut jacobi).unwrap();
+                let restitution =
+                    segments.integral(gamma, 0.5 * pi, pi, End::Clear(0.0), End::Zero, digits, &mut jacobi).unwrap();
+                for (got, what) in [(compression, "compression"), (restitution, "restitution")] {
+                    let error = (got / exact - 1.0).abs();
+                    assert!(error < eps.max(2e-15), "γ = {gamma}, eps = {eps:e}, {what}: {error:e}");
+                }
+            }
+        }
+    }
+
+    /// A range that ends a hair before a zero of `w` it does not weight (a force separation just before the
+    /// penetration's) is split towards that end until each part's rule reaches it.
+    #[test]
+    fn a_zero_just_beyond_the_range_is_approached_by_halving() {
+        let pi = std::f64::consts::PI;
+        let mut jacobi = JacobiRules::default();
+        let gamma = 0.2;
+        let half = 0.5 * crate::reference::beta(0.5 * (1.0 - gamma), 0.5);
+        for delta in [1e-3, 1e-7] {
+            let mut segments = sine(&[0.5 * pi, 2.2, 2.8, pi - delta]);
+            let got = segments
+                .integral(gamma, 0.5 * pi, pi - delta, End::Clear(0.0), End::Clear(pi), node_digits(1e-13), &mut jacobi)
+                .unwrap();
+            let exact = half - sine_power_near_zero(delta, gamma);
+            assert!((got / exact - 1.0).abs() < 1e-13, "δ = {delta:e}: {got} vs {exact}");
+        }
+    }
+
+    /// The node count follows the ellipse: more for a longer range over the same steps, none that reaches a zero
+    /// of `w` at an unweighted end.
+    #[test]
+    fn node_counts_follow_the_ellipse() {
+        let pi = std::f64::consts::PI;
+        let segments = sine(&[0.0, 0.4, 0.8, 1.2, 1.6]);
+        let digits = node_digits(1e-10);
+        let count = |to: f64, last: usize, start: End| {
+            let range = Range { from: 0.0, to, first: 0, last, start, end: End::Clear(pi) };
+            let weight = if start == End::Zero { Weight::ZeroAtStart } else { Weight::Legendre };
+            segments.nodes(&range, weight, digits)
+        };
+        let (one, four) = (count(0.4, 0, End::Zero), count(1.6, 3, End::Zero));
+        assert!(2 <= one && one < four && four <= MAX_NODES, "{one} {four}");
+        // The same range with the zero at its start left to a plain Gauss–Legendre rule: no ellipse fits.
+        assert!(count(1.6, 3, End::Clear(0.0)) > MAX_NODES);
+    }
+
+    /// A panel's sum at every node count (each lane width, the unused lanes, nodes falling in every one of three
+    /// steps, both Jacobi weights) against the plain sum `Σ W_i q(τ_i)^(-γ)`, each node's `q` by Horner on its own
+    /// step's polynomial and the power by `powf`.
+    #[test]
+    fn panel_sums_equal_the_plain_sum_at_every_node_count() {
+        let order = 5;
+        let mut segments = Segments::default();
+        segments.clear(order);
+        let mut expansion = Expansion::default();
+        // Three steps over [1, 2.5], each w > 0 throughout; the last one's w vanishes at 2.5 (for ZeroAtEnd), the
+        // first's at its origin 1 (for ZeroAtStart).
+        let polynomials: [[f64; 6]; 3] = [
+            [0.0, 0.9, -0.2, 0.05, 0.0, 0.001],
+            [0.5, 0.3, -0.1, 0.02, -0.003, 0.0],
+            [0.45, -0.6, -0.1, 0.0, 0.0, 0.0],
+        ];
+        let origins = [1.0, 1.5, 2.0];
+        // The last one's zero: 0.45 - 0.6 σ - 0.1 σ² = 0.
+        let zero = 2.0 + (-0.6 + (0.36f64 + 0.18).sqrt()) / -0.2;
+        let ends = [1.5, 2.0, zero];
+        for ((c, &origin), &end) in polynomials.iter().zip(&origins).zip(&ends) {
+            expansion.w[..=order].copy_from_slice(c);
+            segments.push(&expansion, origin, origin, end, 10.0);
+        }
+        let q = |tau: f64, weight: Weight| {
+            let step = (0..3).find(|&i| tau <= ends[i]).unwrap_or(2);
+            let w = crate::fast::taylor::value(&polynomials[step], tau - origins[step]);
+            match weight {
+                Weight::Legendre => w,
+                Weight::ZeroAtStart => w / (tau - 1.0),
+                Weight::ZeroAtEnd => w / (zero - tau),
+            }
+        };
+        let gamma = 0.375;
+        let mut jacobi = JacobiRules::default();
+        for m in 1..=MAX_NODES {
+            for weight in [Weight::Legendre, Weight::ZeroAtStart, Weight::ZeroAtEnd] {
+                let (from, to) = match weight {
+                    Weight::Legendre => (1.2, 2.3),
+                    Weight::ZeroAtStart => (1.0, 2.3),
+                    Weight::ZeroAtEnd => (1.2, zero),
+                };
+                let got = segments.panel(gamma, 0..=2, from, to, weight, m, &mut jacobi).expect("q > 0 at every node");
+                let plain: f64 = match weight {
+                    Weight::Legendre => {
+                        let (x, w) = gauss_legendre(m);
+                        let half = 0.5 * (to - from);
+                        x.iter().zip(w).map(|(&x, &w)| half * w * q(from + half * (1.0 + x), weight).powf(-gamma)).sum()
+                    }
+                    _ => {
+                        let (s, w) = jacobi.rule(gamma, m);
+                        let length = to - from;
+                        let at =
+                            |s: f64| if weight == Weight::ZeroAtStart { from + length * s } else { to - length * s };
+                        let sum: f64 = s.iter().zip(w).map(|(&s, &w)| w * q(at(s), weight).powf(-gamma)).sum();
+                        length.powf(1.0 - gamma) * sum
+                    }
+                };
+                assert!((got / plain - 1.0).abs() < 1e-14, "{m} nodes, {weight:?}: {got} vs {plain}");
+            }
+        }
+    }
+}
