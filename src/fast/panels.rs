@@ -35,10 +35,13 @@ struct Segment {
     to: f64,
     /// The radius of convergence that the step's coefficients show: `w` is analytic within it of `origin`.
     radius: f64,
+    /// The singularities of `w` nearest to `origin`, `re ± i im` (`τ`), where the step's coefficients show a
+    /// conjugate pair that the neighbouring step's confirm ([`Segments::push`]).
+    pole: Option<(f64, f64)>,
     w: Coefficients,
 }
 
-const EMPTY: Segment = Segment { origin: 0.0, from: 0.0, to: 0.0, radius: 0.0, w: [0.0; MAX_ORDER + 1] };
+const EMPTY: Segment = Segment { origin: 0.0, from: 0.0, to: 0.0, radius: 0.0, pole: None, w: [0.0; MAX_ORDER + 1] };
 
 /// What lies at or beyond an end of an integrated range.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -54,13 +57,15 @@ pub struct Segments {
     list: [Segment; CAPACITY],
     len: usize,
     order: usize,
+    /// The conjugate pair that the newest step's coefficients show, and whether the list still holds that step.
+    last_pair: Option<(f64, f64)>,
     /// `Q` at a zero of `w` at an end of the panel being summed (scratch).
     factor: Coefficients,
 }
 
 impl Default for Segments {
     fn default() -> Self {
-        Segments { list: [EMPTY; CAPACITY], len: 0, order: 0, factor: [0.0; MAX_ORDER + 1] }
+        Segments { list: [EMPTY; CAPACITY], len: 0, order: 0, last_pair: None, factor: [0.0; MAX_ORDER + 1] }
     }
 }
 
@@ -79,6 +84,7 @@ impl Segments {
     pub fn clear(&mut self, order: usize) {
         self.len = 0;
         self.order = order;
+        self.last_pair = None;
     }
 
     pub fn is_full(&self) -> bool {
@@ -89,8 +95,25 @@ impl Segments {
     /// `radius`.
     pub fn push(&mut self, expansion: &Expansion, origin: f64, from: f64, to: f64, radius: f64) {
         debug_assert!(self.len < CAPACITY && from <= to);
+        // A conjugate pair of singularities, where the step's coefficients show one at the distance their size
+        // does and the step before showed the same pair (a pole of a heavy damping: `1 + x v` is an
+        // exponential of `x ∫ w`): both steps' pieces are then bounded by the pair itself, not by their discs.
+        let pair = conjugate_pair(&expansion.w[..=self.order], radius).map(|(re, im)| (origin + re, im));
+        let mut pole = None;
+        if let (Some(now), Some(before)) = (pair, self.last_pair) {
+            let distance = norm(now.0 - origin, now.1);
+            if norm(now.0 - before.0, now.1 - before.1) <= PAIR_AGREEMENT * distance {
+                pole = Some(now);
+                if let Some(previous) = self.len.checked_sub(1).map(|i| &mut self.list[i])
+                    && previous.to == from
+                {
+                    previous.pole.get_or_insert(before);
+                }
+            }
+        }
+        self.last_pair = pair;
         // (Whole arrays: a fixed-size copy, where the order's length would call memcpy.)
-        self.list[self.len] = Segment { origin, from, to, radius, w: expansion.w };
+        self.list[self.len] = Segment { origin, from, to, radius, pole, w: expansion.w };
         self.len += 1;
     }
 
@@ -207,8 +230,13 @@ impl Segments {
                 s2 = s2.min(((z - centre) / half).powi(2));
             }
         }
-        // The steps' pieces.
+        // The steps' pieces: each bounded by its conjugate pair of singularities where it has one (the ellipse
+        // through a point z has s = (|z - from| + |z - to|)/(to - from)), else by its disc.
         for segment in &self.list[first..=last] {
+            if let Some((re, im)) = segment.pole {
+                s2 = s2.min(((norm(re - from, im) + norm(re - to, im)) / (to - from)).powi(2));
+                continue;
+            }
             let (lo, hi) = (segment.from.max(from), segment.to.min(to));
             let dx = (lo - segment.origin).abs().max((hi - segment.origin).abs());
             let room = segment.radius * segment.radius - dx * dx;
@@ -220,10 +248,13 @@ impl Segments {
             let sum = l2 + u2 + room;
             s2 = s2.min((sum + (sum * sum - 4.0 * l2 * u2).max(0.0).sqrt()) / (2.0 * l2));
         }
-        // The ellipse's ends.
+        // The ellipse's ends, where a disc bounds the end's step.
         for (segment, e) in
             [(&self.list[first], from - self.list[first].origin), (&self.list[last], to - self.list[last].origin)]
         {
+            if segment.pole.is_some() {
+                continue;
+            }
             let e = e.abs();
             let y = (-e + (5.0 * segment.radius * segment.radius - 4.0 * e * e).max(0.0).sqrt()) / 5.0;
             if y <= 0.0 {
@@ -360,6 +391,40 @@ impl Segments {
         }
         Some(scale * taylor::dot(&values[..m], &weights[..m]))
     }
+}
+
+/// Largest distance, relative to the distance from the step, between the conjugate pairs of two consecutive
+/// steps for them to count as one pair of singularities ([`Segments::push`]).
+const PAIR_AGREEMENT: f64 = 0.05;
+
+/// The conjugate pair of singularities `re ± i im` (offsets from the expansion point) that the last four Taylor
+/// coefficients `c` show, if they decay like one: `c_k = a c_(k-1) + b c_(k-2)` fitted to them (Hunter and
+/// Guerrieri's two-term recurrence; a pair `p`, `p̄` of poles gives `a = 2 Re(1/p)`, `b = -1/|p|²`), complex roots,
+/// and the pair at the distance `radius` that the coefficients' size shows (within `0.8` to `1.6` times: a
+/// polynomial or an entire function's factorial decay fits a "pair" about `e` times farther).
+fn conjugate_pair(c: &[f64], radius: f64) -> Option<(f64, f64)> {
+    let k = c.len() - 1;
+    if k < 4 {
+        return None;
+    }
+    let [c3, c2, c1, c0] = [c[k - 3], c[k - 2], c[k - 1], c[k]];
+    let determinant = c2 * c2 - c1 * c3;
+    let a = (c1 * c2 - c0 * c3) / determinant;
+    let b = (c2 * c0 - c1 * c1) / determinant;
+    // Roots of x² - a x - b (x = 1/p): complex when a² + 4b < 0, then |x|² = -b, Re x = a/2.
+    let discriminant = a * a + 4.0 * b;
+    if !(discriminant < 0.0 && b < 0.0) {
+        return None;
+    }
+    let modulus2 = -b;
+    let (re, im) = (0.5 * a / modulus2, (0.5 * (-discriminant).sqrt()) / modulus2);
+    let distance = norm(re, im);
+    (distance >= 0.8 * radius && distance <= 1.6 * radius).then_some((re, im))
+}
+
+/// `sqrt(a² + b²)` (the operands here are far from overflow; `hypot` guards against it at several times the cost).
+fn norm(a: f64, b: f64) -> f64 {
+    taylor::mul_add(a, a, b * b).sqrt()
 }
 
 /// Nodes of one step evaluated at once (a step holds two or three of a panel's nodes as a rule: one vector).
@@ -546,5 +611,117 @@ mod tests {
                 assert!((got / plain - 1.0).abs() < 1e-14, "{m} nodes, {weight:?}: {got} vs {plain}");
             }
         }
+    }
+
+    /// The two-term fit finds the poles `±i` of `1/(1 + τ²)` (coefficients `(-1)^j` at even orders) from an expansion
+    /// about 0, and `a ± i b` of `1/((τ - a)² + b²)` about another point; it finds none in the factorial decay of
+    /// an entire function (`sin`: its "pair" sits about `e` times beyond the radius the coefficients' size shows),
+    /// nor in a real pole's geometric decay.
+    #[test]
+    fn conjugate_pairs_of_poles_are_found_and_entire_functions_have_none() {
+        let order = 18;
+        // 1/(1 + τ²) about 0: radius 1.
+        let lorentz: Vec<f64> =
+            (0..=order).map(|j| if j % 2 == 0 { if j % 4 == 0 { 1.0 } else { -1.0 } } else { 0.0 }).collect();
+        let (re, im) = conjugate_pair(&lorentz, 1.0).expect("poles at ±i");
+        assert!(re.abs() < 1e-12 && (im - 1.0).abs() < 1e-12, "{re} {im}");
+        // 1/((τ - a)² + b²) = Im(1/(τ - p))/b with p = a + i b, expanded about 0: c_j = -Im(p^(-j-1))/b.
+        let (a, b): (f64, f64) = (0.3, 0.8);
+        let mut power = (1.0, 0.0); // p^(-j-1), built by multiplying with 1/p
+        let inverse = (a / (a * a + b * b), -b / (a * a + b * b));
+        let shifted: Vec<f64> = (0..=order)
+            .map(|_| {
+                power = (power.0 * inverse.0 - power.1 * inverse.1, power.0 * inverse.1 + power.1 * inverse.0);
+                -power.1 / b
+            })
+            .collect();
+        let radius = a.hypot(b);
+        let (re, im) = conjugate_pair(&shifted, radius).expect("poles at a ± i b");
+        assert!((re - a).abs() < 1e-10 && (im - b).abs() < 1e-10, "{re} {im}");
+        // sin τ: the coefficients' size shows a radius of about K/e; the fit's pair lies near K, rejected.
+        let mut factorial = 1.0;
+        let sine: Vec<f64> = (0..=order)
+            .map(|j| {
+                if j > 0 {
+                    factorial *= j as f64;
+                }
+                (j as f64 * std::f64::consts::FRAC_PI_2).sin() / factorial
+            })
+            .collect();
+        let radius = (sine[order - 1].abs()).powf(-1.0 / (order - 1) as f64);
+        assert_eq!(conjugate_pair(&sine, radius), None);
+        // 1/(2 - τ): a real pole, no pair.
+        let geometric: Vec<f64> = (0..=order).map(|j| 0.5f64.powi(j as i32 + 1)).collect();
+        assert_eq!(conjugate_pair(&geometric, 2.0), None);
+    }
+
+    /// A confirmed pair bounds the steps it was seen from by its own ellipse: `1/(1 + τ²)` over three steps of
+    /// `[1, 2.5]`, each seeing the poles `±i` (its disc only reaches to `sqrt(1 + τ²)`), takes the nodes of the
+    /// ellipse through `i` — fewer than the discs alone allow — and integrates `∫ (1 + τ²)^(0.3)` to the
+    /// tolerance.
+    #[test]
+    fn a_confirmed_pair_of_poles_sets_the_ellipse() {
+        let order = 24;
+        let mut segments = Segments::default();
+        segments.clear(order);
+        let mut expansion = Expansion::default();
+        let breaks = [1.0, 1.5, 2.0, 2.5];
+        for pair in breaks.windows(2) {
+            let origin = pair[0];
+            // 1/(1 + τ²) = Im(1/(τ - i)) about origin: 1/(σ - q) = -Σ σ^j q^(-j-1), q = i - origin.
+            let q = (-origin, 1.0); // i - origin
+            let m2 = q.0 * q.0 + q.1 * q.1;
+            let inverse = (q.0 / m2, -q.1 / m2);
+            let mut power = (1.0, 0.0);
+            for j in 0..=order {
+                power = (power.0 * inverse.0 - power.1 * inverse.1, power.0 * inverse.1 + power.1 * inverse.0);
+                expansion.w[j] = -power.1;
+            }
+            segments.push(&expansion, origin, origin, pair[1], (1.0 + origin * origin).sqrt());
+        }
+        assert!(segments.list[..3].iter().all(|s| s.pole.is_some()), "every step's pair confirmed");
+        let digits = node_digits(1e-12);
+        let range = Range {
+            from: 1.0,
+            to: 2.5,
+            first: 0,
+            last: 2,
+            start: End::Clear(f64::NEG_INFINITY),
+            end: End::Clear(f64::INFINITY),
+        };
+        let with_pair = segments.nodes(&range, Weight::Legendre, digits);
+        // The ellipse through i about [1, 2.5]: s = (|i - 1| + |i - 2.5|)/1.5.
+        let s = (2f64.sqrt() + (1.0f64 + 6.25).sqrt()) / 1.5;
+        let r = s + (s * s - 1.0).sqrt();
+        let expected = (digits / (2.0 * r.ln())).ceil() as usize;
+        assert!(with_pair.abs_diff(expected) <= 1, "{with_pair} nodes, the ellipse through i asks for {expected}");
+        for segment in &mut segments.list[..3] {
+            segment.pole = None;
+        }
+        assert!(segments.nodes(&range, Weight::Legendre, digits) > with_pair);
+        // ∫_1^2.5 (1 + τ²)^0.3 dτ, with w = 1/(1 + τ²) and γ = 0.3, against composite Gauss–Legendre of the
+        // closed-form integrand.
+        for segment in &mut segments.list[..3] {
+            segment.pole = Some((0.0, 1.0));
+        }
+        let mut jacobi = JacobiRules::default();
+        let got = segments
+            .integral(0.3, 1.0, 2.5, End::Clear(f64::NEG_INFINITY), End::Clear(f64::INFINITY), digits, &mut jacobi)
+            .unwrap();
+        let (nodes, weights) = gauss_legendre(20);
+        let exact: f64 = (0..30)
+            .map(|i| {
+                let (a, b) = (1.0 + 0.05 * i as f64, 1.05 + 0.05 * i as f64);
+                nodes
+                    .iter()
+                    .zip(weights)
+                    .map(|(x, w)| {
+                        let t = 0.5 * (a + b) + 0.5 * (b - a) * x;
+                        0.5 * (b - a) * w * (1.0 + t * t).powf(0.3)
+                    })
+                    .sum::<f64>()
+            })
+            .sum();
+        assert!((got / exact - 1.0).abs() < 1e-12, "{got} vs {exact}");
     }
 }
