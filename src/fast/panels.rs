@@ -234,6 +234,7 @@ impl Segments {
         // through a point z has s = (|z - from| + |z - to|)/(to - from)), else by its disc.
         for segment in &self.list[first..=last] {
             if let Some((re, im)) = segment.pole {
+                let im = POLE_MARGIN * im;
                 s2 = s2.min(((norm(re - from, im) + norm(re - to, im)) / (to - from)).powi(2));
                 continue;
             }
@@ -392,6 +393,11 @@ impl Segments {
         Some(scale * taylor::dot(&values[..m], &weights[..m]))
     }
 }
+
+/// The pair's distance from the real axis that a panel's ellipse keeps clear of, as a fraction of the fitted
+/// distance: room for the fit's drift along a contact (a few per cent) and for the integrand's growth towards the
+/// pair, which the error bound `M R^(-2m)` takes on the ellipse.
+const POLE_MARGIN: f64 = 0.9;
 
 /// Largest distance, relative to the distance from the step, between the conjugate pairs of two consecutive
 /// steps for them to count as one pair of singularities ([`Segments::push`]).

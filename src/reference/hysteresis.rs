@@ -223,6 +223,28 @@ mod tests {
         assert!(rel(r.restitution, e) < 1e-10);
     }
 
+    /// The times to the last digits, against an extended-precision integration of the contact (mpmath, 30 digits:
+    /// its Taylor ODE solver `odefun` for `w' = ((n+1)/2) v, v' = -w (1 + x v)`, maximum compression and
+    /// separation by `findroot`, `t = ∫ w^(-(n-1)/(n+1)) dτ` by tanh-sinh `quad` with breakpoints towards both
+    /// ends). The error floor of the fast path is measured against these references, so they must hold to about
+    /// an ulp: summed plainly, the quadrature's few hundred terms left them 3 to 7e-16 off.
+    #[test]
+    // (The digits as mpmath printed them; the compiler rounds them to the nearest double.)
+    #[allow(clippy::excessive_precision)]
+    fn times_to_the_last_digits() {
+        let cases = [
+            (10.0, 2.2, 1.155670500179849879, 7.8650576269360211252),
+            (10.0, 1.5, 1.0264467440245183048, 6.4581139117148244698),
+            (2.0, 2.2, 1.3929272879069162435, 4.0599930393251612243),
+            (0.5, 1.5, 1.5051902624721971387, 3.3382527559374332991),
+        ];
+        for (x, n, t0, tc) in cases {
+            let r = hysteresis_contact(x, n);
+            assert!(rel(r.max_compression_time, t0) < 3e-16, "x = {x}, n = {n}: t0 {} vs {t0}", r.max_compression_time);
+            assert!(rel(r.duration, tc) < 3e-16, "x = {x}, n = {n}: tc {} vs {tc}", r.duration);
+        }
+    }
+
     #[test]
     fn invalid_input() {
         assert!(hysteresis_contact(-0.1, 1.5).duration.is_nan());
