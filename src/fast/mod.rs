@@ -480,13 +480,20 @@ impl<'a> Run<'a> {
         let start = if from == 0.0 { End::Zero } else { End::Clear(0.0) };
         let stalled = move || FastError::Stalled(to);
         if timed && gamma != 0.0 {
+            // The range split at the force peak, if it lies inside: the time to it is the peak's time, and the
+            // rest starts there (clear of first contact's zero).
+            let (mut from, mut start) = (from, start);
             if self.peak.time.is_nan() && self.peak.tau <= to {
-                let ahead = match end {
-                    End::Zero => End::Clear(to),
-                    clear => clear,
-                };
-                let piece = self.integral(from, self.peak.tau, start, ahead);
-                self.peak.time = self.time() + piece.ok_or_else(stalled)?;
+                if self.peak.tau > from {
+                    let ahead = match end {
+                        End::Zero => End::Clear(to),
+                        clear => clear,
+                    };
+                    let piece = self.integral(from, self.peak.tau, start, ahead).ok_or_else(stalled)?;
+                    self.advance_time(piece);
+                    (from, start) = (self.peak.tau, End::Clear(0.0));
+                }
+                self.peak.time = self.time();
             }
             let piece = self.integral(from, to, start, end).ok_or_else(stalled)?;
             self.advance_time(piece);
