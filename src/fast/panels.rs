@@ -101,8 +101,8 @@ impl Segments {
         let pair = conjugate_pair(&expansion.w[..=self.order], radius).map(|(re, im)| (origin + re, im));
         let mut pole = None;
         if let (Some(now), Some(before)) = (pair, self.last_pair) {
-            let distance = norm(now.0 - origin, now.1);
-            if norm(now.0 - before.0, now.1 - before.1) <= PAIR_AGREEMENT * distance {
+            let distance2 = (now.0 - origin).powi(2) + now.1 * now.1;
+            if (now.0 - before.0).powi(2) + (now.1 - before.1).powi(2) <= PAIR_AGREEMENT * PAIR_AGREEMENT * distance2 {
                 pole = Some(now);
                 if let Some(previous) = self.len.checked_sub(1).map(|i| &mut self.list[i])
                     && previous.to == from
@@ -414,18 +414,23 @@ fn conjugate_pair(c: &[f64], radius: f64) -> Option<(f64, f64)> {
         return None;
     }
     let [c3, c2, c1, c0] = [c[k - 3], c[k - 2], c[k - 1], c[k]];
-    let determinant = c2 * c2 - c1 * c3;
-    let a = (c1 * c2 - c0 * c3) / determinant;
-    let b = (c2 * c0 - c1 * c1) / determinant;
-    // Roots of x² - a x - b (x = 1/p): complex when a² + 4b < 0, then |x|² = -b, Re x = a/2.
-    let discriminant = a * a + 4.0 * b;
-    if !(discriminant < 0.0 && b < 0.0) {
+    // a = a_d/d, b = b_d/d by Cramer's rule; the tests multiplied through by d (no division for a step that
+    // shows no pair, most of them).
+    let d = c2 * c2 - c1 * c3;
+    let (a_d, b_d) = (c1 * c2 - c0 * c3, c2 * c0 - c1 * c1);
+    // Roots of x² - a x - b (x = 1/p) complex: a² + 4b < 0, i.e. a_d² + 4 b_d d < 0 (which makes b < 0).
+    let discriminant = a_d * a_d + 4.0 * b_d * d;
+    if discriminant.is_nan() || discriminant >= 0.0 {
         return None;
     }
-    let modulus2 = -b;
-    let (re, im) = (0.5 * a / modulus2, (0.5 * (-discriminant).sqrt()) / modulus2);
-    let distance = norm(re, im);
-    (distance >= 0.8 * radius && distance <= 1.6 * radius).then_some((re, im))
+    // |p|² = 1/|x|² = -1/b = -d/b_d, Re p = Re(x)/|x|² = (a/2)/(-b) = -a_d/(2 b_d).
+    let distance2 = -d / b_d;
+    let r2 = radius * radius;
+    if !(distance2 >= 0.64 * r2 && distance2 <= 2.56 * r2) {
+        return None;
+    }
+    let re = -0.5 * a_d / b_d;
+    Some((re, (distance2 - re * re).max(0.0).sqrt()))
 }
 
 /// `sqrt(a² + b²)` (the operands here are far from overflow; `hypot` guards against it at several times the cost).
