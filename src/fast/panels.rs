@@ -579,7 +579,7 @@ mod tests {
         ];
         let origins = [1.0, 1.5, 2.0];
         // The last one's zero: 0.45 - 0.6 σ - 0.1 σ² = 0.
-        let zero = 2.0 + (-0.6 + (0.36f64 + 0.18).sqrt()) / -0.2;
+        let zero = 2.0 + (-0.6 + (0.36f64 + 0.18).sqrt()) / 0.2;
         let ends = [1.5, 2.0, zero];
         for ((c, &origin), &end) in polynomials.iter().zip(&origins).zip(&ends) {
             expansion.w[..=order].copy_from_slice(c);
