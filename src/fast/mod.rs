@@ -21,7 +21,9 @@
 //! * **Time** (`panels.rs`, `quadrature.rs`). `t = ∫ w^(-γ) dτ` over each phase (to the force peak, to maximum
 //!   compression, to separation) by Gauss rules that span several steps, each node on the polynomial of its
 //!   step: Gauss–Jacobi where a zero of `w` ends the range (first contact, penetration separation),
-//!   Gauss–Legendre elsewhere, with the nodes that the steps' discs of convergence and the zeros of `w` allow.
+//!   Gauss–Legendre elsewhere, with the nodes that the steps' discs of convergence (or a conjugate pair of
+//!   singularities two steps agree on) and the zeros of `w` allow; after a force separation, to the penetration's
+//!   zero less the piece past the force's (in closed form for a light damping, where the two are ulps apart).
 //!   The time neither shortens nor adds steps: a timed run takes the steps of an untimed one.
 //! * **Endings**: separation; `NeverSeparates` for an overdamped linear law with separation at zero penetration
 //!   (decided exactly at maximum compression); `Settled`, `StepBudget`, `TimeLimit` otherwise, never a hang.
@@ -63,8 +65,9 @@ pub struct Request {
 
 /// What an integration computes besides the motion, the impulses and the work (which give e by all three
 /// definitions, `V0`, the maximum penetration and the kinetic energies). A quantity left out costs nothing and is
-/// NaN in the [`Outcome`]: a caller that asks for e alone (a sweep's `--columns`) skips the time quadrature and
-/// the step limits it needs, the force peak's location and the dissipation's quadrature.
+/// NaN in the [`Outcome`]: a caller that asks for e alone (a sweep's `--columns`) skips the time quadrature (and
+/// keeping the steps for it), the force peak's location and the dissipation's quadrature. None of them changes
+/// the steps: e, the impulses and the maximum penetration are the same numbers whatever is asked for.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Quantities {
     /// Physical times: of maximum compression, of separation, of the force peak.
@@ -283,12 +286,18 @@ const LONG_UNTIMED: f64 = 0.25 * TIME_LIMIT;
 const RATE_FLOOR: f64 = 0.01;
 /// Relative accuracy of [`Run::next_zero`]'s estimate (it sets node counts, never an event).
 const ZERO_ESTIMATE: f64 = 1e-6;
+/// How far past a step, in step lengths, its polynomial is trusted to hold the zero of `w` that follows a force
+/// separation ([`Run::zero_just_past`]): its truncation grows like `JUST_PAST^(K+1)` there, a few times the
+/// step's own.
+const JUST_PAST: f64 = 1.05;
 
 /// The integration of one impact.
 struct Run<'a> {
     system: Regularised,
     quantities: Quantities,
     order: usize,
+    /// The local (per-step) tolerance.
+    eps: f64,
     /// `eps^(1/(order+1))`, for the step size.
     eps_root: f64,
     /// `ln(1/eps)` and a margin, for the Gauss rules' node counts ([`node_digits`]).
@@ -347,6 +356,7 @@ impl<'a> Run<'a> {
             system,
             quantities,
             order,
+            eps,
             eps_root,
             node_digits,
             state: State::FIRST_CONTACT,
@@ -431,6 +441,17 @@ impl<'a> Run<'a> {
         let (middle, to) = (from + 0.5 * (4.0 * h - from), 4.0 * h);
         let samples = taylor::values(w, [from, middle, to]);
         taylor::fall_in_halves(|s| taylor::value_and_slope(w, s), [from, middle, to], samples, ZERO_ESTIMATE)
+    }
+
+    /// The zero of `w` just past the end of the step of length `h`, from offset `from` (where `w > 0`), if one lies
+    /// within [`JUST_PAST`] `h`, where the step's polynomial still holds it: located to rounding, for a rule
+    /// weighted at it ([`End::ZeroBeyond`]).
+    fn zero_just_past(&self, from: f64, h: f64) -> Option<f64> {
+        let w = self.w();
+        let reach = JUST_PAST * h;
+        let at = [from, from + 0.5 * (reach - from), reach];
+        let samples = taylor::values(w, at);
+        taylor::fall_in_halves(|s| taylor::value_and_slope(w, s), at, samples, 0.0)
     }
 
     /// Where the zero of `w` that ends a restitution lies, seen from the current state at `τ` (a step of length
@@ -576,8 +597,8 @@ impl<'a> Run<'a> {
     /// From first contact to separation (penetration back to zero, or for a law that turns tensile under the
     /// force criterion, the force back to zero), or until the motion dies out. Maximum compression (`v = 0`) and
     /// the force peak are located inside the steps, on their polynomials; a step is cut only where the contact
-    /// ends. The time and the dissipation are integrated over the phases' steps afterwards ([`panels`]), so that
-    /// they neither shorten nor add steps. Returns the maximum-compression point and how the contact ended
+    /// ends. The time is integrated over each phase's steps when the phase ends ([`panels`]), the dissipation by a
+    /// rule a step: neither shortens nor adds a step. Returns the maximum-compression point and how the contact ended
     /// (`self.state` then holds the end, with the restitution's impulse and work counted from maximum
     /// compression); `None` when a run that does not compute the time may be nearing the time limit
     /// ([`LONG_UNTIMED`]: the caller runs it again timed).
@@ -680,9 +701,16 @@ impl<'a> Run<'a> {
             last_step = step.end;
             let Some(point) = max_compression else { continue };
             if step.force_zero.is_some() {
-                // The zero of w beyond the force's: in this step, or ahead.
-                let end = match step.zero {
-                    Some(zero) => End::Clear(self.tau - step.end + zero),
+                // The zero of w beyond the force's: in this step (its polynomial reaches it; a light damping puts
+                // it an ulp or a hair past the force's), or ahead.
+                let end = match step.zero.or_else(|| self.zero_just_past(step.end, h)) {
+                    Some(zero) => {
+                        // The time from the force's zero to the penetration's, in closed form where the damping is
+                        // light enough for it (an ulp or two apart in τ, the time is ill-conditioned in τ but not
+                        // in w, which is known there exactly).
+                        let piece = system.time_past_force_zero(self.state.rate, self.eps);
+                        End::ZeroBeyond { zero: self.tau - step.end + zero, piece }
+                    }
                     None => self.zero_ahead(step.end, h),
                 };
                 self.integrate_to(self.tau, end)?;

@@ -7,8 +7,11 @@
 //! it falls in. Its error falls like `R^(-2m)` for `m` nodes, `R` the largest Bernstein ellipse about the panel
 //! that stays inside every step's disc of convergence and clear of the zeros of `w` ([`Segments::nodes`]); a zero
 //! at a panel's end is integrated exactly by the Gauss–Jacobi weight `s^(-γ)`, with `w = |τ - zero| Q(τ)` and
-//! `Q^(-γ)` smooth. A phase of a dozen steps takes one or two rules of 10 to 21 nodes; a rule for each step took
-//! 4 to 10 nodes a step, and steps were cut short so that each stayed clear of the next zero.
+//! `Q^(-γ)` smooth. Where two consecutive steps' coefficients show the same conjugate pair of singularities, the
+//! pair itself bounds the ellipse ([`conjugate_pair`]). A phase of a dozen steps takes a rule of 6 to 20 nodes
+//! (`alpha v0 = 10`: 6, 9 and 15 to the force peak, to maximum compression and to separation at a tolerance of
+//! 1e-9); a rule for each step took 4 to 10 nodes a step, and steps were cut short so that each stayed clear of the
+//! next zero.
 //!
 //! The steps of the phase in progress are kept ([`Segments`], at most [`CAPACITY`]); their integrals are taken
 //! when the phase ends, or for the older half when the store is full (a creeping restitution of thousands of
@@ -50,6 +53,12 @@ pub enum End {
     Zero,
     /// The nearest zero of `w` on this side lies at this `τ` or farther (`±∞`: none that matters).
     Clear(f64),
+    /// (At the range's end only.) `w` vanishes at `zero` just past the end, inside the last kept step's reach (a
+    /// force separation, where the penetration's zero follows within the step, possibly an ulp later): the range
+    /// is integrated to that zero under the Gauss–Jacobi weight, less the piece from the end to it, which no rule
+    /// clear of so near a zero could reach — `piece` where the caller has it in closed form, else a rule weighted
+    /// at the zero.
+    ZeroBeyond { zero: f64, piece: Option<f64> },
 }
 
 /// The steps of the phase in progress, oldest first.
@@ -57,16 +66,27 @@ pub struct Segments {
     list: [Segment; CAPACITY],
     len: usize,
     order: usize,
-    /// The conjugate pair that the newest step's coefficients show, and whether the list still holds that step.
-    last_pair: Option<(f64, f64)>,
+    /// The newest step kept: its origin, the conjugate pair its coefficients show and whether that pair was
+    /// confirmed (a step cut by maximum compression is kept as two pieces, which share the decision: a step
+    /// cannot confirm its own pair).
+    last: Option<Kept>,
     /// `Q` at a zero of `w` at an end of the panel being summed (scratch).
     factor: Coefficients,
 }
 
 impl Default for Segments {
     fn default() -> Self {
-        Segments { list: [EMPTY; CAPACITY], len: 0, order: 0, last_pair: None, factor: [0.0; MAX_ORDER + 1] }
+        Segments { list: [EMPTY; CAPACITY], len: 0, order: 0, last: None, factor: [0.0; MAX_ORDER + 1] }
     }
+}
+
+/// What [`Segments::push`] remembers of the newest step: its origin, the conjugate pair its coefficients show
+/// (`re ± i im`, in `τ`) and whether that pair was confirmed.
+#[derive(Debug, Clone, Copy)]
+struct Kept {
+    origin: f64,
+    pair: Option<(f64, f64)>,
+    pole: Option<(f64, f64)>,
 }
 
 /// A panel's rule: which weight, over which range.
@@ -84,7 +104,7 @@ impl Segments {
     pub fn clear(&mut self, order: usize) {
         self.len = 0;
         self.order = order;
-        self.last_pair = None;
+        self.last = None;
     }
 
     pub fn is_full(&self) -> bool {
@@ -98,20 +118,28 @@ impl Segments {
         // A conjugate pair of singularities, where the step's coefficients show one at the distance their size
         // does and the step before showed the same pair (a pole of a heavy damping: `1 + x v` is an
         // exponential of `x ∫ w`): both steps' pieces are then bounded by the pair itself, not by their discs.
-        let pair = conjugate_pair(&expansion.w[..=self.order], radius).map(|(re, im)| (origin + re, im));
-        let mut pole = None;
-        if let (Some(now), Some(before)) = (pair, self.last_pair) {
-            let distance2 = (now.0 - origin).powi(2) + now.1 * now.1;
-            if (now.0 - before.0).powi(2) + (now.1 - before.1).powi(2) <= PAIR_AGREEMENT * PAIR_AGREEMENT * distance2 {
-                pole = Some(now);
-                if let Some(previous) = self.len.checked_sub(1).map(|i| &mut self.list[i])
-                    && previous.to == from
-                {
-                    previous.pole.get_or_insert(before);
+        let (pair, pole) = match self.last {
+            // The second piece of the same step: the first piece's decision.
+            Some(Kept { origin: last_origin, pair, pole }) if last_origin == origin => (pair, pole),
+            last => {
+                let pair = conjugate_pair(&expansion.w[..=self.order], radius).map(|(re, im)| (origin + re, im));
+                let mut pole = None;
+                if let (Some(now), Some(Kept { pair: Some(before), .. })) = (pair, last) {
+                    let distance2 = (now.0 - origin).powi(2) + now.1 * now.1;
+                    let apart2 = (now.0 - before.0).powi(2) + (now.1 - before.1).powi(2);
+                    if apart2 <= PAIR_AGREEMENT * PAIR_AGREEMENT * distance2 {
+                        pole = Some(now);
+                        if let Some(previous) = self.len.checked_sub(1).map(|i| &mut self.list[i])
+                            && previous.to == from
+                        {
+                            previous.pole.get_or_insert(before);
+                        }
+                    }
                 }
+                (pair, pole)
             }
-        }
-        self.last_pair = pair;
+        };
+        self.last = Some(Kept { origin, pair, pole });
         // (Whole arrays: a fixed-size copy, where the order's length would call memcpy.)
         self.list[self.len] = Segment { origin, from, to, radius, pole, w: expansion.w };
         self.len += 1;
@@ -148,9 +176,45 @@ impl Segments {
         if b <= a {
             return Some(0.0);
         }
+        debug_assert!(self.len > 0 && b <= self.list[self.len - 1].to && !matches!(start, End::ZeroBeyond { .. }));
+        debug_assert!(!(start == End::Zero && end == End::Zero), "a zero at both ends: split the range first");
+        if let End::ZeroBeyond { zero, piece } = end {
+            // ∫_a^b = ∫_a^zero - ∫_b^zero, both under the weight at the zero (the last step's polynomial reaches
+            // it).
+            let left = match start {
+                End::Zero => End::Clear(a),
+                other => other,
+            };
+            let whole = self.range_to(gamma, a, zero, start, digits, jacobi)?;
+            let piece = match piece {
+                Some(piece) => piece,
+                None => self.range_to(gamma, b, zero, left, digits, jacobi)?,
+            };
+            return Some(whole - piece);
+        }
         let first = self.list[..self.len].iter().position(|s| s.to > a)?;
-        let last = first + self.list[first..self.len].iter().position(|s| s.to >= b).unwrap_or(self.len - 1 - first);
+        let last = first + self.list[first..self.len].iter().position(|s| s.to >= b)?;
         let range = Range { from: a, to: b, first, last, start, end };
+        self.range_integral(gamma, range, digits, jacobi, 0)
+    }
+
+    /// `∫_a^zero w^(-gamma) dτ` under the weight at `zero`, a zero of `w` at or past the end of the last kept step
+    /// (whose polynomial reaches it; `a` within or at the end of the kept steps).
+    fn range_to(
+        &mut self,
+        gamma: f64,
+        a: f64,
+        zero: f64,
+        start: End,
+        digits: f64,
+        jacobi: &mut JacobiRules,
+    ) -> Option<f64> {
+        if zero <= a {
+            return Some(0.0);
+        }
+        let last = self.len - 1;
+        let first = self.list[..self.len].iter().position(|s| s.to > a).unwrap_or(last);
+        let range = Range { from: a, to: zero, first, last, start, end: End::Zero };
         self.range_integral(gamma, range, digits, jacobi, 0)
     }
 
@@ -190,11 +254,11 @@ impl Segments {
         let right_first = if cut >= self.list[left_last].to { left_last + 1 } else { left_last };
         let zero_left = match start {
             End::Zero => End::Clear(from),
-            clear => clear,
+            other => other,
         };
         let zero_right = match end {
             End::Zero => End::Clear(to),
-            clear => clear,
+            other => other,
         };
         let left = Range { from, to: cut, first, last: left_last, start, end: zero_right };
         let right = Range { from: cut, to, first: right_first, last, start: zero_left, end };
@@ -224,10 +288,12 @@ impl Segments {
         let half = 0.5 * (to - from);
         let centre = from + half;
         let mut s2 = f64::INFINITY;
+        // (A NaN bound stays NaN, where `min` would drop it: no rule then.)
+        let tighten = |s2: &mut f64, bound: f64| *s2 = if bound.is_nan() || bound < *s2 { bound } else { *s2 };
         // The zeros of w.
         for (zero, weighted) in [(start, weight == Weight::ZeroAtStart), (end, weight == Weight::ZeroAtEnd)] {
             if let (End::Clear(z), false) = (zero, weighted) {
-                s2 = s2.min(((z - centre) / half).powi(2));
+                tighten(&mut s2, ((z - centre) / half).powi(2));
             }
         }
         // The steps' pieces: each bounded by its conjugate pair of singularities where it has one (the ellipse
@@ -235,19 +301,19 @@ impl Segments {
         for segment in &self.list[first..=last] {
             if let Some((re, im)) = segment.pole {
                 let im = POLE_MARGIN * im;
-                s2 = s2.min(((norm(re - from, im) + norm(re - to, im)) / (to - from)).powi(2));
+                tighten(&mut s2, ((norm(re - from, im) + norm(re - to, im)) / (to - from)).powi(2));
                 continue;
             }
             let (lo, hi) = (segment.from.max(from), segment.to.min(to));
             let dx = (lo - segment.origin).abs().max((hi - segment.origin).abs());
             let room = segment.radius * segment.radius - dx * dx;
-            if room <= 0.0 {
+            if room.is_nan() || room <= 0.0 {
                 return usize::MAX;
             }
             let u = if lo <= centre && centre <= hi { 0.0 } else { (lo - centre).abs().min((hi - centre).abs()) };
             let (l2, u2) = (half * half, u * u);
             let sum = l2 + u2 + room;
-            s2 = s2.min((sum + (sum * sum - 4.0 * l2 * u2).max(0.0).sqrt()) / (2.0 * l2));
+            tighten(&mut s2, (sum + (sum * sum - 4.0 * l2 * u2).max(0.0).sqrt()) / (2.0 * l2));
         }
         // The ellipse's ends, where a disc bounds the end's step.
         for (segment, e) in
@@ -258,10 +324,10 @@ impl Segments {
             }
             let e = e.abs();
             let y = (-e + (5.0 * segment.radius * segment.radius - 4.0 * e * e).max(0.0).sqrt()) / 5.0;
-            if y <= 0.0 {
+            if y.is_nan() || y <= 0.0 {
                 return usize::MAX;
             }
-            s2 = s2.min((1.0 + y / half).powi(2));
+            tighten(&mut s2, (1.0 + y / half).powi(2));
         }
         if s2.is_nan() || s2 <= 1.0 {
             return usize::MAX;
@@ -383,7 +449,7 @@ impl Segments {
                 node = end.min(node + LANES);
             }
         }
-        if w[..m].iter().any(|&q| q.is_nan() || q <= 0.0) {
+        if w[..m].iter().any(|&q| !(q.is_finite() && q > 0.0)) {
             return None;
         }
         let mut values = [0.0; N];
@@ -668,8 +734,8 @@ mod tests {
 
     /// A confirmed pair bounds the steps it was seen from by its own ellipse: `1/(1 + τ²)` over three steps of
     /// `[1, 2.5]`, each seeing the poles `±i` (its disc only reaches to `sqrt(1 + τ²)`), takes the nodes of the
-    /// ellipse through `i` — fewer than the discs alone allow — and integrates `∫ (1 + τ²)^(0.3)` to the
-    /// tolerance.
+    /// ellipse through `0.9 i` (the pair, a tenth of its distance kept clear) — fewer than the discs alone allow —
+    /// and integrates `∫ (1 + τ²)^(0.3)` to the tolerance.
     #[test]
     fn a_confirmed_pair_of_poles_sets_the_ellipse() {
         let order = 24;
@@ -701,11 +767,13 @@ mod tests {
             end: End::Clear(f64::INFINITY),
         };
         let with_pair = segments.nodes(&range, Weight::Legendre, digits);
-        // The ellipse through i about [1, 2.5]: s = (|i - 1| + |i - 2.5|)/1.5.
-        let s = (2f64.sqrt() + (1.0f64 + 6.25).sqrt()) / 1.5;
+        // The ellipse through the pair, a tenth of its distance kept clear (0.9 i), about [1, 2.5]:
+        // s = (|0.9 i - 1| + |0.9 i - 2.5|)/1.5, m = ceil(digits/(2 ln R)).
+        let im = POLE_MARGIN;
+        let s = ((1.0 + im * im).sqrt() + (6.25 + im * im).sqrt()) / 1.5;
         let r = s + (s * s - 1.0).sqrt();
         let expected = (digits / (2.0 * r.ln())).ceil() as usize;
-        assert!(with_pair.abs_diff(expected) <= 1, "{with_pair} nodes, the ellipse through i asks for {expected}");
+        assert_eq!(with_pair, expected, "nodes against those of the ellipse through {im} i");
         for segment in &mut segments.list[..3] {
             segment.pole = None;
         }
@@ -734,5 +802,34 @@ mod tests {
             })
             .sum();
         assert!((got / exact - 1.0).abs() < 1e-12, "{got} vs {exact}");
+    }
+
+    /// A step cut by maximum compression is kept as two pieces of one expansion: the second piece repeats the
+    /// first's decision, it does not confirm the pair its own coefficients show (alone, no pair is confirmed); a
+    /// neighbouring step that shows the same pair confirms both itself and the piece before it.
+    #[test]
+    fn a_step_does_not_confirm_its_own_pair() {
+        let order = 24;
+        let expand = |origin: f64| {
+            let mut expansion = Expansion::default();
+            let q = (-origin, 1.0);
+            let m2 = q.0 * q.0 + q.1 * q.1;
+            let inverse = (q.0 / m2, -q.1 / m2);
+            let mut power = (1.0, 0.0);
+            for j in 0..=order {
+                power = (power.0 * inverse.0 - power.1 * inverse.1, power.0 * inverse.1 + power.1 * inverse.0);
+                expansion.w[j] = -power.1;
+            }
+            expansion
+        };
+        let mut segments = Segments::default();
+        segments.clear(order);
+        let first = expand(1.0);
+        let radius = 2f64.sqrt();
+        segments.push(&first, 1.0, 1.0, 1.2, radius);
+        segments.push(&first, 1.0, 1.2, 1.5, radius);
+        assert!(segments.list[..2].iter().all(|s| s.pole.is_none()), "one step alone confirms no pair");
+        segments.push(&expand(1.5), 1.5, 1.5, 2.0, (1.0f64 + 2.25).sqrt());
+        assert!(segments.list[1..3].iter().all(|s| s.pole.is_some()), "the next step confirms the pair");
     }
 }

@@ -389,6 +389,28 @@ impl Regularised {
         2.0 * w / (speed + (speed * speed + 2.0 * p * force * w).sqrt())
     }
 
+    /// The time from a force separation to the zero of `w` that follows it (a linear law that turns tensile, in
+    /// restitution: at the force's zero `F̂ = w + c v = 0`, so `w_F = c |v_F|` exactly), where it has a closed form to
+    /// the local tolerance `eps`; `None` for a damping too heavy for it.
+    ///
+    /// From the force's zero on (`σ`), `d²w/dτ² = p v' = -p F̂ = 0` there and `d³w/dτ³ = -p dF̂/dτ = -p² v_F`, so
+    /// `w = w_F - A σ + (p A/6) σ³ + …`, `A = p |v_F|`, and with `w` as the variable
+    /// `∫ w^(-γ) dσ = ∫_0^(w_F) w^(-γ) (1/A) (1 + (p/2) σ² + …) dw
+    ///  = w_F^(1-γ)/((1-γ) A) · (1 + c²/(p (2-γ)(3-γ)) + O((c²/p)²))` (the correction's Beta integral
+    /// `∫ w^(-γ) (w_F - w)² = 2 w_F^(3-γ)/((1-γ)(2-γ)(3-γ))`). In `τ` the two zeros of a light damping lie an ulp
+    /// or two apart, and the time over the gap (`∝ gap^(1-γ)`, steep at zero) would inherit the rounding of its
+    /// ends; in `w` it does not.
+    pub fn time_past_force_zero(&self, rate: f64, eps: f64) -> Option<f64> {
+        let (c, p, gamma) = (self.damping, self.rate_factor, self.time_exponent);
+        let correction = c * c / (p * (2.0 - gamma) * (3.0 - gamma));
+        if self.form != Form::Linear || rate.is_nan() || rate >= 0.0 || correction * correction > eps {
+            return None;
+        }
+        let w = c * -rate;
+        let a = p * -rate;
+        Some(w.powf(1.0 - gamma) / ((1.0 - gamma) * a) * (1.0 + correction))
+    }
+
     /// Scaled contact force `F = w^γ F̂` (`w` clamped at 0: a located zero may sit an ulp below).
     pub fn force(&self, w: f64, rate: f64) -> f64 {
         let w = w.max(0.0);

@@ -96,6 +96,15 @@ impl UnitOscillator {
         2.0 * self.max_compression_time()
     }
 
+    /// From the force's return to 0 to `D`'s (underdamped only): `pi/wd - 2 t0 = 2 asin(zeta)/wd`, formed directly
+    /// (a light damping puts the two an ulp apart, where their difference would be rounding alone).
+    pub(crate) fn force_zero_gap(&self) -> Option<f64> {
+        match self.regime {
+            Regime::Under { wd } => Some(2.0 * self.zeta.asin() / wd),
+            _ => None,
+        }
+    }
+
     /// End of contact for the given criterion (`None`: never separates).
     pub(crate) fn separation_time(&self, separation: SeparationCriterion) -> Option<f64> {
         match separation {

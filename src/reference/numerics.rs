@@ -122,9 +122,6 @@ pub(crate) fn bisect(f: impl Fn(f64) -> f64, mut lo: f64, mut hi: f64) -> f64 {
     lo + 0.5 * (hi - lo)
 }
 
-/// Test-only independent check: classical RK4 with step `dt` on d'' = `acceleration(d, d')` from d = 0, d' = 1,
-/// until `event(d, d')` falls to zero after the start (located by linear interpolation in the step).
-/// Returns the time and d' there.
 /// A sum with Neumaier's compensation: the rounding of each addition is kept and added back at the end.
 struct Compensated {
     sum: f64,
@@ -147,6 +144,9 @@ impl Compensated {
     }
 }
 
+/// Test-only independent check: classical RK4 with step `dt` on d'' = `acceleration(d, d')` from d = 0, d' = 1,
+/// until `event(d, d')` falls to zero after the start (located by linear interpolation in the step).
+/// Returns the time and d' there.
 #[cfg(test)]
 pub fn rk4_until(acceleration: impl Fn(f64, f64) -> f64, event: impl Fn(f64, f64) -> f64, dt: f64) -> (f64, f64) {
     let f = |d: f64, v: f64| (v, acceleration(d, v));

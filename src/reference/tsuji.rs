@@ -37,16 +37,23 @@ pub fn tsuji(a: f64, separation: SeparationCriterion) -> Option<ContactReference
     Some(ContactReference {
         restitution: osc.restitution(s_end),
         max_penetration: (OMEGA0_SQ.sqrt() * osc.max_penetration()).powf(0.8),
-        max_compression_time: time_unit * time_integral(&osc, osc.max_compression_time()),
-        duration: time_unit * time_integral(&osc, s_end),
+        max_compression_time: time_unit * time_integral(&osc, osc.max_compression_time(), None),
+        duration: time_unit
+            * time_integral(
+                &osc,
+                s_end,
+                (separation == SeparationCriterion::Force).then(|| osc.force_zero_gap()).flatten(),
+            ),
         max_force: OMEGA0_SQ.powf(0.6) * max_scaled_force(&osc),
     })
 }
 
 /// `∫_0^{s_end} D(s)^(-1/5) ds`. Near `s = 0` (`D ~ s`) the substitution `s = sigma^5` gives the bounded
 /// integrand `5 sigma³ (D/s)^(-1/5)`; past the midpoint of an underdamped oscillation the same is done around the
-/// zero `s_z = pi/wd` of `D` (`s_z - s = sigma^5`), so that ends at or near it are harmless.
-fn time_integral(osc: &UnitOscillator, s_end: f64) -> f64 {
+/// zero `s_z = pi/wd` of `D` (`s_z - s = sigma^5`), so that ends at or near it are harmless. `gap`, where given, is
+/// `s_z - s_end` formed without the subtraction (the force's zero an ulp before `D`'s: the integral's end there is
+/// `gap^(1/5)`, which the rounding of `s_end` would move by far more than an ulp).
+fn time_integral(osc: &UnitOscillator, s_end: f64, gap: Option<f64>) -> f64 {
     let from_start = |b: f64| {
         let f = |sigma: f64| {
             let s = sigma.powi(5);
@@ -63,7 +70,7 @@ fn time_integral(osc: &UnitOscillator, s_end: f64) -> f64 {
                 // D(s_zero - u)/u = e^(-zeta s) sin(wd u)/(wd u) = (D(u)/u) e^(-zeta (s - u)), computed directly:
                 5.0 * sigma.powi(3) * (osc.d_over_s(u) * (-osc.zeta * (s - u)).exp()).powf(-0.2)
             };
-            let lower = (s_zero - s_end).max(0.0).powf(0.2);
+            let lower = gap.unwrap_or(s_zero - s_end).max(0.0).powf(0.2);
             from_start(mid) + integrate(f, lower, mid.powf(0.2))
         }
         _ => from_start(s_end),
@@ -165,5 +172,20 @@ mod tests {
         assert!(tsuji(5.0_f64.sqrt(), Penetration).is_none());
         assert!(tsuji(-1.0, Force).is_none());
         assert_eq!(tsuji_damping(0.0), 5.0_f64.sqrt());
+    }
+
+    /// A light damping's force returns to zero at `d^(5/4) = a |d'|` (`d^(3/2) = a d^(1/4) |d'|`), a penetration
+    /// `d_F = (a e)^(4/5)` before the end, which the bodies cross at `|d'| = e` in `d_F/e`: the force criterion's
+    /// duration is that much shorter than the penetration criterion's (to first order in `d_F`). Their two ends are
+    /// an ulp or two apart in `s`: the gap between them is formed directly, not by subtracting them.
+    #[test]
+    fn a_light_force_separation_ends_its_own_penetration_before_the_zero() {
+        for a in [1e-9, 1e-12, 1e-14, 3.4e-16] {
+            let (force, penetration) = (tsuji(a, Force).unwrap(), tsuji(a, Penetration).unwrap());
+            let e = penetration.restitution;
+            let expected = (a * e).powf(0.8) / e;
+            let got = penetration.duration - force.duration;
+            assert!((got / expected - 1.0).abs() < 1e-3, "a = {a:e}: {got:e} vs {expected:e}");
+        }
     }
 }
