@@ -475,6 +475,35 @@ fn a_force_separation_an_ulp_before_the_penetrations_is_timed() {
     }
 }
 
+/// An overdamped linear law ended by its force: the restitution creeps on its slow manifold `v ≈ -w/c`, where the
+/// force `w + c v` is only about `p w/c²`, so the rate is held to that share of itself (an error `δv` moves the
+/// force by `c δv`). Tsuji (`a` from 2 to 100) and Kelvin–Voigt (`c = 2 zeta` from 2 to 100) against their closed
+/// forms: durations within 3 times the tolerance from 1e-6 to 1e-12 (the rate held to itself alone left Tsuji at
+/// `a = 100` 4.5 to 6 times off, and `a = 900` 4000 times; heavier still, see docs/numerics.md).
+#[test]
+fn overdamped_force_separations_keep_their_duration() {
+    let mut random = Random(0x6a09_e667_f3bc_c908);
+    for i in 0..200 {
+        let c = random.log_uniform(2.0, 100.0);
+        let tolerance = 10f64.powf(-random.uniform(6.0, 12.0));
+        let (kind, n, exact) = if i % 2 == 0 {
+            (LawKind::Tsuji, 1.5, reference::tsuji(c, Separation::Force).unwrap())
+        } else {
+            (LawKind::KelvinVoigt, 1.0, reference::kelvin_voigt(0.5 * c, Separation::Force).unwrap())
+        };
+        let request = Request {
+            law: ContactLaw { kind, stiffness: 1.0, exponent: n, damping: c, tsuji_scale: 1.0 },
+            scales: Scales::new(1.0, 1.0, n, 1.0),
+            separation: Separation::Force,
+            tolerance,
+            quantities: Quantities::ALL,
+        };
+        let out = simulate_normal(&request).unwrap();
+        let what = format!("{kind:?} c = {c}, tolerance {tolerance:e}");
+        assert!(rel(out.end.time, exact.duration) < 3.0 * tolerance, "{what}: {} vs {}", out.end.time, exact.duration);
+    }
+}
+
 #[test]
 fn covers_every_law_but_brilliantov() {
     use impact::law::catalogue::LAWS;

@@ -10,7 +10,8 @@
 //!   favours long steps). Its size comes from the last two coefficients: `h = ρ eps^(1/(K+1))`, `ρ` the smaller of
 //!   `|c_K|^(-1/K)`, `|c_(K-1)|^(-1/(K-1))` relative to the state, so that the first omitted term is `eps`
 //!   (the per-step tolerance, a tenth of the requested one). In restitution the rate is also measured against
-//!   itself, so that a small e keeps its relative accuracy. The impulse and the work follow from the rate
+//!   itself, so that a small e keeps its relative accuracy — for a force separation of an overdamped linear law
+//!   against `p/c²` of itself, the share of it that the force `w + c v` is on the slow manifold. The impulse and the work follow from the rate
 //!   (momentum and energy: `J + v` and `W + v²/2` are constant); the dissipation is a Gauss–Legendre integral of
 //!   its integrand on the step's polynomials, with the few nodes the step's distance to its singularities asks
 //!   for ([`Run::dissipated`]).
@@ -318,6 +319,11 @@ struct Run<'a> {
     segments: &'a mut Segments,
     /// Whether the run is past maximum compression (the step size then also measures v against itself).
     restituting: bool,
+    /// The share of its own size to which the rate is held in restitution: 1, or for a force separation of a heavy
+    /// linear damping `c > sqrt(p)`, `p/c²`. The force `w + c v` ends the contact; an overdamped restitution creeps
+    /// on its slow manifold `v ≈ -w/c` where the force is only `~ p w/c²`, so an error `δv` moves it by `c δv`, a
+    /// share `c² δv/(p |v|)` of itself.
+    rate_weight: f64,
     /// The Gauss–Jacobi rules of this `γ` (computed once per thread and `γ`).
     jacobi: &'a mut JacobiRules,
     steps: u64,
@@ -369,6 +375,7 @@ impl<'a> Run<'a> {
             segments: &mut workspace.segments,
             jacobi: &mut workspace.jacobi,
             restituting: false,
+            rate_weight: 1.0,
             steps: 0,
             dissipation_nodes,
             peak: Peak { force: 0.0, tau: 0.0, time: 0.0 },
@@ -417,7 +424,8 @@ impl<'a> Run<'a> {
         // creeps at about -1/x while w is still large): the restitution impulse and work (≈ e and e²/2) add
         // up every step's truncation of v with nothing to damp it, unlike v itself, which the slow manifold
         // pulls back. Floored, so that a rate passing through zero does not stall the step.
-        let rate_size = self.state.rate.abs().max(taylor::value(&e.rate[..=k], h).abs()).max(RATE_FLOOR * size);
+        let rate_size =
+            self.rate_weight * self.state.rate.abs().max(taylor::value(&e.rate[..=k], h).abs()).max(RATE_FLOOR * size);
         if rate_size >= size {
             return (h, radius);
         }
@@ -604,6 +612,9 @@ impl<'a> Run<'a> {
     /// ([`LONG_UNTIMED`]: the caller runs it again timed).
     fn integrate(&mut self, force_criterion: bool) -> Result<Option<(PhasePoint, Ending)>, FastError> {
         let system = self.system;
+        if force_criterion {
+            self.rate_weight = (system.rate_factor / (system.damping * system.damping)).min(1.0);
+        }
         let Quantities { time: timed, peak: peaked, .. } = self.quantities;
         // The force at first contact is a candidate peak (Kelvin–Voigt's jump to c v0, its maximum for c >= 1).
         self.offer_peak(system.force(0.0, 1.0), 0.0, 0.0);
