@@ -11,10 +11,10 @@
 //!   `|c_K|^(-1/K)`, `|c_(K-1)|^(-1/(K-1))` relative to the state, so that the first omitted term is `eps`
 //!   (the per-step tolerance, a tenth of the requested one). In restitution the rate is also measured against
 //!   itself, so that a small e keeps its relative accuracy — for a force separation of an overdamped linear law
-//!   against `p/c²` of itself, the share of it that the force `w + c v` is on the slow manifold. The impulse and the work follow from the rate
-//!   (momentum and energy: `J + v` and `W + v²/2` are constant); the dissipation is a Gauss–Legendre integral of
-//!   its integrand on the step's polynomials, with the few nodes the step's distance to its singularities asks
-//!   for ([`Run::dissipated`]).
+//!   against `p/c²` of itself, the share of it that the force `w + c v` is on the slow manifold. The impulse and
+//!   the work follow from the rate (momentum and energy: `J + v` and `W + v²/2` are constant); the dissipation is
+//!   a Gauss–Legendre integral of its integrand on the step's polynomials, with the few nodes the step's distance
+//!   to its singularities asks for ([`Run::dissipated`]).
 //! * **Events**, located on the step's polynomials (safeguarded Newton), never at the first step past them:
 //!   maximum compression `v = 0` and the force peak `dF/dτ = 0` inside the step; the separation `w = 0`, or for
 //!   the laws that turn tensile under `separation = "force"` the zero of the force's continued expression
@@ -285,10 +285,11 @@ const LONG_UNTIMED: f64 = 0.25 * TIME_LIMIT;
 /// Smallest scale of the rate, relative to the state's, against which its series is measured in restitution
 /// (see [`Run::expand`]): at most `RATE_FLOOR^(-1/(K+1))`, about 1.3 times, more steps.
 const RATE_FLOOR: f64 = 0.01;
-/// Relative accuracy of [`Run::next_zero`]'s estimate (it sets node counts, never an event).
+/// Relative accuracy of the estimate of the zero of `w` ahead ([`Run::zero_ahead`]: it sets node counts, never an
+/// event).
 const ZERO_ESTIMATE: f64 = 1e-6;
 /// How far past a step, in step lengths, its polynomial is trusted to hold the zero of `w` that follows a force
-/// separation ([`Run::zero_just_past`]): its truncation grows like `JUST_PAST^(K+1)` there, a few times the
+/// separation ([`Run::zero_of_w`]): its truncation grows like `JUST_PAST^(K+1)` there, a few times the
 /// step's own.
 const JUST_PAST: f64 = 1.05;
 
@@ -440,34 +441,24 @@ impl<'a> Run<'a> {
         &self.expansion.rate[..=self.order]
     }
 
-    /// Offset of the next zero of `w` after `from` (where `w > 0`), looked for on the step's polynomial up to `4 h`
-    /// (an estimate: the polynomial is near its radius of convergence there). `None` if its samples show none: that
-    /// rules nothing out — where `w` is small beside its series' truncation so far out, a zero just beyond the step
-    /// can hide (the caller then takes a lower bound instead).
-    fn next_zero(&self, from: f64, h: f64) -> Option<f64> {
+    /// Offset of the first zero of `w` after `from` (where `w > 0`) up to `to`, looked for on the step's polynomial
+    /// (samples at the middle and the end, then safeguarded Newton) and located to `precision`. `None` if the
+    /// samples show none: past the step that rules nothing out — where `w` is small beside its series' truncation
+    /// so far out, a zero just beyond can hide (a caller then takes a lower bound instead).
+    fn zero_of_w(&self, from: f64, to: f64, precision: f64) -> Option<f64> {
         let w = self.w();
-        let (middle, to) = (from + 0.5 * (4.0 * h - from), 4.0 * h);
-        let samples = taylor::values(w, [from, middle, to]);
-        taylor::fall_in_halves(|s| taylor::value_and_slope(w, s), [from, middle, to], samples, ZERO_ESTIMATE)
-    }
-
-    /// The zero of `w` just past the end of the step of length `h`, from offset `from` (where `w > 0`), if one lies
-    /// within [`JUST_PAST`] `h`, where the step's polynomial still holds it: located to rounding, for a rule
-    /// weighted at it ([`End::ZeroBeyond`]).
-    fn zero_just_past(&self, from: f64, h: f64) -> Option<f64> {
-        let w = self.w();
-        let reach = JUST_PAST * h;
-        let at = [from, from + 0.5 * (reach - from), reach];
+        let at = [from, from + 0.5 * (to - from), to];
         let samples = taylor::values(w, at);
-        taylor::fall_in_halves(|s| taylor::value_and_slope(w, s), at, samples, 0.0)
+        taylor::fall_in_halves(|s| taylor::value_and_slope(w, s), at, samples, precision)
     }
 
     /// Where the zero of `w` that ends a restitution lies, seen from the current state at `τ` (a step of length
     /// `h` expanded `offset` before it) when the contact ends elsewhere or goes on: the larger of a lower bound
-    /// and the step polynomial's zero beyond, if it shows one ([`Run::next_zero`]).
+    /// and the step polynomial's zero beyond, if it shows one ([`Run::zero_of_w`]).
     fn zero_ahead(&self, offset: f64, h: f64) -> End {
         let bound = self.tau + self.system.zero_distance_bound(self.state.w, self.state.rate);
-        let estimate = self.next_zero(offset, h).map_or(bound, |z| self.tau - offset + z);
+        // (Up to 4 h, an estimate: the polynomial is near its radius of convergence there.)
+        let estimate = self.zero_of_w(offset, 4.0 * h, ZERO_ESTIMATE).map_or(bound, |z| self.tau - offset + z);
         End::Clear(bound.max(estimate))
     }
 
@@ -503,12 +494,10 @@ impl<'a> Run<'a> {
     /// `t = τ` nothing is kept: the time is `τ`.
     fn integrate_to(&mut self, to: f64, end: End) -> Result<(), FastError> {
         let from = self.integrated_to;
-        let timed = self.quantities.time;
-        let gamma = self.system.time_exponent;
         // The zero of w at first contact: an end of the range, or the zero on its left.
         let start = if from == 0.0 { End::Zero } else { End::Clear(0.0) };
         let stalled = move || FastError::Stalled(to);
-        if timed && gamma != 0.0 {
+        if self.keeping {
             // The range split at the force peak, if it lies inside: the time to it is the peak's time, and the
             // rest starts there (clear of first contact's zero).
             let (mut from, mut start) = (from, start);
@@ -526,7 +515,7 @@ impl<'a> Run<'a> {
             }
             let piece = self.integral(from, to, start, end).ok_or_else(stalled)?;
             self.advance_time(piece);
-        } else if timed {
+        } else if self.quantities.time {
             if self.peak.time.is_nan() {
                 self.peak.time = self.peak.tau;
             }
@@ -714,7 +703,10 @@ impl<'a> Run<'a> {
             if step.force_zero.is_some() {
                 // The zero of w beyond the force's: in this step (its polynomial reaches it; a light damping puts
                 // it an ulp or a hair past the force's), or ahead.
-                let end = match step.zero.or_else(|| self.zero_just_past(step.end, h)) {
+                // (Past the step, up to JUST_PAST h, where its polynomial still holds the zero: located to rounding,
+                // for a rule weighted at it.)
+                let just_past = || self.zero_of_w(step.end, JUST_PAST * h, 0.0);
+                let end = match step.zero.or_else(just_past) {
                     Some(zero) => {
                         // The time from the force's zero to the penetration's, in closed form where the damping is
                         // light enough for it (an ulp or two apart in τ, the time is ill-conditioned in τ but not
@@ -841,7 +833,6 @@ mod tests {
         system.expand(&State::FIRST_CONTACT, 20, &mut e);
         let q = &e.w[1..=20];
         let mut rules = JacobiRules::default();
-        let (nodes, weights) = quadrature::gauss_legendre(24);
         for h in [0.1_f64, 0.2, 0.3] {
             let mut segments = Segments::default();
             segments.clear(20);
@@ -849,16 +840,8 @@ mod tests {
             segments.push(&e, 0.0, 0.0, h, 1.0);
             let got =
                 segments.integral(0.2, 0.0, h, End::Zero, End::Clear(2.8), node_digits(1e-17), &mut rules).unwrap();
-            let top = h.powf(0.2);
-            let panels = 50;
-            let mut exact = 0.0;
-            for p in 0..panels {
-                let (a, b) = (top * p as f64 / panels as f64, top * (p + 1) as f64 / panels as f64);
-                for (x, weight) in nodes.iter().zip(weights) {
-                    let s = 0.5 * (a + b) + 0.5 * (b - a) * x;
-                    exact += 0.5 * (b - a) * weight * 5.0 * s.powi(3) * taylor::value(q, s.powi(5)).powf(-0.2);
-                }
-            }
+            let smooth = |s: f64| 5.0 * s.powi(3) * taylor::value(q, s.powi(5)).powf(-0.2);
+            let exact = quadrature::composite_gauss_legendre(smooth, 0.0, h.powf(0.2), 50, 24);
             assert!((got / exact - 1.0).abs() < 1e-15, "h = {h}: {got} vs {exact}");
         }
     }

@@ -24,8 +24,8 @@ use super::taylor::{self, Coefficients, MAX_ORDER};
 /// Steps kept for the phase in progress (each its polynomial `w`: about 0.3 kB).
 pub const CAPACITY: usize = 32;
 
-/// Halvings of a panel within one step before the integral is given up: each halves the panel's length against
-/// its distance to a zero of `w` just beyond it (a force separation a hair before the penetration's).
+/// Halvings of a range before its integral is given up: each halves a piece's length against its distance to a
+/// zero of `w` just beyond an unweighted end (where only a lower bound on that zero's place is known).
 const MAX_HALVINGS: u32 = 60;
 
 /// One step's polynomial `w` over the part of the step that lies in the phase.
@@ -236,7 +236,7 @@ impl Segments {
         };
         let m = self.nodes(&range, weight, digits);
         if m <= MAX_NODES {
-            return self.panel(gamma, first..=last, from, to, weight, m, jacobi);
+            return self.panel(gamma, &range, weight, m, jacobi);
         }
         if depth >= MAX_HALVINGS {
             return None;
@@ -338,24 +338,14 @@ impl Segments {
         if m.is_finite() { (m.ceil() as usize).max(2) } else { usize::MAX }
     }
 
-    /// One panel's rule of `m` nodes.
-    #[allow(clippy::too_many_arguments)]
-    fn panel(
-        &mut self,
-        gamma: f64,
-        steps: std::ops::RangeInclusive<usize>,
-        from: f64,
-        to: f64,
-        weight: Weight,
-        m: usize,
-        jacobi: &mut JacobiRules,
-    ) -> Option<f64> {
+    /// One panel's rule of `m` nodes over `range`.
+    fn panel(&mut self, gamma: f64, range: &Range, weight: Weight, m: usize, jacobi: &mut JacobiRules) -> Option<f64> {
         match m {
-            0..=4 => self.panel_lanes::<4>(gamma, steps, from, to, weight, m, jacobi),
-            5..=8 => self.panel_lanes::<8>(gamma, steps, from, to, weight, m, jacobi),
-            9..=12 => self.panel_lanes::<12>(gamma, steps, from, to, weight, m, jacobi),
-            13..=16 => self.panel_lanes::<16>(gamma, steps, from, to, weight, m, jacobi),
-            _ => self.panel_lanes::<MAX_NODES>(gamma, steps, from, to, weight, m, jacobi),
+            0..=4 => self.panel_lanes::<4>(gamma, range, weight, m, jacobi),
+            5..=8 => self.panel_lanes::<8>(gamma, range, weight, m, jacobi),
+            9..=12 => self.panel_lanes::<12>(gamma, range, weight, m, jacobi),
+            13..=16 => self.panel_lanes::<16>(gamma, range, weight, m, jacobi),
+            _ => self.panel_lanes::<MAX_NODES>(gamma, range, weight, m, jacobi),
         }
     }
 
@@ -363,20 +353,17 @@ impl Segments {
     /// at once: one vector Horner chain in even and odd parts, [`taylor::values_split`]), then the power at every
     /// node at once, then the weighted sum. (The arrays are written and read in whole vectors: a vector read of
     /// lanes just written one by one waits for the stores.)
-    #[allow(clippy::too_many_arguments)]
     #[inline(always)]
     fn panel_lanes<const N: usize>(
         &mut self,
         gamma: f64,
-        steps: std::ops::RangeInclusive<usize>,
-        from: f64,
-        to: f64,
+        range: &Range,
         weight: Weight,
         m: usize,
         jacobi: &mut JacobiRules,
     ) -> Option<f64> {
         let k = self.order;
-        let (first, last) = (*steps.start(), *steps.end());
+        let Range { from, to, first, last, .. } = *range;
         let length = to - from;
         // The nodes in ascending τ with their weights (the lanes past m at the last node), and the factor.
         let (nodes, rule_weights) = match weight {
@@ -524,7 +511,7 @@ struct Range {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::fast::quadrature::node_digits;
+    use crate::fast::quadrature::{composite_gauss_legendre, node_digits};
 
     /// Steps over `sin τ` (exact Taylor coefficients about each break, order 24, so that the polynomials are
     /// `sin` to rounding), each with a radius of convergence three times its length, as a Taylor step sees it.
@@ -551,20 +538,12 @@ mod tests {
     /// `p ∫_0^(δ^(1-γ)) (sin(s^p)/s^p)^(-γ) ds`, summed by composite Gauss–Legendre (independent of the panels).
     fn sine_power_near_zero(delta: f64, gamma: f64) -> f64 {
         let p = 1.0 / (1.0 - gamma);
-        let top = delta.powf(1.0 - gamma);
-        let (nodes, weights) = gauss_legendre(20);
-        let pieces = 40;
-        let mut sum = 0.0;
-        for i in 0..pieces {
-            let (a, b) = (top * i as f64 / pieces as f64, top * (i + 1) as f64 / pieces as f64);
-            for (x, w) in nodes.iter().zip(weights) {
-                let s = 0.5 * (a + b) + 0.5 * (b - a) * x;
-                let u = s.powf(p);
-                let ratio = if u == 0.0 { 1.0 } else { u.sin() / u };
-                sum += 0.5 * (b - a) * w * p * ratio.powf(-gamma);
-            }
-        }
-        sum
+        let integrand = |s: f64| {
+            let u = s.powf(p);
+            let ratio = if u == 0.0 { 1.0 } else { u.sin() / u };
+            p * ratio.powf(-gamma)
+        };
+        composite_gauss_legendre(integrand, 0.0, delta.powf(1.0 - gamma), 40, 20)
     }
 
     /// `∫_0^(π/2) sin^(-γ) = ∫_(π/2)^π sin^(-γ) = B((1-γ)/2, 1/2)/2`: the zero at first contact and the one at
@@ -669,7 +648,10 @@ mod tests {
                     Weight::ZeroAtStart => (1.0, 2.3),
                     Weight::ZeroAtEnd => (1.2, zero),
                 };
-                let got = segments.panel(gamma, 0..=2, from, to, weight, m, &mut jacobi).expect("q > 0 at every node");
+                // (The panel's weight is given; the range's ends only matter to the node count.)
+                let clear = End::Clear(f64::INFINITY);
+                let range = Range { from, to, first: 0, last: 2, start: clear, end: clear };
+                let got = segments.panel(gamma, &range, weight, m, &mut jacobi).expect("q > 0 at every node");
                 let plain: f64 = match weight {
                     Weight::Legendre => {
                         let (x, w) = gauss_legendre(m);
@@ -787,20 +769,7 @@ mod tests {
         let got = segments
             .integral(0.3, 1.0, 2.5, End::Clear(f64::NEG_INFINITY), End::Clear(f64::INFINITY), digits, &mut jacobi)
             .unwrap();
-        let (nodes, weights) = gauss_legendre(20);
-        let exact: f64 = (0..30)
-            .map(|i| {
-                let (a, b) = (1.0 + 0.05 * i as f64, 1.05 + 0.05 * i as f64);
-                nodes
-                    .iter()
-                    .zip(weights)
-                    .map(|(x, w)| {
-                        let t = 0.5 * (a + b) + 0.5 * (b - a) * x;
-                        0.5 * (b - a) * w * (1.0 + t * t).powf(0.3)
-                    })
-                    .sum::<f64>()
-            })
-            .sum();
+        let exact = composite_gauss_legendre(|t| (1.0 + t * t).powf(0.3), 1.0, 2.5, 30, 20);
         assert!((got / exact - 1.0).abs() < 1e-12, "{got} vs {exact}");
     }
 

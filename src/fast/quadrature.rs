@@ -317,6 +317,20 @@ fn symmetric_tridiagonal_ql(d: &mut [f64], e: &mut [f64]) {
     }
 }
 
+/// `∫_a^b f` by composite Gauss–Legendre: `pieces` equal pieces of `m` nodes each (the tests' independent
+/// quadrature of smooth integrands).
+#[cfg(test)]
+pub fn composite_gauss_legendre(f: impl Fn(f64) -> f64, a: f64, b: f64, pieces: usize, m: usize) -> f64 {
+    let (nodes, weights) = gauss_legendre(m);
+    let width = (b - a) / pieces as f64;
+    (0..pieces)
+        .map(|i| {
+            let centre = a + width * (i as f64 + 0.5);
+            nodes.iter().zip(weights).map(|(x, w)| 0.5 * width * w * f(centre + 0.5 * width * x)).sum::<f64>()
+        })
+        .sum()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
