@@ -712,7 +712,16 @@ impl<'a> Run<'a> {
                         // light enough for it (an ulp or two apart in τ, the time is ill-conditioned in τ but not
                         // in w, which is known there exactly).
                         let piece = system.time_past_force_zero(self.state.rate, self.eps);
-                        End::ZeroBeyond { zero: self.tau - step.end + zero, piece }
+                        let zero = self.tau - step.end + zero;
+                        // A zero farther past the force's than half the range still to integrate only bounds a
+                        // plain rule's ellipse (a few nodes more): the difference of two rules to it would lose
+                        // digits to cancellation (a heavy damping's time past the force's zero is most of the
+                        // whole: 8 ulps of the duration at the floor).
+                        if piece.is_none() && zero - self.tau > 0.5 * (self.tau - self.integrated_to) {
+                            End::Clear(zero)
+                        } else {
+                            End::ZeroBeyond { zero, piece }
+                        }
                     }
                     None => self.zero_ahead(step.end, h),
                 };
