@@ -286,12 +286,16 @@ impl Regularised {
     /// The hysteresis form's product `P = w v` is a derivative, `P = w w'/p = (w²)'/(2p)`, so
     /// `P_k = (k+1) S_(k+1)/(2p)` with `S_m = Σ_(i+j=m) w_i w_j` — a square, whose pairs `(i, m-i)` and
     /// `(m-i, i)` are one product: `v_(k+1) = -w_k/(k+1) - (x/p) H_(k+1)`, `H_m = S_m/2 = Σ_(i<m-i) w_i w_(m-i)`
-    /// (`+ w_(m/2)²/2` for even `m`), half the products of the Cauchy sum `Σ w_j v_(k-j)`. `w_(k+1) = p v_k/(k+1)`
-    /// is formed first, so `H_(k+1)` is complete when `v_(k+1)` needs it. The sums run from the oldest pair to the
-    /// newest, `w_0 w_(k+1)` last: the critical path is two fused multiply-adds a coefficient. Written out for
-    /// each coefficient ([`hysteresis_series`]), so that no loop, index or bound check stands between them: at
-    /// order 18 a step's recursion takes 31 ns, where a loop with the full Cauchy sum took 62 (one core of this
-    /// machine; the `expand` timing of docs/numerics.md).
+    /// (`+ w_(m/2)²/2` for even `m`), half the products of the Cauchy sum `Σ w_j v_(k-j)`.
+    ///
+    /// A step's coefficients are a chain: each waits for the one before, and the steps themselves follow one
+    /// another, so the chain's length per coefficient is the step's cost. The newest terms are therefore written
+    /// on the rates they come from (`w_j = p v_(j-1)/j`): `v_(k+1) = α v_k + (β v_(k-1) + (γ v_(k-2) + older))`
+    /// with `α = -x w_0/(k+1)`, `β = -(p/(k+1) + x w_1)/k`, `γ = -x w_2/(k-1)` formed off the chain, so that a
+    /// coefficient waits one fused multiply-add for the last (two for the `w_(k+1) = p v_k/(k+1)` of a product).
+    /// Written out for each coefficient ([`hysteresis_series`]): no loop, index or bound check between them. At
+    /// order 18 the `alpha v0 = 10` impact takes 2.61 µs where the loop over the full Cauchy sum took 3.15, on
+    /// one core of this machine (docs/numerics.md).
     pub fn expand(&self, state: &State, order: usize, e: &mut Expansion) {
         debug_assert!(order <= MAX_ORDER);
         e.order = order;
@@ -460,12 +464,12 @@ fn hysteresis_series(order: usize, p: f64, x: f64, e: &mut Expansion) {
     }
     let x_p = x / p;
     // (Local copies, held in registers: the expansion's arrays are only written.)
-    let (mut w, mut r) = ([0.0; MAX_ORDER + 1], [0.0; MAX_ORDER + 1]);
+    let (mut w, mut r, mut s) = ([0.0; MAX_ORDER + 1], [0.0; MAX_ORDER + 1], [0.0; MAX_ORDER + 1]);
     (w[0], r[0]) = (e.w[0], e.rate[0]);
     macro_rules! coefficients {
         ($($m:literal)*) => {
             $(
-                hysteresis_coefficient::<$m>(&mut w, &mut r, p, x_p);
+                hysteresis_coefficient::<$m>(&mut w, &mut r, &mut s, p, x, x_p);
                 (e.w[$m], e.rate[$m]) = (w[$m], r[$m]);
                 if order == $m {
                     return;
@@ -477,23 +481,40 @@ fn hysteresis_series(order: usize, p: f64, x: f64, e: &mut Expansion) {
     const _: () = assert!(MAX_ORDER == 30, "the list above runs to MAX_ORDER");
 }
 
-/// Coefficient `M` of the hysteresis recursion, from those before it in the local arrays `w` and `r`: `w_M`, then
-/// `H_M` from its oldest pair to its newest, then `v_M` ([`Regularised::expand`]). `M` a constant, the sum's loop
-/// has a constant length and is laid out in full.
+/// Coefficient `M` of the hysteresis recursion, from those before it in the local arrays `w`, `r` and `s`
+/// (`s_i = -(x/p) w_i`) ([`Regularised::expand`]).
 #[inline(always)]
-fn hysteresis_coefficient<const M: usize>(w: &mut Coefficients, r: &mut Coefficients, p: f64, x_p: f64) {
+fn hysteresis_coefficient<const M: usize>(
+    w: &mut Coefficients,
+    r: &mut Coefficients,
+    s: &mut Coefficients,
+    p: f64,
+    x: f64,
+    x_p: f64,
+) {
     let k = M - 1;
     let inverse = INVERSE[M];
-    let wn = r[k] * (p * inverse);
-    let mut h = if M.is_multiple_of(2) { 0.5 * w[M / 2] * w[M / 2] } else { 0.0 };
-    let last = (M - 1) / 2;
-    for j in 0..last {
-        let i = last - j;
-        h = taylor::mul_add(w[i], w[M - i], h);
-    }
-    h = taylor::mul_add(w[0], wn, h);
-    w[M] = wn;
-    r[M] = taylor::mul_add(-x_p, h, -w[k] * inverse);
+    let mul_add = taylor::mul_add;
+    let next = if M == 1 {
+        mul_add(-x * w[0], r[0], -w[0])
+    } else if M == 2 {
+        mul_add(-x * w[0] * inverse, r[1], mul_add(0.5 * s[1], w[1], -0.5 * w[1]))
+    } else {
+        let mut inner = if M.is_multiple_of(2) { 0.5 * s[M / 2] * w[M / 2] } else { 0.0 };
+        let last = (M - 1) / 2;
+        for j in 0..last.saturating_sub(2) {
+            let i = last - j;
+            inner = mul_add(s[i], w[M - i], inner);
+        }
+        if last >= 2 {
+            inner = mul_add(-x * w[2] * INVERSE[M - 2], r[k - 2], inner);
+        }
+        let beta = -INVERSE[k] * mul_add(x, w[1], p * inverse);
+        mul_add(-x * w[0] * inverse, r[k], mul_add(beta, r[k - 1], inner))
+    };
+    w[M] = r[k] * (p * inverse);
+    s[M] = -x_p * w[M];
+    r[M] = next;
 }
 
 #[cfg(test)]
