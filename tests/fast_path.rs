@@ -13,6 +13,17 @@ fn run(case: &Case, tolerance: f64) -> Outcome {
     simulate_normal(&case.request(tolerance)).unwrap_or_else(|e| panic!("{}: {e}", case.name()))
 }
 
+/// Tsuji's law in the `n = 3/2` units, every quantity asked for.
+fn tsuji_request(a: f64, separation: Separation, tolerance: f64) -> Request {
+    Request {
+        law: ContactLaw { kind: LawKind::Tsuji, stiffness: 1.0, exponent: 1.5, damping: a, tsuji_scale: 1.0 },
+        scales: Scales::new(1.0, 1.0, 1.5, 1.0),
+        separation,
+        tolerance,
+        quantities: Quantities::ALL,
+    }
+}
+
 fn rel(got: f64, want: f64) -> f64 {
     ((got - want) / want).abs()
 }
@@ -274,14 +285,7 @@ fn tsuji_force_separation_times_to_the_last_digits() {
     ];
     for (e, t0, tc) in cases {
         let a = reference::tsuji_damping(e);
-        let out = simulate_normal(&Request {
-            law: ContactLaw { kind: LawKind::Tsuji, stiffness: 1.0, exponent: 1.5, damping: a, tsuji_scale: 1.0 },
-            scales: Scales::new(1.0, 1.0, 1.5, 1.0),
-            separation: Separation::Force,
-            tolerance: 1e-16,
-            quantities: Quantities::ALL,
-        })
-        .unwrap();
+        let out = simulate_normal(&tsuji_request(a, Separation::Force, 1e-16)).unwrap();
         assert!(rel(out.max_compression.time, t0) <= 1e-15, "e = {e}: t0 {} vs {t0}", out.max_compression.time);
         assert!(rel(out.end.time, tc) <= 1e-15, "e = {e}: duration {} vs {tc}", out.end.time);
     }
@@ -345,13 +349,7 @@ fn light_damping_dissipation_is_accurate_relative_to_itself() {
     // (1 - e²)/2 = -expm1(-2 pi zeta/sqrt(1 - zeta²))/2 without cancellation.
     let a: f64 = 1e-5;
     let zeta = a / 5.0_f64.sqrt();
-    let request = Request {
-        law: ContactLaw { kind: LawKind::Tsuji, stiffness: 1.0, exponent: 1.5, damping: a, tsuji_scale: 1.0 },
-        scales: Scales::new(1.0, 1.0, 1.5, 1.0),
-        separation: Separation::Penetration,
-        tolerance: 1e-10,
-        quantities: Quantities::ALL,
-    };
+    let request = tsuji_request(a, Separation::Penetration, 1e-10);
     let out = simulate_normal(&request).unwrap();
     let exact = -(-2.0 * std::f64::consts::PI * zeta / (1.0 - zeta * zeta).sqrt()).exp_m1() / 2.0;
     assert!(rel(out.end.dissipated, exact) < 1e-9, "Tsuji: {} vs {exact}", out.end.dissipated);
@@ -451,13 +449,7 @@ fn creeping_restitution_keeps_its_impulse_and_work_within_the_tolerance() {
 #[test]
 fn tsuji_durations_stay_within_the_tolerance_late_in_a_damped_restitution() {
     let duration = |a: f64, tolerance: f64| {
-        let request = Request {
-            law: ContactLaw { kind: LawKind::Tsuji, stiffness: 1.0, exponent: 1.5, damping: a, tsuji_scale: 1.0 },
-            scales: Scales::new(1.0, 1.0, 1.5, 1.0),
-            separation: Separation::Penetration,
-            tolerance,
-            quantities: Quantities::ALL,
-        };
+        let request = tsuji_request(a, Separation::Penetration, tolerance);
         let out = simulate_normal(&request).unwrap();
         assert!(out.separated, "a = {a}, tolerance {tolerance:e}");
         out.end.time
@@ -488,13 +480,7 @@ fn a_force_separation_an_ulp_before_the_penetrations_is_timed() {
     for i in 0..400 {
         let a = if i < 300 { random.uniform(1e-16, 4e-16) } else { random.log_uniform(1e-20, 1e-9) };
         let tolerance = 10f64.powf(-random.uniform(4.0, 13.0));
-        let request = Request {
-            law: ContactLaw { kind: LawKind::Tsuji, stiffness: 1.0, exponent: 1.5, damping: a, tsuji_scale: 1.0 },
-            scales: Scales::new(1.0, 1.0, 1.5, 1.0),
-            separation: Separation::Force,
-            tolerance,
-            quantities: Quantities::ALL,
-        };
+        let request = tsuji_request(a, Separation::Force, tolerance);
         let out = simulate_normal(&request).unwrap_or_else(|e| panic!("a = {a:e}, tolerance {tolerance:e}: {e}"));
         let exact = reference::tsuji(a, Separation::Force).unwrap().duration;
         assert!(out.separated, "a = {a:e}, tolerance {tolerance:e}");
