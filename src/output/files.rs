@@ -289,6 +289,10 @@ pub fn remove_temporaries_on_signal() -> io::Result<()> {
     Ok(())
 }
 
+/// Bytes gathered before each write to a file: a sweep writes hundreds of megabytes, which 8 kB at a time (the
+/// standard library's default) take tens of thousands of system calls.
+const WRITE_BUFFER: usize = 1 << 20;
+
 enum Sink {
     StandardOutput(BufWriter<io::Stdout>),
     InPlace(BufWriter<File>),
@@ -316,16 +320,21 @@ impl OutputFile {
         let failed = |source| FileError::Write { path: destination.shown.clone(), source };
         let sink = match &destination.kind {
             Kind::StandardOutput => Sink::StandardOutput(BufWriter::new(io::stdout())),
-            Kind::InPlace(path) => {
-                Sink::InPlace(BufWriter::new(OpenOptions::new().write(true).open(path).map_err(failed)?))
-            }
+            Kind::InPlace(path) => Sink::InPlace(BufWriter::with_capacity(
+                WRITE_BUFFER,
+                OpenOptions::new().write(true).open(path).map_err(failed)?,
+            )),
             Kind::Regular(target) => {
                 let folder = target.parent().unwrap_or(Path::new("/"));
                 fs::create_dir_all(folder)
                     .map_err(|source| FileError::Folder { path: folder.display().to_string(), source })?;
                 let name = target.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
                 let (temporary, file) = Temporary::file(folder, &name).map_err(failed)?;
-                Sink::Temporary { writer: BufWriter::new(file), temporary, target: target.clone() }
+                Sink::Temporary {
+                    writer: BufWriter::with_capacity(WRITE_BUFFER, file),
+                    temporary,
+                    target: target.clone(),
+                }
             }
         };
         Ok(OutputFile { shown, sink })

@@ -45,9 +45,11 @@ pub enum SweepError {
 /// claim and keeps a sweep's file (about 0.5 kB a row) and its merge within one machine's disk and memory.
 pub const MAX_ROWS: usize = 100_000_000;
 
-/// Rows computed together by [`Sweep::stream`]: enough to keep every core busy past the slowest row of a chunk, few
-/// enough that a chunk's rows (under 1 kB each) stay a small, fixed amount of memory whatever the sweep's size.
-pub const CHUNK: usize = 1024;
+/// Rows computed together by [`Sweep::stream`]: enough to keep every core busy past the slowest row of a chunk and
+/// to make the pause between chunks rare (a million rows took 4 % longer in chunks of 1024 on this project's 2-core
+/// machine), few enough that a chunk's rows (under 1 kB each) stay a small, fixed amount of memory whatever the
+/// sweep's size.
+pub const CHUNK: usize = 4096;
 
 /// A sweep: the scene document, the grid, the laws.
 #[derive(Debug, Clone)]

@@ -439,7 +439,10 @@ pub fn header(keys: &[String], columns: &Columns) -> String {
 
 /// One row as a CSV line, with its newline.
 pub fn line(row: &Row) -> String {
-    let mut text = String::with_capacity(64 + 24 * (row.values.len() + row.results.len()));
+    // (Room for the longest numbers, 24 bytes each, but none for the empty cells: a row's line stays in memory until
+    // the writer takes it.)
+    let filled = row.results.iter().filter(|cell| **cell != Cell::Empty).count();
+    let mut text = String::with_capacity(64 + 24 * (row.values.len() + filled));
     let mut integer = itoa::Buffer::new();
     text.push_str(integer.format(row.index));
     text.push(',');
