@@ -125,7 +125,7 @@ impl Tangential {
         } else if self.exponent == 0.0 {
             self.stiffness
         } else {
-            self.stiffness * d.powf(self.exponent)
+            self.stiffness * crate::law::power(d, self.exponent)
         }
     }
 
