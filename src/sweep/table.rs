@@ -153,6 +153,10 @@ impl Columns {
 
     /// The chosen cells of a report's [`results`], in the chosen order.
     pub fn pick(&self, all: &[Cell]) -> Vec<Cell> {
+        // (Every column in its own order, the default: one copy rather than a lookup a cell.)
+        if self.chosen.len() == all.len() && self.chosen.iter().enumerate().all(|(k, &i)| k == i) {
+            return all.to_vec();
+        }
         self.chosen.iter().map(|&i| all[i]).collect()
     }
 }
@@ -292,64 +296,51 @@ pub fn push_number(text: &mut String, x: f64) {
         text.push_str(&format!("{x}"));
         return;
     }
-    let mut buffer = zmij::Buffer::new();
-    if (1e-4..1e6).contains(&x.abs()) {
-        // Here zmij writes the plain decimal itself ("123.45", "0.000123"), with ".0" after a whole number.
-        let plain = buffer.format_finite(x);
-        text.push_str(plain.strip_suffix(".0").unwrap_or(plain));
-        return;
+    let magnitude = x.abs();
+    if magnitude < 1e6 && x.fract() == 0.0 {
+        // A whole number (a mass of 1 kg, an exponent of 1) as an integer's digits: what the shortest digits give.
+        text.push_str(itoa::Buffer::new().format(x as i64));
+    } else if (1e-4..1e6).contains(&magnitude) {
+        // Here zmij writes the plain decimal itself ("123.45", "0.000123").
+        text.push_str(zmij::Buffer::new().format_finite(x));
+    } else {
+        push_exponent_form(text, x);
     }
+}
+
+/// Appends the finite, non-zero `x` as `format!("{x:e}")` writes it: "1.5e-7", "2e21". (Apart from
+/// [`push_number`], whose common plain numbers then carry none of this one's locals.)
+#[inline(never)]
+fn push_exponent_form(text: &mut String, x: f64) {
     let (digits, count, exponent) = shortest_digits(x);
     let digits = &digits[..count];
-    // At most 17 digits, 4 zeros of padding or 6 of a plain number's zeros, a sign, a point, "e-324": 40 bytes.
+    // At most 17 digits, a sign, a point, "e-324": 24 bytes.
     let mut out = ShortText::default();
     if x < 0.0 {
         out.push(b"-");
     }
-    if (1e-4..1e6).contains(&x.abs()) {
-        if exponent >= 0 {
-            let whole = exponent as usize + 1;
-            if digits.len() <= whole {
-                out.push(digits);
-                for _ in digits.len()..whole {
-                    out.push(b"0");
-                }
-            } else {
-                out.push(&digits[..whole]);
-                out.push(b".");
-                out.push(&digits[whole..]);
-            }
-        } else {
-            out.push(b"0.");
-            for _ in 0..(-exponent - 1) {
-                out.push(b"0");
-            }
-            out.push(digits);
-        }
-    } else {
-        out.push(&digits[..1]);
-        if digits.len() > 1 {
-            out.push(b".");
-            out.push(&digits[1..]);
-        }
-        out.push(b"e");
-        if exponent < 0 {
-            out.push(b"-");
-        }
-        let size = exponent.unsigned_abs();
-        let mut decimal = [b'0'; 3];
-        let places = if size >= 100 {
-            3
-        } else if size >= 10 {
-            2
-        } else {
-            1
-        };
-        for (i, place) in decimal[..places].iter_mut().rev().enumerate() {
-            *place = b'0' + (size / 10u32.pow(i as u32) % 10) as u8;
-        }
-        out.push(&decimal[..places]);
+    out.push(&digits[..1]);
+    if digits.len() > 1 {
+        out.push(b".");
+        out.push(&digits[1..]);
     }
+    out.push(b"e");
+    if exponent < 0 {
+        out.push(b"-");
+    }
+    let size = exponent.unsigned_abs();
+    let mut decimal = [b'0'; 3];
+    let places = if size >= 100 {
+        3
+    } else if size >= 10 {
+        2
+    } else {
+        1
+    };
+    for (i, place) in decimal[..places].iter_mut().rev().enumerate() {
+        *place = b'0' + (size / 10u32.pow(i as u32) % 10) as u8;
+    }
+    out.push(&decimal[..places]);
     text.push_str(out.as_str());
 }
 
@@ -566,6 +557,8 @@ mod tests {
         let mut values = vec![0.0, -0.0, 1.0, -1.0, 0.1, 0.3, 2.0, 1e-4, 9.999999999999999e-5, 1e6, 999999.9999999999];
         values.extend([123456.0, 0.0001234, 1.5e-7, 6.02214076e23, f64::MAX, f64::MIN_POSITIVE, 5e-324, -2.5e10]);
         values.extend([f64::INFINITY, f64::NEG_INFINITY, f64::NAN, 100.0, 1e21, 1e22, 0.000999, 12345.678901234567]);
+        // Whole numbers either side of the plain range's end (written as integers below 1e6).
+        values.extend([-20.0, 999999.0, -999999.0, 1000001.0, 4503599627370496.0, 3.0, -7.0]);
         for _ in 0..200_000 {
             // Random bit patterns cover every exponent; random decimals cover short digit strings.
             values.push(f64::from_bits(next()));
