@@ -289,8 +289,8 @@ pub fn remove_temporaries_on_signal() -> io::Result<()> {
     Ok(())
 }
 
-/// Bytes gathered before each write to a file: a sweep writes hundreds of megabytes, which 8 kB at a time (the
-/// standard library's default) take tens of thousands of system calls.
+/// Bytes gathered before each write to a regular file: a sweep writes hundreds of megabytes, which 8 kB at a time
+/// (the standard library's default) take tens of thousands of system calls.
 const WRITE_BUFFER: usize = 1 << 20;
 
 enum Sink {
@@ -320,10 +320,11 @@ impl OutputFile {
         let failed = |source| FileError::Write { path: destination.shown.clone(), source };
         let sink = match &destination.kind {
             Kind::StandardOutput => Sink::StandardOutput(BufWriter::new(io::stdout())),
-            Kind::InPlace(path) => Sink::InPlace(BufWriter::with_capacity(
-                WRITE_BUFFER,
-                OpenOptions::new().write(true).open(path).map_err(failed)?,
-            )),
+            // (A pipe or a device keeps the standard buffer, as standard output does: a reader of a named pipe follows
+            // the rows as they come.)
+            Kind::InPlace(path) => {
+                Sink::InPlace(BufWriter::new(OpenOptions::new().write(true).open(path).map_err(failed)?))
+            }
             Kind::Regular(target) => {
                 let folder = target.parent().unwrap_or(Path::new("/"));
                 fs::create_dir_all(folder)

@@ -47,8 +47,8 @@ pub const MAX_ROWS: usize = 100_000_000;
 
 /// Rows computed together by [`Sweep::stream`]: enough to keep every core busy past the slowest row of a chunk and
 /// to make the pause between chunks rare (a million rows took 4 % longer in chunks of 1024 on this project's 2-core
-/// machine), few enough that a chunk's rows (under 1 kB each) stay a small, fixed amount of memory whatever the
-/// sweep's size.
+/// machine), few enough that a chunk's rows (about 1 kB each at most) stay a small, fixed amount of memory
+/// whatever the sweep's size.
 pub const CHUNK: usize = 4096;
 
 /// A sweep: the scene document, the grid, the laws.
