@@ -308,8 +308,8 @@ pub fn push_number(text: &mut String, x: f64) {
     }
 }
 
-/// Appends the finite, non-zero `x` as `format!("{x:e}")` writes it: "1.5e-7", "2e21". (Apart from
-/// [`push_number`], whose common plain numbers then carry none of this one's locals.)
+/// Appends the finite, non-zero `x` as `format!("{x:e}")` writes it: "1.5e-7", "2e21". (A function of its own so that
+/// [`push_number`]'s common plain numbers do not pay for this one's locals.)
 #[inline(never)]
 fn push_exponent_form(text: &mut String, x: f64) {
     let (digits, count, exponent) = shortest_digits(x);
