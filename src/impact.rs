@@ -67,8 +67,12 @@ pub struct Outcome {
     pub separated: bool,
     /// How the restitution run ended.
     pub ending: Ending,
-    /// Time a frictional contact spent sticking, s (0: it slid throughout, or it is smooth).
-    pub stick_duration: f64,
+    /// Time the tangential force of a frictional contact spent below the Coulomb limit mu Fn (the spring held), s
+    /// (0: it stayed on the limit throughout, or the contact is smooth).
+    pub below_limit_duration: f64,
+    /// Time since first contact at which the contact points' slip first came to rest (gross sliding ended), s;
+    /// `None` when it never did (the contact slid throughout) or the contact is smooth.
+    pub slip_rest_time: Option<f64>,
     /// Stick–slip switches taken.
     pub switches: u32,
     /// The integrator's work for the impact itself (before any resampling).
@@ -206,8 +210,11 @@ fn run<const N: usize, M: ContactModel<N>>(
     let mut stepper = Stepper::new(model, tolerances, recording != Recording::Off).scheme(scheme);
     let start = model.start();
     let frictional = model.switch_function(&start).is_some();
-    let mut phases =
-        Phases { stuck_since: (frictional && !model.sliding(&start)).then_some(0.0), stick: 0.0, switches: 0 };
+    let mut phases = Phases {
+        below_limit_since: (frictional && !model.sliding(&start)).then_some(0.0),
+        below_limit: 0.0,
+        switches: 0,
+    };
     stepper.note(0.0, start);
 
     let rate = |y: &State<N>| model.rate(y);
@@ -216,10 +223,17 @@ fn run<const N: usize, M: ContactModel<N>>(
     let separation_force = |y: &State<N>| model.separation_force(y);
     let settled = |y: &State<N>| model.penetration(y).abs() + model.rate(y).abs() - SETTLED;
     let switch = |y: &State<N>| model.switch_function(y).unwrap_or(1.0);
+    let slip = |y: &State<N>| model.slip_along_start(y).unwrap_or(1.0);
+    // Whether to watch for the slip coming to rest (a frictional contact that starts slipping).
+    let slipping = model.slip_along_start(&start).is_some();
 
-    // Event lists: the phase's own events first, then (for a frictional model only) the stick–slip switch, last.
-    let frictional = model.switch_function(&start).is_some();
+    // Event lists: the phase's own events first, then the slip's rest (watched, not terminal), then (for a frictional
+    // model only) the stick–slip switch, last.
     let mut compression = vec![event(&rate, true), event(&force_rate, false)];
+    let slip_in_compression = compression.len();
+    if slipping {
+        compression.push(event(&slip, false));
+    }
     if frictional {
         compression.push(event(&switch, true));
     }
@@ -243,6 +257,10 @@ fn run<const N: usize, M: ContactModel<N>>(
     if on_force {
         restitution.push(event(&penetration, true));
     }
+    let slip_in_restitution = restitution.len();
+    if slipping {
+        restitution.push(event(&slip, false));
+    }
     if frictional {
         restitution.push(event(&switch, true));
     }
@@ -260,6 +278,16 @@ fn run<const N: usize, M: ContactModel<N>>(
         .max_by(|a, b| model.force(&a.1).total_cmp(&model.force(&b.1)))
         .expect("candidates are never empty");
     let peak = model.snapshot(peak_time, &peak_state);
+    // The first located rest of the slip (at first contact for a frictional contact that starts without slip).
+    let slip_rest = |crossings: &[Crossing<N>], index: usize| {
+        crossings.iter().find(|c| c.event == index).map(|c| c.time * model.scales().time)
+    };
+    let slip_rest_time = match (frictional, slipping) {
+        (false, _) => None,
+        (true, false) => Some(0.0),
+        (true, true) => slip_rest(&compressed.crossings, slip_in_compression)
+            .or_else(|| slip_rest(&released.crossings, slip_in_restitution)),
+    };
     let ending = match released.ending {
         _ if parted => Ending::Event(0),
         Ending::Event(_) => Ending::Event(1),
@@ -271,8 +299,10 @@ fn run<const N: usize, M: ContactModel<N>>(
         peak_force: (peak.time, peak.normal_force),
         separated,
         ending,
-        stick_duration: (phases.stick + phases.stuck_since.map_or(0.0, |since| released.time - since))
+        below_limit_duration: (phases.below_limit
+            + phases.below_limit_since.map_or(0.0, |since| released.time - since))
             * model.scales().time,
+        slip_rest_time,
         switches: phases.switches,
         counters: stepper.counters,
         method: scheme.name(),
@@ -338,7 +368,8 @@ fn fast_outcome(
         peak_force: (fast.peak_force_time * s.time, fast.peak_force * s.force),
         separated: fast.separated,
         ending,
-        stick_duration: 0.0,
+        below_limit_duration: 0.0,
+        slip_rest_time: None,
         switches: 0,
         counters: Counters { steps: fast.steps, rejected_steps: 0, evaluations: fast.force_evaluations },
         method: "taylor",
@@ -363,10 +394,10 @@ fn uniform(end: f64, count: usize) -> Vec<f64> {
 
 /// Book-keeping across the runs of one impact: the stick–slip history (scaled times).
 struct Phases {
-    /// When the present stretch of sticking began, if the contact sticks.
-    stuck_since: Option<f64>,
-    /// Time spent sticking in finished stretches.
-    stick: f64,
+    /// When the present stretch below the Coulomb limit (the spring's sticking mode) began, if the contact is in it.
+    below_limit_since: Option<f64>,
+    /// Time spent below the limit in finished stretches.
+    below_limit: f64,
     switches: u32,
 }
 
@@ -399,16 +430,18 @@ impl Phases {
                 return Ok(PhaseEnd { time: end.time, state: end.state, ending: end.ending, crossings });
             }
             if self.switches >= MAX_SWITCHES {
-                let reason = format!("the contact switched between sticking and sliding {MAX_SWITCHES} times");
+                let reason = format!(
+                    "the tangential force switched between the Coulomb limit and below it {MAX_SWITCHES} times"
+                );
                 return Ok(PhaseEnd { time: end.time, state: end.state, ending: Ending::GaveUp(reason), crossings });
             }
             let mut switched = end.state;
             model.switch(&mut switched);
             self.switches += 1;
             if model.sliding(&switched) {
-                self.stick += self.stuck_since.take().map_or(0.0, |since| end.time - since);
+                self.below_limit += self.below_limit_since.take().map_or(0.0, |since| end.time - since);
             } else {
-                self.stuck_since = Some(end.time);
+                self.below_limit_since = Some(end.time);
             }
             // The record keeps the switched state at this time (the last noted point of a time wins).
             stepper.note(end.time, switched);

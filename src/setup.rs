@@ -6,7 +6,7 @@ use crate::body::Body;
 use crate::dynamics::Scales;
 use crate::geometry::{self, PlacementProblem};
 use crate::law::damping::{MapError, damping_for_restitution};
-use crate::law::{ContactLaw, Family};
+use crate::law::{ContactLaw, Family, Separation};
 use crate::scene::{DampingSpec, Scene, StiffnessSpec, TangentialStiffnessSpec};
 use nalgebra::Vector3;
 
@@ -37,6 +37,10 @@ pub struct Setup {
     pub initial_slip: Vector3<f64>,
     /// Which equations the impact needs (see [`Motion`]).
     pub motion: Motion,
+    /// For two spheres that also move across the normal: the deepest overlap their free flight would reach,
+    /// R (v0² / (|v| (|v| + |v_t|))) with R = r1 + r2, m — a graze shallower than the contact's penetration scale
+    /// ends by the bodies sliding off each other, not by the force. `None` for a wall, or without motion across.
+    pub graze_depth: Option<f64>,
 }
 
 /// Which equations of motion an impact needs.
@@ -85,6 +89,11 @@ const ACROSS_TOLERANCE: f64 = 1e-12;
 /// about 2 zeta for Kelvin–Voigt, a for Tsuji): beyond it e is below about 1e-10 and the restitution creeps for
 /// longer than any integration can follow, so the scene is refused rather than left to a step-size underflow.
 pub const MAX_DAMPING_RATIO: f64 = 1e10;
+
+/// The smallest e an overdamped linear (Kelvin–Voigt) or Tsuji contact ended by its force may have: at e = 1e-10
+/// the bodies part at 1e-10 of the approach speed, about a hundred times the rounding of the velocities they carry
+/// (their momentum is m* v0 (1 + e)).
+pub const MIN_RESTITUTION: f64 = 1e-10;
 
 impl Setup {
     /// Resolves a scene's contact, checking the rules that involve more than one key.
@@ -142,6 +151,9 @@ impl Setup {
                 ),
             );
         }
+        if scene.contact.separation == Separation::Force {
+            check_creep(&law, effective_mass, damping_key)?;
+        }
         let tangential_velocity = {
             let relative = b.velocity - a.velocity;
             relative - normal * relative.dot(&normal)
@@ -151,6 +163,9 @@ impl Setup {
         let coupled = friction.is_some() && initial_slip.norm() > ACROSS_TOLERANCE * approach_speed;
         let turning = !a.is_flat() && !b.is_flat() && tangential_velocity.norm() > ACROSS_TOLERANCE * approach_speed;
         let motion = if coupled || turning { Motion::Full } else { Motion::Normal };
+        check_size(scene, &law, &scales)?;
+        let graze_depth =
+            if turning { Some(graze(scene, &normal, approach_speed, &tangential_velocity)?) } else { None };
         Ok(Setup {
             contact_time,
             normal,
@@ -163,6 +178,7 @@ impl Setup {
             tangential_velocity,
             initial_slip,
             motion,
+            graze_depth,
         })
     }
 
@@ -385,6 +401,99 @@ fn check_scales(scales: &Scales) -> Result<(), SetupError> {
             "the contact's scales leave double precision (penetration scale {:e} m, time scale {:e} s, energy \
              scale m* v0² = {:e} J): check the masses, velocities and stiffness",
             scales.length, scales.time, scales.energy
+        ),
+    )
+}
+
+/// The elastic penetration (m) of the contact must stay below the bodies' size: a contact law describes a dent,
+/// and a penetration as deep as a radius has the bodies pass through each other (a stiffness of 1e-50 Pa, or a speed
+/// far beyond the material's, does that). The elastic maximum penetration ((n + 1)/2)^(1/(n+1)) L is compared with
+/// the smaller finite radius; the stiffness key is named (the softer body's `young` for a Hertz stiffness).
+fn check_size(scene: &Scene, law: &ContactLaw, scales: &Scales) -> Result<(), SetupError> {
+    let smallest = scene.bodies.iter().map(|body| body.radius).fold(f64::INFINITY, f64::min);
+    let n = law.exponent;
+    let elastic = ((n + 1.0) / 2.0).powf(1.0 / (n + 1.0)) * scales.length;
+    if elastic < smallest {
+        return Ok(());
+    }
+    let key = match scene.contact.stiffness {
+        StiffnessSpec::Value(_) => "contact.stiffness".to_string(),
+        StiffnessSpec::Hertz => {
+            // The softer body: the larger share (1 - nu²)/E of 1/E*.
+            let share = |body: &Body| match (body.young, body.poisson) {
+                (Some(e), Some(nu)) if e.is_finite() => (1.0 - nu * nu) / e,
+                _ => 0.0,
+            };
+            let softer = usize::from(share(&scene.bodies[1]) > share(&scene.bodies[0]));
+            format!("bodies.{softer}.young")
+        }
+    };
+    fail(
+        key,
+        format!(
+            "the contact is too soft for the bodies: at {} m/s its elastic penetration would be {elastic:e} m, \
+             beyond the smaller radius {smallest:e} m (the bodies would pass through each other; a contact law \
+             describes penetrations far below the radii)",
+            scales.speed
+        ),
+    )
+}
+
+/// An overdamped Kelvin–Voigt or Tsuji contact ended where its force returns to zero always separates, at the
+/// exact e = exp(-(zeta/Omega) ln((zeta + Omega)/(zeta - Omega))), Omega = sqrt(zeta² - 1) (docs/references.md,
+/// Kelvin–Voigt; Tsuji's law is the same oscillator with zeta = a/sqrt(5)), about 1/(4 zeta²) when heavy. Below
+/// [`MIN_RESTITUTION`] (zeta above about 5e4) the separation speed is lost in the rounding of the velocities: the
+/// scene is refused, naming the damping key. (With `separation = "penetration"` such a contact never separates,
+/// which is a valid outcome.)
+fn check_creep(law: &ContactLaw, effective_mass: f64, key: &str) -> Result<(), SetupError> {
+    let zeta = match law.kind.family() {
+        Family::Linear => law.damping / (2.0 * (law.stiffness * effective_mass).sqrt()),
+        Family::Tsuji => law.damping / 5f64.sqrt(),
+        _ => return Ok(()),
+    };
+    if zeta <= 1.0 {
+        return Ok(());
+    }
+    // (zeta - Omega)(zeta + Omega) = 1: the logarithm is 2 ln(zeta + Omega), without cancellation.
+    let omega = ((zeta - 1.0) * (zeta + 1.0)).sqrt();
+    let e = (-2.0 * zeta / omega * (zeta + omega).ln()).exp();
+    if e >= MIN_RESTITUTION {
+        return Ok(());
+    }
+    fail(
+        key,
+        format!(
+            "the damping is too heavy to resolve with separation = \"force\": damping ratio zeta = {zeta:e} gives \
+             e = {e:e}, below {MIN_RESTITUTION:e} — a separation speed lost in the rounding of the bodies' \
+             velocities (zeta must stay below about 5e4; with separation = \"penetration\" such a contact never \
+             separates)"
+        ),
+    )
+}
+
+/// The deepest overlap (m) of two spheres' free flight from first contact, moving across the normal at
+/// `tangential` (m/s, of v2 - v1) while closing at `approach` along `normal`: R - R |v_t|/|v| =
+/// R v0² / (|v| (|v| + |v_t|)), without cancellation. A graze shallower than the positions' resolution — the
+/// overlap tolerance of first contact, 1e-12 of the smaller radius — is beyond double precision: refused, naming the
+/// body moving faster across the normal.
+fn graze(scene: &Scene, normal: &Vector3<f64>, approach: f64, tangential: &Vector3<f64>) -> Result<f64, SetupError> {
+    let [a, b] = &scene.bodies;
+    let reach = a.radius + b.radius;
+    let across = tangential.norm();
+    let speed = approach.hypot(across);
+    let depth = reach * approach / speed * approach / (speed + across);
+    let resolution = geometry::TOUCH_TOLERANCE * a.radius.min(b.radius);
+    if depth >= resolution {
+        return Ok(depth);
+    }
+    let side = |body: &Body| (body.velocity - normal * body.velocity.dot(normal)).norm();
+    let faster = usize::from(side(b) > side(a));
+    fail(
+        format!("bodies.{faster}.velocity"),
+        format!(
+            "the bodies barely touch: closing at {approach:e} m/s while sliding across each other at {across:e} m/s, \
+             their free flight would overlap by at most {depth:e} m, below the resolution of their positions \
+             ({resolution:e} m, 1e-12 of the smaller radius): such a graze is beyond double precision"
         ),
     )
 }

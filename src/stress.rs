@@ -206,6 +206,9 @@ pub fn scene_text(seed: u64, index: u64, quick: bool) -> String {
         _ => r.uniform(1.0, 2.5),
     };
     let write_exponent = matches!(family, Family::Elastic | Family::Hysteresis) && !hertz_stiffness && r.chance(0.7);
+    // An exponent not written is the scene's default, 3/2, whatever was drawn (the radii follow the scene's L).
+    let exponent =
+        if matches!(family, Family::Elastic | Family::Hysteresis) && !write_exponent { 1.5 } else { exponent };
     let flat = |i: usize| {
         pairing == Pairing::Wall { moving: false } && anchor == Some(i)
             || pairing == Pairing::Wall { moving: true } && anchor == Some(i)
@@ -294,7 +297,8 @@ pub fn scene_text(seed: u64, index: u64, quick: bool) -> String {
     let frictional = frictional && !quick;
     let mut contact = String::new();
     let _ = writeln!(contact, "law = \"{}\"", law.name());
-    write_damping(&mut r, &mut contact, law, stiffness, effective_mass, approach, length, quick);
+    let draw = DampingDraw { law, stiffness, effective_mass, approach, length, quick, force_separation };
+    write_damping(&mut r, &mut contact, &draw);
     if hertz_stiffness {
         contact.push_str("stiffness = \"hertz\"\n");
     } else {
@@ -375,19 +379,27 @@ pub fn scene_text(seed: u64, index: u64, quick: bool) -> String {
     text
 }
 
-/// The damping line of the contact table: a nominal e (near 1, 0, 1 or anywhere in [0.01, 1]) or the law's own
-/// parameter, drawn as a damping-to-elastic force ratio from tiny (1e-9) to heavy (1e3, rarely up to 1e8).
-#[allow(clippy::too_many_arguments)]
-fn write_damping(
-    r: &mut Draw,
-    out: &mut String,
+/// What the damping line of a case is drawn from.
+struct DampingDraw {
     law: LawKind,
     stiffness: f64,
     effective_mass: f64,
     approach: f64,
     length: f64,
     quick: bool,
-) {
+    force_separation: bool,
+}
+
+/// The heaviest damping-to-elastic force ratio drawn for a linear or Tsuji law ended by its force: the accepted
+/// range ends where e falls below [`crate::setup::MIN_RESTITUTION`] (zeta about 5e4: a ratio of 5e4 is zeta = 2.5e4
+/// for Kelvin–Voigt and 2.2e4 for Tsuji, e about 4e-10).
+const HEAVIEST_FORCE_SEPARATED: f64 = 5e4;
+
+/// The damping line of the contact table: a nominal e (near 1, 0, 1 or anywhere in [0.01, 1]) or the law's own
+/// parameter, drawn as a damping-to-elastic force ratio from tiny (1e-9) to heavy (1e3, rarely up to 1e8 — up to
+/// [`HEAVIEST_FORCE_SEPARATED`] for an oscillator ended by its force, the range the scene rules accept).
+fn write_damping(r: &mut Draw, out: &mut String, draw: &DampingDraw) {
+    let DampingDraw { law, stiffness, effective_mass, approach, length, quick, force_separation } = *draw;
     let family = law.family();
     if family == Family::Elastic {
         return;
@@ -407,7 +419,8 @@ fn write_damping(
     let ratio = if quick {
         r.log(1e-9, 10.0)
     } else if r.chance(0.05) {
-        r.log(1e3, 1e8)
+        let oscillator = matches!(family, Family::Linear | Family::Tsuji);
+        r.log(1e3, if oscillator && force_separation { HEAVIEST_FORCE_SEPARATED } else { 1e8 })
     } else {
         r.log(1e-9, 1e3)
     };
@@ -801,20 +814,25 @@ fn check(scene: &Scene, report: &Report, flight: Option<f64>, checks: &mut Check
 }
 
 /// Whether the compliant contact's friction impulse is rigid-body sliding's `mu Jn` to well within the 1e-9 checked:
-/// it slid throughout, or — Kelvin–Voigt, whose force jumps to `c v0` at first contact, so that the contact sticks
-/// until its spring reaches the cap — it stuck only so briefly that the friction missed there, less than
-/// `mu c v0 t_stick`, is below 1e-11 of `m* v0`. Kelvin–Voigt separated at zero penetration also has no friction
-/// while its force is tensile, which adds about `mu (1 + e) zeta²` of `m* v0` (docs/oblique.md): that too must be
-/// below 1e-11.
+/// it slid throughout on the Coulomb limit, or — Kelvin–Voigt, whose force jumps to `c v0` at first contact, so that
+/// the spring loads below the limit until it reaches it — it stayed below the limit only so briefly that the
+/// friction missed there, less than `mu c v0 t_below`, is below 1e-11 of `m* v0`. Kelvin–Voigt separated at zero
+/// penetration also has no friction while its force is tensile, which adds about `mu (1 + e) zeta²` of `m* v0`
+/// (docs/oblique.md): that too must be below 1e-11. (A sliding contact whose spring loads below the limit for
+/// longer, Tsuji's at first contact, slides as rigid bodies only to about 1e-5.)
 fn slides_as_rigid_bodies(scene: &Scene, report: &Report, oblique: &crate::report::ObliqueReport) -> bool {
-    if oblique.regime == "sliding" {
+    if oblique.regime != "sliding" {
+        return false;
+    }
+    let Some(below) = oblique.below_friction_limit_duration else { return false };
+    if below == 0.0 {
         return true;
     }
     let law = &report.law;
-    if scene.contact.law.family() != Family::Linear || oblique.regime != "sticking" {
+    if scene.contact.law.family() != Family::Linear {
         return false;
     }
-    let Some(stick) = oblique.stick_duration else { return false };
+    let stick = below;
     let mu = oblique.friction;
     let missed = mu * law.damping * stick / report.effective_mass;
     let zeta = kelvin_voigt_zeta(report);

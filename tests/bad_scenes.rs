@@ -860,3 +860,70 @@ fn an_unknown_solver_method_is_rejected_naming_the_key() {
     let test = "an_unknown_solver_method_is_rejected_naming_the_key";
     assert_rejected(test, &text, "solver.method", At::Line("method ="), &["dop853"]);
 }
+
+// ---------------------------------------------------------------------------------------------------------------
+// Scenes whose scales leave double precision or the bodies' size (issue 22)
+
+/// Two 10 mm balls closing at 1 m/s while body 1 slides across at `v` m/s: their free flight overlaps by at most
+/// R v0² / (|v| (|v| + v)) with R = 0.02 m — 1e-16 m and less from 1e7 m/s on, below the resolution of their
+/// positions, 1e-12 of a radius (1e-14 m). Refused, naming the sliding body's velocity on its line.
+#[test]
+fn a_graze_too_shallow_for_double_precision_is_rejected_naming_the_velocity() {
+    for (i, v) in ["1e7", "1e9", "1e20", "1e100"].into_iter().enumerate() {
+        let speed: f64 = v.parse().unwrap();
+        let relative = (1.0 + speed * speed).sqrt();
+        let depth = 0.02 / (relative * (relative + speed));
+        assert!(depth < 1e-14, "{v}: {depth}");
+        let line: &'static str = Box::leak(format!("velocity = [1.0, {v}, 0.0]").into_boxed_str());
+        let text = scene(&edit(LEFT_BALL, "velocity = [1.0, 0.0, 0.0]", line), RIGHT_BALL, HUNT_CROSSLEY);
+        let test = format!("a_graze_too_shallow_for_double_precision_{i}");
+        assert_rejected(&test, &text, "bodies.0.velocity", At::Whole(line), &["graze", "double precision"]);
+    }
+}
+
+/// Hertz's stiffness of two 10 mm steel balls with E = 1e-50 Pa: K = (4/3) E* sqrt(R*) ~ 1e-51 N/m^1.5, and at
+/// 2 m/s the elastic penetration (5 m* v0² / (4 K))^(2/5) is about 1e20 m — the balls would pass through each other.
+/// Refused, naming the soft body's `young`.
+#[test]
+fn a_contact_softer_than_the_bodies_are_large_is_rejected_naming_young() {
+    let young = "young = 1e-50";
+    let text = scene(&edit(LEFT_BALL, "young = 2.1e11", young), RIGHT_BALL, HUNT_CROSSLEY);
+    let (e_star, r_star, m_star): (f64, f64, f64) =
+        (1.0 / ((1.0 - 0.09) / 1e-50 + (1.0 - 0.09) / 2.1e11), 0.005, 0.01645);
+    let k = 4.0 / 3.0 * e_star * r_star.sqrt();
+    let depth = (5.0 * m_star * 4.0 / (4.0 * k)).powf(0.4);
+    assert!(depth > 1e19, "{depth}");
+    assert_rejected("a_contact_softer_than_the_bodies", &text, "bodies.0.young", At::Whole(young), &["too soft"]);
+    // A numeric stiffness is named as such.
+    let stiffness = "stiffness = 1e-30";
+    let text = scene(LEFT_BALL, RIGHT_BALL, &format!("{HUNT_CROSSLEY}\n{stiffness}"));
+    assert_rejected("a_soft_numeric_stiffness", &text, "contact.stiffness", At::Whole(stiffness), &["too soft"]);
+}
+
+/// A Tsuji contact ended by its force with a = 8.4e7 (zeta = a/sqrt(5) = 3.8e7, stress seed 424242's case 9628):
+/// the exact e = exp(-2 (zeta/Omega) ln(zeta + Omega)), Omega = sqrt(zeta² - 1), is 1.8e-16 — a separation speed
+/// below the rounding of the velocities. Refused, naming the damping; the same damping ended at zero penetration
+/// (which it never reaches: a valid outcome) and a damping of zeta = 1e4 (e = 2.5e-9) are accepted.
+#[test]
+fn a_force_separation_too_slow_to_resolve_is_rejected_naming_the_damping() {
+    let zeta: f64 = 8.4e7 / 5f64.sqrt();
+    let omega = ((zeta - 1.0) * (zeta + 1.0)).sqrt();
+    let e = (-2.0 * zeta / omega * (zeta + omega).ln()).exp();
+    assert!(e < 1e-15, "{e}");
+    let contact =
+        |damping: &str, separation: &str| format!("law = \"tsuji\"\n{damping}\nseparation = \"{separation}\"");
+    let text = scene(LEFT_BALL, RIGHT_BALL, &contact("damping = 8.4e7", "force"));
+    assert_rejected("a_force_separation_too_slow", &text, "contact.damping", At::Whole("damping = 8.4e7"), &["1e-10"]);
+    let scratch = Scratch::new("a_force_separation_too_slow_accepted");
+    for (damping, separation) in [("damping = 8.4e7", "penetration"), ("damping = 22360.68", "force")] {
+        let path = scratch.path().join("scene.toml");
+        fs::write(&path, scene(LEFT_BALL, RIGHT_BALL, &contact(damping, separation))).unwrap();
+        let output = impact(scratch.path(), &["run", path.to_str().unwrap(), "--json"]);
+        assert_eq!(
+            output.status.code(),
+            Some(0),
+            "{damping}, {separation}: {}",
+            String::from_utf8_lossy(&output.stderr)
+        );
+    }
+}

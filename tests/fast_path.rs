@@ -614,13 +614,14 @@ mod against_dop853 {
                 let stiffness = random.log_uniform(1e5, 1e10);
                 let restitution = random.uniform(0.3, 0.95);
                 let damping = if *law == "hertz" { String::new() } else { format!("restitution = {restitution}\n") };
-                // Kelvin–Voigt is linear (exponent 1); a numeric stiffness with n = 1.5 elsewhere.
+                // Kelvin–Voigt is linear (exponent 1); a numeric stiffness with n = 1.5 elsewhere. Radii of metres keep
+                // the softest contacts' dents (up to centimetres) far below the bodies' size.
                 let wall = round == 1;
                 let text = format!(
-                    "[[bodies]]\nradius = 0.01\nmass = {mass}\nvelocity = [{speed}, 0, 0]\n\n[[bodies]]\n\
+                    "[[bodies]]\nradius = 1\nmass = {mass}\nvelocity = [{speed}, 0, 0]\n\n[[bodies]]\n\
                      radius = {}\nmass = {}\nvelocity = [0, 0, 0]\n\n[contact]\nlaw = \"{law}\"\nstiffness = {stiffness}\n\
                      {damping}separation = \"{separation}\"\n\n[solver]\nmethod = \"dop853\"\nrtol = 1e-12\natol = 1e-14\n",
-                    if wall { "inf".to_string() } else { "0.02".to_string() },
+                    if wall { "inf".to_string() } else { "2".to_string() },
                     if wall { "inf".to_string() } else { format!("{}", 2.0 * mass) },
                 );
                 let scene = Scene::parse(&text, Path::new("random.toml")).unwrap_or_else(|e| panic!("{e}\n{text}"));

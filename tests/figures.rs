@@ -386,7 +386,8 @@ fn the_tangential_force_panel_belongs_to_frictional_contacts_only() {
         assert!(!svg.contains("class=\"coulomb\"") && !svg.contains("tangential"), "no tangential force");
     }
 
-    // At 20 degrees the sphere slides, sticks (the force turns round) and slides back.
+    // At 20 degrees the sphere slides, holds below the Coulomb limit (the force turns round) and slides back; its
+    // contact points' slip comes to rest on the way.
     let svg = force_time_of(&scratch, &alumina_on_wall(20.0, 0.092), "friction");
     let [normal, tangential] = panels(&svg)[..] else { panic!("two panels: normal and tangential force") };
     assert!(texts(normal, "axis-label y")[0].starts_with("normal force"), "{:?}", texts(normal, "axis-label y"));
@@ -394,7 +395,8 @@ fn the_tangential_force_panel_belongs_to_frictional_contacts_only() {
     assert!(texts(tangential, "axis-label x")[0].contains("(µs)"));
     assert!(texts(tangential, "axis-label y")[0].contains("tangential force (N)"));
     assert!(tangential.contains("μ = 0.092"), "the friction coefficient in the legend");
-    assert!(!groups(tangential, "sticking").is_empty(), "the sticking stretches shaded");
+    assert!(!groups(tangential, "below").is_empty(), "the stretches below the Coulomb limit shaded");
+    assert!(!groups(tangential, "rest").is_empty(), "the slip's rest marked");
     let frames: Vec<f64> = [normal, tangential]
         .iter()
         .map(|p| number(tags(p, "rect").into_iter().find(|t| attribute(t, "class") == Some("frame")).unwrap(), "x"))

@@ -98,7 +98,8 @@ impl Case {
         }
     }
 
-    /// The scene of this impact for the general path: a unit mass at unit speed on a fixed wall, stiffness 1,
+    /// The scene of this impact for the general path: a unit mass at unit speed on a fixed wall, stiffness 1 (its
+    /// radius, 1000, far above the unit penetration: it enters no force, only the rule that a dent stays below it),
     /// `[solver] method = "METHOD"` at `rtol` and `atol = rtol / 100` (the defaults' ratio; at least 1e-14, the
     /// smallest a scene takes).
     pub fn scene_text(&self, method: &str, rtol: f64) -> String {
@@ -112,7 +113,7 @@ impl Case {
             Case::Tsuji { .. } => format!("law = \"tsuji\"\nstiffness = 1\ndamping = {:e}", law.damping),
         };
         format!(
-            "title = \"{}\"\n\n[[bodies]]\nradius = 1\nmass = 1\nvelocity = [1, 0, 0]\n\n[[bodies]]\nradius = inf\n\
+            "title = \"{}\"\n\n[[bodies]]\nradius = 1e3\nmass = 1\nvelocity = [1, 0, 0]\n\n[[bodies]]\nradius = inf\n\
              mass = inf\nvelocity = [0, 0, 0]\n\n[contact]\n{contact}\nseparation = \"{}\"\n\n[solver]\n\
              method = \"{method}\"\nrtol = {rtol:e}\natol = {:e}\n",
             self.name(),

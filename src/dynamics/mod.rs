@@ -51,6 +51,19 @@ impl Scales {
     }
 }
 
+impl Scales {
+    /// The units of a contact that stays far shallower than L (a graze: two spheres sliding off each other before
+    /// the force can stop their approach), with length unit `length` < L (m) for a law of stiffness `stiffness`
+    /// (N/m^n) and exponent `exponent`: the same speed unit v0, time `length`/v0, force K `length`^n, and the
+    /// impulse and energy those make (force × time, force × length) — below m* v0 and m* v0² by (length/L)^(n+1),
+    /// so that the contact's own impulses and works stay O(1) in the scaled state.
+    pub fn with_length(&self, length: f64, stiffness: f64, exponent: f64) -> Scales {
+        let force = stiffness * length.powf(exponent);
+        let time = length / self.speed;
+        Scales { length, speed: self.speed, time, force, impulse: force * time, energy: force * length }
+    }
+}
+
 /// The contact and both bodies at one instant, in SI units: what a report and a history are built from.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Snapshot {
@@ -122,6 +135,12 @@ pub trait ContactModel<const N: usize>: Model<N> {
     /// Whether the state's mode is sliding (false for a smooth contact).
     fn sliding(&self, _y: &State<N>) -> bool {
         false
+    }
+    /// The contact points' slip along its direction at first contact (scaled), whose fall through zero is where the
+    /// slip comes to rest (gross sliding ends: the contact sticks or rolls); `None` for a model without friction or
+    /// without an initial slip.
+    fn slip_along_start(&self, _y: &State<N>) -> Option<f64> {
+        None
     }
     /// The contact and the bodies at scaled time `t` and state `y`, in SI units.
     fn snapshot(&self, t: f64, y: &State<N>) -> Snapshot;

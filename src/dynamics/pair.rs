@@ -21,7 +21,8 @@ pub const SIZE: usize = 21;
 pub mod index {
     /// Displacement of body 2 relative to body 1 since first contact, in L.
     pub const DISPLACEMENT: usize = 0;
-    /// Impulse on body 2 since first contact (body 1 receives its opposite), in m* v0.
+    /// Impulse on body 2 since first contact (body 1 receives its opposite), in the impulse unit (m* v0; less for a
+    /// graze, [`super::Scales::with_length`]).
     pub const IMPULSE: usize = 3;
     /// Spin of body 1 as omega r1 / v0.
     pub const SPIN_1: usize = 6;
@@ -29,15 +30,15 @@ pub mod index {
     pub const SPIN_2: usize = 9;
     /// Tangential spring force, in F0.
     pub const SPRING: usize = 12;
-    /// ∫ Fn dt, in m* v0.
+    /// ∫ Fn dt, in the impulse unit.
     pub const NORMAL_IMPULSE: usize = 15;
-    /// ∫ Fn d' dt, in m* v0².
+    /// ∫ Fn d' dt, in the energy unit (m* v0²; less for a graze).
     pub const NORMAL_WORK: usize = 16;
-    /// ∫ F_dissipative d' dt, in m* v0² delta (the damping's size).
+    /// ∫ F_dissipative d' dt, in the energy unit times delta (the damping's size).
     pub const DISSIPATED: usize = 17;
-    /// ∫ Ft·slip dt, in m* v0² mu.
+    /// ∫ Ft·slip dt, in the energy unit times mu.
     pub const TANGENTIAL_WORK: usize = 18;
-    /// Work of an immovable body on the movable one, in m* v0².
+    /// Work of an immovable body on the movable one, in the energy unit.
     pub const IMMOVABLE_WORK: usize = 19;
     /// The tangential mode, constant between switches: 0 sticking, 1 sliding.
     pub const MODE: usize = 20;
@@ -58,12 +59,17 @@ pub struct PairContact<'a> {
     tangential: Option<Tangential>,
     /// Relative velocity v2 - v1 at first contact, in v0.
     relative_velocity: Vector3<f64>,
+    /// The change of the relative velocity (in v0) per unit of the scaled impulse: 1 in the scales of an impact,
+    /// (L_u/L)^(n+1) in those of a graze (see [`Scales::with_length`]).
+    impulse_gain: f64,
     /// m*/m_i: body i's share of the relative motion (0 for an immovable body).
     shares: [f64; 2],
     /// m* r_i² / I_i: how a scaled torque changes a scaled spin (0 for a body that does not rotate).
     spin_gains: [f64; 2],
     /// Initial scaled spins (the constant spin of a body that does not rotate under the contact).
     initial_spins: [Vector3<f64>; 2],
+    /// The direction of the contact points' slip at first contact (zero without friction or without slip).
+    slip_direction: Vector3<f64>,
     /// Units of the dissipated and tangential-work states.
     dissipation_scale: f64,
     friction_scale: f64,
@@ -99,7 +105,14 @@ struct Evaluation {
 impl<'a> PairContact<'a> {
     /// The contact of a resolved scene.
     pub fn new(bodies: &'a [Body; 2], setup: &'a Setup) -> PairContact<'a> {
-        let (law, s) = (setup.law, setup.scales);
+        let law = setup.law;
+        // A graze shallower than the penetration scale takes its own depth as the length unit, so that its small
+        // force, impulse and works are integrated relative to themselves (docs/oblique.md#grazing-contacts).
+        let s = match setup.graze_depth {
+            Some(depth) if depth < setup.scales.length => setup.scales.with_length(depth, law.stiffness, law.exponent),
+            _ => setup.scales,
+        };
+        let impulse_gain = s.impulse / setup.scales.impulse;
         let [a, b] = bodies;
         let shape = if a.is_flat() || b.is_flat() {
             Shape::Wall { normal: setup.normal, sphere: if a.is_flat() { 1 } else { 0 } }
@@ -109,25 +122,31 @@ impl<'a> PairContact<'a> {
         };
         let tangential = setup.friction.map(|f| {
             let stiffness = f.stiffness * s.length.powf(f.stiffness_exponent + 1.0) / s.force;
-            let damping = 2.0 * f.damping_ratio * (f.tangential_mass / setup.effective_mass).sqrt();
+            let damping = 2.0 * f.damping_ratio * (f.tangential_mass / (setup.effective_mass * impulse_gain)).sqrt();
             Tangential { friction: f.coefficient, stiffness, exponent: f.stiffness_exponent, damping }
         });
         let spin_gain = |body: &Body| {
-            if body.rotates() { setup.effective_mass * body.radius * body.radius / body.inertia } else { 0.0 }
+            let gain = setup.effective_mass * body.radius * body.radius / body.inertia;
+            if body.rotates() { gain * impulse_gain } else { 0.0 }
         };
         let scaled_spin = |body: &Body| {
             if body.is_flat() { Vector3::zeros() } else { body.angular_velocity * (body.radius / s.speed) }
         };
         let friction_scale = unit_or_one(tangential.map_or(0.0, |t| t.friction));
+        let slip = setup.initial_slip;
+        let slip_direction =
+            if tangential.is_some() && slip.norm() > 0.0 { slip / slip.norm() } else { Vector3::zeros() };
         PairContact {
             law,
             scales: s,
             shape,
             tangential,
             relative_velocity: (b.velocity - a.velocity) / s.speed,
+            impulse_gain,
             shares: [setup.effective_mass * a.inverse_mass(), setup.effective_mass * b.inverse_mass()],
             spin_gains: [spin_gain(a), spin_gain(b)],
             initial_spins: [scaled_spin(a), scaled_spin(b)],
+            slip_direction,
             dissipation_scale: dissipation_scale(&law, &s),
             friction_scale,
             bodies,
@@ -142,7 +161,7 @@ impl<'a> PairContact<'a> {
 
     fn evaluate(&self, y: &State<SIZE>) -> Evaluation {
         let s = &self.scales;
-        let relative_velocity = self.relative_velocity + vector(y, index::IMPULSE);
+        let relative_velocity = self.relative_velocity + vector(y, index::IMPULSE) * self.impulse_gain;
         let spins = self.spins(y);
         let kinematics = self.shape.kinematics(&vector(y, index::DISPLACEMENT), &relative_velocity, &spins);
         let k = &kinematics;
@@ -152,7 +171,7 @@ impl<'a> PairContact<'a> {
         let (elastic, dissipative) = (parts.elastic / s.force, parts.dissipative / s.force);
         let normal_force = elastic + dissipative;
         // d'' = -(dw/dt·n + w·dn/dt), and dw/dt·n = Fn (the tangential force lies across the normal).
-        let acceleration = -(normal_force + relative_velocity.dot(&k.normal_rate));
+        let acceleration = -(normal_force * self.impulse_gain + relative_velocity.dot(&k.normal_rate));
         let (by_penetration, by_rate) = self.law.force_gradient(d * s.length, k.rate * s.speed);
         let normal_force_rate = (by_penetration * s.length * k.rate + by_rate * s.speed * acceleration) / s.force;
         let raw_spring = vector(y, index::SPRING);
@@ -272,6 +291,10 @@ impl ContactModel<SIZE> for PairContact<'_> {
 
     fn sliding(&self, y: &State<SIZE>) -> bool {
         self.tangential.is_some() && mode(y) == Mode::Slip
+    }
+
+    fn slip_along_start(&self, y: &State<SIZE>) -> Option<f64> {
+        (self.slip_direction != Vector3::zeros()).then(|| self.evaluate(y).kinematics.slip.dot(&self.slip_direction))
     }
 
     fn snapshot(&self, t: f64, y: &State<SIZE>) -> Snapshot {

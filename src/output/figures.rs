@@ -5,7 +5,7 @@
 //!
 //! A frictional contact (the report's oblique section with a friction coefficient above zero) adds a second panel
 //! to the force–time figure, on the same time axis: the tangential force against the initial slip, between the
-//! dashed Coulomb limits ±μF, with the sticking stretches shaded.
+//! dashed Coulomb limits ±μF, with the stretches below the limit (the tangential spring holding) shaded.
 
 use super::chart::{self, Axis, Chart, Colour, Layer, Mark, Marker, Shape, Stack, Stroke, fixed, prefix, si};
 use super::files::write_atomically;
@@ -21,8 +21,8 @@ pub const FIGURES: [&str; 3] = ["force_time", "force_penetration", "velocities"]
 
 const COMPRESSION: Colour = chart::PALETTE[0];
 const RESTITUTION: Colour = chart::PALETTE[3];
-/// The shade of the sticking stretches and the tangential force's colour.
-const STICKING: Colour = chart::PALETTE[2];
+/// The shade of the stretches below the Coulomb limit and the tangential force's colour.
+const BELOW_LIMIT: Colour = chart::PALETTE[2];
 const TANGENTIAL: Colour = chart::PALETTE[4];
 /// Heights of the force–time figure's two panels (normal force over tangential force) of a frictional contact, px.
 const NORMAL_PANEL: f64 = 470.0;
@@ -178,9 +178,9 @@ fn slip_direction(history: &History) -> Vector3<f64> {
     if largest.norm() > 0.0 { -largest.normalize() } else { Vector3::zeros() }
 }
 
-/// The sticking stretches of the history as (from, to) in seconds since first contact: runs of samples that do not
+/// The stretches of the history below the Coulomb limit (the spring's sticking mode) as (from, to) in seconds since first contact: runs of samples that do not
 /// slide, each reaching halfway to its neighbours (the samples do not locate the switches more finely).
-fn sticking_stretches(report: &Report, history: &History) -> Vec<(f64, f64)> {
+fn below_limit_stretches(report: &Report, history: &History) -> Vec<(f64, f64)> {
     let start = report.contact.start_time;
     let samples = &history.samples;
     let time = |i: usize| samples[i].time - start;
@@ -203,7 +203,7 @@ fn sticking_stretches(report: &Report, history: &History) -> Vec<(f64, f64)> {
 }
 
 /// The tangential force on body 1 against its initial slip, −F_t·ŝ₀ (positive while friction opposes that slip),
-/// between the Coulomb limits ±μF (dashed), with the sticking stretches shaded and maximum compression marked.
+/// between the Coulomb limits ±μF (dashed), with the stretches below the limit shaded and maximum compression marked.
 fn tangential_force(report: &Report, history: &History, mu: f64) -> Chart {
     let c = &report.contact;
     let start = c.start_time;
@@ -229,11 +229,11 @@ fn tangential_force(report: &Report, history: &History, mu: f64) -> Chart {
         Axis::linear(format!("tangential force ({fp}N)"), bottom, high / ff + pad),
     );
     let oblique = report.oblique.as_ref();
-    let stick = oblique.and_then(|o| o.stick_duration).unwrap_or(0.0);
-    for (i, (from, to)) in sticking_stretches(report, history).into_iter().enumerate() {
-        let layer = Layer::new("sticking", Mark::Span { from: from / tf, to: to / tf, fill: STICKING, opacity: 0.15 });
+    let below = oblique.and_then(|o| o.below_friction_limit_duration).unwrap_or(0.0);
+    for (i, (from, to)) in below_limit_stretches(report, history).into_iter().enumerate() {
+        let layer = Layer::new("below", Mark::Span { from: from / tf, to: to / tf, fill: BELOW_LIMIT, opacity: 0.15 });
         chart.push(if i == 0 {
-            layer.label(format!("sticking (shaded): {} in all", si(stick, "s", 3))).rank(3)
+            layer.label(format!("below the Coulomb limit (shaded): {} in all", si(below, "s", 3))).rank(3)
         } else {
             layer
         });
@@ -242,6 +242,12 @@ fn tangential_force(report: &Report, history: &History, mu: f64) -> Chart {
     let t0 = time(c.max_compression_time);
     let dashed = Stroke::dashed(Colour::BLACK, 1.2, 6.0, 4.0);
     chart.push(Layer::new("reference", Mark::VLine { x: t0, stroke: dashed }));
+    // Where the contact points stop slipping (the regime turns to sticking), if they do during the contact.
+    if let Some(rest) = oblique.and_then(|o| o.slip_rest_time).filter(|&rest| rest > 0.0) {
+        let dotted = Stroke::dashed(TANGENTIAL, 1.6, 2.0, 3.0);
+        let label = format!("the contact points' slip comes to rest, t = {}", si(rest, "s", 3));
+        chart.push(Layer::new("rest", Mark::VLine { x: rest / tf, stroke: dotted }).label(label).rank(2));
+    }
     let scaled = |points: &[(f64, f64)], sign: f64| points.iter().map(|&(t, f)| (t, sign * f / ff)).collect();
     let name = report.bodies[0].name.as_str();
     let work = oblique.and_then(|o| o.friction_work).map(|w| format!(", friction work {}", si(w, "J", 3)));

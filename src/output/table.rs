@@ -31,8 +31,11 @@ struct Scales {
     /// m/s: the approach speed v0, or the largest velocity component before the impact if larger (a body's
     /// velocity in the scene's frame carries rounding of its own size).
     speed: f64,
-    /// N s: m* v0, the size of the deformation impulse.
+    /// N s: m* v0, the size of the deformation impulse — or, for a graze whose force is far weaker, the force's
+    /// own impulse, Fmax times the contact's duration.
     impulse: f64,
+    /// J: m* v0², the size of what the contact takes or leaves — or, for a graze, Fmax dmax.
+    contact_energy: f64,
     /// J: m* v0², or the kinetic energy before if larger.
     energy: f64,
     /// rad/s: the speed scale over the smallest radius.
@@ -46,9 +49,12 @@ impl Scales {
         let m = report.effective_mass;
         let radius = report.bodies.iter().map(|b| b.radius).fold(f64::INFINITY, f64::min);
         let spins = report.bodies.iter().flat_map(|b| b.angular_velocity_before).map(f64::abs).fold(0.0, f64::max);
+        let c = &report.contact;
+        let duration = c.duration.unwrap_or(c.max_compression_time - c.start_time);
         Scales {
             speed: v0.max(largest),
-            impulse: m * v0,
+            impulse: (m * v0).min(c.max_force * duration),
+            contact_energy: (m * v0 * v0).min(c.max_force * c.max_penetration),
             energy: (m * v0 * v0).max(report.energy.kinetic_before),
             spin: (v0.max(largest) / radius).max(spins),
         }
@@ -216,7 +222,7 @@ fn energy(report: &Report, scales: &Scales) -> Section {
     let joules = |value: f64| engineering(denoise(value, scales.energy), "J");
     // What the contact itself takes or leaves is measured against the impact's own energy m* v0², not against a
     // kinetic energy that a heavy body's motion may make far larger.
-    let impact_energy = report.effective_mass * report.approach_speed * report.approach_speed;
+    let impact_energy = scales.contact_energy;
     let contact_joules = |value: f64| engineering(denoise(value, impact_energy), "J");
     let mut section = Section::new("energy");
     section.row("kinetic energy before", joules(e.kinetic_before));
@@ -253,18 +259,24 @@ fn oblique(report: &Report, scales: &Scales) -> Option<Section> {
     section.row("rebound from the normal", maybe(o.rebound_from_normal_deg, degrees));
     section.row("tangential restitution, centres", maybe(o.tangential_restitution_centre, plain));
     section.row("tangential restitution, contact points", maybe(o.tangential_restitution_contact, plain));
-    let regime = match o.stick_duration {
-        Some(stick) if stick > 0.0 && o.regime == "sticking" => {
-            format!("sticking (for {} of the contact)", engineering(stick, "s"))
-        }
+    let regime = match (o.regime.as_str(), o.slip_rest_time) {
+        ("sliding", _) => "sliding (the contact points slipped throughout)".to_string(),
+        ("sticking", Some(0.0)) => "sticking (no slip at first contact)".to_string(),
+        ("sticking", Some(rest)) => format!("sticking (the slip came to rest at {})", engineering(rest, "s")),
         _ => o.regime.clone(),
     };
     section.row("regime", regime);
+    if let Some(below) = o.below_friction_limit_duration.filter(|&below| below > 0.0) {
+        section.row("friction below the Coulomb limit for", engineering(below, "s"));
+    }
     if let Some(work) = o.friction_work.filter(|_| o.regime != "smooth") {
         section.row("work of friction", engineering(denoise(work, scales.energy), "J"));
     }
     if let Some(turn) = o.normal_turn_deg {
         section.row("line of centres turned by", degrees(turn));
+    }
+    if o.slid_off {
+        section.row("the bodies slid off each other", "yes: a graze (see the note)");
     }
     if let Some(rigid) = &o.rigid_body {
         section.heading(format!("rigid-body theory with the simulated e ({})", rigid.regime));

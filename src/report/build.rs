@@ -97,8 +97,23 @@ pub fn build(scene: &Scene, setup: &Setup, outcome: &Outcome, detail: ReferenceD
              about atol / e = {resolution:.1e} relative (a smaller [solver] atol sharpens it)"
         ));
     }
+    if let Some(o) = oblique.as_ref().filter(|o| o.slid_off) {
+        let share = end.normal_impulse / (setup.effective_mass * (setup.approach_speed - end.rate));
+        notes.push(format!(
+            "the bodies slid off each other: the contact force made a fraction {:.3e} of the reversal of the normal \
+             velocity (its impulse {:.3e} N s against m* (v0 + separation speed)); the line of centres, turning by \
+             {:.3e} degrees as they slid past, did the rest — the instantaneous impacts, whose impulse alone \
+             reverses the normal velocity, do not describe such a graze",
+            share,
+            end.normal_impulse,
+            o.normal_turn_deg.unwrap_or(0.0)
+        ));
+    }
     if outcome.switches > 0 {
-        notes.push(format!("the contact switched between sticking and sliding {} times", outcome.switches));
+        notes.push(format!(
+            "the tangential force switched between the Coulomb limit and below it {} times",
+            outcome.switches
+        ));
     }
     Report {
         title: scene.title.clone(),
@@ -179,14 +194,19 @@ fn oblique(scene: &Scene, setup: &Setup, outcome: &Outcome, e: f64, friction_wor
     let relative_after = end.velocities[1] - end.velocities[0];
     let centre_after = relative_after - end.normal * relative_after.dot(&end.normal);
     let friction = scene.contact.friction;
-    let regime = if friction == 0.0 {
-        "smooth"
-    } else if setup.motion == Motion::Normal || outcome.stick_duration > 0.0 {
-        // Friction without slip (Motion::Normal) never lets the contact slide.
-        "sticking"
-    } else {
-        "sliding"
+    // Friction without slip (Motion::Normal) has its slip at rest from first contact, and holds the whole contact
+    // below the Coulomb limit.
+    let slip_rest_time = if setup.motion == Motion::Normal { Some(0.0) } else { outcome.slip_rest_time };
+    // The regime of rigid-body theory (docs/oblique.md#regime): the contact slid throughout when its contact points
+    // never stopped slipping, whatever its spring did under the Coulomb limit meanwhile.
+    let regime = match slip_rest_time {
+        _ if friction == 0.0 => "smooth",
+        Some(_) => "sticking",
+        None => "sliding",
     };
+    // A graze: the force made less than half of the reversal of the normal velocity, the turning line of centres
+    // the rest (docs/oblique.md#grazing-contacts).
+    let slid_off = done && end.normal_impulse < 0.5 * setup.effective_mass * (v0 - end.rate);
     let rigid_body = done.then(|| {
         let rigid = rigid_body_impact(bodies, &n, setup.effective_mass, e, friction, &slip);
         let largest = |simulated: &[Vector3<f64>; 2], ideal: &[Vector3<f64>; 2]| {
@@ -217,13 +237,15 @@ fn oblique(scene: &Scene, setup: &Setup, outcome: &Outcome, e: f64, friction_wor
         friction_work: done.then_some(friction_work),
         friction,
         regime: regime.into(),
-        stick_duration: (friction > 0.0).then_some(if setup.motion == Motion::Normal {
+        below_friction_limit_duration: (friction > 0.0).then_some(if setup.motion == Motion::Normal {
             end.time
         } else {
-            outcome.stick_duration
+            outcome.below_limit_duration
         }),
+        slip_rest_time: slip_rest_time.filter(|_| friction > 0.0),
         normal_turn_deg: done.then(|| degrees(n.cross(&end.normal).norm().atan2(n.dot(&end.normal)))),
         normal_at_separation: done.then(|| vec3(&end.normal)),
+        slid_off,
         rigid_body,
     })
 }

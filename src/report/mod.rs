@@ -145,14 +145,24 @@ pub struct ObliqueReport {
     /// Coulomb friction coefficient mu of the contact (dimensionless; 0: smooth), as the scene gave it (an
     /// addition).
     pub friction: f64,
-    /// "smooth", "sliding" (slid throughout) or "sticking" (stuck at some time).
+    /// "smooth" (no friction), "sliding" (the contact points slipped throughout, as rigid-body theory's sliding) or
+    /// "sticking" (their slip came to rest at some time: the contact stuck or rolled).
     pub regime: String,
-    /// Time the contact spent sticking, s (an addition; null for a smooth contact).
-    pub stick_duration: Option<f64>,
+    /// Time since first contact at which the contact points' slip first came to rest, s (an addition; null when it
+    /// never did, and for a smooth contact).
+    pub slip_rest_time: Option<f64>,
+    /// Time the tangential force spent below the Coulomb limit mu Fn, s: the tangential spring held (it loads from
+    /// zero at first contact, and unloads where the slip reverses) while the contact points may still slip by its
+    /// deformation (an addition; null for a smooth contact).
+    pub below_friction_limit_duration: Option<f64>,
     /// Angle between the normals at first contact and at separation (how far the line of centres turned).
     pub normal_turn_deg: Option<f64>,
     /// Unit normal at separation (an addition).
     pub normal_at_separation: Option<Vec3>,
+    /// Whether the bodies slid off each other (an addition): the contact force made less than half of the reversal
+    /// of the normal velocity, its impulse below m* (v0 + separation speed)/2, and the turning line of centres the
+    /// rest — a graze, which the instantaneous impacts do not describe. False when the bodies did not separate.
+    pub slid_off: bool,
     /// The rigid-body prediction with the simulated normal e; null when the bodies did not separate.
     pub rigid_body: Option<RigidBodyReport>,
 }

@@ -19,7 +19,7 @@ use crate::output::text::{MESSAGE_CHARS, cut};
 use crate::report::Report;
 
 /// The report's scalar results, after the varied keys.
-pub const RESULT_COLUMNS: [&str; 40] = [
+pub const RESULT_COLUMNS: [&str; 41] = [
     "approach_speed",
     "effective_mass",
     "stiffness",
@@ -53,7 +53,8 @@ pub const RESULT_COLUMNS: [&str; 40] = [
     "tangential_restitution_centre",
     "tangential_restitution_contact",
     "friction_work",
-    "stick_duration",
+    "slip_rest_time",
+    "below_friction_limit_duration",
     "normal_turn_deg",
     "spin_after_1",
     "spin_after_2",
@@ -73,7 +74,8 @@ pub struct Columns {
 }
 
 /// The columns that show physical times (the fast path's time quadrature).
-const TIME_COLUMNS: [&str; 4] = ["max_compression_time", "duration", "max_force_time", "stick_duration"];
+const TIME_COLUMNS: [&str; 5] =
+    ["max_compression_time", "duration", "max_force_time", "slip_rest_time", "below_friction_limit_duration"];
 /// The columns that show the force peak.
 const PEAK_COLUMNS: [&str; 2] = ["max_force", "max_force_time"];
 /// The columns that show the dissipated energy.
@@ -259,7 +261,8 @@ pub fn results(report: &Report) -> [Cell; RESULT_COLUMNS.len()] {
         oblique.and_then(|o| o.tangential_restitution_centre).into(),
         oblique.and_then(|o| o.tangential_restitution_contact).into(),
         oblique.and_then(|o| o.friction_work).into(),
-        oblique.and_then(|o| o.stick_duration).into(),
+        oblique.and_then(|o| o.slip_rest_time).into(),
+        oblique.and_then(|o| o.below_friction_limit_duration).into(),
         oblique.and_then(|o| o.normal_turn_deg).into(),
         oblique.and(spin(0)).into(),
         oblique.and(spin(1)).into(),
