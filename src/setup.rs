@@ -1,6 +1,7 @@
 //! From a scene to the numbers of its contact: first contact, normal, approach speed, effective mass, stiffness
-//! and the resolved law. Every physics-level rule of interface.md ("Geometry and signs") is checked here, and a
-//! broken rule names the scene key at fault.
+//! and the resolved law. Every physics-level rule of docs/scene.md (its sections on placement, the normal and first
+//! contact, on walls and fixed spheres, and its rules across keys) is checked here, and a broken rule names the
+//! scene key at fault.
 
 use crate::body::Body;
 use crate::dynamics::Scales;
@@ -498,7 +499,8 @@ fn graze(scene: &Scene, normal: &Vector3<f64>, approach: f64, tangential: &Vecto
     )
 }
 
-/// K = (4/3) E* sqrt(R*), with the rules of interface.md for rigid bodies and missing constants.
+/// K = (4/3) E* sqrt(R*), with the rules for rigid bodies and missing constants of
+/// docs/laws.md#stiffness-and-exponent.
 fn hertz_stiffness(a: &Body, b: &Body) -> Result<f64, SetupError> {
     for (i, body) in [a, b].iter().enumerate() {
         match (body.young, body.poisson) {

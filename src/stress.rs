@@ -881,8 +881,9 @@ pub fn exact_energies(scene: &Scene, report: &Report) -> Option<(f64, f64)> {
 /// Dissipated and left-over elastic energy, in units of m* v0², of the unit-mass oscillator x'' + 2 beta x' +
 /// omega0² x = 0 started at x = 0, x' = 1, ended where x returns to 0 (penetration) or where the force
 /// omega0² x + 2 beta x' does (force). Underdamped only (`None` otherwise). Kelvin–Voigt is beta = zeta,
-/// omega0² = 1 (time in 1/omega0); Tsuji is beta = a/2, omega0² = 5/4 in its time tau (physics.md §3), with
-/// x = (4/5) w = (4/5) d^(5/4), so that the kinetic energy is d'²/2 and the elastic one (2/5) d^(5/2) = omega0² x²/2.
+/// omega0² = 1 (time in 1/omega0); Tsuji is beta = a/2, omega0² = 5/4 in its time tau (docs/references.md#tsuji),
+/// with x = (4/5) w = (4/5) d^(5/4), so that the kinetic energy is d'²/2 and the elastic one
+/// (2/5) d^(5/2) = omega0² x²/2.
 ///
 /// With x = e^(-beta t) sin(omega t)/omega, the energy is E(t) = e^(-2 beta t) [1 - (beta/omega) sin 2 omega t +
 /// 2 (beta/omega)² sin² omega t]/2. Penetration: t = pi/omega, nothing left, dissipated (1 - e^(-2 beta t))/2.

@@ -1,5 +1,5 @@
-//! Bad scenes through the real `impact` binary (issue #2, interface.md "Command line"): every kind of bad scene
-//! exits with status 2 and a message naming the file, the dotted key (0-based: `bodies.1.velocity`,
+//! Bad scenes through the real `impact` binary (issue #2, docs/scene.md#rules-that-hold-everywhere): every kind of
+//! bad scene exits with status 2 and a message naming the file, the dotted key (0-based: `bodies.1.velocity`,
 //! `contact.restitution`) and, where known, the line — never a panic, and nothing on stdout.
 //!
 //! The expected line is counted here from the scene text the test wrote (the line that starts with the offending
@@ -55,7 +55,7 @@ fn with(text: &str, extra: &str) -> String {
     format!("{text}\n{extra}")
 }
 
-/// A valid scene that uses every key of interface.md (positions, spin, material, damping, solver, output), each
+/// A valid scene that uses every key of docs/scene.md (positions, spin, material, damping, solver, output), each
 /// line unique, so that one line can be swapped for a bad value.
 const EVERY_KEY: &str = r#"title = "every key, all valid"
 
@@ -700,7 +700,8 @@ fn a_ball_at_rest_against_a_wall_at_rest_is_rejected_naming_the_key() {
 
 #[test]
 fn header_comments_do_not_shift_the_line_of_an_error() {
-    // interface.md writes comments after table headers; the error must still point into the first body.
+    // docs/scene.md#a-complete-scene writes comments after table headers; the error must still point into the first
+    // body.
     let text = scene(
         &edit(LEFT_BALL, "velocity = [1.0, 0.0, 0.0]", "velocity = [0.75, 0.0, 0.0]"),
         &edit(RIGHT_BALL, "velocity = [-1.0, 0.0, 0.0]", "velocity = [1.25, 0.0, 0.0]"),

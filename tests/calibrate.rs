@@ -1,8 +1,9 @@
 //! `impact calibrate` through the real binary: the calibrated damping reproduces the target e when the scene is
 //! simulated with it (`impact run --json`), the exact relations and closed forms it rests on hold when checked by
-//! hand, the published maps give docs/references.md's effective e, and bad input is a clear error with exit status 2.
+//! hand, the published maps give the effective e of docs/laws.md, and bad input is a clear error with exit status 2.
 //!
-//! Every expected number comes from docs/references.md or from a formula written out here, never from an earlier run.
+//! Every expected number comes from docs/references.md, docs/laws.md or a formula written out here, never from an
+//! earlier run.
 
 mod common;
 
@@ -311,8 +312,9 @@ fn unit_restitution_needs_no_damping() {
 // The published maps
 
 #[test]
-fn published_maps_give_the_effective_e_of_physics_md() {
-    // docs/references.md, "Effective e reached by each law's own map" (6 decimals), and the Tsuji F = 0 value.
+fn published_maps_give_the_effective_e_of_the_exact_relation() {
+    // The effective e of each published map (6 decimals, the table of
+    // docs/laws.md#the-hysteresis-family-and-its-maps), and the Tsuji F = 0 value (docs/references.md#tsuji).
     let scratch = Scratch::new("published");
     let cases = [
         ("lankarani-nikravesh", "0.5", "penetration", 0.725241),
@@ -328,10 +330,7 @@ fn published_maps_give_the_effective_e_of_physics_md() {
         let result = calibrate(&scratch, &["--law", law, "--restitution", e, "--separation", separation]);
         let map = &result["published_map"];
         let got = number(map, "restitution");
-        assert!(
-            (got - effective).abs() <= 5e-7,
-            "{law} asked for {e}: the map gives {got}, docs/references.md {effective}"
-        );
+        assert!((got - effective).abs() <= 5e-7, "{law} asked for {e}: the map gives {got}, docs/laws.md {effective}");
         // The map's damping is the law's formula, written out here.
         let nominal: f64 = e.parse().unwrap();
         let expected = match law {

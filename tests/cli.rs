@@ -1,4 +1,4 @@
-//! The `impact` command as users and scripts see it (interface.md, "Command line" and "JSON report"), through the
+//! The `impact` command as users and scripts see it (README.md#calling-the-program and docs/report.md), through the
 //! real binary: the JSON report's keys and types, the readable report, `models`, `--help`, the demonstration and
 //! bad arguments. Physics is only touched where a closed form makes it free; the physics tests live elsewhere.
 
@@ -30,7 +30,7 @@ fn has_word(text: &str, word: &str) -> bool {
 }
 
 // ---------------------------------------------------------------------------------------------------------------
-// The JSON report's shape (interface.md, "JSON report of `impact run --json`")
+// The JSON report's shape (docs/report.md: every key of `impact run --json`)
 
 /// What a report value must be.
 #[derive(Debug, Clone, Copy)]
@@ -47,10 +47,10 @@ enum Kind {
     Null,
 }
 
-/// Every key of interface.md's JSON report as a JSON pointer with its kind: `separated` says whether the bodies
-/// parted (otherwise the keys listed in interface.md are null), `nominal` whether a nominal `restitution` (or
-/// `hertz`) was given (otherwise `restitution_nominal` and `instantaneous_nominal` are null).
-fn interface_keys(separated: bool, nominal: bool) -> Vec<(String, Kind)> {
+/// Every key of the JSON report of docs/report.md as a JSON pointer with its kind: `separated` says whether the
+/// bodies parted (otherwise the keys listed in docs/report.md#conventions are null), `nominal` whether a nominal
+/// `restitution` (or `hertz`) was given (otherwise `restitution_nominal` and `instantaneous_nominal` are null).
+fn documented_keys(separated: bool, nominal: bool) -> Vec<(String, Kind)> {
     use Kind::*;
     let after = |kind: Kind| if separated { kind } else { Null };
     let mut keys: Vec<(String, Kind)> = vec![
@@ -139,12 +139,12 @@ fn is_kind(value: &Value, kind: Kind) -> bool {
     }
 }
 
-/// Asserts that `report` has every key of interface.md with its kind; more keys are allowed (additions).
+/// Asserts that `report` has every key of docs/report.md with its kind; more keys are allowed (additions).
 #[track_caller]
-fn assert_interface_keys(report: &Value, separated: bool, nominal: bool) {
+fn assert_documented_keys(report: &Value, separated: bool, nominal: bool) {
     let bodies = report.pointer("/bodies").and_then(Value::as_array).map(Vec::len);
     assert_eq!(bodies, Some(2), "`bodies` must list the two bodies:\n{report:#}");
-    let wrong: Vec<String> = interface_keys(separated, nominal)
+    let wrong: Vec<String> = documented_keys(separated, nominal)
         .into_iter()
         .filter_map(|(pointer, kind)| match report.pointer(&pointer) {
             None => Some(format!("{pointer}: missing, expected {kind:?}")),
@@ -154,7 +154,7 @@ fn assert_interface_keys(report: &Value, separated: bool, nominal: bool) {
         .collect();
     assert!(
         wrong.is_empty(),
-        "keys of interface.md missing or of the wrong kind:\n  {}\n{report:#}",
+        "keys of docs/report.md missing or of the wrong kind:\n  {}\n{report:#}",
         wrong.join("\n  ")
     );
 }
@@ -204,9 +204,9 @@ restitution = 0.8
 "#;
 
 #[test]
-fn run_json_reports_every_key_of_the_interface() {
-    let report = run_json("run_json_reports_every_key_of_the_interface", PLACED_BALLS);
-    assert_interface_keys(&report, true, true);
+fn run_json_reports_every_documented_key() {
+    let report = run_json("run_json_reports_every_documented_key", PLACED_BALLS);
+    assert_documented_keys(&report, true, true);
     assert_eq!(report["title"], "two steel balls");
     assert_eq!(report["law"]["name"], "hunt-crossley");
     assert_eq!(report["law"]["separation"], "penetration", "the default separation");
@@ -257,7 +257,7 @@ law = "lankarani-nikravesh"
 restitution = 0.7
 "#;
     let report = run_json("run_json_of_a_wall_writes_inf_and_takes_v0_from_the_wall", scene);
-    assert_interface_keys(&report, true, true);
+    assert_documented_keys(&report, true, true);
     let wall = &report["bodies"][1];
     assert_eq!(wall["mass"], "inf", "an immovable body's mass is written as the string \"inf\"");
     assert_eq!(wall["radius"], "inf", "a flat body's radius is written as the string \"inf\"");
@@ -275,7 +275,7 @@ restitution = 0.7
 fn run_json_with_damping_has_no_nominal_restitution() {
     let scene = PLACED_BALLS.replace("restitution = 0.8", "damping = 0.2");
     let report = run_json("run_json_with_damping_has_no_nominal_restitution", &scene);
-    assert_interface_keys(&report, true, false);
+    assert_documented_keys(&report, true, false);
     assert_eq!(report["law"]["damping"], 0.2, "the given damping is the damping used");
     assert!(report["instantaneous_nominal"].is_null());
 }
@@ -284,7 +284,7 @@ fn run_json_with_damping_has_no_nominal_restitution() {
 fn run_json_of_hertz_has_nominal_restitution_one() {
     let scene = PLACED_BALLS.replace("law = \"hunt-crossley\"\nrestitution = 0.8", "law = \"hertz\"");
     let report = run_json("run_json_of_hertz_has_nominal_restitution_one", &scene);
-    assert_interface_keys(&report, true, true);
+    assert_documented_keys(&report, true, true);
     assert_eq!(report["law"]["restitution_nominal"], 1.0);
     assert_eq!(report["law"]["damping"], 0.0);
     assert_eq!(report["instantaneous_nominal"]["restitution"], 1.0);
@@ -311,7 +311,7 @@ stiffness = 1e5
 separation = "penetration"
 "#;
     let report = run_json("run_json_of_bodies_that_never_separate_has_the_listed_nulls", scene);
-    assert_interface_keys(&report, false, true);
+    assert_documented_keys(&report, false, true);
     assert_eq!(report["contact"]["separated"], false);
     assert_eq!(report["bodies"][0]["name"], "body 1", "the default name");
     assert_eq!(report["bodies"][1]["name"], "body 2", "the default name");
@@ -344,7 +344,7 @@ fn models_lists_all_fourteen_laws() {
     let output = impact(scratch.path(), &["models"]);
     assert_success(&output);
     let text = stdout(&output);
-    // The law names of interface.md's table.
+    // The law names of the table in docs/laws.md#the-fourteen-laws.
     let laws = [
         "hertz",
         "kelvin-voigt",

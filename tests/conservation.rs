@@ -1,4 +1,5 @@
-//! The impact against the instantaneous formulas of docs/oblique.md: momentum, V0, the three e, energy.
+//! The impact against the instantaneous formulas of docs/references.md#the-instantaneous-impact: momentum, V0, the
+//! three e, energy.
 
 mod common;
 use common::{assert_close, run};
@@ -22,7 +23,7 @@ fn momentum_v0_and_the_three_restitution_coefficients_agree() {
     let v0 = u1 - u2;
     let c = &report.contact;
     assert_close("approach speed", report.approach_speed, v0, 1e-12);
-    // V0 = (m1 u1 + m2 u2)/(m1 + m2) (docs/oblique.md).
+    // V0 = (m1 u1 + m2 u2)/(m1 + m2) (docs/references.md#the-instantaneous-impact).
     let common = (m1 * u1 + m2 * u2) / (m1 + m2);
     assert!((c.common_normal_velocity - common).abs() <= 1e-9 * v0, "V0 {} vs {common}", c.common_normal_velocity);
     // Deformation impulse m* (u1 - u2).

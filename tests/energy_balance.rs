@@ -1,12 +1,14 @@
-//! The energy balance (interface.md, "Energy balance"; issue 6 part 3): kinetic_before + work_of_immovable_bodies =
-//! kinetic_after + dissipated + elastic_left_at_separation, closed for every law, both separation criteria, walls
-//! still and moving (either body), two free spheres; and each term against an exact value written here:
-//! - the damped oscillator's closed forms for Kelvin–Voigt and Tsuji (physics.md §3: Tsuji maps onto it with
-//!   w = d^(5/4), zeta = a/sqrt(5)), derived below;
+//! The energy balance (docs/report.md#energy-and-the-energy-balance; issue 6 part 3): kinetic_before +
+//! work_of_immovable_bodies = kinetic_after + dissipated + elastic_left_at_separation, closed for every law, both
+//! separation criteria, walls still and moving (either body), two free spheres; and each term against an exact value
+//! written here:
+//! - the damped oscillator's closed forms for Kelvin–Voigt and Tsuji (docs/references.md#tsuji: Tsuji maps onto it
+//!   with w = d^(5/4), zeta = a/sqrt(5)), derived below;
 //! - the hysteresis family's exact relation x (1 + e) = ln((1 + x)/(1 - e x)), solved here by bisection, and its
-//!   series for 1 - e at small x (physics.md §3);
+//!   series for 1 - e at small x (docs/references.md#the-hunt-crossley-family);
 //! - Brilliantov's law by the independent RK4 reference of `common/edge_ode.rs`;
-//! - the work of a moving wall, -P (u_wall·n) with the exact impulse P = (1 + e) m* v0 (physics.md §5).
+//! - the work of a moving wall, -P (u_wall·n) with the exact impulse P = (1 + e) m* v0
+//!   (docs/report.md#energy-and-the-energy-balance).
 
 mod common;
 use common::edge_ode::converged_edge_contact;
@@ -82,8 +84,9 @@ fn closure(report: &Report) -> f64 {
     (e.kinetic_before + work - after - dissipated - left).abs() / largest
 }
 
-/// Exact e of the hysteresis family: the root in (0, 1/x) of x (1 + e) = ln((1 + x)/(1 - e x)) (physics.md §3),
-/// by bisection (e = 0 is not a root for x > 0; the residual changes sign once on (0, min(1, 1/x))).
+/// Exact e of the hysteresis family: the root in (0, 1/x) of x (1 + e) = ln((1 + x)/(1 - e x))
+/// (docs/references.md#the-hunt-crossley-family), by bisection (e = 0 is not a root for x > 0; the residual changes
+/// sign once on (0, min(1, 1/x))).
 fn hysteresis_restitution(x: f64) -> f64 {
     let residual = |e: f64| x * (1.0 + e) - ((1.0 + x) / (1.0 - e * x)).ln();
     let (mut lo, mut hi) = (1e-300, (1.0f64).min(1.0 / x) * (1.0 - 1e-15));
@@ -95,7 +98,8 @@ fn hysteresis_restitution(x: f64) -> f64 {
     0.5 * (lo + hi)
 }
 
-/// 1 - e(x) of the hysteresis family for small x: the series of physics.md §3 (e = 1 - 2x/3 + 4x²/9 - ...).
+/// 1 - e(x) of the hysteresis family for small x: the series of docs/references.md#the-hunt-crossley-family
+/// (e = 1 - 2x/3 + 4x²/9 - ...).
 fn hysteresis_loss_series(x: f64) -> f64 {
     let c = [
         2.0 / 3.0,
@@ -220,8 +224,9 @@ fn each_energy_meets_its_exact_value() {
 
 #[test]
 fn a_kelvin_voigt_force_separation_leaves_up_to_nine_percent_in_the_spring() {
-    // physics.md §5: up to 9 % of m* v0²/2 near zeta = 0.6. From the closed form: zeta = 0.6 -> 2 zeta² e^(-2 zeta t)
-    // with t = (pi - 2 atan(0.75))/0.8 is 8.93 % of 1/2. The report shows it, and the balance still closes.
+    // docs/laws.md#laws-that-turn-tensile-and-separation: up to 9 % of m* v0²/2 near zeta = 0.6. From the closed
+    // form: zeta = 0.6 -> 2 zeta² e^(-2 zeta t) with t = (pi - 2 atan(0.75))/0.8 is 8.93 % of 1/2. The report shows
+    // it, and the balance still closes.
     let zeta: f64 = 0.6;
     let (m, k, v0): (f64, f64, f64) = (0.5, 1e7, 1.5);
     let c = 2.0 * zeta * (k * m).sqrt();
@@ -236,8 +241,9 @@ fn a_kelvin_voigt_force_separation_leaves_up_to_nine_percent_in_the_spring() {
 
 #[test]
 fn light_damping_energies_are_accurate_relative_to_themselves() {
-    // physics.md §5: an absolute tolerance on a state scaled by m* v0² leaves a light damping's small dissipation
-    // with a large relative error (2e-5 for Tsuji at a = 1e-5); every energy must be good to 1e-9 of itself.
+    // docs/numerics.md#impulses-and-energies-as-integrals: an absolute tolerance on a state scaled by m* v0² leaves a
+    // light damping's small dissipation with a large relative error (2e-5 for Tsuji at a = 1e-5); every energy must
+    // be good to 1e-9 of itself.
     let wall = &GEOMETRIES[0];
     let (m, v0): (f64, f64) = (0.5, 1.5);
     let unit = m * v0 * v0;

@@ -1,5 +1,5 @@
-//! The fast path (src/fast) against exact references: physics.md's tables, the closed forms and quadratures of
-//! `impact::reference`, momentum and energy balances, and the general Dop853 path on random scenes.
+//! The fast path (src/fast) against exact references: the tables of docs/references.md, the closed forms and
+//! quadratures of `impact::reference`, momentum and energy balances, and the general Dop853 path on random scenes.
 
 mod fast_support;
 
@@ -48,7 +48,8 @@ impl Random {
     }
 }
 
-/// physics.md §3 table: x, n, e, dmax/L, t0/T, tc/T, Fmax/F0 (given to 11–13 digits).
+/// The Hunt–Crossley quadrature table of docs/references.md#the-hunt-crossley-family: x, n, e, dmax/L, t0/T, tc/T,
+/// Fmax/F0 (given to 11–13 digits).
 const HUNT_CROSSLEY_TABLE: [[f64; 7]; 5] = [
     [0.5, 1.5, 0.7484349315974, 0.9777703257171, 1.505190262472, 3.338252755937, 1.03820817965],
     [2.0, 1.5, 0.410719686061, 0.7949076199716, 1.33112133457, 3.78025803753, 1.10425499427],
@@ -58,7 +59,7 @@ const HUNT_CROSSLEY_TABLE: [[f64; 7]; 5] = [
 ];
 
 #[test]
-fn hunt_crossley_matches_the_table_of_physics_md() {
+fn hunt_crossley_matches_the_quadrature_table() {
     for [x, n, e, dmax, t0, tc, fmax] in HUNT_CROSSLEY_TABLE {
         let out = run(&Case::Hysteresis { x, n }, 1e-10);
         let got =
@@ -71,10 +72,10 @@ fn hunt_crossley_matches_the_table_of_physics_md() {
     }
 }
 
-/// physics.md §3 Tsuji table (6–7 digits): nominal e, dmax/L, tc/T, Fmax/F0, with separation at zero penetration
-/// (where the map gives exactly the nominal e).
+/// The Tsuji table of docs/references.md#tsuji (6–7 digits): nominal e, dmax/L, tc/T, Fmax/F0, with separation at
+/// zero penetration (where the map gives exactly the nominal e).
 #[test]
-fn tsuji_matches_the_table_of_physics_md() {
+fn tsuji_matches_the_nondimensional_table() {
     for [e, dmax, tc, fmax] in
         [[0.9, 1.049184, 3.253683, 1.076691], [0.5, 0.860991, 3.518532, 0.863967], [0.2, 0.697339, 4.170294, 0.831543]]
     {
@@ -85,7 +86,7 @@ fn tsuji_matches_the_table_of_physics_md() {
         assert!(rel(out.end.time, tc) < 1e-6, "e = {e}: tc {}", out.end.time);
         assert!(rel(out.peak_force, fmax) < 1e-6, "e = {e}: Fmax");
     }
-    // Separating where the force returns to zero: nominal 0.5 gives 0.550283 (physics.md).
+    // Separating where the force returns to zero: nominal 0.5 gives 0.550283 (docs/references.md#tsuji).
     let out = run(&Case::Tsuji { e: 0.5, separation: Separation::Force }, 1e-10);
     assert!((-out.end.rate - 0.550283).abs() < 1e-6, "{}", -out.end.rate);
     // The elastic Tsuji contact (a = 0) is Hertz: e = 1, dmax = 1.093362, tc = 3.218065, Fmax = 1.143263.
@@ -97,10 +98,10 @@ fn tsuji_matches_the_table_of_physics_md() {
     assert!(rel(out.peak_force, 1.143263) < 1e-6);
 }
 
-/// physics.md §3 Kelvin–Voigt values (units of 1/omega0): e and durations at zeta = 0.1 and 0.3 under both
-/// criteria, and critical damping with F = 0 separation, e = exp(-2), duration 2.
+/// The Kelvin–Voigt values of docs/references.md#kelvin-voigt (units of 1/omega0): e and durations at zeta = 0.1
+/// and 0.3 under both criteria, and critical damping with F = 0 separation, e = exp(-2), duration 2.
 #[test]
-fn kelvin_voigt_matches_physics_md() {
+fn kelvin_voigt_matches_its_closed_form_values() {
     for (zeta, separation, e, duration, digits) in [
         (0.1, Separation::Penetration, 0.7292476143, 3.1574, 1e-4),
         (0.1, Separation::Force, 0.7440793977, 2.9560753247, 1e-10),
@@ -341,8 +342,9 @@ fn random_linear_impacts_agree_with_the_references() {
     }
 }
 
-/// A lightly damped contact's dissipated energy is accurate relative to itself (physics.md §5): Tsuji with
-/// a = 1e-5, Hunt–Crossley with x = 1e-6, Kelvin–Voigt with zeta = 1e-6.
+/// A lightly damped contact's dissipated energy is accurate relative to itself
+/// (docs/numerics.md#impulses-and-energies-as-integrals): Tsuji with a = 1e-5, Hunt–Crossley with x = 1e-6,
+/// Kelvin–Voigt with zeta = 1e-6.
 #[test]
 fn light_damping_dissipation_is_accurate_relative_to_itself() {
     // Tsuji, zero-penetration separation: e = exp(-pi zeta/sqrt(1 - zeta²)), zeta = a/sqrt 5, so
@@ -358,7 +360,8 @@ fn light_damping_dissipation_is_accurate_relative_to_itself() {
     let out = run(&Case::KelvinVoigt { zeta, separation: Separation::Penetration }, 1e-10);
     let exact = -(-2.0 * std::f64::consts::PI * zeta / (1.0 - zeta * zeta).sqrt()).exp_m1() / 2.0;
     assert!(rel(out.end.dissipated, exact) < 1e-9, "Kelvin–Voigt: {} vs {exact}", out.end.dissipated);
-    // Hunt–Crossley: 1 - e = 2x/3 - 4x²/9 + 44x³/135 - ... (physics.md), (1 - e²)/2 = (1 - e) - (1 - e)²/2.
+    // Hunt–Crossley: 1 - e = 2x/3 - 4x²/9 + 44x³/135 - ... (docs/references.md#the-hunt-crossley-family),
+    // (1 - e²)/2 = (1 - e) - (1 - e)²/2.
     let x: f64 = 1e-6;
     let one_minus_e = 2.0 * x / 3.0 - 4.0 * x * x / 9.0 + 44.0 * x.powi(3) / 135.0;
     let exact = one_minus_e - 0.5 * one_minus_e * one_minus_e;
@@ -380,7 +383,8 @@ fn force_separation_leaves_spring_energy() {
         assert!(rel(out.end.penetration, -2.0 * zeta * out.end.rate) < 1e-12, "zeta {zeta}");
         assert!(out.end.penetration > 0.0);
     }
-    // Near zeta = 0.6 the spring energy left is about 9 % of (1/2) m* v0² (physics.md §5).
+    // Near zeta = 0.6 the spring energy left is about 9 % of (1/2) m* v0²
+    // (docs/laws.md#laws-that-turn-tensile-and-separation).
     let out = run(&Case::KelvinVoigt { zeta: 0.6, separation: Separation::Force }, 1e-10);
     assert!((out.end.elastic / 0.5 - 0.09).abs() < 0.01, "{}", out.end.elastic / 0.5);
 }

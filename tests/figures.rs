@@ -341,8 +341,8 @@ fn the_gallery_reports_only_the_figures_it_leaves() {
 // ---------------------------------------------------------------------------------------------------------------
 // Oblique impacts with friction
 
-/// Chung & Ooi's test 4 (physics.md): an alumina sphere (r = 2.5 mm) on a rigid wall at 3.9 m/s, mu = 0.092,
-/// e = 0.98 from Tsuji's exact map; at `degrees` from the normal, with friction `mu`.
+/// Chung & Ooi's test 4 (docs/oblique.md#chung-and-ooi-test-4): an alumina sphere (r = 2.5 mm) on a rigid wall at
+/// 3.9 m/s, mu = 0.092, e = 0.98 from Tsuji's exact map; at `degrees` from the normal, with friction `mu`.
 fn alumina_on_wall(degrees: f64, mu: f64) -> String {
     let (s, c) = degrees.to_radians().sin_cos();
     format!(

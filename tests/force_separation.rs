@@ -1,8 +1,8 @@
-//! Force separation with light damping (issue 6 part 3; physics.md §5): the window between F = 0 and d = 0 is tiny
-//! (d at F = 0 is about b L for Brilliantov, (a e)^(4/5) L for Tsuji), so one step jumps it. A root-finder on the
-//! force clamped to zero for d < 0 then lands anywhere in the flat part and the contact seems to end at the step's
-//! end, after the bodies have parted — the contact time wrong by 1e-5 to 1e-3. The contact must end at F = 0 with
-//! d > 0, its time right to the integration's accuracy at every tolerance.
+//! Force separation with light damping (issue 6 part 3; docs/numerics.md#separation-on-the-continued-force): the
+//! window between F = 0 and d = 0 is tiny (d at F = 0 is about b L for Brilliantov, (a e)^(4/5) L for Tsuji), so one
+//! step jumps it. A root-finder on the force clamped to zero for d < 0 then lands anywhere in the flat part and the
+//! contact seems to end at the step's end, after the bodies have parted — the contact time wrong by 1e-5 to 1e-3.
+//! The contact must end at F = 0 with d > 0, its time right to the integration's accuracy at every tolerance.
 //!
 //! References: Tsuji's closed form (the damped oscillator in w = d^(5/4), tau with d tau = d^(1/4) dt; the time is
 //! t = ∫ w^(-1/5) d tau, integrated here by Gauss–Legendre after removing the endpoint singularity), and the
@@ -28,7 +28,7 @@ fn sphere_on_wall(law: &str, damping: f64, tolerances: (f64, f64)) -> Report {
     ))
 }
 
-/// L = (m* v0²/K)^(2/5) and T = L/v0 (physics.md §3).
+/// L = (m* v0²/K)^(2/5) and T = L/v0 (docs/references.md#units-of-the-exact-results).
 fn units() -> (f64, f64) {
     let length = (MASS * SPEED * SPEED / STIFFNESS).powf(0.4);
     (length, length / SPEED)
@@ -152,7 +152,7 @@ fn light_tsuji_damping_ends_at_zero_force_at_every_tolerance() {
 fn light_brilliantov_damping_ends_at_zero_force_at_every_tolerance() {
     let (length, _) = units();
     for b in [1e-7, 1e-6, 1e-5, 1e-4] {
-        // b = (3/2) A v0 / L (physics.md §3).
+        // b = (3/2) A v0 / L (docs/references.md#brilliantov-viscoelastic-spheres).
         let damping = b * length / (1.5 * SPEED);
         let reference = converged_edge_contact(2, b, true, 1e-12);
         for ((rtol, atol), allowed) in TOLERANCES {

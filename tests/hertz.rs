@@ -4,7 +4,7 @@ mod common;
 use common::{assert_close, run};
 use std::f64::consts::PI;
 
-/// Duration constant (4/5) B(2/5, 1/2) of docs/references.md: tc = 2.9432751843 dmax / v0.
+/// Duration constant (4/5) B(2/5, 1/2) of docs/references.md#elastic-hertz-contact: tc = 2.9432751843 dmax / v0.
 const DURATION_CONSTANT: f64 = 2.9432751843;
 
 /// Two equal spheres of one material closing at `speed` (half each way), elastic Hertz with Hertz stiffness.
@@ -17,7 +17,8 @@ fn equal_spheres(young: f64, poisson: f64, density: f64, radius: f64, speed: f64
     run(&format!("{}{}[contact]\nlaw = \"hertz\"\n", body(speed / 2.0), body(-speed / 2.0)))
 }
 
-/// Hand calculation of docs/scene.md and §4 for two equal spheres: (dmax, tc, Fmax).
+/// Hand calculation for two equal spheres: (dmax, tc, Fmax), the mass from the density (docs/scene.md#bodies), K
+/// from docs/laws.md#stiffness-and-exponent and the closed forms of docs/references.md#elastic-hertz-contact.
 fn closed_form(young: f64, poisson: f64, density: f64, radius: f64, speed: f64) -> (f64, f64, f64) {
     let mass = density * 4.0 / 3.0 * PI * radius.powi(3);
     let effective_mass = mass / 2.0;

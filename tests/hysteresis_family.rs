@@ -113,7 +113,8 @@ fn damped_force_peaks_before_maximum_compression() {
     assert!((peak.force - contact.max_force).abs() <= 1e-12 * contact.max_force);
 }
 
-/// docs/references.md's effective-e table: the e each published map actually gives, for nominal e = 0.1 ... 0.99.
+/// The effective-e table of docs/laws.md#the-hysteresis-family-and-its-maps: the e each published map actually
+/// gives, for nominal e = 0.1 ... 0.99.
 const NOMINAL: [f64; 6] = [0.1, 0.3, 0.5, 0.7, 0.9, 0.99];
 const EFFECTIVE: [(&str, [f64; 6]); 5] = [
     ("hunt-crossley", [0.515833, 0.581288, 0.662962, 0.768000, 0.909016, 0.990099]),

@@ -1,7 +1,8 @@
-//! The rules of interface.md's "Output paths", through the real binary: an output never replaces an input of the
-//! same run nor another output (refused before any work, exit status 2, both named); `-` is standard output; a
-//! FIFO is written in place; a symbolic link is followed; a regular file is complete or absent, with no temporary
-//! left behind after an error or Ctrl-C. Never against real `/dev` nodes: FIFOs, links and files in scratch folders.
+//! The output rules of README.md#exit-status-and-output-files, through the real binary: an output never replaces an
+//! input of the same run nor another output (refused before any work, exit status 2, both named); `-` is standard
+//! output; a FIFO is written in place; a symbolic link is followed; a regular file is complete or absent, with no
+//! temporary left behind after an error or Ctrl-C. Never against real `/dev` nodes: FIFOs, links and files in scratch
+//! folders.
 
 mod common;
 

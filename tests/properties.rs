@@ -5,7 +5,8 @@
 //! is an error naming that key. Physics: for random direct impacts of every law, e lies in [0, 1], momentum is
 //! conserved, the energy balance closes, Poisson's e equals Newton's, V0 is (m1 u1 + m2 u2)/(m1 + m2); the result
 //! does not change under a common velocity added to both bodies (Galilean invariance), nor — for the hysteresis
-//! family — under a change of mass, stiffness and speed that keeps x = alpha v0 (physics.md §3: e depends on x only).
+//! family — under a change of mass, stiffness and speed that keeps x = alpha v0 (e depends on x only:
+//! docs/references.md#the-hunt-crossley-family).
 
 use impact::history::Recording;
 use impact::impact::simulate;
@@ -174,8 +175,9 @@ proptest! {
 
     #[test]
     fn hysteresis_restitution_depends_on_x_only(x in 0.01f64..20.0, scale in 1e-3f64..1e3, n in 1.0f64..2.5) {
-        // e(x) is the same for any mass, stiffness and speed with the same x = alpha v0 (physics.md §3). (On a wall
-        // the radius enters no force; 1000 km keeps the softest drawn dent, some kilometres, below it.)
+        // e(x) is the same for any mass, stiffness and speed with the same x = alpha v0
+        // (docs/references.md#the-hunt-crossley-family). (On a wall the radius enters no force; 1000 km keeps the
+        // softest drawn dent, some kilometres, below it.)
         let reference = run(&format!(
             "[[bodies]]\nradius = 1e6\nmass = 1.0\nvelocity = [1.0, 0.0, 0.0]\n[[bodies]]\nradius = inf\nmass = inf\n\
              velocity = [0.0, 0.0, 0.0]\n[contact]\nlaw = \"hunt-crossley\"\ndamping = {x:?}\nstiffness = 1e8\nexponent = {n:?}\n"

@@ -6,8 +6,8 @@ use impact::integrate::STEP_BUDGET;
 
 #[test]
 fn creeping_restitution_ends_with_a_note_within_the_step_budget() {
-    // x = alpha v0 = 1e6: e ≈ 1/x = 1e-6 (docs/references.md), a restitution lasting ~1e6 elastic time units and
-    // stiff for an explicit method. The run must stop within its budget and say why.
+    // x = alpha v0 = 1e6: e ≈ 1/x = 1e-6 (docs/references.md#the-hunt-crossley-family), a restitution lasting ~1e6
+    // elastic time units and stiff for an explicit method. The run must stop within its budget and say why.
     for contact in [
         "law = \"hunt-crossley\"\ndamping = 1e6\nstiffness = 1e6",
         "law = \"kelvin-voigt\"\ndamping = 1e6\nstiffness = 1e6",
@@ -59,7 +59,7 @@ fn heavy_but_tractable_damping_still_meets_the_exact_restitution() {
 
 #[test]
 fn overdamped_tsuji_with_penetration_separation_reaches_the_time_limit() {
-    // a = 10 > sqrt(5): overdamped in the w-variable (docs/references.md), so d never returns to 0.
+    // a = 10 > sqrt(5): overdamped in the w-variable (docs/references.md#tsuji), so d never returns to 0.
     let report = on_wall(1.0, 1.0, "law = \"tsuji\"\ndamping = 10\nstiffness = 1e6");
     assert!(!report.contact.separated);
     assert!(report.notes.iter().any(|n| n.contains("did not separate")));

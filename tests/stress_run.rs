@@ -1,4 +1,4 @@
-//! The stress run (issue 6 part 4; interface.md "Stress run") and determinism: a short run of random scenes passes
+//! The stress run (issue 6 part 4; README.md#stress-run) and determinism: a short run of random scenes passes
 //! every check, the checks catch a wrong report, and the same scene gives bit-identical reports (all but the wall
 //! time) across runs and thread counts.
 

@@ -1,6 +1,7 @@
 //! `impact sweep` and `impact merge` through the real binary: a sweep's rows equal single runs of the same scenes,
-//! reproduce docs/references.md's tables, do not depend on the thread count or on sharding, and bad arguments are clear
-//! errors with exit status 2. Every expected number comes from docs/references.md or a hand calculation written here.
+//! reproduce the tables of docs/references.md and docs/laws.md, do not depend on the thread count or on sharding, and
+//! bad arguments are clear errors with exit status 2. Every expected number comes from those two pages or a hand
+//! calculation written here.
 
 mod common;
 
@@ -213,7 +214,8 @@ fn sweep_rows_equal_single_runs_of_the_same_scenes() {
 // ---------------------------------------------------------------------------------------------------------------
 // Physics through the sweep
 
-/// docs/references.md, "Effective e reached by each law's own map (checked, any n)".
+/// The effective e that each published map gives (any n), the table of
+/// docs/laws.md#the-hysteresis-family-and-its-maps.
 const EFFECTIVE_E: [(&str, [f64; 6]); 5] = [
     ("hunt-crossley", [0.515833, 0.581288, 0.662962, 0.768000, 0.909016, 0.990099]),
     ("lankarani-nikravesh", [0.665265, 0.684225, 0.725241, 0.795973, 0.913177, 0.990148]),
@@ -224,7 +226,7 @@ const EFFECTIVE_E: [(&str, [f64; 6]); 5] = [
 const NOMINAL_E: [f64; 6] = [0.1, 0.3, 0.5, 0.7, 0.9, 0.99];
 
 #[test]
-fn restitution_sweep_reproduces_the_effective_e_table_of_physics_md() {
+fn restitution_sweep_reproduces_the_effective_e_of_each_published_map() {
     let scratch = Scratch::new("effective-e");
     let scene = scratch.write("pair.toml", &steel_pair(1.0, -1.0, "law = \"hunt-crossley\"\nrestitution = 0.5"));
     let laws: Vec<&str> = EFFECTIVE_E.iter().map(|(law, _)| *law).collect();
@@ -244,7 +246,7 @@ fn restitution_sweep_reproduces_the_effective_e_table_of_physics_md() {
             // The table is rounded to 6 decimals.
             assert!(
                 (effective - expected[point]).abs() <= 1e-6,
-                "{law} at nominal e = {nominal}: simulated {effective}, docs/references.md {}",
+                "{law} at nominal e = {nominal}: simulated {effective}, docs/laws.md {}",
                 expected[point]
             );
         }

@@ -92,7 +92,7 @@ fn exponent_form(number: &str) -> bool {
 #[test]
 fn every_law_renders_readable_numbers() {
     let laws = LawKind::names();
-    assert_eq!(laws.len(), 14, "interface.md lists 14 laws");
+    assert_eq!(laws.len(), 14, "docs/laws.md lists 14 laws");
     for law in laws {
         let text = rendered(&steel_pair(&contact_for(law), None));
         assert!(text.contains(&format!("law: {law}")), "{law}: the law is named\n{text}");

@@ -1,8 +1,7 @@
-//! The paths of one command, checked before any work (docs/scene.md, output files): an output never replaces an
-//! input of the same run (the scene file, a shard being merged) nor another output of it, and at most one output
-//! goes to standard output. A clash is bad input (exit status 2) naming both paths; an output path that cannot be
-//! examined (its parent is a file, it is a folder) is an I/O error (status 1) from
-//! [`Destination::resolve`].
+//! The paths of one command, checked before any work (README.md#exit-status-and-output-files): an output never
+//! replaces an input of the same run (the scene file, a shard being merged) nor another output of it, and at most one
+//! output goes to standard output. A clash is bad input (exit status 2) naming both paths; an output path that cannot
+//! be examined (its parent is a file, it is a folder) is an I/O error (status 1) from [`Destination::resolve`].
 
 use super::BadInput;
 use crate::output::files::{Destination, Identity};

@@ -148,9 +148,9 @@ pub trait ContactModel<const N: usize>: Model<N> {
 
 /// The unit of the dissipated-energy state, in m* v0²: the damping's size delta at the contact's scales
 /// ([`crate::law::ContactLaw::damping_ratio`]) for a light damping, whose dissipation is about delta m* v0², so that
-/// it is integrated to the tolerance relative to itself (physics.md §5); 1 for a heavy one (delta > 1), which can
-/// dissipate no more than m* v0²/2 — a larger unit would shrink the state below the absolute tolerance (1e-9
-/// relative errors at delta ~ 1e3).
+/// it is integrated to the tolerance relative to itself (docs/numerics.md#impulses-and-energies-as-integrals); 1 for
+/// a heavy one (delta > 1), which can dissipate no more than m* v0²/2 — a larger unit would shrink the state below
+/// the absolute tolerance (1e-9 relative errors at delta ~ 1e3).
 pub(crate) fn dissipation_scale(law: &crate::law::ContactLaw, scales: &Scales) -> f64 {
     unit_or_one(law.damping_ratio(scales.length, scales.speed).min(1.0))
 }

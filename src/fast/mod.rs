@@ -1,5 +1,5 @@
 //! The fast, accurate path for the normal contact problem (issue 8): a Taylor-series integrator of the
-//! regularised equations of physics.md §5.
+//! regularised equations of docs/numerics.md#the-fast-path.
 //!
 //! * **Equations** (`regularised.rs`). With `w = δ^((n+1)/2)` and `dτ = δ^((n-1)/2) dt` every covered law
 //!   becomes a polynomial system in `(w, v)`, smooth through `δ = 0` — one system for every `n`, no fractional
@@ -124,7 +124,8 @@ pub enum Ending {
     /// The bodies never part: the law is linear in the regularised variables (Kelvin–Voigt, Tsuji), overdamped
     /// (`c² >= 4p`, i.e. zeta >= 1) and the separation is at zero penetration. Past maximum compression the motion
     /// is then a sum of two decaying exponentials (or `(C1 + C2 τ) e^(λτ)`, critically damped) that keeps `w`
-    /// positive for ever (physics.md §3: e = 0). The integration stops at maximum compression.
+    /// positive for ever: e = 0 (docs/references.md#kelvin-voigt; Tsuji with `a >= sqrt(5)` in
+    /// docs/references.md#tsuji). The integration stops at maximum compression.
     NeverSeparates,
     /// The step budget ran out (a creeping, extremely damped restitution).
     StepBudget,

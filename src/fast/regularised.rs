@@ -1,5 +1,5 @@
 //! The physics of the regularised normal contact: each covered law as a polynomial system in `(w, v)` and the
-//! Taylor-coefficient recursions of its states (physics.md §5).
+//! Taylor-coefficient recursions of its states (docs/numerics.md#the-fast-path).
 //!
 //! Scaled variables as in [`crate::dynamics::Scales`]: penetration `δ = d/L`, rate `v = d'/v0`, time `t/T`,
 //! force `F/F0`, impulse in `m* v0`, energy in `m* v0²`. With `'` the derivative in the regularised time `τ`:
@@ -327,7 +327,8 @@ impl Regularised {
     }
 
     /// `F̂ = F dt/dτ`, the force in regularised time: `w (1 + x v)` or `w + c v`. For the linear laws its zero is
-    /// the force separation (a continuous function, continued past `d = 0`: physics.md §5).
+    /// the force separation (a continuous function, continued past `d = 0`:
+    /// docs/numerics.md#separation-on-the-continued-force).
     #[inline]
     pub fn regular_force(&self, w: f64, rate: f64) -> f64 {
         match self.form {

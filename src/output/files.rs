@@ -1,5 +1,5 @@
-//! Writing outputs: where an output path leads, and writing there completely or not at all (docs/scene.md, "Output
-//! paths").
+//! Writing outputs: where an output path leads, and writing there completely or not at all (the output rules of
+//! README.md#exit-status-and-output-files).
 //!
 //! - `-` is standard output; so is a path that is the very file or pipe standard output already writes to (a shell's
 //!   `--csv /dev/stdout`), so that nothing else is printed into it.

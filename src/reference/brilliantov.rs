@@ -30,7 +30,8 @@ mod tests {
     use super::*;
 
     #[test]
-    fn constants_of_physics_md() {
+    fn series_constants_c1_and_c2_to_seven_digits() {
+        // docs/references.md#brilliantov-viscoelastic-spheres: C1 = 1.1534489, C2 = 0.7982666.
         assert!((brilliantov_c1() - 1.1534489).abs() <= 5e-8, "{}", brilliantov_c1());
         assert!((brilliantov_c2() - 0.7982666).abs() <= 5e-8, "{}", brilliantov_c2());
     }

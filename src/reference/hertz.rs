@@ -64,9 +64,9 @@ mod tests {
     }
 
     #[test]
-    fn steel_spheres_example_of_physics_md() {
-        // docs/references.md: two steel spheres, E = 210 GPa, nu = 0.3, rho = 7850, r = 10 mm, closing at 1 m/s:
-        // dmax = 2.04412e-5 m, tc = 6.01641e-5 s, Fmax = 1005.38 N.
+    fn two_steel_spheres_closing_at_one_metre_per_second() {
+        // docs/references.md#elastic-hertz-contact: two steel spheres, E = 210 GPa, nu = 0.3, rho = 7850, r = 10 mm,
+        // closing at 1 m/s: dmax = 2.04412e-5 m, tc = 6.01641e-5 s, Fmax = 1005.38 N.
         let (e_mod, nu, rho, r, v0) = (210e9_f64, 0.3_f64, 7850.0_f64, 0.01_f64, 1.0_f64);
         let e_star = e_mod / (2.0 * (1.0 - nu * nu));
         let r_star = r / 2.0;

@@ -196,7 +196,8 @@ mod tests {
         ((a - b) / b).abs()
     }
 
-    /// docs/references.md, the exact values e(x) (checked), plus the e column of the hysteresis table.
+    /// docs/references.md#the-hunt-crossley-family: the exact values e(x) (checked), plus the e column of the
+    /// quadrature table.
     const EXACT: [(f64, f64); 8] = [
         (0.01, 0.993377454399),
         (0.1, 0.937475579950),
@@ -209,7 +210,7 @@ mod tests {
     ];
 
     #[test]
-    fn exact_values_of_physics_md() {
+    fn restitution_matches_the_checked_values_of_e_of_x() {
         for (x, e) in EXACT {
             let got = hunt_crossley_restitution(x);
             assert!(rel(got, e) < 1e-12, "x = {x}: {got} vs {e}");
@@ -317,8 +318,9 @@ mod tests {
     }
 
     #[test]
-    fn inverse_against_the_series_of_physics_md() {
-        // chi = 3/2 eps + 3/2 eps² + 27/20 eps³ + 6/5 eps⁴ + 759/700 eps⁵ + 351/350 eps⁶ (docs/references.md).
+    fn inverse_near_e_one_matches_its_series_in_one_minus_e() {
+        // chi = 3/2 eps + 3/2 eps² + 27/20 eps³ + 6/5 eps⁴ + 759/700 eps⁵ + 351/350 eps⁶
+        // (docs/references.md#the-hunt-crossley-family).
         let series = |eps: f64| {
             1.5 * eps
                 + 1.5 * eps.powi(2)

@@ -135,7 +135,8 @@ mod tests {
         ((a - b) / b).abs()
     }
 
-    /// docs/references.md table (checked against a tight ODE solve to 1e-12):
+    /// The quadrature table of docs/references.md#the-hunt-crossley-family (checked against a tight ODE solve to
+    /// 1e-12):
     /// x, n, e, dmax/L, t0/T, tc/T, Fmax/F0.
     const TABLE: [[f64; 7]; 5] = [
         [0.5, 1.5, 0.7484349315974, 0.9777703257171, 1.505190262472, 3.338252755937, 1.03820817965],
@@ -146,7 +147,7 @@ mod tests {
     ];
 
     #[test]
-    fn physics_md_table() {
+    fn quadratures_match_the_exact_hunt_crossley_table() {
         for [x, n, e, dmax, t0, tc, fmax] in TABLE {
             let r = hysteresis_contact(x, n);
             let checks = [

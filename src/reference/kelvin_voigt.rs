@@ -173,9 +173,10 @@ mod tests {
     }
 
     #[test]
-    fn physics_md_values() {
-        // docs/references.md: zeta = 0.1: e = 0.7292476143 (d = 0) or 0.7440793977 (F = 0), durations 3.1574 and
-        // 2.9560753247; zeta = 0.3: 0.3723261049 or 0.4509754529, durations 3.2933 and 2.6544745638 (checked).
+    fn restitution_and_duration_at_zeta_0_1_and_0_3_under_both_criteria() {
+        // docs/references.md#kelvin-voigt: zeta = 0.1: e = 0.7292476143 (d = 0) or 0.7440793977 (F = 0), durations
+        // 3.1574 and 2.9560753247; zeta = 0.3: 0.3723261049 or 0.4509754529, durations 3.2933 and 2.6544745638
+        // (checked).
         let cases = [
             (0.1, 0.7292476143, 3.1574, 0.7440793977, 2.9560753247),
             (0.3, 0.3723261049, 3.2933, 0.4509754529, 2.6544745638),

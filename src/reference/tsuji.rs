@@ -99,8 +99,8 @@ mod tests {
     use SeparationCriterion::{Force, Penetration};
 
     #[test]
-    fn physics_md_table() {
-        // docs/references.md Tsuji table (nominal e; dmax/L, tc/T, Fmax/F0), d = 0 separation.
+    fn nondimensional_table_with_separation_at_zero_penetration() {
+        // docs/references.md#tsuji table (nominal e; dmax/L, tc/T, Fmax/F0), d = 0 separation.
         let table = [
             (1.0, 1.093362, 3.218065, 1.143263),
             (0.9, 1.049184, 3.253683, 1.076691),

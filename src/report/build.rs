@@ -197,7 +197,7 @@ fn oblique(scene: &Scene, setup: &Setup, outcome: &Outcome, e: f64, friction_wor
     // Friction without slip (Motion::Normal) has its slip at rest from first contact, and holds the whole contact
     // below the Coulomb limit.
     let slip_rest_time = if setup.motion == Motion::Normal { Some(0.0) } else { outcome.slip_rest_time };
-    // The regime of rigid-body theory (docs/oblique.md#regime): the contact slid throughout when its contact points
+    // The regime of rigid-body theory (docs/oblique.md#the-regime): the contact slid throughout when its contact points
     // never stopped slipping, whatever its spring did under the Coulomb limit meanwhile.
     let regime = match slip_rest_time {
         _ if friction == 0.0 => "smooth",

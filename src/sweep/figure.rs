@@ -309,9 +309,9 @@ fn rigid_threshold(mut rows: Vec<RigidRow>) -> Option<Threshold> {
 mod tests {
     use super::*;
 
-    /// A sphere on a wall by rigid-body theory (physics.md §2): the slip changes by (7/2) mu (1 + e) v_n while it
-    /// slides, so it sticks below tan(theta*) = (7/2) mu (1 + e), and a sliding row's rebound angle is
-    /// atan((tan(theta) - (7/2) mu (1 + e)) / e).
+    /// A sphere on a wall by rigid-body theory (docs/oblique.md#rigid-body-theory): the slip changes by
+    /// (7/2) mu (1 + e) v_n while it slides, so it sticks below tan(theta*) = (7/2) mu (1 + e), and a sliding row's
+    /// rebound angle is atan((tan(theta) - (7/2) mu (1 + e)) / e).
     fn sphere_on_wall(degrees: f64, mu: f64, e: f64) -> RigidRow {
         let limit = 3.5 * mu * (1.0 + e);
         let tangent = degrees.to_radians().tan();

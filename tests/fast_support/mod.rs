@@ -1,6 +1,7 @@
 //! Reference impacts for the fast path and the exact value of every measured quantity, from outside the fast
 //! path: `impact::reference` (closed forms and quadratures), momentum and energy balances, and the force-peak
-//! times computed here by closed forms, bisection and a tanh-sinh quadrature of physics.md's integrals.
+//! times computed here by closed forms, bisection and a tanh-sinh quadrature of the integrals of
+//! docs/references.md#the-hunt-crossley-family.
 //! Shared by tests/fast_path.rs and benches/fast.rs.
 #![allow(dead_code)]
 
@@ -187,10 +188,10 @@ fn log_tail(y: f64) -> f64 {
     if y < 0.1 { (2..60).rev().fold(0.0, |acc, k| (acc + 1.0 / k as f64) * y) * y } else { -(-y).ln_1p() - y }
 }
 
-/// Hunt–Crossley force-peak time. From `v dv/(1 + x v) = -d^n dd` (physics.md §3), with `h = 1 - v` and
-/// `y = x h/(1 + x)`: `d^(n+1) = (n+1) S/x²`, `S = x y - (-ln(1 - y) - y)` (`S ≈ h/(1+x)` for small h). The peak
-/// is where `x d^(n+1) = n v`; its time is `∫_0^{h_p} dh/(d^n (1 + x v))`, integrable like `h^(-n/(n+1))` at
-/// `h = 0`: with `h = s^(n+1)` the integrand `(n+1) s^n / (d^n (1 + x v))` is bounded.
+/// Hunt–Crossley force-peak time. From `v dv/(1 + x v) = -d^n dd` (docs/references.md#the-hunt-crossley-family),
+/// with `h = 1 - v` and `y = x h/(1 + x)`: `d^(n+1) = (n+1) S/x²`, `S = x y - (-ln(1 - y) - y)` (`S ≈ h/(1+x)` for
+/// small h). The peak is where `x d^(n+1) = n v`; its time is `∫_0^{h_p} dh/(d^n (1 + x v))`, integrable like
+/// `h^(-n/(n+1))` at `h = 0`: with `h = s^(n+1)` the integrand `(n+1) s^n / (d^n (1 + x v))` is bounded.
 pub fn hysteresis_peak_time(x: f64, n: f64) -> f64 {
     if x == 0.0 {
         return reference::hertz_elastic(n).max_compression_time;
