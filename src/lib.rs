@@ -21,3 +21,4 @@ pub mod scene;
 pub mod setup;
 pub mod stress;
 pub mod sweep;
+pub mod world;

@@ -8,7 +8,7 @@ use crate::dynamics::Scales;
 use crate::geometry::{self, PlacementProblem};
 use crate::law::damping::{MapError, damping_for_restitution};
 use crate::law::{ContactLaw, Family, Separation};
-use crate::scene::{DampingSpec, Scene, StiffnessSpec, TangentialStiffnessSpec};
+use crate::scene::{ContactSpec, DampingSpec, Scene, StiffnessSpec, TangentialStiffnessSpec};
 use nalgebra::Vector3;
 
 /// The contact of a scene, ready to integrate (SI units).
@@ -112,49 +112,8 @@ impl Setup {
         if approach_speed <= 0.0 || !approach_speed.is_finite() {
             return fail(no_approach_key(scene), no_approach(scene, &normal, approach_speed));
         }
-        let stiffness = match scene.contact.stiffness {
-            StiffnessSpec::Value(k) => k,
-            StiffnessSpec::Hertz => hertz_stiffness(a, b)?,
-        };
-        let kind = scene.contact.law;
-        let exponent = scene.contact.exponent;
-        let damping = match scene.contact.damping {
-            DampingSpec::None => 0.0,
-            DampingSpec::Parameter(value) => value,
-            DampingSpec::Restitution(e) => damping_for_restitution(kind, e, stiffness, effective_mass, approach_speed)
-                .or_else(|error| {
-                    let why = match error {
-                        MapError::NoMap => format!("the law `{}` has no restitution map", kind.name()),
-                        MapError::UndefinedAtZero => format!("the map of `{}` is undefined at e = 0", kind.name()),
-                    };
-                    fail("contact.restitution", why)
-                })?,
-        };
-        let damping_key = match scene.contact.damping {
-            DampingSpec::Restitution(_) => "contact.restitution",
-            _ => "contact.damping",
-        };
-        if !damping.is_finite() {
-            return fail(damping_key, format!("the damping {damping} is not a finite number"));
-        }
-        let tsuji_scale = if kind.family() == Family::Tsuji { (effective_mass * stiffness).sqrt() } else { 0.0 };
-        let law = ContactLaw { kind, stiffness, exponent, damping, tsuji_scale };
-        let scales = Scales::new(effective_mass, stiffness, exponent, approach_speed);
-        check_scales(&scales)?;
-        let ratio = law.damping_ratio(scales.length, scales.speed);
-        if ratio.is_nan() || ratio > MAX_DAMPING_RATIO {
-            return fail(
-                damping_key,
-                format!(
-                    "the damping is too heavy to simulate: its force is {ratio:e} times the elastic force at the \
-                     contact's own scales (at most {MAX_DAMPING_RATIO:e}; e would be below about 1e-10, and the \
-                     restitution creeps for longer than any integration can follow)"
-                ),
-            );
-        }
-        if scene.contact.separation == Separation::Force {
-            check_creep(&law, effective_mass, damping_key)?;
-        }
+        let law = resolve_law(&scene.contact, [a, b], effective_mass, approach_speed)?;
+        let scales = check_law(&scene.contact, [a, b], &law, effective_mass, approach_speed)?;
         let tangential_velocity = {
             let relative = b.velocity - a.velocity;
             relative - normal * relative.dot(&normal)
@@ -164,7 +123,6 @@ impl Setup {
         let coupled = friction.is_some() && initial_slip.norm() > ACROSS_TOLERANCE * approach_speed;
         let turning = !a.is_flat() && !b.is_flat() && tangential_velocity.norm() > ACROSS_TOLERANCE * approach_speed;
         let motion = if coupled || turning { Motion::Full } else { Motion::Normal };
-        check_size(scene, &law, &scales)?;
         let graze_depth =
             if turning { Some(graze(scene, &normal, approach_speed, &tangential_velocity)?) } else { None };
         Ok(Setup {
@@ -192,6 +150,81 @@ impl Setup {
             |body: &Body, sign: f64| if body.is_flat() { Vector3::zeros() } else { normal * (sign * body.radius) };
         [arm(a, 1.0), arm(b, -1.0)]
     }
+}
+
+/// The contact law of `contact` between `bodies` (effective mass `effective_mass`, kg), its damping mapped from a
+/// nominal e at `map_speed` (m/s: the hysteresis family's alpha = chi(e)/v0; the contact's approach speed in a
+/// two-body run). The rules of docs/scene.md that name `contact.*` keys.
+pub fn resolve_law(
+    contact: &ContactSpec,
+    bodies: [&Body; 2],
+    effective_mass: f64,
+    map_speed: f64,
+) -> Result<ContactLaw, SetupError> {
+    let [a, b] = bodies;
+    let stiffness = match contact.stiffness {
+        StiffnessSpec::Value(k) => k,
+        StiffnessSpec::Hertz => hertz_stiffness(a, b)?,
+    };
+    let kind = contact.law;
+    let exponent = contact.exponent;
+    let damping = match contact.damping {
+        DampingSpec::None => 0.0,
+        DampingSpec::Parameter(value) => value,
+        DampingSpec::Restitution(e) => {
+            damping_for_restitution(kind, e, stiffness, effective_mass, map_speed).or_else(|error| {
+                let why = match error {
+                    MapError::NoMap => format!("the law `{}` has no restitution map", kind.name()),
+                    MapError::UndefinedAtZero => format!("the map of `{}` is undefined at e = 0", kind.name()),
+                };
+                fail("contact.restitution", why)
+            })?
+        }
+    };
+    if !damping.is_finite() {
+        return fail(damping_key(contact), format!("the damping {damping} is not a finite number"));
+    }
+    let tsuji_scale = if kind.family() == Family::Tsuji { (effective_mass * stiffness).sqrt() } else { 0.0 };
+    Ok(ContactLaw { kind, stiffness, exponent, damping, tsuji_scale })
+}
+
+/// The scene key the damping comes from.
+fn damping_key(contact: &ContactSpec) -> &'static str {
+    match contact.damping {
+        DampingSpec::Restitution(_) => "contact.restitution",
+        _ => "contact.damping",
+    }
+}
+
+/// The scaled units of a contact of `law` between `bodies` approaching at `approach_speed` (m/s), after the rules
+/// that need them: the scales inside double precision, the damping not too heavy to simulate or to resolve, the
+/// elastic penetration below the smaller radius.
+pub fn check_law(
+    contact: &ContactSpec,
+    bodies: [&Body; 2],
+    law: &ContactLaw,
+    effective_mass: f64,
+    approach_speed: f64,
+) -> Result<Scales, SetupError> {
+    let scales = Scales::new(effective_mass, law.stiffness, law.exponent, approach_speed);
+    check_scales(&scales)?;
+    let ratio = law.damping_ratio(scales.length, scales.speed);
+    let damping_key = damping_key(contact);
+    if ratio.is_nan() || ratio > MAX_DAMPING_RATIO {
+        return fail(
+            damping_key,
+            format!(
+                "the damping is too heavy to simulate: its force is {ratio:e} times the elastic force at the \
+                 contact's own scales (at most {MAX_DAMPING_RATIO:e}; e would be below about 1e-10, and the \
+                 restitution creeps for longer than any integration can follow)"
+            ),
+        );
+    }
+    if contact.separation == Separation::Force {
+        check_creep(law, effective_mass, damping_key)?;
+    }
+    check_size(contact, bodies, law, &scales)?;
+    Ok(scales)
 }
 
 /// Slip of the contact points before impact: (v1 + w1 x a1) - (v2 + w2 x a2), its part across the normal.
@@ -410,14 +443,14 @@ fn check_scales(scales: &Scales) -> Result<(), SetupError> {
 /// and a penetration as deep as a radius has the bodies pass through each other (a stiffness of 1e-50 Pa, or a speed
 /// far beyond the material's, does that). The elastic maximum penetration ((n + 1)/2)^(1/(n+1)) L is compared with
 /// the smaller finite radius; the stiffness key is named (the softer body's `young` for a Hertz stiffness).
-fn check_size(scene: &Scene, law: &ContactLaw, scales: &Scales) -> Result<(), SetupError> {
-    let smallest = scene.bodies.iter().map(|body| body.radius).fold(f64::INFINITY, f64::min);
+fn check_size(contact: &ContactSpec, bodies: [&Body; 2], law: &ContactLaw, scales: &Scales) -> Result<(), SetupError> {
+    let smallest = bodies.iter().map(|body| body.radius).fold(f64::INFINITY, f64::min);
     let n = law.exponent;
     let elastic = ((n + 1.0) / 2.0).powf(1.0 / (n + 1.0)) * scales.length;
     if elastic < smallest {
         return Ok(());
     }
-    let key = match scene.contact.stiffness {
+    let key = match contact.stiffness {
         StiffnessSpec::Value(_) => "contact.stiffness".to_string(),
         StiffnessSpec::Hertz => {
             // The softer body: the larger share (1 - nu²)/E of 1/E*.
@@ -425,7 +458,7 @@ fn check_size(scene: &Scene, law: &ContactLaw, scales: &Scales) -> Result<(), Se
                 (Some(e), Some(nu)) if e.is_finite() => (1.0 - nu * nu) / e,
                 _ => 0.0,
             };
-            let softer = usize::from(share(&scene.bodies[1]) > share(&scene.bodies[0]));
+            let softer = usize::from(share(bodies[1]) > share(bodies[0]));
             format!("bodies.{softer}.young")
         }
     };

@@ -330,12 +330,12 @@ fn a_single_body_is_rejected_naming_the_key() {
 }
 
 #[test]
-fn three_bodies_are_not_supported_yet() {
+fn three_bodies_make_a_world_whose_bodies_need_positions() {
     let text = format!(
         "[[bodies]]\n{LEFT_BALL}\n\n[[bodies]]\n{RIGHT_BALL}\n\n[[bodies]]\n{RIGHT_BALL}\n\n[contact]\n{HUNT_CROSSLEY}\n"
     );
-    let test = "three_bodies_are_not_supported_yet";
-    assert_rejected(test, &text, "bodies", At::Nth("[[bodies]]", 1), &["not supported yet"]);
+    let test = "three_bodies_make_a_world_whose_bodies_need_positions";
+    assert_rejected(test, &text, "bodies.0.position", At::Nth("[[bodies]]", 1), &["world run", "position"]);
 }
 
 #[test]
@@ -927,4 +927,147 @@ fn a_force_separation_too_slow_to_resolve_is_rejected_naming_the_damping() {
             String::from_utf8_lossy(&output.stderr)
         );
     }
+}
+
+// ---------------------------------------------------------------------------------------------------------------
+// World runs (docs/scene.md#worlds)
+
+/// A valid world: a ball above a floor, and a second ball beside it, under gravity.
+const WORLD: &str = r#"title = "a world"
+
+[world]
+gravity = [0.0, 0.0, -9.81]
+end_time = 1.0
+max_contacts = 10
+
+[[bodies]]
+name = "ball"
+radius = 0.01
+mass = 0.0329
+position = [0.0, 0.0, 0.1]
+velocity = [0.0, 0.0, 0.0]
+young = 2.1e11
+poisson = 0.3
+
+[[bodies]]
+name = "floor"
+radius = inf
+mass = inf
+position = [0.0, 0.0, 0.0]
+normal = [0.0, 0.0, 1.0]
+velocity = [0.0, 0.0, 0.0]
+young = 2.1e11
+poisson = 0.3
+
+[[bodies]]
+name = "other ball"
+radius = 0.01
+mass = 0.0329
+position = [0.1, 0.0, 0.05]
+velocity = [0.0, 0.0, 0.0]
+young = 2.1e11
+poisson = 0.3
+
+[[pair]]
+bodies = [0, 1]
+law = "hunt-crossley"
+restitution = 0.7
+
+[contact]
+law = "hertz"
+"#;
+
+#[test]
+fn the_world_scene_is_valid() {
+    let scratch = Scratch::new("the_world_scene_is_valid");
+    let path = scratch.path().join("world.toml");
+    fs::write(&path, WORLD).unwrap();
+    let output = impact(scratch.path(), &["run", path.to_str().unwrap(), "--json"]);
+    assert_eq!(output.status.code(), Some(0), "{}", String::from_utf8_lossy(&output.stderr));
+}
+
+#[test]
+fn a_pair_naming_a_missing_body_is_rejected_naming_the_key() {
+    let text = edit(WORLD, "bodies = [0, 1]", "bodies = [0, 7]");
+    assert_rejected("a_pair_naming_a_missing_body", &text, "pair.0.bodies", At::Whole("bodies = [0, 7]"), &["body 7"]);
+}
+
+#[test]
+fn a_pair_of_one_body_twice_is_rejected_naming_the_key() {
+    let text = edit(WORLD, "bodies = [0, 1]", "bodies = [1, 1]");
+    assert_rejected(
+        "a_pair_of_one_body_twice",
+        &text,
+        "pair.0.bodies",
+        At::Whole("bodies = [1, 1]"),
+        &["two different"],
+    );
+}
+
+#[test]
+fn overlapping_bodies_at_the_start_are_rejected_naming_the_position() {
+    let text = edit(WORLD, "position = [0.1, 0.0, 0.05]", "position = [0.015, 0.0, 0.1]");
+    let at = At::Whole("position = [0.015, 0.0, 0.1]");
+    assert_rejected("overlapping_bodies_at_the_start", &text, "bodies.2.position", at, &["overlapped"]);
+}
+
+#[test]
+fn bad_world_keys_are_rejected_naming_the_key() {
+    for (test, old, new, key, mention) in [
+        ("end_time_zero", "end_time = 1.0", "end_time = 0.0", "world.end_time", "> 0"),
+        ("end_time_negative", "end_time = 1.0", "end_time = -2.0", "world.end_time", "> 0"),
+        ("max_contacts_zero", "max_contacts = 10", "max_contacts = 0", "world.max_contacts", "whole number"),
+        ("max_contacts_fraction", "max_contacts = 10", "max_contacts = 2.5", "world.max_contacts", "whole number"),
+        ("gravity_two", "gravity = [0.0, 0.0, -9.81]", "gravity = [0.0, -9.81]", "world.gravity", "3 numbers"),
+        ("gravity_nan", "gravity = [0.0, 0.0, -9.81]", "gravity = [0.0, 0.0, nan]", "world.gravity", "finite"),
+        ("gravity_infinite", "gravity = [0.0, 0.0, -9.81]", "gravity = [inf, 0.0, 0.0]", "world.gravity", "finite"),
+        ("damping_map", "max_contacts = 10", "damping_map = \"sometimes\"", "world.damping_map", "each-contact"),
+    ] {
+        let new: &'static str = Box::leak(new.to_string().into_boxed_str());
+        assert_rejected(test, &edit(WORLD, old, new), key, At::Whole(new), &[mention]);
+    }
+}
+
+#[test]
+fn a_flat_body_of_a_world_needs_its_face_normal() {
+    let text = edit(WORLD, "normal = [0.0, 0.0, 1.0]", "");
+    assert_rejected("a_flat_body_needs_its_face", &text, "bodies.1.normal", At::Nth("[[bodies]]", 2), &["face"]);
+    let text = edit(WORLD, "normal = [0.0, 0.0, 1.0]", "normal = [0.0, 0.0, 0.0]");
+    assert_rejected("a_zero_face", &text, "bodies.1.normal", At::Whole("normal = [0.0, 0.0, 0.0]"), &["non-zero"]);
+}
+
+#[test]
+fn a_contact_normal_in_a_world_is_rejected_naming_the_key() {
+    let text = edit(WORLD, "law = \"hertz\"", "law = \"hertz\"\nnormal = [1.0, 0.0, 0.0]");
+    assert_rejected(
+        "a_contact_normal_in_a_world",
+        &text,
+        "contact.normal",
+        At::Whole("normal = [1.0, 0.0, 0.0]"),
+        &["geometry"],
+    );
+}
+
+#[test]
+fn a_pair_key_out_of_range_is_rejected_naming_the_pair() {
+    let text = edit(WORLD, "restitution = 0.7", "restitution = 1.7");
+    assert_rejected(
+        "a_pair_key_out_of_range",
+        &text,
+        "pair.0.restitution",
+        At::Whole("restitution = 1.7"),
+        &["[0, 1]"],
+    );
+}
+
+#[test]
+fn friction_in_a_world_is_refused_for_now_naming_the_key() {
+    let text = edit(WORLD, "law = \"hertz\"", "law = \"hertz\"\nfriction = 0.3");
+    assert_rejected(
+        "friction_in_a_world",
+        &text,
+        "contact.friction",
+        At::Whole("friction = 0.3"),
+        &["not supported yet"],
+    );
 }

@@ -232,7 +232,7 @@ fn corpus() -> Vec<Case> {
         case(
             "three_bodies",
             plus("[[bodies]]\nradius = 0.01\nmass = 1.0\nvelocity = [0.0, 0.0, 0.0]"),
-            Some("bodies"),
+            Some("bodies.0.position"),
             None,
         ),
         case(
@@ -254,7 +254,7 @@ fn corpus() -> Vec<Case> {
     for _ in 0..500 {
         many.push_str("[[bodies]]\nradius = 0.01\nmass = 1.0\nvelocity = [0.0, 0.0, 0.0]\n");
     }
-    cases.push(case("five_hundred_bodies", many.into_bytes(), Some("bodies"), None));
+    cases.push(case("five_hundred_bodies", many.into_bytes(), Some("bodies.0.position"), None));
     // Deeply nested arrays.
     let depth = 10_000;
     cases.push(case(

@@ -6,7 +6,7 @@ use crate::history::Recording;
 use crate::impact::{Simulation, simulate};
 use crate::output;
 use crate::output::files::{self, Destination, OutputFile, Staging};
-use crate::scene::Scene;
+use crate::scene::{Parsed, Scene, WorldScene};
 use clap::Args;
 use std::path::{Path, PathBuf};
 
@@ -62,7 +62,10 @@ pub fn run(args: &RunArgs) -> anyhow::Result<()> {
     {
         return Err(BadInput(format!("--plot {}: {why}", path.display())).into());
     }
-    let scene = Scene::load(&args.scene)?;
+    let scene = match crate::scene::load_any(&args.scene)? {
+        Parsed::Impact(scene) => *scene,
+        Parsed::World(world) => return run_world(args, &world),
+    };
     if samples.is_some() && args.csv.is_none() && scene.output.series.is_none() {
         return Err(BadInput("--samples applies to the series: give --csv FILE (or [output] series)".into()).into());
     }
@@ -204,4 +207,26 @@ pub fn write_outputs(scene: &Scene, simulation: &Simulation, plan: &Plan) -> any
         }
     }
     Ok(written)
+}
+
+/// `impact run` of a world scene: its report, readable or JSON. (Its series and figures come with a later version.)
+fn run_world(args: &RunArgs, scene: &WorldScene) -> anyhow::Result<()> {
+    if args.csv.is_some() || args.plot.is_some() || args.samples.is_some() {
+        return Err(BadInput(
+            "--csv, --samples and --plot are not written for a world run yet: its report alone (readable or --json)"
+                .into(),
+        )
+        .into());
+    }
+    let simulation = crate::world::simulate(scene).map_err(|error| match error {
+        crate::world::WorldError::Setup(error) => anyhow::Error::new(crate::scene::located(&args.scene, error)),
+        other => anyhow::Error::new(other),
+    })?;
+    let text = if args.json {
+        output::json::render_world(&simulation.report)?
+    } else {
+        output::world_table::render(&simulation.report)
+    };
+    print!("{text}");
+    Ok(())
 }

@@ -1,6 +1,8 @@
 //! Event functions and their location between two accepted steps.
 
-use super::{IntegrationError, State};
+use super::{IntegrationError, Vector};
+use nalgebra::allocator::Allocator;
+use nalgebra::{Const, DefaultAllocator, Dim};
 
 /// Which sign changes of an event function count.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -12,31 +14,43 @@ pub enum Direction {
 }
 
 /// A scalar function of the state whose zero marks an event (maximum compression, separation, peak force, ...).
-pub struct Event<'a, const N: usize> {
+pub struct EventOf<'a, D: Dim>
+where
+    DefaultAllocator: Allocator<D>,
+{
     /// g(y); the event is where it crosses zero in `direction`.
-    pub function: &'a dyn Fn(&State<N>) -> f64,
+    pub function: &'a dyn Fn(&Vector<D>) -> f64,
     pub direction: Direction,
     /// A terminal event ends the run; others are only located and reported.
     pub terminal: bool,
 }
 
+/// An event of a model of fixed size.
+pub type Event<'a, const N: usize> = EventOf<'a, Const<N>>;
+
 /// A located event: which one, when, and the state there.
 #[derive(Debug, Clone, PartialEq)]
-pub struct Crossing<const N: usize> {
+pub struct CrossingOf<D: Dim>
+where
+    DefaultAllocator: Allocator<D>,
+{
     /// Index of the event in the list given to the run.
     pub event: usize,
     /// Scaled time of the crossing.
     pub time: f64,
     /// State at the crossing.
-    pub state: State<N>,
+    pub state: Vector<D>,
 }
 
-/// Most events one run may watch (the stepper keeps their last values in a fixed array, off the heap).
-pub const MAX_EVENTS: usize = 8;
+/// A located event of a model of fixed size.
+pub type Crossing<const N: usize> = CrossingOf<Const<N>>;
 
-impl<const N: usize> Event<'_, N> {
+impl<D: Dim> EventOf<'_, D>
+where
+    DefaultAllocator: Allocator<D>,
+{
     /// The event function signed so that the event is a fall through zero.
-    pub(crate) fn value(&self, y: &State<N>) -> f64 {
+    pub(crate) fn value(&self, y: &Vector<D>) -> f64 {
         let g = (self.function)(y);
         match self.direction {
             Direction::Falling => g,
@@ -45,7 +59,7 @@ impl<const N: usize> Event<'_, N> {
     }
 
     /// Whether the event function crosses zero in its direction between two points.
-    pub fn crosses(&self, y0: &State<N>, y1: &State<N>) -> bool {
+    pub fn crosses(&self, y0: &Vector<D>, y1: &Vector<D>) -> bool {
         falls(self.value(y0), self.value(y1))
     }
 }
@@ -56,10 +70,13 @@ pub(crate) fn falls(before: f64, after: f64) -> bool {
 }
 
 /// A point of the solution with its derivative: (time, state, state').
-pub type Point<const N: usize> = (f64, State<N>, State<N>);
+pub type Point<D> = (f64, Vector<D>, Vector<D>);
 
 /// Cubic Hermite interpolant of the step from `a` to `b` at time `t`: only a starting guess for the root.
-fn hermite<const N: usize>(a: &Point<N>, b: &Point<N>, t: f64) -> State<N> {
+fn hermite<D: Dim>(a: &Point<D>, b: &Point<D>, t: f64) -> Vector<D>
+where
+    DefaultAllocator: Allocator<D>,
+{
     let h = b.0 - a.0;
     let s = (t - a.0) / h;
     let (s2, s3) = (s * s, s * s * s);
@@ -67,24 +84,27 @@ fn hermite<const N: usize>(a: &Point<N>, b: &Point<N>, t: f64) -> State<N> {
     let h10 = s3 - 2.0 * s2 + s;
     let h01 = -2.0 * s3 + 3.0 * s2;
     let h11 = s3 - s2;
-    a.1 * h00 + a.2 * (h10 * h) + b.1 * h01 + b.2 * (h11 * h)
+    &a.1 * h00 + &a.2 * (h10 * h) + &b.1 * h01 + &b.2 * (h11 * h)
 }
 
 /// Locates the crossing of `event` between accepted points `a` and `b`, evaluating the true solution at trial times
 /// through `solution_at` (a re-step from `a`). Safeguarded secant on a shrinking bracket, started from the root
 /// of the Hermite interpolant; stops when the bracket or the step is a few ulps of the time.
-pub fn locate<const N: usize>(
-    event: &Event<'_, N>,
+pub fn locate<D: Dim>(
+    event: &EventOf<'_, D>,
     index: usize,
-    a: &Point<N>,
-    b: &Point<N>,
-    mut solution_at: impl FnMut(f64) -> Result<State<N>, IntegrationError>,
-) -> Result<Crossing<N>, IntegrationError> {
+    a: &Point<D>,
+    b: &Point<D>,
+    mut solution_at: impl FnMut(f64) -> Result<Vector<D>, IntegrationError>,
+) -> Result<CrossingOf<D>, IntegrationError>
+where
+    DefaultAllocator: Allocator<D>,
+{
     // Bracket [lo, hi] with value(lo) > 0 >= value(hi).
     let (mut lo, mut g_lo) = (a.0, event.value(&a.1));
-    let (mut hi, mut g_hi, mut y_hi) = (b.0, event.value(&b.1), b.1);
+    let (mut hi, mut g_hi, mut y_hi) = (b.0, event.value(&b.1), b.1.clone());
     if g_hi == 0.0 {
-        return Ok(Crossing { event: index, time: hi, state: y_hi });
+        return Ok(CrossingOf { event: index, time: hi, state: y_hi });
     }
     let resolution = |t: f64| 4.0 * f64::EPSILON * t.abs().max(b.0 - a.0);
     // Starting guess: bisection on the cheap interpolant.
@@ -101,10 +121,10 @@ pub fn locate<const N: usize>(
         if g > 0.0 {
             (lo, g_lo) = (trial, g);
         } else {
-            (hi, g_hi, y_hi) = (trial, g, y);
+            (hi, g_hi, y_hi) = (trial, g, y.clone());
         }
         if g == 0.0 || hi - lo <= resolution(trial) {
-            return Ok(Crossing { event: index, time: trial, state: y });
+            return Ok(CrossingOf { event: index, time: trial, state: y });
         }
         // Secant through the last two trials; regula falsi on the bracket when there is no usable secant, and
         // bisection when the secant leaves the bracket.
@@ -114,10 +134,10 @@ pub fn locate<const N: usize>(
         };
         previous = Some((trial, g));
         if (next - trial).abs() <= resolution(trial) {
-            return Ok(Crossing { event: index, time: trial, state: y });
+            return Ok(CrossingOf { event: index, time: trial, state: y });
         }
         trial = if next > lo && next < hi { next } else { 0.5 * (lo + hi) };
     }
     // Not reached in practice: the bracket halves at worst every other trial.
-    Ok(Crossing { event: index, time: hi, state: y_hi })
+    Ok(CrossingOf { event: index, time: hi, state: y_hi })
 }

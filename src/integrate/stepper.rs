@@ -1,7 +1,9 @@
 //! The `ode_solvers` adapter (Dop853, or Dopri5): runs between events, re-steps for event location, counts work.
 
-use super::events::{Crossing, Event, MAX_EVENTS, Point, falls, locate};
-use super::{IntegrationError, Model, State};
+use super::events::{CrossingOf, EventOf, Point, falls, locate};
+use super::{IntegrationError, ModelOf, Vector};
+use nalgebra::allocator::Allocator;
+use nalgebra::{Const, DefaultAllocator, Dim};
 use ode_solvers::dop_shared::{IntegrationError as SolverError, Stats};
 use ode_solvers::dop853::Dop853;
 use ode_solvers::dopri5::Dopri5;
@@ -79,97 +81,125 @@ pub const STEP_BUDGET: u64 = 300_000;
 
 /// How a run between events ended.
 #[derive(Debug, Clone)]
-pub struct RunEnd<const N: usize> {
+pub struct RunEndOf<D: Dim>
+where
+    DefaultAllocator: Allocator<D>,
+{
     /// Scaled time and state where the run stopped.
     pub time: f64,
-    pub state: State<N>,
+    pub state: Vector<D>,
     /// Why it stopped.
     pub ending: Ending,
     /// Every non-terminal crossing located on the way, in time order.
-    pub crossings: Vec<Crossing<N>>,
+    pub crossings: Vec<CrossingOf<D>>,
 }
 
-/// Integrates a model with Dop853 (or Dopri5, [`Stepper::scheme`]), locating events; optionally records every
-/// accepted step.
-pub struct Stepper<'m, M, const N: usize> {
+/// Integrates a model with Dop853 (or Dopri5, [`StepperOf::scheme`]), locating events; optionally records every
+/// accepted step. `D` is the state's dimension: `Const<N>` for a model of fixed size ([`Stepper`]), `Dyn` for one
+/// sized at run time.
+pub struct StepperOf<'m, M, D: Dim>
+where
+    DefaultAllocator: Allocator<D>,
+{
     model: &'m M,
     tolerances: Tolerances,
     scheme: Scheme,
     /// Work so far.
     pub counters: Counters,
     /// Accepted steps (time, state), kept only when a history was asked for.
-    pub record: Option<Vec<(f64, State<N>)>>,
+    pub record: Option<Vec<(f64, Vector<D>)>>,
+    /// The events' values at the last accepted point (kept between runs so that a run allocates nothing).
+    previous_values: Vec<f64>,
+    /// The events' values at the newest point.
+    values: Vec<f64>,
 }
 
+/// The stepper of a model of fixed size.
+pub type Stepper<'m, M, const N: usize> = StepperOf<'m, M, Const<N>>;
+
 /// What `solout` saw: the last accepted point and the first bracket of a sign change.
-struct Watch<'w, 'e, const N: usize> {
-    events: &'w [Event<'e, N>],
-    previous: Point<N>,
+struct Watch<'w, 'e, D: Dim>
+where
+    DefaultAllocator: Allocator<D>,
+{
+    events: &'w [EventOf<'e, D>],
+    previous: Point<D>,
     /// The events' values at `previous`, so each accepted step evaluates every event function once.
-    previous_values: [f64; MAX_EVENTS],
-    bracket: Option<(Point<N>, Point<N>)>,
-    record: Option<&'w mut Vec<(f64, State<N>)>>,
+    previous_values: &'w mut Vec<f64>,
+    values: &'w mut Vec<f64>,
+    bracket: Option<(Point<D>, Point<D>)>,
+    record: Option<&'w mut Vec<(f64, Vector<D>)>>,
 }
 
 /// The `System` handed to the solver: the model plus, optionally, a watch for events.
-struct Adapter<'a, 'w, 'e, M, const N: usize> {
+struct Adapter<'a, 'w, 'e, M, D: Dim>
+where
+    DefaultAllocator: Allocator<D>,
+{
     model: &'a M,
-    watch: Option<&'a mut Watch<'w, 'e, N>>,
+    watch: Option<&'a mut Watch<'w, 'e, D>>,
 }
 
-impl<M: Model<N>, const N: usize> System<f64, State<N>> for Adapter<'_, '_, '_, M, N> {
-    fn system(&self, t: f64, y: &State<N>, dy: &mut State<N>) {
-        self.model.derivative(t, y, dy);
+impl<M: ModelOf<D>, D: Dim> System<f64, Vector<D>> for Adapter<'_, '_, '_, M, D>
+where
+    DefaultAllocator: Allocator<D>,
+{
+    fn system(&self, t: f64, y: &Vector<D>, dy: &mut Vector<D>) {
+        self.model.derivative_of(t, y, dy);
     }
 
-    fn solout(&mut self, t: f64, y: &State<N>, dy: &State<N>) -> bool {
+    fn solout(&mut self, t: f64, y: &Vector<D>, dy: &Vector<D>) -> bool {
         let Some(watch) = self.watch.as_deref_mut() else { return false };
         if let Some(record) = watch.record.as_deref_mut() {
-            record.push((t, *y));
+            record.push((t, y.clone()));
         }
-        let mut values = [0.0; MAX_EVENTS];
-        for (value, event) in values.iter_mut().zip(watch.events) {
+        for (value, event) in watch.values.iter_mut().zip(watch.events) {
             *value = event.value(y);
         }
-        let crossed = values.iter().zip(&watch.previous_values).take(watch.events.len()).any(|(&v, &p)| falls(p, v));
-        let current = (t, *y, *dy);
+        let crossed = watch.values.iter().zip(watch.previous_values.iter()).any(|(&v, &p)| falls(p, v));
+        let current = (t, y.clone(), dy.clone());
         if crossed {
-            watch.bracket = Some((watch.previous, current));
+            watch.bracket = Some((watch.previous.clone(), current));
             return true;
         }
         watch.previous = current;
-        watch.previous_values = values;
+        std::mem::swap(watch.previous_values, watch.values);
         false
     }
 }
 
-impl<'m, M: Model<N>, const N: usize> Stepper<'m, M, N> {
+impl<'m, M: ModelOf<D>, D: Dim> StepperOf<'m, M, D>
+where
+    DefaultAllocator: Allocator<D>,
+{
     /// A Dop853 stepper for `model`; `record` keeps every accepted step.
     pub fn new(model: &'m M, tolerances: Tolerances, record: bool) -> Self {
-        Stepper {
+        StepperOf {
             model,
             tolerances,
             scheme: Scheme::Dop853,
             counters: Counters::default(),
             record: record.then(Vec::new),
+            previous_values: Vec::new(),
+            values: Vec::new(),
         }
     }
 
     /// The same stepper integrating with `scheme` (runs and re-steps alike).
     pub fn scheme(self, scheme: Scheme) -> Self {
-        Stepper { scheme, ..self }
+        StepperOf { scheme, ..self }
     }
 
     /// Adds a point (an event, the initial state) to the record, if one is kept. The record is sorted by
     /// [`Stepper::recorded`].
-    pub fn note(&mut self, t: f64, y: State<N>) {
+    pub fn note(&mut self, t: f64, y: Vector<D>) {
         if let Some(record) = self.record.as_mut() {
             record.push((t, y));
         }
     }
 
     /// The record in time order (accepted steps and noted points), if one is kept.
-    pub fn recorded(&mut self) -> Option<&[(f64, State<N>)]> {
+    pub fn recorded(&mut self) -> Option<&[(f64, Vector<D>)]> {
         let record = self.record.as_mut()?;
         // Stable sort, then keep the last point noted at each time (a stick–slip switch notes the switched state
         // after the located one).
@@ -182,22 +212,24 @@ impl<'m, M: Model<N>, const N: usize> Stepper<'m, M, N> {
 
     /// The solution at each of `times` (ascending, inside the recorded span), each reached by re-stepping from the
     /// last recorded point at or before it: values on the integrator's own solution, not a lower-order interpolant.
-    pub fn resample(&mut self, times: &[f64]) -> Result<Vec<(f64, State<N>)>, IntegrationError> {
+    pub fn resample(&mut self, times: &[f64]) -> Result<Vec<(f64, Vector<D>)>, IntegrationError> {
         let Some(points) = self.recorded().map(<[_]>::to_vec) else { return Ok(Vec::new()) };
         let mut samples = Vec::with_capacity(times.len());
         for &t in times {
             let after = points.partition_point(|(time, _)| *time <= t);
-            let Some(&(t0, y0)) = points.get(after.saturating_sub(1)) else { continue };
-            let from = (t0, y0, self.derivative(t0, &y0));
+            let Some((t0, y0)) = points.get(after.saturating_sub(1)).cloned() else { continue };
+            let dy0 = self.derivative(t0, &y0);
+            let from = (t0, y0, dy0);
             samples.push((t, self.step_to(&from, t)?));
         }
         Ok(samples)
     }
 
     /// The model's derivative at a point (counted as one evaluation).
-    pub fn derivative(&mut self, t: f64, y: &State<N>) -> State<N> {
-        let mut dy = State::<N>::zeros();
-        self.model.derivative(t, y, &mut dy);
+    pub fn derivative(&mut self, t: f64, y: &Vector<D>) -> Vector<D> {
+        let (rows, columns) = y.shape_generic();
+        let mut dy = Vector::<D>::zeros_generic(rows, columns);
+        self.model.derivative_of(t, y, &mut dy);
         self.counters.evaluations += 1;
         dy
     }
@@ -207,20 +239,21 @@ impl<'m, M: Model<N>, const N: usize> Stepper<'m, M, N> {
     pub fn run(
         &mut self,
         t: f64,
-        y: State<N>,
+        y: Vector<D>,
         t_end: f64,
-        events: &[Event<'_, N>],
-    ) -> Result<RunEnd<N>, IntegrationError> {
-        let mut start: Point<N> = (t, y, self.derivative(t, &y));
+        events: &[EventOf<'_, D>],
+    ) -> Result<RunEndOf<D>, IntegrationError> {
+        let dy = self.derivative(t, &y);
+        let mut start: Point<D> = (t, y, dy);
         let mut first_step = 0.0;
         let mut crossings = Vec::new();
         loop {
             let (time, state, bracket, last_step, gave_up) = self.advance(start, t_end, first_step, events)?;
             let Some((left, right)) = bracket else {
                 let ending = gave_up.map_or(Ending::TimeLimit, Ending::GaveUp);
-                return Ok(RunEnd { time, state, ending, crossings });
+                return Ok(RunEndOf { time, state, ending, crossings });
             };
-            let mut located: Vec<(usize, Crossing<N>)> = Vec::new();
+            let mut located: Vec<(usize, CrossingOf<D>)> = Vec::new();
             for (index, event) in events.iter().enumerate() {
                 if event.crosses(&left.1, &right.1) {
                     let crossing = match locate(event, index, &left, &right, |t| self.step_to(&left, t)) {
@@ -229,7 +262,12 @@ impl<'m, M: Model<N>, const N: usize> Stepper<'m, M, N> {
                         // ends there, said why, rather than failing the whole simulation.
                         Err(IntegrationError::Solver { reason, .. }) => {
                             let why = format!("the problem became stiff for an explicit method ({reason})");
-                            return Ok(RunEnd { time: left.0, state: left.1, ending: Ending::GaveUp(why), crossings });
+                            return Ok(RunEndOf {
+                                time: left.0,
+                                state: left.1,
+                                ending: Ending::GaveUp(why),
+                                crossings,
+                            });
                         }
                     };
                     located.push((index, crossing));
@@ -238,18 +276,23 @@ impl<'m, M: Model<N>, const N: usize> Stepper<'m, M, N> {
             located.sort_by(|a, b| a.1.time.total_cmp(&b.1.time));
             let terminal = located.iter().find(|(i, _)| events[*i].terminal).map(|(_, c)| c.clone());
             let cutoff = terminal.as_ref().map_or(f64::INFINITY, |c| c.time);
-            let passed: Vec<Crossing<N>> =
+            let passed: Vec<CrossingOf<D>> =
                 located.into_iter().map(|(_, c)| c).filter(|c| !events[c.event].terminal && c.time <= cutoff).collect();
             for crossing in &passed {
-                self.note(crossing.time, crossing.state);
+                self.note(crossing.time, crossing.state.clone());
             }
             crossings.extend(passed);
             if let Some(stop) = terminal {
                 if let Some(record) = self.record.as_mut() {
                     record.retain(|(t, _)| *t < stop.time);
-                    record.push((stop.time, stop.state));
+                    record.push((stop.time, stop.state.clone()));
                 }
-                return Ok(RunEnd { time: stop.time, state: stop.state, ending: Ending::Event(stop.event), crossings });
+                return Ok(RunEndOf {
+                    time: stop.time,
+                    state: stop.state,
+                    ending: Ending::Event(stop.event),
+                    crossings,
+                });
             }
             start = right;
             first_step = last_step;
@@ -261,28 +304,37 @@ impl<'m, M: Model<N>, const N: usize> Stepper<'m, M, N> {
     #[allow(clippy::type_complexity)]
     fn advance(
         &mut self,
-        start: Point<N>,
+        start: Point<D>,
         t_end: f64,
         first_step: f64,
-        events: &[Event<'_, N>],
-    ) -> Result<(f64, State<N>, Option<(Point<N>, Point<N>)>, f64, Option<String>), IntegrationError> {
+        events: &[EventOf<'_, D>],
+    ) -> Result<(f64, Vector<D>, Option<(Point<D>, Point<D>)>, f64, Option<String>), IntegrationError> {
         let mut record = self.record.take();
-        assert!(events.len() <= MAX_EVENTS, "at most {MAX_EVENTS} events per run");
-        let mut previous_values = [0.0; MAX_EVENTS];
-        for (value, event) in previous_values.iter_mut().zip(events) {
-            *value = event.value(&start.1);
-        }
-        let mut watch = Watch { events, previous: start, previous_values, bracket: None, record: record.as_mut() };
-        let (t, y) = (start.0, start.1);
+        let (mut previous_values, mut values) =
+            (std::mem::take(&mut self.previous_values), std::mem::take(&mut self.values));
+        previous_values.clear();
+        previous_values.extend(events.iter().map(|event| event.value(&start.1)));
+        values.clear();
+        values.resize(events.len(), 0.0);
+        let (t, y) = (start.0, start.1.clone());
+        let mut watch = Watch {
+            events,
+            previous: start,
+            previous_values: &mut previous_values,
+            values: &mut values,
+            bracket: None,
+            record: record.as_mut(),
+        };
         let adapter = Adapter { model: self.model, watch: Some(&mut watch) };
         let budget = STEP_BUDGET.saturating_sub(self.counters.steps + self.counters.rejected_steps);
-        let solved = solve(self.scheme, adapter, self.tolerances, t, y, t_end, first_step, budget);
+        let solved = solve(self.scheme, adapter, self.tolerances, t, y.clone(), t_end, first_step, budget);
         let (time, state) = solved.last.unwrap_or((t, y));
         let step = time - solved.before_last.unwrap_or(t);
         let taken = solved.taken;
         let result = solved.result;
         let bracket = watch.bracket;
         self.record = record;
+        (self.previous_values, self.values) = (previous_values, values);
         let gave_up = match result {
             Ok(stats) => {
                 self.add(&stats);
@@ -310,19 +362,19 @@ impl<'m, M: Model<N>, const N: usize> Stepper<'m, M, N> {
 
     /// The solution at `t` reached by one (or, if rejected, a few) steps of the scheme from `from`: the re-step
     /// used to evaluate an event function between accepted steps.
-    pub fn step_to(&mut self, from: &(f64, State<N>, State<N>), t: f64) -> Result<State<N>, IntegrationError> {
+    pub fn step_to(&mut self, from: &Point<D>, t: f64) -> Result<Vector<D>, IntegrationError> {
         let h = t - from.0;
         if h.abs() <= 16.0 * f64::EPSILON * from.0.abs().max(1.0) {
-            return Ok(from.1 + from.2 * h);
+            return Ok(&from.1 + &from.2 * h);
         }
         let adapter = Adapter { model: self.model, watch: None };
         // A re-step inside one accepted step of a stiff contact may itself need many steps: it may use what is left of
         // the run's budget (at least a thousand).
         let left = STEP_BUDGET.saturating_sub(self.counters.steps + self.counters.rejected_steps).max(1000);
-        let solved = solve(self.scheme, adapter, self.tolerances, from.0, from.1, t, h, left);
+        let solved = solve(self.scheme, adapter, self.tolerances, from.0, from.1.clone(), t, h, left);
         let stats = solved.result.map_err(|error| IntegrationError::Solver { time: t, reason: error.to_string() })?;
         self.add(&stats);
-        Ok(solved.last.map_or(from.1, |(_, state)| state))
+        Ok(solved.last.map_or_else(|| from.1.clone(), |(_, state)| state))
     }
 
     fn add(&mut self, stats: &Stats) {
@@ -333,21 +385,27 @@ impl<'m, M: Model<N>, const N: usize> Stepper<'m, M, N> {
 }
 
 /// What one solver run left: its statistics (or why it failed), its last two points, and the steps it took.
-struct Solved<const N: usize> {
+struct Solved<D: Dim>
+where
+    DefaultAllocator: Allocator<D>,
+{
     result: Result<Stats, SolverError>,
     /// The last point of the run (`None`: it took no step).
-    last: Option<(f64, State<N>)>,
+    last: Option<(f64, Vector<D>)>,
     /// The time of the point before it.
     before_last: Option<f64>,
     /// Accepted steps taken.
     taken: u64,
 }
 
-impl<const N: usize> Solved<N> {
-    fn new(result: Result<Stats, SolverError>, times: &[f64], states: &[State<N>]) -> Solved<N> {
+impl<D: Dim> Solved<D>
+where
+    DefaultAllocator: Allocator<D>,
+{
+    fn new(result: Result<Stats, SolverError>, times: &[f64], states: &[Vector<D>]) -> Solved<D> {
         Solved {
             result,
-            last: times.last().copied().zip(states.last().copied()),
+            last: times.last().copied().zip(states.last().cloned()),
             before_last: times.iter().rev().nth(1).copied(),
             taken: times.len().saturating_sub(1) as u64,
         }
@@ -359,16 +417,19 @@ impl<const N: usize> Solved<N> {
 /// (Hairer's: safety 0.9; Dop853 without step-size memory, factors 0.333 to 6; Dopri5 with beta 0.04, factors 0.2
 /// to 10). The adapter (and what it borrows) is released on return.
 #[allow(clippy::too_many_arguments)]
-fn solve<M: Model<N>, const N: usize>(
+fn solve<M: ModelOf<D>, D: Dim>(
     scheme: Scheme,
-    adapter: Adapter<'_, '_, '_, M, N>,
+    adapter: Adapter<'_, '_, '_, M, D>,
     tolerances: Tolerances,
     t: f64,
-    y: State<N>,
+    y: Vector<D>,
     t_end: f64,
     first_step: f64,
     max_steps: u64,
-) -> Solved<N> {
+) -> Solved<D>
+where
+    DefaultAllocator: Allocator<D>,
+{
     let Tolerances { rtol, atol } = tolerances;
     let h_max = t_end - t;
     let h = first_step.min(h_max);
@@ -395,7 +456,7 @@ fn solve<M: Model<N>, const N: usize>(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::integrate::{Direction, Event};
+    use crate::integrate::{Direction, Event, Model, State};
 
     /// The harmonic oscillator y'' = -y from y = 0, y' = 1: y = sin t.
     struct Oscillator;

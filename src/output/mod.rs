@@ -12,3 +12,4 @@ pub mod sweep_figure;
 pub mod table;
 pub mod text;
 pub mod units;
+pub mod world_table;

@@ -68,21 +68,21 @@ fn denoise(value: f64, scale: f64) -> f64 {
 
 /// One block of the report: a title line and rows of (label, value); a row with an empty value is printed as a
 /// sub-heading.
-struct Section {
+pub(super) struct Section {
     title: String,
     rows: Vec<(String, String)>,
 }
 
 impl Section {
-    fn new(title: impl Into<String>) -> Section {
+    pub(super) fn new(title: impl Into<String>) -> Section {
         Section { title: title.into(), rows: Vec::new() }
     }
 
-    fn row(&mut self, label: impl Into<String>, value: impl Into<String>) {
+    pub(super) fn row(&mut self, label: impl Into<String>, value: impl Into<String>) {
         self.rows.push((label.into(), value.into()));
     }
 
-    fn heading(&mut self, text: impl Into<String>) {
+    pub(super) fn heading(&mut self, text: impl Into<String>) {
         self.rows.push((text.into(), String::new()));
     }
 }
@@ -111,6 +111,11 @@ pub fn render(report: &Report) -> String {
     .into_iter()
     .flatten()
     .collect();
+    layout(&report.title, &sections, &report.notes)
+}
+
+/// The title, the sections with their values in one column, and the notes.
+pub(super) fn layout(title: &str, sections: &[Section], notes: &[String]) -> String {
     // Headings (rows without a value) run across the value column and do not set its position.
     let width = sections
         .iter()
@@ -119,18 +124,18 @@ pub fn render(report: &Report) -> String {
         .map(|(label, _)| label.chars().count())
         .max()
         .unwrap_or(0);
-    let mut text = format!("{}\n", report.title);
-    for section in &sections {
+    let mut text = format!("{title}\n");
+    for section in sections {
         let _ = writeln!(text, "\n{}", section.title);
         for (label, value) in &section.rows {
             let line = if value.is_empty() { format!("  {label}") } else { format!("  {label:<width$}  {value}") };
             let _ = writeln!(text, "{}", line.trim_end());
         }
     }
-    if !report.notes.is_empty() {
+    if !notes.is_empty() {
         text.push('\n');
     }
-    for note in &report.notes {
+    for note in notes {
         let _ = writeln!(text, "note: {note}");
     }
     text

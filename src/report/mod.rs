@@ -2,6 +2,7 @@
 //! is built in one place ([`build`]) from the phases' outcome.
 
 mod build;
+pub mod world;
 
 pub use build::build;
 
@@ -244,6 +245,6 @@ pub struct SolverReport {
 }
 
 /// Writes an infinite input back as the string "inf" (docs/report.md).
-fn maybe_infinite<S: Serializer>(value: &f64, serializer: S) -> Result<S::Ok, S::Error> {
+pub(crate) fn maybe_infinite<S: Serializer>(value: &f64, serializer: S) -> Result<S::Ok, S::Error> {
     if value.is_infinite() && *value > 0.0 { serializer.serialize_str("inf") } else { serializer.serialize_f64(*value) }
 }

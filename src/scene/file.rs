@@ -14,6 +14,35 @@ pub struct RawScene {
     pub contact: Option<At<RawContact>>,
     pub solver: Option<At<RawSolver>>,
     pub output: Option<At<RawOutput>>,
+    pub world: Option<At<RawWorld>>,
+    pub pair: Option<At<Vec<At<RawPair>>>>,
+}
+
+/// The `[world]` table of a world run (docs/scene.md#worlds).
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawWorld {
+    pub gravity: Option<At<Vec<f64>>>,
+    pub end_time: Option<At<f64>>,
+    pub max_contacts: Option<At<toml::Value>>,
+    pub damping_map: Option<At<String>>,
+}
+
+/// A `[[pair]]` table: two bodies and any key of `[contact]`, which it overrides for them.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawPair {
+    pub bodies: Option<At<Vec<toml::Value>>>,
+    pub law: Option<At<String>>,
+    pub restitution: Option<At<f64>>,
+    pub damping: Option<At<f64>>,
+    pub stiffness: Option<At<toml::Value>>,
+    pub exponent: Option<At<f64>>,
+    pub separation: Option<At<String>>,
+    pub friction: Option<At<f64>>,
+    pub tangential_stiffness: Option<At<toml::Value>>,
+    pub tangential_damping: Option<At<f64>>,
+    pub normal: Option<At<Vec<f64>>>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -29,9 +58,11 @@ pub struct RawBody {
     pub inertia: Option<At<f64>>,
     pub young: Option<At<f64>>,
     pub poisson: Option<At<f64>>,
+    /// A flat body's face normal in a world run.
+    pub normal: Option<At<Vec<f64>>>,
 }
 
-#[derive(Debug, Deserialize)]
+#[derive(Debug, Clone, Default, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct RawContact {
     pub law: Option<At<String>>,

@@ -7,8 +7,10 @@ mod error;
 mod file;
 mod rules;
 mod validate;
+pub mod world;
 
 pub use error::SceneError;
+pub use world::{DampingMap, PairSpec, WorldScene, WorldSpec};
 
 use crate::body::Body;
 use crate::integrate::Tolerances;
@@ -27,6 +29,32 @@ pub struct Scene {
     /// The integration method and its tolerances.
     pub solver: SolverSpec,
     pub output: OutputSpec,
+}
+
+/// A scene of either kind: a two-body impact (today's report), or a world run (docs/scene.md#worlds).
+#[derive(Debug, Clone, PartialEq)]
+pub enum Parsed {
+    Impact(Box<Scene>),
+    World(Box<WorldScene>),
+}
+
+/// Reads and validates a scene file of either kind.
+pub fn load_any(path: &Path) -> Result<Parsed, SceneError> {
+    let text = std::fs::read_to_string(path)
+        .map_err(|error| SceneError::file(path, format!("cannot read the scene: {error}")))?;
+    parse_any(&text, path)
+}
+
+/// Validates scene text of either kind; `path` names the source in errors and gives the default title.
+pub fn parse_any(text: &str, path: &Path) -> Result<Parsed, SceneError> {
+    validate::any(text, path)
+}
+
+/// A rule found broken while running a scene (a world's contact at its own speed), located in the scene file: its
+/// line read off the file again.
+pub fn located(path: &Path, error: crate::setup::SetupError) -> SceneError {
+    let text = std::fs::read_to_string(path).unwrap_or_default();
+    validate::located(&text, path, error)
 }
 
 /// How the law's damping is given.

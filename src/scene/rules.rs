@@ -98,12 +98,107 @@ pub fn check(scene: &Scene) -> Checked {
     for (i, body) in scene.bodies.iter().enumerate() {
         check_body(i, body)?;
     }
-    check_contact(scene)?;
-    for (key, x) in [("solver.rtol", scene.solver.tolerances.rtol), ("solver.atol", scene.solver.tolerances.atol)] {
+    check_contact(&scene.contact)?;
+    check_solver(&scene.solver)
+}
+
+fn check_solver(solver: &super::SolverSpec) -> Checked {
+    for (key, x) in [("solver.rtol", solver.tolerances.rtol), ("solver.atol", solver.tolerances.atol)] {
         number(key, x, Allowed::Positive)?;
         if !(1e-14..=1e-2).contains(&x) {
             return fail(key, format!("expected a tolerance in [1e-14, 1e-2], got {x:e}"));
         }
+    }
+    Ok(())
+}
+
+/// A world scene's rules (docs/scene.md#worlds): every body's, each contact table's (the keys renamed to where the
+/// pair writes them), the `[world]` table's, and the rules between bodies that hold before anything moves — flat
+/// bodies immovable with a face, no friction yet, Hertz stiffness available for every pair that can touch, and no
+/// two bodies overlapping at the start by more than 1e-12 of the smaller radius.
+pub fn check_world(scene: &super::WorldScene) -> Checked {
+    for (i, body) in scene.bodies.iter().enumerate() {
+        check_body(i, body)?;
+        if let Some(face) = scene.faces[i] {
+            vector(BodyKey(i, "normal"), &face)?;
+            if face.norm() == 0.0 {
+                return fail(BodyKey(i, "normal"), "the face normal must be a non-zero vector");
+            }
+        }
+        if body.is_flat() && !body.is_immovable() {
+            return fail(BodyKey(i, "mass"), "a flat body (radius = inf) of a world run is immovable: give mass = inf");
+        }
+    }
+    check_contact(&scene.contact)?;
+    for (k, pair) in scene.pairs.iter().enumerate() {
+        let (i, j) = (pair.bodies[0], pair.bodies[1]);
+        check_contact(&pair.contact).map_err(|error| scene.rename(i, j, error))?;
+        if !scene.interacts(i, j) {
+            return fail(format!("pair.{k}.bodies"), "these two bodies never touch (both immovable, or both flat)");
+        }
+    }
+    let world = &scene.world;
+    vector("world.gravity", &world.gravity)?;
+    if let Some(end) = world.end_time {
+        number("world.end_time", end, Allowed::Positive)?;
+    }
+    check_solver(&scene.solver)?;
+    let contacts = std::iter::once((&scene.contact, None))
+        .chain(scene.pairs.iter().enumerate().map(|(k, p)| (&p.contact, Some(k))));
+    for (contact, k) in contacts {
+        if contact.friction > 0.0 {
+            let key = k.map_or("contact.friction".to_string(), |k| format!("pair.{k}.friction"));
+            return fail(
+                key,
+                "friction in a world run is not supported yet (one contact of two bodies takes it): set it to 0",
+            );
+        }
+    }
+    let n = scene.bodies.len();
+    for i in 0..n {
+        for j in i + 1..n {
+            if scene.interacts(i, j) {
+                check_pair_at_start(scene, i, j)?;
+            }
+        }
+    }
+    Ok(())
+}
+
+/// The rules of one pair that hold before anything moves: a Hertz stiffness can be formed, and the bodies do not
+/// start overlapped.
+fn check_pair_at_start(scene: &super::WorldScene, i: usize, j: usize) -> Checked {
+    let (a, b) = (&scene.bodies[i], &scene.bodies[j]);
+    let (contact, _) = scene.contact_of(i, j);
+    if contact.stiffness == StiffnessSpec::Hertz {
+        for (k, body) in [(i, a), (j, b)] {
+            match (body.young, body.poisson) {
+                (None, _) => {
+                    return fail(BodyKey(k, "young"), "stiffness = \"hertz\" needs `young` (Pa) for every body");
+                }
+                (Some(e), None) if e.is_finite() => {
+                    return fail(BodyKey(k, "poisson"), "stiffness = \"hertz\" needs `poisson` for an elastic body");
+                }
+                _ => {}
+            }
+        }
+        if a.young.is_some_and(f64::is_infinite) && b.young.is_some_and(f64::is_infinite) {
+            return fail(
+                BodyKey(j, "young"),
+                format!("bodies {i} and {j} are both rigid (young = inf): their Hertz stiffness would be infinite"),
+            );
+        }
+    }
+    let overlap = crate::world::flight::overlap(scene, i, j, 0.0);
+    let smallest = a.radius.min(b.radius);
+    if overlap > crate::geometry::TOUCH_TOLERANCE * smallest {
+        return fail(
+            BodyKey(j, "position"),
+            format!(
+                "bodies {i} and {j} start overlapped by {overlap:e} m (more than {:e} of the smaller radius)",
+                crate::geometry::TOUCH_TOLERANCE
+            ),
+        );
     }
     Ok(())
 }
@@ -166,8 +261,7 @@ fn check_body(i: usize, body: &Body) -> Checked {
     Ok(())
 }
 
-fn check_contact(scene: &Scene) -> Checked {
-    let contact = &scene.contact;
+fn check_contact(contact: &super::ContactSpec) -> Checked {
     let law = contact.law;
     let name = law.name();
     match contact.damping {

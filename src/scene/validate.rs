@@ -3,9 +3,11 @@
 //! checked on it ([`super::rules`], the same rules a sweep's points obey), then the physics-level rules of
 //! [`Setup`] (docs/scene.md lists them all). Lines come from the spans the conversion records for every key.
 
-use super::file::{At, RawBody, RawContact, RawOutput, RawScene, RawSolver};
+use super::file::{At, RawBody, RawContact, RawOutput, RawPair, RawScene, RawSolver, RawWorld};
+use super::world::{DampingMap, MAX_CONTACTS_LIMIT, PairSpec, WorldScene, WorldSpec};
 use super::{
-    ContactSpec, DampingSpec, Method, OutputSpec, Scene, SceneError, SolverSpec, StiffnessSpec, TangentialStiffnessSpec,
+    ContactSpec, DampingSpec, Method, OutputSpec, Parsed, Scene, SceneError, SolverSpec, StiffnessSpec,
+    TangentialStiffnessSpec,
 };
 use crate::body::Body;
 use crate::integrate::Tolerances;
@@ -52,7 +54,9 @@ impl Source<'_> {
             message: message.into(),
             // Missing tables, a wrong number of bodies, a bad separation word or output path: nothing a sweep's
             // numbers can set.
-            form: matches!(key, "bodies" | "contact" | "contact.separation" | "output.series" | "output.plots"),
+            form: matches!(key, "bodies" | "contact" | "contact.separation" | "output.series" | "output.plots")
+                || key.ends_with(".separation")
+                || key.starts_with("pair.") && key.ends_with(".bodies"),
         }
     }
 
@@ -170,17 +174,56 @@ pub fn convert(text: &str, path: &Path) -> Checked<(Scene, HashMap<String, usize
     Ok((scene, src.lines.into_inner()))
 }
 
+/// A broken rule located in `text`: the line of its key.
+pub fn located(text: &str, path: &Path, error: crate::setup::SetupError) -> SceneError {
+    source(text, path).located(error)
+}
+
 fn source<'a>(text: &'a str, path: &Path) -> Source<'a> {
     Source { text, file: path.display().to_string(), lines: Default::default() }
 }
 
 fn convert_in(src: &Source) -> Checked<Scene> {
-    let path = Path::new(&src.file);
     let raw: RawScene = toml::from_str(src.text).map_err(|error| parse_error(src, &error))?;
-    let title = match &raw.title {
+    if let Some(why) = world_reason(&raw) {
+        let span = raw.world.as_ref().map(At::span).or_else(|| raw.bodies.as_ref().map(At::span));
+        return Err(src.error(
+            "bodies",
+            span.as_ref(),
+            format!(
+                "a world run ({why}) is run by `impact run`; this command takes a scene of exactly two bodies \
+                 without `[world]` or `[[pair]]`"
+            ),
+        ));
+    }
+    convert_impact(src, &raw)
+}
+
+/// Why a scene is a world run (docs/scene.md#worlds), if it is one: a `[world]` table, `[[pair]]` tables, or more
+/// than two bodies.
+fn world_reason(raw: &RawScene) -> Option<String> {
+    let count = raw.bodies.as_ref().map_or(0, |b| b.get_ref().len());
+    if raw.world.is_some() {
+        Some("it has a [world] table".into())
+    } else if raw.pair.is_some() {
+        Some("it has [[pair]] tables".into())
+    } else if count > 2 {
+        Some(format!("it has {count} bodies"))
+    } else {
+        None
+    }
+}
+
+/// The title: the scene's, or the file's stem.
+fn title(src: &Source, raw: &RawScene) -> String {
+    match &raw.title {
         Some(title) => title.get_ref().clone(),
-        None => path.file_stem().map_or_else(|| "scene".into(), |s| s.to_string_lossy().into_owned()),
-    };
+        None => Path::new(&src.file).file_stem().map_or_else(|| "scene".into(), |s| s.to_string_lossy().into_owned()),
+    }
+}
+
+fn convert_impact(src: &Source, raw: &RawScene) -> Checked<Scene> {
+    let title = title(src, raw);
     let Some(bodies) = &raw.bodies else {
         return Err(src.error("bodies", None, "missing: give two [[bodies]] tables"));
     };
@@ -189,20 +232,256 @@ fn convert_in(src: &Source) -> Checked<Scene> {
         return Err(src.error(
             "bodies",
             Some(&bodies.span()),
-            format!("expected exactly two [[bodies]] (chains of more are not supported yet), got {n}"),
+            format!("expected two [[bodies]] (or more, with positions, in a world run), got {n}"),
         ));
     }
     let first = body(src, 0, &bodies.get_ref()[0])?;
     let second = body(src, 1, &bodies.get_ref()[1])?;
+    for (i, raw_body) in bodies.get_ref().iter().enumerate() {
+        if let Some(normal) = &raw_body.get_ref().normal {
+            return Err(src.error(
+                &format!("bodies.{i}.normal"),
+                Some(&normal.span()),
+                "a body's `normal` is a flat body's face in a world run ([world]); a two-body scene gives the \
+                 contact normal as `contact.normal`",
+            ));
+        }
+    }
     let Some(contact) = &raw.contact else {
         return Err(src.error("contact", None, "missing: give a [contact] table with at least `law`"));
     };
-    let contact = contact_spec(src, contact)?;
+    let contact = contact_spec(src, contact.get_ref(), Some(&contact.span()), &|leaf| format!("contact.{leaf}"))?;
     let solver = raw.solver.as_ref().map_or(Ok(SolverSpec::default()), |s| solver(src, s.get_ref()))?;
     let output = raw.output.as_ref().map_or(Ok(OutputSpec::default()), |o| output(src, o.get_ref()))?;
     let mut scene = Scene { title, bodies: [first, second], contact, solver, output };
     scene.resolve();
     Ok(scene)
+}
+
+/// Parses and checks a scene of either kind: a two-body impact, or a world run.
+pub fn any(text: &str, path: &Path) -> Checked<Parsed> {
+    let src = source(text, path);
+    let raw: RawScene = toml::from_str(src.text).map_err(|error| parse_error(&src, &error))?;
+    if world_reason(&raw).is_none() {
+        let scene = convert_impact(&src, &raw)?;
+        super::rules::check(&scene).map_err(|error| src.located(error))?;
+        Setup::new(&scene).map_err(|error| src.located(error))?;
+        return Ok(Parsed::Impact(Box::new(scene)));
+    }
+    let world = convert_world(&src, &raw)?;
+    super::rules::check_world(&world).map_err(|error| src.located(error))?;
+    Ok(Parsed::World(Box::new(world)))
+}
+
+fn convert_world(src: &Source, raw: &RawScene) -> Checked<WorldScene> {
+    let title = title(src, raw);
+    let Some(bodies_raw) = &raw.bodies else {
+        return Err(src.error("bodies", None, "missing: give the [[bodies]] of the world, each with `position`"));
+    };
+    if bodies_raw.get_ref().len() < 2 {
+        let n = bodies_raw.get_ref().len();
+        return Err(src.error(
+            "bodies",
+            Some(&bodies_raw.span()),
+            format!("a world needs two bodies or more, got {n}"),
+        ));
+    }
+    let mut bodies = Vec::with_capacity(bodies_raw.get_ref().len());
+    let mut faces = Vec::with_capacity(bodies_raw.get_ref().len());
+    for (i, raw_body) in bodies_raw.get_ref().iter().enumerate() {
+        let body = body(src, i, raw_body)?;
+        if body.position.is_none() {
+            return Err(src.error(
+                &format!("bodies.{i}.position"),
+                Some(&raw_body.span()),
+                "missing: every body of a world run needs `position` (m; a flat body: a point of its face)",
+            ));
+        }
+        let face =
+            raw_body.get_ref().normal.as_ref().map(|n| vector(src, &format!("bodies.{i}.normal"), n)).transpose()?;
+        if body.is_flat() && face.is_none() {
+            return Err(src.error(
+                &format!("bodies.{i}.normal"),
+                Some(&raw_body.span()),
+                "missing: a flat body (radius = inf) of a world run needs `normal`, the unit normal of its face \
+                 pointing into the side the other bodies move in (a floor: [0, 0, 1])",
+            ));
+        }
+        if !body.is_flat()
+            && let Some(normal) = &raw_body.get_ref().normal
+        {
+            return Err(src.error(
+                &format!("bodies.{i}.normal"),
+                Some(&normal.span()),
+                "only a flat body (radius = inf) has a face `normal`",
+            ));
+        }
+        bodies.push(body);
+        faces.push(face);
+    }
+    let Some(contact_raw) = &raw.contact else {
+        return Err(src.error(
+            "contact",
+            None,
+            "missing: give a [contact] table with at least `law` (every pair's default)",
+        ));
+    };
+    if let Some(normal) = &contact_raw.get_ref().normal {
+        return Err(world_normal(src, "contact.normal", normal));
+    }
+    let contact =
+        contact_spec(src, contact_raw.get_ref(), Some(&contact_raw.span()), &|leaf| format!("contact.{leaf}"))?;
+    let mut pairs = Vec::new();
+    for (k, pair_raw) in raw.pair.as_ref().map_or(&[][..], |p| p.get_ref().as_slice()).iter().enumerate() {
+        pairs.push(pair(src, k, pair_raw, contact_raw.get_ref(), bodies.len())?);
+    }
+    for (k, pair) in pairs.iter().enumerate() {
+        if let Some(first) = pairs[..k]
+            .iter()
+            .position(|other| other.bodies == pair.bodies || other.bodies == [pair.bodies[1], pair.bodies[0]])
+        {
+            let span = raw.pair.as_ref().map(|p| p.get_ref()[k].span());
+            return Err(src.error(
+                &format!("pair.{k}.bodies"),
+                span.as_ref(),
+                format!("bodies {:?} already have a [[pair]] (pair {first})", pair.bodies),
+            ));
+        }
+    }
+    let world = raw.world.as_ref().map_or(Ok(WorldSpec::default()), |w| world(src, w))?;
+    let solver = raw.solver.as_ref().map_or(Ok(SolverSpec::default()), |s| solver(src, s.get_ref()))?;
+    let output = raw.output.as_ref().map_or(Ok(OutputSpec::default()), |o| output(src, o.get_ref()))?;
+    let mut scene = WorldScene { title, bodies, faces, contact, pairs, world, solver, output };
+    scene.resolve();
+    Ok(scene)
+}
+
+fn world_normal(src: &Source, key: &str, normal: &At<Vec<f64>>) -> SceneError {
+    src.error(
+        key,
+        Some(&normal.span()),
+        "a world run takes each contact's normal from the geometry (the line of centres, a flat body's face \
+         `normal`): leave it out",
+    )
+}
+
+/// One `[[pair]]`: its bodies, and `[contact]` with the pair's keys over it.
+fn pair(src: &Source, k: usize, raw: &At<RawPair>, contact: &RawContact, count: usize) -> Checked<PairSpec> {
+    let table = raw.span();
+    let raw = raw.get_ref();
+    let key = |leaf: &str| format!("pair.{k}.{leaf}");
+    let Some(bodies) = &raw.bodies else {
+        return Err(src.error(
+            &key("bodies"),
+            Some(&table),
+            "missing: give `bodies = [i, j]`, two 0-based body indices",
+        ));
+    };
+    src.note(&key("bodies"), &bodies.span());
+    let indices: Vec<Option<usize>> =
+        bodies.get_ref().iter().map(|v| v.as_integer().and_then(|i| usize::try_from(i).ok())).collect();
+    let [Some(i), Some(j)] = indices[..] else {
+        return Err(src.error(
+            &key("bodies"),
+            Some(&bodies.span()),
+            format!(
+                "expected two 0-based body indices [i, j], got {}",
+                cut(&toml::Value::Array(bodies.get_ref().clone()).to_string())
+            ),
+        ));
+    };
+    for index in [i, j] {
+        if index >= count {
+            return Err(src.error(
+                &key("bodies"),
+                Some(&bodies.span()),
+                format!("body {index} does not exist: the scene has {count} bodies (0 to {})", count - 1),
+            ));
+        }
+    }
+    if i == j {
+        return Err(src.error(
+            &key("bodies"),
+            Some(&bodies.span()),
+            format!("a pair of two different bodies, got [{i}, {j}]"),
+        ));
+    }
+    if let Some(normal) = &raw.normal {
+        return Err(world_normal(src, &key("normal"), normal));
+    }
+    let mut merged = contact.clone();
+    let mut written = Vec::new();
+    macro_rules! over {
+        ($($field:ident),*) => {
+            $(if raw.$field.is_some() {
+                merged.$field = raw.$field.clone();
+                written.push(stringify!($field));
+            })*
+        };
+    }
+    over!(
+        law,
+        restitution,
+        damping,
+        stiffness,
+        exponent,
+        separation,
+        friction,
+        tangential_stiffness,
+        tangential_damping
+    );
+    // A pair that names `damping` drops `[contact]`'s `restitution`, and the other way round: it gives its own.
+    if raw.damping.is_some() && raw.restitution.is_none() {
+        merged.restitution = None;
+    }
+    if raw.restitution.is_some() && raw.damping.is_none() {
+        merged.damping = None;
+    }
+    let leaf_key = |leaf: &str| if written.contains(&leaf) { key(leaf) } else { format!("contact.{leaf}") };
+    let contact = contact_spec(src, &merged, Some(&table), &leaf_key)?;
+    Ok(PairSpec { bodies: [i, j], contact, written })
+}
+
+fn world(src: &Source, raw: &At<RawWorld>) -> Checked<WorldSpec> {
+    let raw = raw.get_ref();
+    let defaults = WorldSpec::default();
+    let gravity =
+        raw.gravity.as_ref().map(|g| vector(src, "world.gravity", g)).transpose()?.unwrap_or(defaults.gravity);
+    let end_time = raw.end_time.as_ref().map(|t| number(src, "world.end_time", t));
+    let max_contacts = match &raw.max_contacts {
+        None => defaults.max_contacts,
+        Some(value) => {
+            src.note("world.max_contacts", &value.span());
+            match value.get_ref().as_integer() {
+                Some(n) if n >= 1 && (n as u64) <= MAX_CONTACTS_LIMIT => n as u64,
+                _ => {
+                    return Err(src.error(
+                        "world.max_contacts",
+                        Some(&value.span()),
+                        format!(
+                            "expected a whole number from 1 to {MAX_CONTACTS_LIMIT}, got {}",
+                            cut(&value.get_ref().to_string())
+                        ),
+                    ));
+                }
+            }
+        }
+    };
+    let damping_map = match &raw.damping_map {
+        None => defaults.damping_map,
+        Some(name) => {
+            DampingMap::ALL.iter().find(|(spelling, _)| spelling == name.get_ref()).map(|(_, m)| *m).ok_or_else(
+                || {
+                    src.error(
+                        "world.damping_map",
+                        Some(&name.span()),
+                        format!("expected \"each-contact\" or \"first-contact\", got \"{}\"", cut(name.get_ref())),
+                    )
+                },
+            )?
+        }
+    };
+    Ok(WorldSpec { gravity, end_time, max_contacts, damping_map })
 }
 
 fn parse_error(src: &Source, error: &toml::de::Error) -> SceneError {
@@ -262,29 +541,33 @@ fn body(src: &Source, i: usize, raw: &At<RawBody>) -> Checked<Body> {
     })
 }
 
-fn contact_spec(src: &Source, raw: &At<RawContact>) -> Checked<ContactSpec> {
-    let table = raw.span();
-    let raw = raw.get_ref();
+/// A contact table (`[contact]`, or a `[[pair]]` over it) typed; `key` names each leaf where it is written.
+fn contact_spec(
+    src: &Source,
+    raw: &RawContact,
+    table: Option<&Range<usize>>,
+    key: &dyn Fn(&str) -> String,
+) -> Checked<ContactSpec> {
     let Some(law_name) = &raw.law else {
         return Err(src.error(
-            "contact.law",
-            Some(&table),
+            &key("law"),
+            table,
             format!("missing: give `law`, one of {}", LawKind::names().join(", ")),
         ));
     };
     let Some(law) = LawKind::from_name(law_name.get_ref()) else {
         return Err(src.error(
-            "contact.law",
+            &key("law"),
             Some(&law_name.span()),
             format!("unknown law `{}`; expected one of {}", cut(law_name.get_ref()), LawKind::names().join(", ")),
         ));
     };
-    let restitution = raw.restitution.as_ref().map(|e| number(src, "contact.restitution", e));
-    let damping_value = raw.damping.as_ref().map(|c| number(src, "contact.damping", c));
+    let restitution = raw.restitution.as_ref().map(|e| number(src, &key("restitution"), e));
+    let damping_value = raw.damping.as_ref().map(|c| number(src, &key("damping"), c));
     let damping = match (restitution, damping_value) {
         (Some(_), Some(_)) => {
             return Err(src.error(
-                "contact.damping",
+                &key("damping"),
                 raw.damping.as_ref().map(|c| c.span()).as_ref(),
                 "give `restitution` or `damping`, not both",
             ));
@@ -298,18 +581,18 @@ fn contact_spec(src: &Source, raw: &At<RawContact>) -> Checked<ContactSpec> {
         Some(value) => StiffnessSpec::written(value.get_ref()).map_or_else(
             |other| {
                 Err(src.error(
-                    "contact.stiffness",
+                    &key("stiffness"),
                     Some(&value.span()),
                     format!("expected \"hertz\" or a number in N/m^n, got {}", cut(&other)),
                 ))
             },
             |spec| {
-                src.note("contact.stiffness", &value.span());
+                src.note(&key("stiffness"), &value.span());
                 Ok(spec)
             },
         )?,
     };
-    let exponent_given = raw.exponent.as_ref().map(|n| number(src, "contact.exponent", n));
+    let exponent_given = raw.exponent.as_ref().map(|n| number(src, &key("exponent"), n));
     let separation = match &raw.separation {
         None => Separation::Penetration,
         Some(s) => match s.get_ref().as_str() {
@@ -317,26 +600,26 @@ fn contact_spec(src: &Source, raw: &At<RawContact>) -> Checked<ContactSpec> {
             "force" => Separation::Force,
             other => {
                 return Err(src.error(
-                    "contact.separation",
+                    &key("separation"),
                     Some(&s.span()),
                     format!("expected \"penetration\" or \"force\", got \"{}\"", cut(other)),
                 ));
             }
         },
     };
-    let friction = raw.friction.as_ref().map_or(0.0, |f| number(src, "contact.friction", f));
+    let friction = raw.friction.as_ref().map_or(0.0, |f| number(src, &key("friction"), f));
     let tangential_stiffness = match &raw.tangential_stiffness {
         None => TangentialStiffnessSpec::Mindlin,
         Some(value) => match value.get_ref() {
             toml::Value::String(s) if s == "mindlin" => TangentialStiffnessSpec::Mindlin,
             toml::Value::Float(_) | toml::Value::Integer(_) => {
-                src.note("contact.tangential_stiffness", &value.span());
+                src.note(&key("tangential_stiffness"), &value.span());
                 let k = value.get_ref().as_float().or_else(|| value.get_ref().as_integer().map(|i| i as f64));
                 TangentialStiffnessSpec::Value(k.unwrap_or(f64::NAN))
             }
             other => {
                 return Err(src.error(
-                    "contact.tangential_stiffness",
+                    &key("tangential_stiffness"),
                     Some(&value.span()),
                     format!("expected \"mindlin\" or a number in N/m, got {}", cut(&other.to_string())),
                 ));
@@ -344,8 +627,8 @@ fn contact_spec(src: &Source, raw: &At<RawContact>) -> Checked<ContactSpec> {
         },
     };
     let tangential_damping =
-        raw.tangential_damping.as_ref().map_or(0.0, |c| number(src, "contact.tangential_damping", c));
-    let normal_given = raw.normal.as_ref().map(|n| vector(src, "contact.normal", n)).transpose()?;
+        raw.tangential_damping.as_ref().map_or(0.0, |c| number(src, &key("tangential_damping"), c));
+    let normal_given = raw.normal.as_ref().map(|n| vector(src, &key("normal"), n)).transpose()?;
     Ok(ContactSpec {
         law,
         damping,

@@ -1,0 +1,163 @@
+//! The readable report of a world run: the world and how it ended, the contacts (a line each), the bodies at the
+//! end, the energy balance, and the sequential instantaneous model beside the simulation. Every number comes from the
+//! [`WorldReport`].
+
+use super::table::{Section, layout};
+use super::units::{engineering, plain, plain_digits, short};
+use crate::report::Vec3;
+use crate::report::world::{SequentialModel, WorldContact, WorldReport};
+
+/// How many contacts the table lists one by one before it shows only the first and the last ones.
+const LISTED: usize = 24;
+
+/// The report as aligned text.
+pub fn render(report: &WorldReport) -> String {
+    let mut sections = vec![world(report)];
+    sections.push(contacts(report));
+    sections.push(bodies(report));
+    sections.push(energy(report));
+    sections.push(sequential(report));
+    sections.push(solver(report));
+    layout(&report.title, &sections, &report.notes)
+}
+
+fn vector(v: &Vec3, unit: &str) -> String {
+    let scale = v.iter().map(|x| x.abs()).fold(0.0, f64::max);
+    let (factor, prefix) = super::units::prefix_for(scale);
+    let shown: Vec<String> = v.iter().map(|x| short(x / factor)).collect();
+    format!("[{}] {prefix}{unit}", shown.join(", "))
+}
+
+fn world(report: &WorldReport) -> Section {
+    let w = &report.world;
+    let mut section = Section::new("world");
+    section.row("gravity", vector(&w.gravity, "m/s²"));
+    let why = match w.end_reason {
+        "end_time" => "its end time",
+        "max_contacts" => "its number of contacts (max_contacts)",
+        "no_more_contacts" => "no two bodies can touch any more",
+        "at_rest" => "the bodies came to rest",
+        "step_budget" => "the step budget was spent",
+        other => other,
+    };
+    section.row("the run ended at", format!("t = {} ({why})", engineering(w.end_time, "s")));
+    section.row("contacts", format!("{}", w.contacts));
+    section.row("damping map of successive contacts", w.damping_map);
+    section
+}
+
+/// One line per contact: when, how long, how fast, e, the peak force, which others overlapped it.
+fn contacts(report: &WorldReport) -> Section {
+    let mut section = Section::new("contacts (times in the scene's time; e by velocities and by impulses)");
+    let count = report.contacts.len();
+    let shown: Vec<usize> =
+        if count <= LISTED { (0..count).collect() } else { (0..LISTED - 6).chain(count - 5..count).collect() };
+    let mut previous = None;
+    for index in shown {
+        if previous.is_some_and(|p: usize| index > p + 1) {
+            section.heading(format!("... {} more ...", index - previous.unwrap_or(0) - 1));
+        }
+        previous = Some(index);
+        section.row(
+            format!("{index}: bodies {} and {}", report.contacts[index].bodies[0], report.contacts[index].bodies[1]),
+            line(&report.contacts[index]),
+        );
+    }
+    if count == 0 {
+        section.heading("none");
+    }
+    section
+}
+
+fn line(c: &WorldContact) -> String {
+    let e = |value: Option<f64>| value.map_or("-".to_string(), plain);
+    let duration =
+        c.duration.map_or_else(|| "still in contact".to_string(), |d| format!("for {}", engineering(d, "s")));
+    let overlap = if c.overlapping.is_empty() {
+        String::new()
+    } else {
+        let list: Vec<String> = c.overlapping.iter().map(usize::to_string).collect();
+        format!(", overlapping {}", list.join(", "))
+    };
+    format!(
+        "at {} {duration}, approach {}, e {} / {}, peak {}{overlap}",
+        engineering(c.start_time, "s"),
+        engineering(c.approach_speed, "m/s"),
+        e(c.restitution_velocity_ratio),
+        e(c.restitution_impulse_ratio),
+        engineering(c.max_force, "N"),
+    )
+}
+
+fn bodies(report: &WorldReport) -> Section {
+    let mut section = Section::new("bodies (before, and when the run ended)");
+    for body in &report.bodies {
+        let mass = if body.mass.is_infinite() { "immovable".into() } else { engineering(body.mass, "kg") };
+        let radius =
+            if body.radius.is_infinite() { "flat".into() } else { format!("radius {}", engineering(body.radius, "m")) };
+        section.heading(format!("{}: {mass}, {radius}", body.name));
+        section.row("  position before", vector(&body.position_before, "m"));
+        section.row("  position after", vector(&body.position_after, "m"));
+        section.row("  velocity before", vector(&body.velocity_before, "m/s"));
+        section.row("  velocity after", vector(&body.velocity_after, "m/s"));
+    }
+    section
+}
+
+fn energy(report: &WorldReport) -> Section {
+    let e = &report.energy;
+    let mut section = Section::new("energy (the whole run)");
+    section.row("kinetic energy before", engineering(e.kinetic_before, "J"));
+    section.row("work of gravity", engineering(e.gravity_work, "J"));
+    if e.work_of_immovable_bodies != 0.0 {
+        section.row("work done by immovable bodies", engineering(e.work_of_immovable_bodies, "J"));
+    }
+    section.row("kinetic energy after", engineering(e.kinetic_after, "J"));
+    section.row("dissipated by damping", engineering(e.dissipated, "J"));
+    if e.elastic_stored_at_end != 0.0 {
+        section.row("elastic energy stored at the end", engineering(e.elastic_stored_at_end, "J"));
+    }
+    section.row(
+        "balance (in - out) / largest energy",
+        if e.balance == 0.0 { "0".into() } else { plain_digits(e.balance, 2) },
+    );
+    section
+}
+
+fn sequential(report: &WorldReport) -> Section {
+    let mut section = Section::new("the textbook's sequential model: each contact alone, instantaneous, in order");
+    let mut model = |with: &str, model: &Option<SequentialModel>| {
+        let Some(model) = model else {
+            section.heading(format!("{with}: not formed (a pair has no nominal e)"));
+            return;
+        };
+        section.heading(with.to_string());
+        for (body, v) in report.bodies.iter().zip(&model.velocity_after) {
+            if body.mass.is_finite() {
+                section.row(format!("  velocity after, {}", body.name), vector(v, "m/s"));
+            }
+        }
+        section.row("  largest difference from simulation", format!("{} m/s", short(model.max_velocity_difference)));
+    };
+    model("with each pair's nominal e", &report.sequential.nominal);
+    model("with each contact's simulated e", &report.sequential.simulated_e);
+    section
+}
+
+fn solver(report: &WorldReport) -> Section {
+    let s = &report.solver;
+    let mut section = Section::new("solver");
+    section.row(
+        s.method,
+        format!(
+            "rtol {}, atol {}: {} steps ({} rejected), {} force evaluations, {}",
+            short(s.rtol),
+            short(s.atol),
+            s.steps,
+            s.rejected_steps,
+            s.force_evaluations,
+            engineering(s.wall_time_s, "s")
+        ),
+    );
+    section
+}

@@ -1,0 +1,428 @@
+//! The report of a world run (docs/report.md#world-runs): the world, every contact with the keys of one impact's
+//! contact section, the bodies' final state, one energy balance for the whole run, and the sequential instantaneous
+//! model beside the simulation. Built here, from the driver's outcome alone.
+
+use super::{Vec3, maybe_infinite};
+use crate::law::Separation;
+use crate::scene::{DampingSpec, WorldScene};
+use crate::world::record::{ContactRecord, WorldOutcome};
+use crate::world::sequential::{Sequential, sequential};
+use nalgebra::Vector3;
+use serde::Serialize;
+
+/// Everything a world run measured.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct WorldReport {
+    pub title: String,
+    pub world: WorldSection,
+    /// Every contact, in order of first touch.
+    pub contacts: Vec<WorldContact>,
+    pub bodies: Vec<WorldBody>,
+    pub energy: WorldEnergy,
+    /// The textbook's answer: each contact alone and instantaneous, in the order they began.
+    pub sequential: SequentialReport,
+    pub solver: WorldSolver,
+    /// Plain-language remarks.
+    pub notes: Vec<String>,
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct WorldSection {
+    /// m/s².
+    pub gravity: Vec3,
+    /// "end_time", "max_contacts", "no_more_contacts", "at_rest" (or "step_budget", an addition).
+    pub end_reason: &'static str,
+    /// Scene time when the run stopped, s.
+    pub end_time: f64,
+    /// How many contacts the run had.
+    pub contacts: usize,
+    /// How a damping map that depends on the approach speed applied to successive contacts (an addition):
+    /// "each-contact" or "first-contact".
+    pub damping_map: &'static str,
+}
+
+/// One contact: the keys of one impact's `contact` section (times in scene time), with its pair and motion.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct WorldContact {
+    /// Scene indices [i, j]; the normal points from body i to body j.
+    pub bodies: [usize; 2],
+    /// The law's name (an addition).
+    pub law: &'static str,
+    /// The damping parameter it used, in the law's units (an addition).
+    pub damping: f64,
+    /// The speed its damping map was read at, m/s (an addition; docs/world.md#damping-of-successive-contacts).
+    pub damping_map_speed: f64,
+    /// Unit normal at first touch.
+    pub normal: Vec3,
+    /// (v_i - v_j)·n at first touch, m/s.
+    pub approach_speed: f64,
+    /// Whether the bodies were already touching when the contact began (pushed together by another contact or by
+    /// gravity rather than closing a gap): its velocity ratio is then null.
+    pub pushed: bool,
+    pub start_time: f64,
+    pub max_compression_time: f64,
+    pub max_force_time: f64,
+    pub end_time: Option<f64>,
+    pub duration: Option<f64>,
+    /// m.
+    pub max_penetration: f64,
+    /// N.
+    pub max_force: f64,
+    /// V0: the normal velocity both bodies share at the deepest penetration, m/s.
+    pub common_normal_velocity: f64,
+    /// ∫ F dt to the deepest penetration, N s.
+    pub deformation_impulse: f64,
+    /// ∫ F dt from there to the end, N s.
+    pub restitution_impulse: Option<f64>,
+    pub restitution_impulse_ratio: Option<f64>,
+    /// Separation speed / approach speed; null also for a contact whose bodies began it already touching (pushed).
+    pub restitution_velocity_ratio: Option<f64>,
+    pub restitution_energy: Option<f64>,
+    pub separated: bool,
+    /// [v_i, v_j] at first touch, m/s.
+    pub velocities_before: [Vec3; 2],
+    /// [v_i, v_j] at separation, m/s.
+    pub velocities_after: Option<[Vec3; 2]>,
+    /// Indices of the other contacts active during this one.
+    pub overlapping: Vec<usize>,
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct WorldBody {
+    pub name: String,
+    #[serde(serialize_with = "maybe_infinite")]
+    pub mass: f64,
+    #[serde(serialize_with = "maybe_infinite")]
+    pub radius: f64,
+    pub velocity_before: Vec3,
+    pub position_before: Vec3,
+    /// At the end of the run.
+    pub velocity_after: Vec3,
+    pub angular_velocity_after: Vec3,
+    pub position_after: Vec3,
+}
+
+/// Energies of the whole run, J. `kinetic_before + gravity_work + work_of_immovable_bodies = kinetic_after +
+/// dissipated + elastic_stored_at_end`.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct WorldEnergy {
+    pub kinetic_before: f64,
+    pub kinetic_after: f64,
+    /// Work of the contacts' damping.
+    pub dissipated: f64,
+    /// Work of gravity on the bodies of finite mass, Σ m g·(x_end - x_start).
+    pub gravity_work: f64,
+    pub work_of_immovable_bodies: f64,
+    /// Spring energy in the contacts still active at the end, plus what contacts ended by their force left in their
+    /// spring.
+    pub elastic_stored_at_end: f64,
+    /// (in - out) / the largest energy in play (an addition): the balance's closure.
+    pub balance: f64,
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct SequentialReport {
+    /// With each pair's nominal e; null when a pair has none (its damping given as a parameter).
+    pub nominal: Option<SequentialModel>,
+    /// With each contact's simulated e (its velocity ratio; its impulse ratio for a contact that began without
+    /// approach).
+    pub simulated_e: Option<SequentialModel>,
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct SequentialModel {
+    /// One vector per body, m/s.
+    pub velocity_after: Vec<Vec3>,
+    /// Largest |simulated - sequential| velocity component, m/s.
+    pub max_velocity_difference: f64,
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct WorldSolver {
+    pub method: &'static str,
+    pub rtol: f64,
+    pub atol: f64,
+    pub steps: u64,
+    pub rejected_steps: u64,
+    pub force_evaluations: u64,
+    pub wall_time_s: f64,
+}
+
+fn vec3(v: &Vector3<f64>) -> Vec3 {
+    [v.x, v.y, v.z]
+}
+
+/// The report of a world run.
+pub fn build(scene: &WorldScene, outcome: &WorldOutcome, wall_time: f64) -> WorldReport {
+    let contacts: Vec<WorldContact> = outcome.contacts.iter().map(contact).collect();
+    let bodies = scene
+        .bodies
+        .iter()
+        .zip(&outcome.bodies)
+        .map(|(body, end)| WorldBody {
+            name: body.name.clone(),
+            mass: body.mass,
+            radius: body.radius,
+            velocity_before: vec3(&body.velocity),
+            position_before: vec3(&body.position.unwrap_or_default()),
+            velocity_after: vec3(&end.velocity),
+            angular_velocity_after: vec3(&body.angular_velocity),
+            position_after: vec3(&end.position),
+        })
+        .collect();
+    let nominal = |record: &ContactRecord| {
+        let (spec, _) = scene.contact_of(record.bodies[0], record.bodies[1]);
+        match spec.damping {
+            DampingSpec::None => Some(1.0),
+            DampingSpec::Restitution(e) => Some(e),
+            DampingSpec::Parameter(_) => None,
+        }
+    };
+    let simulated = |record: &ContactRecord| {
+        let c = contact(record);
+        c.restitution_velocity_ratio.or(c.restitution_impulse_ratio).or_else(|| nominal(record))
+    };
+    let model = |model: Option<Sequential>| {
+        model.map(|s| SequentialModel {
+            velocity_after: s.velocity_after.iter().map(vec3).collect(),
+            max_velocity_difference: s.max_velocity_difference,
+        })
+    };
+    let mut notes = outcome.notes.clone();
+    let pushed: Vec<String> =
+        outcome.contacts.iter().enumerate().filter(|(_, r)| r.pushed).map(|(k, _)| k.to_string()).collect();
+    if !pushed.is_empty() {
+        notes.push(format!(
+            "contact{} {} began with the bodies already touching, pushed together rather than closing a gap: {} \
+             velocity ratio is undefined (null), and {} impulse ratio stands for e in the sequential model",
+            if pushed.len() > 1 { "s" } else { "" },
+            shorten(&pushed),
+            if pushed.len() > 1 { "their" } else { "its" },
+            if pushed.len() > 1 { "their" } else { "its" },
+        ));
+    }
+    WorldReport {
+        title: scene.title.clone(),
+        world: WorldSection {
+            gravity: vec3(&scene.world.gravity),
+            end_reason: outcome.end_reason.name(),
+            end_time: outcome.end_time,
+            contacts: contacts.len(),
+            damping_map: scene.world.damping_map.name(),
+        },
+        contacts,
+        bodies,
+        energy: energy(scene, outcome),
+        sequential: SequentialReport {
+            nominal: model(sequential(scene, outcome, nominal)),
+            simulated_e: model(sequential(scene, outcome, simulated)),
+        },
+        solver: WorldSolver {
+            method: outcome.method,
+            rtol: scene.solver.tolerances.rtol,
+            atol: scene.solver.tolerances.atol,
+            steps: outcome.counters.steps,
+            rejected_steps: outcome.counters.rejected_steps,
+            force_evaluations: outcome.counters.evaluations,
+            wall_time_s: wall_time,
+        },
+        notes,
+    }
+}
+
+/// A list of indices, its middle left out when long.
+fn shorten(items: &[String]) -> String {
+    if items.len() <= 8 {
+        items.join(", ")
+    } else {
+        format!("{}, ... ({} in all), {}", items[..4].join(", "), items.len(), items[items.len() - 2..].join(", "))
+    }
+}
+
+/// One contact's report values from its record.
+fn contact(record: &ContactRecord) -> WorldContact {
+    let max = record.max_compression.expect("every recorded contact has a deepest point");
+    let end = record.end.as_ref();
+    let separated = end.is_some();
+    let (peak_time, peak) = record.peak_force.unwrap_or((record.start_time, 0.0));
+    let restitution_impulse = end.map(|e| e.impulse - max.impulse);
+    let ratio = |numerator: f64, denominator: f64| (denominator > 0.0).then(|| numerator / denominator);
+    WorldContact {
+        bodies: record.bodies,
+        law: record.law.kind.name(),
+        damping: record.law.damping,
+        damping_map_speed: record.map_speed,
+        normal: vec3(&record.normal),
+        approach_speed: record.approach_speed,
+        pushed: record.pushed,
+        start_time: record.start_time,
+        max_compression_time: max.time,
+        max_force_time: peak_time,
+        end_time: end.map(|e| e.time),
+        duration: end.map(|e| e.time - record.start_time),
+        max_penetration: max.penetration,
+        max_force: peak,
+        common_normal_velocity: max.common_normal_velocity,
+        deformation_impulse: max.impulse,
+        restitution_impulse,
+        restitution_impulse_ratio: restitution_impulse.and_then(|r| ratio(r, max.impulse)),
+        restitution_velocity_ratio: end.filter(|_| !record.pushed).and_then(|e| ratio(-e.rate, record.approach_speed)),
+        restitution_energy: end.and_then(|e| ratio((max.work - e.work).max(0.0), max.work)).map(f64::sqrt),
+        separated,
+        velocities_before: [vec3(&record.velocities_before[0]), vec3(&record.velocities_before[1])],
+        velocities_after: end.map(|e| [vec3(&e.velocities[0]), vec3(&e.velocities[1])]),
+        overlapping: record.overlapping.iter().copied().collect(),
+    }
+}
+
+/// The run's energy balance.
+fn energy(scene: &WorldScene, outcome: &WorldOutcome) -> WorldEnergy {
+    let g = scene.world.gravity;
+    let mut kinetic_before = 0.0;
+    let mut kinetic_after = 0.0;
+    let mut gravity_work = 0.0;
+    for (body, end) in scene.bodies.iter().zip(&outcome.bodies) {
+        if body.is_immovable() {
+            continue;
+        }
+        kinetic_before += body.kinetic_energy(&body.velocity, &body.angular_velocity);
+        kinetic_after += body.kinetic_energy(&end.velocity, &body.angular_velocity);
+        gravity_work += body.mass * g.dot(&(end.position - body.position.unwrap_or_default()));
+    }
+    let mut dissipated = 0.0;
+    let mut elastic = 0.0;
+    for record in &outcome.contacts {
+        match (&record.end, record.at_stop) {
+            (Some(end), _) => {
+                dissipated += end.dissipated;
+                if record.separation == Separation::Force {
+                    elastic += end.elastic_left;
+                }
+            }
+            (None, Some((_, _, lost, stored))) => {
+                dissipated += lost;
+                elastic += stored;
+            }
+            (None, None) => {}
+        }
+    }
+    let work = outcome.immovable_work;
+    let supplied = kinetic_before + gravity_work + work;
+    let used = kinetic_after + dissipated + elastic;
+    let largest = [kinetic_before, kinetic_after, gravity_work.abs(), work.abs(), dissipated, elastic]
+        .into_iter()
+        .fold(0.0, f64::max);
+    WorldEnergy {
+        kinetic_before,
+        kinetic_after,
+        dissipated,
+        gravity_work,
+        work_of_immovable_bodies: work,
+        elastic_stored_at_end: elastic,
+        balance: if largest > 0.0 { (supplied - used) / largest } else { 0.0 },
+    }
+}
+
+/// The report of a world of two bodies without gravity, from today's report of its one impact: the contact's values
+/// are that impact's, to the bit (docs/world.md#two-bodies).
+pub fn from_impact(scene: &WorldScene, impact: &super::Report) -> WorldReport {
+    let c = &impact.contact;
+    let velocities = |after: bool| {
+        let v = |i: usize| {
+            let body = &impact.bodies[i];
+            if after { body.velocity_after.unwrap_or(body.velocity_before) } else { body.velocity_before }
+        };
+        [v(0), v(1)]
+    };
+    let contact = WorldContact {
+        bodies: [0, 1],
+        law: impact.law.name,
+        damping: impact.law.damping,
+        damping_map_speed: impact.approach_speed,
+        normal: impact.normal,
+        approach_speed: impact.approach_speed,
+        pushed: false,
+        start_time: c.start_time,
+        max_compression_time: c.max_compression_time,
+        max_force_time: c.max_force_time,
+        end_time: c.end_time,
+        duration: c.duration,
+        max_penetration: c.max_penetration,
+        max_force: c.max_force,
+        common_normal_velocity: c.common_normal_velocity,
+        deformation_impulse: c.deformation_impulse,
+        restitution_impulse: c.restitution_impulse,
+        restitution_impulse_ratio: c.restitution_impulse_ratio,
+        restitution_velocity_ratio: c.restitution_velocity_ratio,
+        restitution_energy: c.restitution_energy,
+        separated: c.separated,
+        velocities_before: velocities(false),
+        velocities_after: c.separated.then(|| velocities(true)),
+        overlapping: Vec::new(),
+    };
+    let bodies = scene
+        .bodies
+        .iter()
+        .zip(&impact.bodies)
+        .map(|(body, report)| WorldBody {
+            name: body.name.clone(),
+            mass: body.mass,
+            radius: body.radius,
+            velocity_before: report.velocity_before,
+            position_before: vec3(&body.position.unwrap_or_default()),
+            velocity_after: report.velocity_after.unwrap_or(report.velocity_before),
+            angular_velocity_after: report.angular_velocity_after.unwrap_or(report.angular_velocity_before),
+            position_after: report.position_at_separation.unwrap_or(report.position_at_first_contact),
+        })
+        .collect();
+    let e = &impact.energy;
+    let (after, dissipated, left, work) = (
+        e.kinetic_after.unwrap_or(f64::NAN),
+        e.dissipated.unwrap_or(f64::NAN),
+        e.elastic_left_at_separation.unwrap_or(f64::NAN),
+        e.work_of_immovable_bodies.unwrap_or(0.0),
+    );
+    let largest = [e.kinetic_before, after, work.abs(), dissipated, left].into_iter().fold(0.0, f64::max);
+    let model = |ideal: &Option<super::InstantaneousReport>| {
+        ideal.as_ref().map(|ideal| SequentialModel {
+            velocity_after: ideal.velocity_after.to_vec(),
+            max_velocity_difference: ideal.max_velocity_difference.unwrap_or(f64::NAN),
+        })
+    };
+    let s = &impact.solver;
+    WorldReport {
+        title: scene.title.clone(),
+        world: WorldSection {
+            gravity: [0.0; 3],
+            end_reason: "no_more_contacts",
+            end_time: c.end_time.unwrap_or(c.start_time),
+            contacts: 1,
+            damping_map: scene.world.damping_map.name(),
+        },
+        contacts: vec![contact],
+        bodies,
+        energy: WorldEnergy {
+            kinetic_before: e.kinetic_before,
+            kinetic_after: after,
+            dissipated,
+            gravity_work: 0.0,
+            work_of_immovable_bodies: work,
+            elastic_stored_at_end: left,
+            balance: if largest > 0.0 { (e.kinetic_before + work - after - dissipated - left) / largest } else { 0.0 },
+        },
+        sequential: SequentialReport {
+            nominal: model(&impact.instantaneous_nominal),
+            simulated_e: model(&impact.instantaneous),
+        },
+        solver: WorldSolver {
+            method: s.method,
+            rtol: s.rtol,
+            atol: s.atol,
+            steps: s.steps,
+            rejected_steps: s.rejected_steps,
+            force_evaluations: s.force_evaluations,
+            wall_time_s: s.wall_time_s,
+        },
+        notes: impact.notes.clone(),
+    }
+}

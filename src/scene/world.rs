@@ -1,0 +1,153 @@
+//! A world run's scene (docs/scene.md#worlds): any number of bodies, a `[world]` table (gravity, when to stop) and
+//! `[[pair]]` tables that give a pair of bodies contact keys of its own. Every pair that can touch is checked as the
+//! two-body scene it makes (the same value rules, the same law rules), with the keys at fault renamed to where they
+//! are written.
+
+use super::{ContactSpec, OutputSpec, Scene, SolverSpec};
+use crate::body::Body;
+use crate::setup::SetupError;
+use nalgebra::Vector3;
+
+/// A validated world scene (SI units).
+#[derive(Debug, Clone, PartialEq)]
+pub struct WorldScene {
+    /// Title for reports and figures (defaults to the file's stem).
+    pub title: String,
+    /// The bodies, in scene order (0-based indices in `[[pair]]` and in the report).
+    pub bodies: Vec<Body>,
+    /// The unit face normal of each flat body (pointing from the wall into the side the other bodies move in);
+    /// `None` for a sphere.
+    pub faces: Vec<Option<Vector3<f64>>>,
+    /// The contact of every pair without a `[[pair]]` of its own.
+    pub contact: ContactSpec,
+    /// Pairs with their own contact keys.
+    pub pairs: Vec<PairSpec>,
+    pub world: WorldSpec,
+    pub solver: SolverSpec,
+    pub output: OutputSpec,
+}
+
+/// A `[[pair]]`: two bodies and their contact (the scene's `[contact]` with the pair's keys over it).
+#[derive(Debug, Clone, PartialEq)]
+pub struct PairSpec {
+    pub bodies: [usize; 2],
+    pub contact: ContactSpec,
+    /// The contact keys the pair itself writes (the others come from `[contact]`).
+    pub written: Vec<&'static str>,
+}
+
+/// The `[world]` table.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct WorldSpec {
+    /// Uniform acceleration of every body of finite mass, m/s².
+    pub gravity: Vector3<f64>,
+    /// Scene time at which the run stops, s.
+    pub end_time: Option<f64>,
+    /// The run stops when this many contacts have ended.
+    pub max_contacts: u64,
+    /// How a damping map that depends on the approach speed applies to a pair's successive contacts.
+    pub damping_map: DampingMap,
+}
+
+/// How a law's damping follows from a nominal e when its map depends on the approach speed (the hysteresis family:
+/// alpha = chi(e)/v0).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum DampingMap {
+    /// Each contact maps e at its own approach speed: every impact of the pair has the nominal e (a DEM code's
+    /// constant e).
+    #[default]
+    EachContact,
+    /// The pair's first contact fixes the damping, a material constant: later, slower impacts are livelier.
+    FirstContact,
+}
+
+impl DampingMap {
+    /// Every choice, by its scene spelling.
+    pub const ALL: [(&'static str, DampingMap); 2] =
+        [("each-contact", DampingMap::EachContact), ("first-contact", DampingMap::FirstContact)];
+
+    /// The scene spelling.
+    pub fn name(self) -> &'static str {
+        DampingMap::ALL.iter().find(|(_, m)| *m == self).map_or("each-contact", |(name, _)| name)
+    }
+}
+
+/// The most contacts a run may be asked to end after (it streams what it writes, so this bounds time, not memory).
+pub const MAX_CONTACTS_LIMIT: u64 = 1_000_000_000;
+
+/// The default of `[world] max_contacts`.
+pub const DEFAULT_MAX_CONTACTS: u64 = 1000;
+
+impl Default for WorldSpec {
+    fn default() -> Self {
+        WorldSpec {
+            gravity: Vector3::zeros(),
+            end_time: None,
+            max_contacts: DEFAULT_MAX_CONTACTS,
+            damping_map: DampingMap::EachContact,
+        }
+    }
+}
+
+impl WorldScene {
+    /// Re-derives what follows from written values (masses from densities, inertias, exponents).
+    pub fn resolve(&mut self) {
+        for body in &mut self.bodies {
+            body.resolve();
+        }
+        self.contact.resolve();
+        for pair in &mut self.pairs {
+            pair.contact.resolve();
+        }
+        for face in self.faces.iter_mut().flatten() {
+            let length = face.norm();
+            if length > 0.0 && length.is_finite() {
+                *face /= length;
+            }
+        }
+    }
+
+    /// The contact of bodies `i` and `j`: their `[[pair]]`'s, or the scene's `[contact]`; with the index of the pair.
+    pub fn contact_of(&self, i: usize, j: usize) -> (&ContactSpec, Option<usize>) {
+        let found = self.pairs.iter().position(|p| p.bodies == [i, j] || p.bodies == [j, i]);
+        match found {
+            Some(k) => (&self.pairs[k].contact, Some(k)),
+            None => (&self.contact, None),
+        }
+    }
+
+    /// Whether bodies `i` and `j` can ever touch: not two immovable bodies, not two flat ones.
+    pub fn interacts(&self, i: usize, j: usize) -> bool {
+        let (a, b) = (&self.bodies[i], &self.bodies[j]);
+        i != j && !(a.is_immovable() && b.is_immovable()) && !(a.is_flat() && b.is_flat())
+    }
+
+    /// The two-body scene of bodies `i` and `j` (in that order) with their contact: what the value and law rules
+    /// check, and what a world of two bodies without gravity runs as today's impact.
+    pub fn pair_scene(&self, i: usize, j: usize) -> Scene {
+        let (contact, _) = self.contact_of(i, j);
+        Scene {
+            title: self.title.clone(),
+            bodies: [self.bodies[i].clone(), self.bodies[j].clone()],
+            contact: contact.clone(),
+            solver: self.solver,
+            output: OutputSpec::default(),
+        }
+    }
+
+    /// A broken rule of the pair scene of bodies `i` and `j`, renamed to the world's keys: `bodies.0` and `bodies.1`
+    /// become the bodies' own indices, and a contact key the pair writes becomes `pair.K.key`.
+    pub fn rename(&self, i: usize, j: usize, error: SetupError) -> SetupError {
+        let (_, pair) = self.contact_of(i, j);
+        let key = if let Some(rest) = error.key.strip_prefix("bodies.0.") {
+            format!("bodies.{i}.{rest}")
+        } else if let Some(rest) = error.key.strip_prefix("bodies.1.") {
+            format!("bodies.{j}.{rest}")
+        } else if let (Some(leaf), Some(k)) = (error.key.strip_prefix("contact."), pair) {
+            if self.pairs[k].written.contains(&leaf) { format!("pair.{k}.{leaf}") } else { error.key.clone() }
+        } else {
+            error.key.clone()
+        };
+        SetupError { key, message: error.message }
+    }
+}

@@ -1,0 +1,545 @@
+//! The event-driven world: free flight in closed form until two bodies touch, then the island of the bodies that
+//! active contacts couple, integrated until a contact begins or ends, and so on until the run's end
+//! (docs/world.md#the-driver).
+//!
+//! Every contact is located as one impact's is: its first touch exactly in flight (a root of the flight's polynomial)
+//! or, inside an island, as an event on the solution (a watched pair's gap falling through zero); its maximum
+//! compression, force peak and separation as events of its own. A segment of an island ends at the first contact
+//! that begins or ends; contacts that begin or end at that same instant (a symmetric arrangement) are taken then too.
+
+use super::flight::{Kinematic, Meeting, acceleration, first_touch};
+use super::island::{ActiveContact, Island, Units};
+use super::record::{Compression, ContactRecord, EndReason, Ending as ContactEnding, WorldOutcome};
+use crate::integrate::{Counters, Direction, Ending, EventOf, IntegrationError, StepperOf, Tolerances};
+use crate::law::Separation;
+use crate::scene::{DampingMap, DampingSpec, WorldScene};
+use crate::setup::{SetupError, check_law, resolve_law};
+use nalgebra::{DVector, Dyn};
+use std::collections::BTreeSet;
+
+/// Why a world run could not be completed.
+#[derive(Debug, thiserror::Error)]
+pub enum WorldError {
+    /// A rule of the scene that only the run could check (a contact's law at its own speed), naming the key.
+    #[error("scene key `{}`: {}", .0.key, .0.message)]
+    Setup(SetupError),
+    #[error(transparent)]
+    Integration(#[from] IntegrationError),
+}
+
+/// The most accepted and rejected steps one world run may take over all its segments.
+pub const WORLD_STEP_BUDGET: u64 = 20_000_000;
+
+/// Scaled length of a segment, in the island's time units, after which it is restarted (a long resting contact
+/// goes on in fresh segments, each with its own step budget).
+const SEGMENT_TIME: f64 = 1e4;
+
+/// The motion energy about rest, in the island's energy unit, below which an island is at rest.
+pub const AT_REST: f64 = 1e-14;
+
+/// The run of a world scene.
+pub fn run(scene: &WorldScene) -> Result<WorldOutcome, WorldError> {
+    let mut world = World::new(scene);
+    world.go()?;
+    Ok(world.finish())
+}
+
+/// An event function of a segment, on the island's state.
+type EventFunction<'a> = Box<dyn Fn(&DVector<f64>) -> f64 + 'a>;
+
+/// What a terminal or watched event of a segment stands for.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Watched {
+    /// Contact (index among the active) ends: its separation function (or, ended by its force, also its
+    /// penetration) fell through zero.
+    Separation(usize),
+    /// Contact reaches a maximum of its penetration.
+    MaxCompression(usize),
+    /// Contact's force peaks.
+    ForcePeak(usize),
+    /// A watched pair touches (and whether it was touching already when the segment began: pushed together).
+    Touch(usize, usize, bool),
+    /// The island came to rest.
+    Rest,
+}
+
+/// The run's state between segments.
+struct World<'a> {
+    scene: &'a WorldScene,
+    /// Scene time, s.
+    time: f64,
+    /// Every body's state now.
+    states: Vec<Kinematic>,
+    active: Vec<ActiveContact>,
+    records: Vec<ContactRecord>,
+    /// The island's units while one exists.
+    units: Option<Units>,
+    /// The damping-map speed of each pair's first contact (first-contact maps).
+    first_speeds: std::collections::HashMap<[usize; 2], f64>,
+    ended: u64,
+    immovable_work: f64,
+    counters: Counters,
+    reason: Option<EndReason>,
+    notes: Vec<String>,
+    /// Whether the island's rest is watched (off once the run has passed it without stopping).
+    watch_rest: bool,
+}
+
+impl<'a> World<'a> {
+    fn new(scene: &'a WorldScene) -> Self {
+        let states = scene
+            .bodies
+            .iter()
+            .map(|b| Kinematic { position: b.position.unwrap_or_default(), velocity: b.velocity })
+            .collect();
+        World {
+            scene,
+            time: 0.0,
+            states,
+            active: Vec::new(),
+            records: Vec::new(),
+            units: None,
+            first_speeds: Default::default(),
+            ended: 0,
+            immovable_work: 0.0,
+            counters: Counters::default(),
+            reason: None,
+            notes: Vec::new(),
+            watch_rest: true,
+        }
+    }
+
+    /// The scene time left before `end_time` (infinite without one).
+    fn left(&self) -> f64 {
+        self.scene.world.end_time.map_or(f64::INFINITY, |end| end - self.time)
+    }
+
+    /// The pairs that can touch, each once (i < j).
+    fn pairs(&self) -> impl Iterator<Item = (usize, usize)> + '_ {
+        let n = self.scene.bodies.len();
+        (0..n).flat_map(move |i| (i + 1..n).map(move |j| (i, j))).filter(|&(i, j)| self.scene.interacts(i, j))
+    }
+
+    /// The tolerance (m) within which bodies `i` and `j` count as touching: the rounding of their positions.
+    fn touching(&self, i: usize, j: usize) -> f64 {
+        let size = |k: usize| {
+            let body = &self.scene.bodies[k];
+            let radius = if body.is_flat() { 0.0 } else { body.radius };
+            radius + self.states[k].position.abs().max()
+        };
+        64.0 * f64::EPSILON * (size(i) + size(j))
+    }
+
+    fn go(&mut self) -> Result<(), WorldError> {
+        while self.reason.is_none() {
+            if self.active.is_empty() {
+                self.fly()?;
+            } else {
+                self.segment()?;
+            }
+        }
+        Ok(())
+    }
+
+    /// Free flight to the next first touch (or the end), then the island it starts.
+    fn fly(&mut self) -> Result<(), WorldError> {
+        let g = self.scene.world.gravity;
+        let left = self.left();
+        let mut next: Option<f64> = None;
+        let mut touches: Vec<(usize, usize, f64)> = Vec::new();
+        for (i, j) in self.pairs() {
+            let (a, b) = (&self.scene.bodies[i], &self.scene.bodies[j]);
+            let meeting = Meeting::of(self.scene, i, j);
+            let (ga, gb) = (acceleration(a, &g), acceleration(b, &g));
+            let tolerance = crate::geometry::TOUCH_TOLERANCE * a.radius.min(b.radius);
+            if let Some(t) = first_touch(&meeting, &self.states[i], &self.states[j], &ga, &gb, tolerance, left) {
+                touches.push((i, j, t));
+                next = Some(next.map_or(t, |n: f64| n.min(t)));
+            }
+        }
+        let Some(delay) = next.filter(|&t| t <= left) else {
+            let reason = if left.is_finite() { EndReason::EndTime } else { EndReason::NoMoreContacts };
+            if left.is_finite() {
+                self.advance(left);
+            }
+            self.reason = Some(reason);
+            return Ok(());
+        };
+        self.advance(delay);
+        // Every pair touching at that instant begins (a cradle's struck ball and its neighbour at once).
+        let instant = 1e-14 * self.time.abs().max(delay);
+        let starting: Vec<(usize, usize)> =
+            touches.iter().filter(|(_, _, t)| *t <= delay + instant).map(|&(i, j, _)| (i, j)).collect();
+        self.units = None;
+        for (i, j) in starting {
+            self.begin(i, j, None, false)?;
+        }
+        Ok(())
+    }
+
+    /// Moves every body through `delay` s of free flight.
+    fn advance(&mut self, delay: f64) {
+        let g = self.scene.world.gravity;
+        for (state, body) in self.states.iter_mut().zip(&self.scene.bodies) {
+            *state = state.after(delay, &acceleration(body, &g));
+        }
+        self.time += delay;
+    }
+
+    /// Begins the contact of bodies `i` and `j` now (their states current): resolves its law, records its first
+    /// touch. `island` is the speed unit of the island it begins in, if any (the floor of its damping map's speed).
+    fn begin(&mut self, i: usize, j: usize, island: Option<f64>, pushed: bool) -> Result<(), WorldError> {
+        let scene = self.scene;
+        let (a, b) = (&scene.bodies[i], &scene.bodies[j]);
+        let (spec, _) = scene.contact_of(i, j);
+        let meeting = Meeting::of(scene, i, j);
+        let relative = self.states[j].position - self.states[i].position;
+        let (_, normal) = meeting.penetration(&relative);
+        let approach = (self.states[i].velocity - self.states[j].velocity).dot(&normal).max(0.0);
+        let effective_mass = crate::geometry::effective_mass(a, b).expect("interacting bodies are not both immovable");
+        let rename = |error: SetupError| WorldError::Setup(scene.rename(i, j, error));
+        // The damping map's speed: the approach speed, but never below the island's speed (a contact pushed into
+        // being) or the speed of a resting contact under gravity, sqrt(g d_s) (d_s its static penetration).
+        let stiffness = resolve_law(spec, [a, b], effective_mass, 1.0).map_err(rename)?.stiffness;
+        let g = scene.world.gravity.norm();
+        let resting = if g > 0.0 {
+            let static_penetration = (effective_mass * g / stiffness).powf(1.0 / spec.exponent);
+            (g * static_penetration).sqrt()
+        } else {
+            0.0
+        };
+        let floor = island.unwrap_or(0.0).max(resting);
+        let mut map_speed = approach.max(floor);
+        let maps_by_speed = matches!(spec.damping, DampingSpec::Restitution(_));
+        if maps_by_speed && scene.world.damping_map == DampingMap::FirstContact {
+            map_speed = *self.first_speeds.entry([i, j]).or_insert(map_speed);
+        }
+        if map_speed.is_nan() || map_speed <= 0.0 {
+            // Touching at rest without gravity, outside any island: nothing to map from; such a pair is not begun.
+            return Ok(());
+        }
+        let law = resolve_law(spec, [a, b], effective_mass, map_speed).map_err(rename)?;
+        check_law(spec, [a, b], &law, effective_mass, map_speed).map_err(rename)?;
+        if self.units.is_none() {
+            self.units = Some(Units::new(effective_mass, law.stiffness, law.exponent, map_speed));
+        }
+        let index = self.records.len();
+        let mut overlapping = BTreeSet::new();
+        for other in &self.active {
+            overlapping.insert(other.record);
+            self.records[other.record].overlapping.insert(index);
+        }
+        self.records.push(ContactRecord {
+            bodies: [i, j],
+            law,
+            separation: spec.separation,
+            map_speed,
+            start_time: self.time,
+            normal,
+            approach_speed: approach,
+            pushed,
+            velocities_before: [self.states[i].velocity, self.states[j].velocity],
+            max_compression: None,
+            peak_force: None,
+            end: None,
+            at_stop: None,
+            overlapping,
+        });
+        let on_force = spec.separation == Separation::Force && law.kind.can_turn_tensile();
+        self.active.push(ActiveContact {
+            record: index,
+            pair: [i, j],
+            meeting,
+            law,
+            on_force,
+            impulse: 0.0,
+            work: 0.0,
+            dissipated: 0.0,
+        });
+        self.watch_rest = true;
+        Ok(())
+    }
+
+    /// One segment of the island: integrates until a contact begins or ends (or the run's end), and takes it.
+    fn segment(&mut self) -> Result<(), WorldError> {
+        let scene = self.scene;
+        let units = self.units.expect("an island has units");
+        let start = self.states.clone();
+        let island = Island::new(scene, &start, self.active.clone(), units);
+        // The pairs watched for a first touch: every pair with a member that is not an active contact.
+        let active: BTreeSet<[usize; 2]> = self.active.iter().map(|c| c.pair).collect();
+        let watched: Vec<(usize, usize, Meeting, f64)> = self
+            .pairs()
+            .filter(|&(i, j)| !active.contains(&[i, j]) && (island.slot(i).is_some() || island.slot(j).is_some()))
+            .map(|(i, j)| {
+                let meeting = Meeting::of(scene, i, j);
+                // A pair touching at the start is watched from just inside the rounding of its positions, so that
+                // its gap starts open.
+                let y0 = island.initial_state();
+                let gap = -island.pair_state(i, j, &meeting, &y0).penetration;
+                let tolerance = self.touching(i, j);
+                let offset = if gap <= tolerance { (-gap).max(0.0) + tolerance } else { 0.0 };
+                (i, j, meeting, offset)
+            })
+            .collect();
+        let held = scene.bodies.iter().enumerate().all(|(k, b)| b.is_immovable() || island.slot(k).is_some());
+        let watch_rest = self.watch_rest && held;
+
+        let mut functions: Vec<EventFunction<'_>> = Vec::new();
+        let mut kinds: Vec<(Watched, bool)> = Vec::new();
+        let isl = &island;
+        for c in 0..isl.contacts.len() {
+            functions.push(Box::new(move |y| isl.separation_value(c, y)));
+            kinds.push((Watched::Separation(c), true));
+            if isl.contacts[c].on_force {
+                functions.push(Box::new(move |y| isl.contact_state(c, y).penetration / isl.units.length));
+                kinds.push((Watched::Separation(c), true));
+            }
+            functions.push(Box::new(move |y| isl.contact_state(c, y).rate / isl.units.speed));
+            kinds.push((Watched::MaxCompression(c), false));
+            functions.push(Box::new(move |y| {
+                let accelerations = isl.accelerations(y);
+                isl.force_rate(c, y, &accelerations) * isl.units.time / isl.units.force
+            }));
+            kinds.push((Watched::ForcePeak(c), false));
+        }
+        for (i, j, meeting, offset) in &watched {
+            let (i, j, offset) = (*i, *j, *offset);
+            functions
+                .push(Box::new(move |y| (offset - isl.pair_state(i, j, meeting, y).penetration) / isl.units.length));
+            kinds.push((Watched::Touch(i, j, offset > 0.0), true));
+        }
+        if watch_rest {
+            functions.push(Box::new(move |y| isl.motion_energy(y) / isl.units.energy - AT_REST));
+            kinds.push((Watched::Rest, true));
+        }
+        let events: Vec<EventOf<'_, Dyn>> = functions
+            .iter()
+            .zip(&kinds)
+            .map(|(f, &(_, terminal))| EventOf { function: f.as_ref(), direction: Direction::Falling, terminal })
+            .collect();
+
+        let requested = scene.solver.tolerances;
+        let tolerances = Tolerances { rtol: requested.rtol * 0.1, atol: requested.atol * 0.1 };
+        let mut stepper = StepperOf::new(&island, tolerances, false);
+        let horizon = (self.left() / units.time).min(SEGMENT_TIME);
+        let y0 = island.initial_state();
+        let end = stepper.run(0.0, y0, horizon, &events)?;
+        self.counters.steps += stepper.counters.steps;
+        self.counters.rejected_steps += stepper.counters.rejected_steps;
+        self.counters.evaluations += stepper.counters.evaluations;
+
+        // The located non-terminal events: maxima of penetration and force.
+        for crossing in &end.crossings {
+            let at = self.time + crossing.time * units.time;
+            match kinds[crossing.event].0 {
+                Watched::MaxCompression(c) => self.note_compression(&island, c, &crossing.state, at),
+                Watched::ForcePeak(c) => self.note_peak(&island, c, &crossing.state, at),
+                _ => {}
+            }
+        }
+        // The segment's end: every body's state, the contacts' integrals.
+        let y = &end.state;
+        for c in 0..island.contacts.len() {
+            // The force at the segment's ends may be the largest (a contact that begins or ends on a jump).
+            let at = self.time + end.time * units.time;
+            self.note_peak(&island, c, y, at);
+        }
+        for k in 0..scene.bodies.len() {
+            self.states[k] = Kinematic { position: island.position(k, y), velocity: island.velocity(k, y) };
+        }
+        for (c, contact) in self.active.iter_mut().enumerate() {
+            (contact.impulse, contact.work, contact.dissipated) = island.integrals(c, y);
+        }
+        self.immovable_work += island.immovable_work(y);
+        let now = self.time + end.time * units.time;
+        let segment_states: Vec<_> = (0..island.contacts.len()).map(|c| island.contact_state(c, y)).collect();
+        let motion = island.motion_energy(y);
+        drop(events);
+        drop(functions);
+        drop(island);
+        self.time = now;
+
+        match end.ending {
+            Ending::Event(index) => match kinds[index].0 {
+                Watched::Separation(c) => self.finish_contact(c, segment_states[c].rate)?,
+                Watched::Touch(i, j, pushed) => self.begin(i, j, Some(units.speed), pushed)?,
+                Watched::Rest => {
+                    self.reason = Some(EndReason::AtRest);
+                    self.notes.push(format!(
+                        "the bodies came to rest at t = {now:.6e} s: the energy of their motion about rest fell to \
+                         {:.1e} of M V² = {:.3e} J",
+                        motion / units.energy,
+                        units.energy
+                    ));
+                    return Ok(());
+                }
+                Watched::MaxCompression(_) | Watched::ForcePeak(_) => unreachable!("not terminal"),
+            },
+            Ending::TimeLimit => {
+                if self.left() <= 0.0 || (self.left() / units.time) <= horizon * (1.0 + 1e-12) && horizon < SEGMENT_TIME
+                {
+                    self.reason = Some(EndReason::EndTime);
+                    return Ok(());
+                }
+                // A long segment: go on in a fresh one.
+            }
+            Ending::GaveUp(why) => {
+                self.notes.push(format!("the integration stopped at t = {now:.6e} s: {why}"));
+                self.reason = Some(EndReason::StepBudget);
+                return Ok(());
+            }
+        }
+        if self.counters.steps + self.counters.rejected_steps > WORLD_STEP_BUDGET {
+            self.notes.push(format!("the run spent its budget of {WORLD_STEP_BUDGET} steps at t = {now:.6e} s"));
+            self.reason = Some(EndReason::StepBudget);
+            return Ok(());
+        }
+        self.settle_simultaneous(units.speed)?;
+        if self.ended >= scene.world.max_contacts && self.reason.is_none() {
+            self.reason = Some(EndReason::MaxContacts);
+        }
+        Ok(())
+    }
+
+    /// Contacts that end, and pairs that touch, at the very instant a segment ended (within the rounding of
+    /// positions): taken at once, each as its own event.
+    fn settle_simultaneous(&mut self, speed: f64) -> Result<(), WorldError> {
+        loop {
+            // (Without an active contact the island is gone: flight finds what touches next.)
+            if self.ended >= self.scene.world.max_contacts || self.active.is_empty() {
+                return Ok(());
+            }
+            let scene = self.scene;
+            let start = self.states.clone();
+            let units = self.units.expect("an island has units");
+            let island = Island::new(scene, &start, self.active.clone(), units);
+            let y = island.initial_state();
+            let parting = (0..island.contacts.len()).find(|&c| {
+                let state = island.contact_state(c, &y);
+                let tolerance = self.touching(island.contacts[c].pair[0], island.contacts[c].pair[1]);
+                let value = if island.contacts[c].on_force {
+                    island.separation_value(c, &y)
+                } else {
+                    state.penetration - tolerance
+                };
+                state.rate < 0.0 && value <= 0.0
+            });
+            let active: BTreeSet<[usize; 2]> = self.active.iter().map(|c| c.pair).collect();
+            let touching = self.pairs().find(|&(i, j)| {
+                if active.contains(&[i, j]) || (island.slot(i).is_none() && island.slot(j).is_none()) {
+                    return false;
+                }
+                let state = island.pair_state(i, j, &Meeting::of(scene, i, j), &y);
+                state.rate > 0.0 && state.penetration >= -self.touching(i, j)
+            });
+            drop(island);
+            if let Some(c) = parting {
+                let rate = {
+                    let island = Island::new(scene, &start, self.active.clone(), units);
+                    island.contact_state(c, &island.initial_state()).rate
+                };
+                self.finish_contact(c, rate)?;
+            } else if let Some((i, j)) = touching {
+                self.begin(i, j, Some(speed), true)?;
+            } else {
+                return Ok(());
+            }
+        }
+    }
+
+    /// Records a maximum of contact `c`'s penetration at state `y` (scene time `at`), if it is the deepest so far.
+    fn note_compression(&mut self, island: &Island, c: usize, y: &DVector<f64>, at: f64) {
+        let state = island.contact_state(c, y);
+        let contact = &island.contacts[c];
+        let record = &mut self.records[contact.record];
+        if record.max_compression.is_some_and(|m| m.penetration >= state.penetration) {
+            return;
+        }
+        let (impulse, work, _) = island.integrals(c, y);
+        let [i, j] = contact.pair;
+        let moving = if self.scene.bodies[i].is_immovable() { j } else { i };
+        record.max_compression = Some(Compression {
+            time: at,
+            penetration: state.penetration,
+            impulse,
+            work,
+            common_normal_velocity: island.velocity(moving, y).dot(&state.normal),
+        });
+    }
+
+    /// Records contact `c`'s force at state `y` (scene time `at`) if it is the largest so far.
+    fn note_peak(&mut self, island: &Island, c: usize, y: &DVector<f64>, at: f64) {
+        let state = island.contact_state(c, y);
+        let (elastic, dissipative) = island.force(c, &state);
+        let force = elastic + dissipative;
+        let record = &mut self.records[island.contacts[c].record];
+        if record.peak_force.is_none_or(|(_, peak)| force > peak) {
+            record.peak_force = Some((at, force));
+        }
+    }
+
+    /// Ends active contact `c` now (the bodies' states current), parting at penetration rate `rate` (m/s).
+    fn finish_contact(&mut self, c: usize, rate: f64) -> Result<(), WorldError> {
+        let contact = self.active.remove(c);
+        let [i, j] = contact.pair;
+        let record = &mut self.records[contact.record];
+        let relative = self.states[j].position - self.states[i].position;
+        let (penetration, _) = contact.meeting.penetration(&relative);
+        let elastic_left = if contact.on_force && penetration > 0.0 {
+            contact.law.elastic_energy(contact.law.separation_penetration(rate))
+        } else {
+            0.0
+        };
+        record.end = Some(ContactEnding {
+            time: self.time,
+            impulse: contact.impulse,
+            work: contact.work,
+            dissipated: contact.dissipated,
+            rate,
+            elastic_left,
+            velocities: [self.states[i].velocity, self.states[j].velocity],
+        });
+        if record.max_compression.is_none() {
+            // A contact that ended before any maximum of its penetration was located (a graze, or a pushed contact
+            // that never pressed): its deepest point is its start.
+            record.max_compression = Some(Compression {
+                time: record.start_time,
+                penetration: 0.0,
+                impulse: 0.0,
+                work: 0.0,
+                common_normal_velocity: record.velocities_before[0].dot(&record.normal),
+            });
+        }
+        self.ended += 1;
+        if self.active.is_empty() {
+            self.units = None;
+        }
+        Ok(())
+    }
+
+    /// The outcome, with the contacts still active when the run stopped closed at their current values.
+    fn finish(mut self) -> WorldOutcome {
+        if let Some(units) = self.units {
+            let start = self.states.clone();
+            let island = Island::new(self.scene, &start, self.active.clone(), units);
+            let y = island.initial_state();
+            for (c, contact) in self.active.iter().enumerate() {
+                let state = island.contact_state(c, &y);
+                let elastic = contact.law.elastic_energy(state.penetration.max(0.0));
+                self.records[contact.record].at_stop =
+                    Some((contact.impulse, contact.work, contact.dissipated, elastic));
+            }
+        }
+        WorldOutcome {
+            contacts: self.records,
+            end_reason: self.reason.unwrap_or(EndReason::NoMoreContacts),
+            end_time: self.time,
+            bodies: self.states,
+            immovable_work: self.immovable_work,
+            counters: self.counters,
+            method: "dop853",
+            notes: self.notes,
+        }
+    }
+}

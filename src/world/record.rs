@@ -1,0 +1,124 @@
+//! What a world run keeps of each contact and of the run: the values its report is built from (SI).
+
+use super::flight::Kinematic;
+use crate::integrate::Counters;
+use crate::law::{ContactLaw, Separation};
+use nalgebra::Vector3;
+use std::collections::BTreeSet;
+
+/// One contact as it happened.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ContactRecord {
+    /// Scene indices of the two bodies; the normal points from the first to the second.
+    pub bodies: [usize; 2],
+    /// The law with its damping resolved at this contact.
+    pub law: ContactLaw,
+    pub separation: Separation,
+    /// The speed (m/s) the damping map was read at: the approach speed, or a floor for a contact that begins
+    /// pushed rather than struck (docs/world.md#damping-of-successive-contacts).
+    pub map_speed: f64,
+    /// Scene time of first touch, s.
+    pub start_time: f64,
+    /// Unit normal at first touch.
+    pub normal: Vector3<f64>,
+    /// (v_i - v_j)·n at first touch, m/s.
+    pub approach_speed: f64,
+    /// Whether the bodies were already touching when the contact began — pushed together by another contact or by
+    /// gravity rather than closing a gap: its velocity ratio is then undefined.
+    pub pushed: bool,
+    /// The two bodies' velocities at first touch, m/s.
+    pub velocities_before: [Vector3<f64>; 2],
+    /// At the deepest of the penetration's maxima (d' = 0).
+    pub max_compression: Option<Compression>,
+    /// Scene time (s) and value (N) of the largest compressive force.
+    pub peak_force: Option<(f64, f64)>,
+    /// Where the contact ended; `None` while it is active (when the run stopped).
+    pub end: Option<Ending>,
+    /// The integrals when the run stopped, for a contact still active then: normal impulse (N s), normal work (J),
+    /// dissipated energy (J), elastic energy stored (J).
+    pub at_stop: Option<(f64, f64, f64, f64)>,
+    /// Indices of the other contacts active at some time during this one.
+    pub overlapping: BTreeSet<usize>,
+}
+
+/// A contact at its deepest penetration.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Compression {
+    /// Scene time, s.
+    pub time: f64,
+    /// Penetration, m.
+    pub penetration: f64,
+    /// ∫ Fn dt since first touch, N s.
+    pub impulse: f64,
+    /// ∫ Fn d' dt since first touch, J.
+    pub work: f64,
+    /// The normal velocity the two bodies share there (v_i·n), m/s.
+    pub common_normal_velocity: f64,
+}
+
+/// A contact where it ended.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Ending {
+    /// Scene time, s.
+    pub time: f64,
+    /// ∫ Fn dt over the contact, N s.
+    pub impulse: f64,
+    /// ∫ Fn d' dt over the contact, J.
+    pub work: f64,
+    /// Work of the damping over the contact, J.
+    pub dissipated: f64,
+    /// The penetration rate at the end, m/s (negative: parting).
+    pub rate: f64,
+    /// Elastic energy the contact still holds at its end (a force separation of a law that pulls), J.
+    pub elastic_left: f64,
+    /// The two bodies' velocities at the end, m/s.
+    pub velocities: [Vector3<f64>; 2],
+}
+
+/// Why a world run stopped.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum EndReason {
+    /// `[world] end_time` was reached.
+    EndTime,
+    /// `[world] max_contacts` contacts had ended.
+    MaxContacts,
+    /// No two bodies can touch any more.
+    NoMoreContacts,
+    /// Every movable body rests in contacts that no longer separate.
+    AtRest,
+    /// The integration spent the run's step budget (a note says where).
+    StepBudget,
+}
+
+impl EndReason {
+    /// The report's spelling.
+    pub fn name(self) -> &'static str {
+        match self {
+            EndReason::EndTime => "end_time",
+            EndReason::MaxContacts => "max_contacts",
+            EndReason::NoMoreContacts => "no_more_contacts",
+            EndReason::AtRest => "at_rest",
+            EndReason::StepBudget => "step_budget",
+        }
+    }
+}
+
+/// What a world run came to.
+#[derive(Debug, Clone, PartialEq)]
+pub struct WorldOutcome {
+    /// Every contact, in order of first touch.
+    pub contacts: Vec<ContactRecord>,
+    pub end_reason: EndReason,
+    /// Scene time when the run stopped, s.
+    pub end_time: f64,
+    /// Every body's position and velocity when the run stopped.
+    pub bodies: Vec<Kinematic>,
+    /// Work done on the movable bodies by immovable ones (moving walls), J.
+    pub immovable_work: f64,
+    /// The integrator's work over the run.
+    pub counters: Counters,
+    /// The path that ran: `dop853` (the world's islands), or the two-body path of a world of two bodies.
+    pub method: &'static str,
+    /// What a reader should know about the run.
+    pub notes: Vec<String>,
+}

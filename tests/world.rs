@@ -1,0 +1,326 @@
+//! A world of bodies (issue 23; docs/world.md): gravity, successive and simultaneous contacts. Every expected value
+//! comes from outside the program: published chains (Herrmann & Schmälzle), closed forms (free fall, the damped
+//! oscillator under gravity, the static penetration, the exact Hunt–Crossley e(x)), conservation laws, and the
+//! two-body run of today.
+
+use impact::report::world::WorldReport;
+use impact::scene::{Parsed, WorldScene, parse_any};
+use std::path::Path;
+
+fn world(text: &str) -> WorldScene {
+    match parse_any(text, Path::new("world.toml")).unwrap_or_else(|e| panic!("{e}\n{text}")) {
+        Parsed::World(world) => *world,
+        Parsed::Impact(_) => panic!("not a world scene:\n{text}"),
+    }
+}
+
+fn run(text: &str) -> WorldReport {
+    let scene = world(text);
+    impact::world::simulate(&scene).unwrap_or_else(|e| panic!("{e}\n{text}")).report
+}
+
+fn relative(value: f64, expected: f64) -> f64 {
+    ((value - expected) / expected).abs()
+}
+
+/// A steel-like sphere: `radius` (m), `mass` (kg) at `position` with `velocity`, Young's modulus `young`.
+fn sphere(name: &str, radius: f64, mass: f64, position: [f64; 3], velocity: [f64; 3], young: f64) -> String {
+    format!(
+        "[[bodies]]\nname = \"{name}\"\nradius = {radius:?}\nmass = {mass:?}\nposition = {position:?}\nvelocity = {velocity:?}\n\
+         young = {young:e}\npoisson = 0.3\n\n"
+    )
+}
+
+/// A floor through the origin, face up.
+const FLOOR: &str = "[[bodies]]\nname = \"floor\"\nradius = inf\nmass = inf\nposition = [0.0, 0.0, 0.0]\n\
+                     normal = [0.0, 0.0, 1.0]\nvelocity = [0.0, 0.0, 0.0]\nyoung = 2.1e11\npoisson = 0.3\n\n";
+
+/// Three equal balls in a row along x, touching (or `gap` m apart), the first moving at `speed` into the others.
+fn cradle(gap: f64, speed: f64, young: f64, contact: &str) -> String {
+    let mut text = String::new();
+    for k in 0..3 {
+        let x = k as f64 * (0.02 + gap);
+        let v = if k == 0 { speed } else { 0.0 };
+        text += &sphere(&format!("ball {k}"), 0.01, 0.0329, [x, 0.0, 0.0], [v, 0.0, 0.0], young);
+    }
+    text + &format!("[contact]\n{contact}\n")
+}
+
+fn final_x(report: &WorldReport) -> Vec<f64> {
+    report.bodies.iter().map(|b| b.velocity_after[0]).collect()
+}
+
+/// Herrmann & Schmälzle (Am. J. Phys. 49, 761 (1981)): three equal balls touching, the first struck at v0, leave at
+/// (-0.0710, 0.0764, 0.9945) v0 with Hertzian contacts — a power law K d^n is scale-free, so whatever the stiffness
+/// and the speed — and at (-0.130, 0.150, 0.980) v0 with linear springs.
+#[test]
+fn touching_hertzian_balls_do_not_pass_all_the_momentum_on() {
+    for (young, speed) in [(2.1e11, 1.0), (7e10, 0.2), (2.1e11, 5.0)] {
+        let report = run(&cradle(0.0, speed, young, "law = \"hertz\""));
+        let v = final_x(&report);
+        for (value, published) in v.iter().zip([-0.0710, 0.0764, 0.9945]) {
+            assert!((value / speed - published).abs() < 1e-3, "E {young:e}, v0 {speed}: {v:?}");
+        }
+        assert_eq!(report.world.end_reason, "no_more_contacts");
+        assert_eq!(report.contacts.len(), 2, "{:?}", report.contacts);
+        assert_eq!(report.contacts[0].overlapping, vec![1], "the two contacts overlap in time");
+        // The textbook's sequential model passes everything to the last ball: (0, 0, v0).
+        let nominal = report.sequential.nominal.as_ref().unwrap();
+        assert!((nominal.velocity_after[2][0] - speed).abs() < 1e-12 * speed);
+        assert!((nominal.max_velocity_difference / speed - 0.0764).abs() < 1e-3);
+    }
+    let linear = run(&cradle(0.0, 1.0, 2.1e11, "law = \"hertz\"\nstiffness = 1e7\nexponent = 1.0"));
+    let v = final_x(&linear);
+    for (value, published) in v.iter().zip([-0.130, 0.150, 0.980]) {
+        assert!((value - published).abs() < 1e-3, "linear springs: {v:?}");
+    }
+}
+
+/// Gaps much wider than the maximum overlap (1 mm against 20 µm) separate the collisions in time: each is an elastic
+/// collision of equal masses, which exchanges their velocities, and the sequential model's (0, 0, v0) returns.
+#[test]
+fn gaps_wider_than_the_overlap_restore_the_sequential_model() {
+    let report = run(&cradle(1e-3, 1.0, 2.1e11, "law = \"hertz\""));
+    let v = final_x(&report);
+    for (value, expected) in v.iter().zip([0.0, 0.0, 1.0]) {
+        assert!((value - expected).abs() < 1e-6, "{v:?}");
+    }
+    assert!(report.contacts.iter().all(|c| c.overlapping.is_empty()));
+    assert!(report.sequential.nominal.unwrap().max_velocity_difference < 1e-6);
+}
+
+/// A ball of radius r dropped from rest with its centre at h0 onto a floor (Hertz, `contact`), with gravity; ball and
+/// floor both of Young's modulus `young`.
+fn dropped(h0: f64, young: f64, contact: &str, world: &str) -> String {
+    format!(
+        "[world]\ngravity = [0.0, 0.0, -9.81]\n{world}\n\n{}{}[contact]\n{contact}\n",
+        sphere("ball", 0.01, 0.0329, [0.0, 0.0, h0], [0.0; 3], young),
+        FLOOR.replace("young = 2.1e11", &format!("young = {young:e}"))
+    )
+}
+
+/// The apex of the centre after each contact: it leaves the floor at height r (zero penetration) with the rebound
+/// speed v, and rises v²/(2g).
+fn apexes(report: &WorldReport) -> Vec<f64> {
+    report.contacts.iter().filter_map(|c| c.velocities_after.map(|v| 0.01 + v[0][2] * v[0][2] / (2.0 * 9.81))).collect()
+}
+
+/// An elastic contact is reversible, gravity or not: the ball leaves each contact as fast as it came, and every apex
+/// is the drop height; it first touches after the free fall sqrt(2 (h0 - r)/g) at sqrt(2 g (h0 - r)).
+#[test]
+fn an_elastic_ball_bounces_back_to_its_drop_height_every_time() {
+    let report = run(&dropped(0.11, 2.1e11, "law = \"hertz\"", "max_contacts = 6"));
+    assert_eq!(report.world.end_reason, "max_contacts");
+    let apexes = apexes(&report);
+    assert_eq!(apexes.len(), 6);
+    for apex in &apexes {
+        assert!(relative(*apex, 0.11) < 1e-9, "{apexes:?}");
+    }
+    let first = &report.contacts[0];
+    assert!(relative(first.start_time, (2.0 * 0.1 / 9.81f64).sqrt()) < 1e-12, "{}", first.start_time);
+    assert!(relative(first.approach_speed, (2.0 * 9.81 * 0.1f64).sqrt()) < 1e-12);
+    assert!(report.energy.balance.abs() < 1e-9, "{:?}", report.energy);
+}
+
+/// The exact e of the Hunt–Crossley family at x = alpha v0: the root in (0, 1/x) of x (1 + e) = ln((1 + x)/(1 - e x))
+/// (docs/references.md#the-hunt-crossley-family), by bisection.
+fn hunt_crossley_e(x: f64) -> f64 {
+    let residual = |e: f64| x * (1.0 + e) - ((1.0 + x) / (1.0 - e * x)).ln();
+    let (mut low, mut high) = (1e-12, (1.0 / x).min(1.0) - 1e-15);
+    for _ in 0..200 {
+        let middle = 0.5 * (low + high);
+        if residual(middle) > 0.0 { low = middle } else { high = middle }
+    }
+    0.5 * (low + high)
+}
+
+/// With a damped contact mapped at each bounce's own speed (Hunt–Crossley, nominal 0.8: x = 1.5 (1 - 0.8) = 0.3 at
+/// every bounce), the instantaneous model's apexes are (h0 - r) e^(2k) + r with e = e(0.3). The compliant contact
+/// departs from them by gravity's impulse during contact, which shrinks as the contact stiffens (tc ~ K^(-2/5)).
+#[test]
+fn damped_bounces_approach_the_instantaneous_apexes_as_the_contact_stiffens() {
+    let e = hunt_crossley_e(0.3);
+    let deviation = |young: f64| {
+        let report = run(&dropped(0.11, young, "law = \"hunt-crossley\"\nrestitution = 0.8", "max_contacts = 5"));
+        for contact in &report.contacts {
+            assert!(relative(contact.restitution_velocity_ratio.unwrap(), e) < 5e-3, "{e}: {contact:?}");
+        }
+        apexes(&report)
+            .iter()
+            .enumerate()
+            .map(|(k, apex)| relative(*apex, 0.1 * e.powi(2 * (k as i32 + 1)) + 0.01))
+            .fold(0.0, f64::max)
+    };
+    // The departure is gravity's impulse over the contact, g tc against the rebound speed: tc ~ K^(-2/5), so a
+    // contact 100 times stiffer departs 100^(-2/5) = 0.158 times as much.
+    let (soft, stiff) = (deviation(2.1e9), deviation(2.1e11));
+    let ratio = stiff / soft;
+    assert!((ratio / 100f64.powf(-0.4) - 1.0).abs() < 0.1, "soft {soft:e}, stiff {stiff:e}: ratio {ratio}");
+    assert!(stiff < 1e-3, "{stiff:e}");
+}
+
+/// Dropped with damping, the ball comes to rest on the floor at the static penetration K d_s^(3/2) = m g, with
+/// K = (4/3) E* sqrt(r), E* = E/(2 (1 - nu²)) for two equal materials — and the bounces stop after about
+/// sqrt(2 (h0 - r)/g) (1 + e)/(1 - e), the instantaneous model's time to rest.
+#[test]
+fn a_damped_ball_comes_to_rest_at_the_static_penetration() {
+    let report = run(&dropped(0.11, 2.1e11, "law = \"hunt-crossley\"\nrestitution = 0.8", ""));
+    assert_eq!(report.world.end_reason, "at_rest");
+    let e_star = 2.1e11 / (2.0 * (1.0 - 0.09));
+    let k = 4.0 / 3.0 * e_star * 0.01f64.sqrt();
+    let static_penetration = (0.0329 * 9.81 / k).powf(2.0 / 3.0);
+    let height = report.bodies[0].position_after[2];
+    assert!(relative(0.01 - height, static_penetration) < 1e-6, "{} vs {static_penetration}", 0.01 - height);
+    let e = hunt_crossley_e(0.3);
+    let rest = (2.0 * 0.1 / 9.81f64).sqrt() * (1.0 + e) / (1.0 - e);
+    assert!(relative(report.world.end_time, rest) < 0.01, "{} vs {rest}", report.world.end_time);
+    assert!(report.energy.balance.abs() < 1e-9, "{:?}", report.energy);
+}
+
+/// A linear spring–dashpot under gravity (the three stages of MFiX's DEM-01): free fall to v_in = sqrt(2 g h), then
+/// in contact d'' + 2 zeta w d' + w² d = g with d(0) = 0, d'(0) = v_in — d = g/w² + exp(-zeta w t) (A cos(wd t) +
+/// B sin(wd t)), A = -g/w², B = (v_in + zeta w A)/wd — until d returns to zero. That zero is found here by bisection
+/// on the closed form; the contact's duration and rebound speed must match it.
+#[test]
+fn a_spring_dashpot_under_gravity_matches_the_exact_three_stages() {
+    let (m, k, h, g) = (0.0329_f64, 1e3_f64, 1e-2_f64, 9.81_f64);
+    let e_nominal: f64 = 0.5;
+    let zeta = -e_nominal.ln() / (std::f64::consts::PI.powi(2) + e_nominal.ln().powi(2)).sqrt();
+    let w = (k / m).sqrt();
+    let wd = w * (1.0 - zeta * zeta).sqrt();
+    let v_in = (2.0 * g * h).sqrt();
+    let a = -g / (w * w);
+    let b = (v_in + zeta * w * a) / wd;
+    let d = |t: f64| g / (w * w) + (-zeta * w * t).exp() * (a * (wd * t).cos() + b * (wd * t).sin());
+    let rate = |t: f64| {
+        (-zeta * w * t).exp()
+            * ((-zeta * w) * (a * (wd * t).cos() + b * (wd * t).sin())
+                + wd * (-a * (wd * t).sin() + b * (wd * t).cos()))
+    };
+    // The first zero after the penetration's maximum: scanned from a quarter of the damped period, then bisected.
+    let step = 2.0 * std::f64::consts::PI / wd / 4000.0;
+    let mut low = 1000.0 * step;
+    while d(low + step) > 0.0 {
+        low += step;
+        assert!(low < 4000.0 * step, "the contact does not end within a period");
+    }
+    let mut high = low + step;
+    assert!(d(low) > 0.0 && d(high) <= 0.0);
+    for _ in 0..200 {
+        let middle = 0.5 * (low + high);
+        if d(middle) > 0.0 { low = middle } else { high = middle }
+    }
+    let duration = 0.5 * (low + high);
+    let e = -rate(duration) / v_in;
+    assert!(g / (w * v_in) > 0.1, "gravity matters during contact: G = {}", g / (w * v_in));
+    let contact = format!("law = \"kelvin-voigt\"\nstiffness = {k:e}\nexponent = 1.0\nrestitution = {e_nominal}");
+    let report = run(&dropped(0.01 + h, 2.1e11, &contact, "max_contacts = 1"));
+    let c = &report.contacts[0];
+    assert!(relative(c.duration.unwrap(), duration) < 1e-9, "{:?} vs {duration}", c.duration);
+    assert!(relative(c.restitution_velocity_ratio.unwrap(), e) < 1e-9, "{:?} vs {e}", c.restitution_velocity_ratio);
+    // Without gravity the map's e is exact; gravity during contact changes it.
+    assert!((e - e_nominal).abs() > 1e-2, "{e}");
+}
+
+/// A world of two bodies without gravity is today's impact of the pair: its contact is that report's, to the bit.
+#[test]
+fn a_world_of_two_bodies_without_gravity_is_todays_impact_to_the_bit() {
+    for contact in
+        ["law = \"hunt-crossley\"\nrestitution = 0.7", "law = \"tsuji\"\nrestitution = 0.4\nseparation = \"force\""]
+    {
+        let bodies = sphere("a", 0.01, 0.03, [0.0, 0.0, 0.0], [1.0, 0.2, 0.0], 2e11)
+            + &sphere("b", 0.012, 0.05, [0.05, 0.003, 0.0], [-0.5, 0.0, 0.0], 7e10);
+        let two = format!("{bodies}[contact]\n{contact}\n");
+        let scene = impact::scene::Scene::parse(&two, Path::new("two.toml")).unwrap();
+        let today = impact::impact::simulate(&scene, impact::history::Recording::Off).unwrap().report;
+        let report = run(&format!("[world]\nmax_contacts = 3\n\n{two}"));
+        assert_eq!(report.contacts.len(), 1);
+        let (c, t) = (&report.contacts[0], &today.contact);
+        assert_eq!(c.start_time, t.start_time);
+        assert_eq!(c.max_compression_time, t.max_compression_time);
+        assert_eq!(c.end_time, t.end_time);
+        assert_eq!(c.max_penetration, t.max_penetration);
+        assert_eq!(c.max_force, t.max_force);
+        assert_eq!(c.deformation_impulse, t.deformation_impulse);
+        assert_eq!(c.restitution_impulse, t.restitution_impulse);
+        assert_eq!(c.restitution_velocity_ratio, t.restitution_velocity_ratio);
+        assert_eq!(c.restitution_energy, t.restitution_energy);
+        assert_eq!(c.common_normal_velocity, t.common_normal_velocity);
+        for i in 0..2 {
+            assert_eq!(report.bodies[i].velocity_after, today.bodies[i].velocity_after.unwrap());
+        }
+    }
+}
+
+/// A small deterministic generator (xorshift64*).
+struct Random(u64);
+
+impl Random {
+    fn unit(&mut self) -> f64 {
+        self.0 ^= self.0 >> 12;
+        self.0 ^= self.0 << 25;
+        self.0 ^= self.0 >> 27;
+        (self.0.wrapping_mul(0x2545_f491_4f6c_dd1d) >> 11) as f64 / (1u64 << 53) as f64
+    }
+    fn between(&mut self, low: f64, high: f64) -> f64 {
+        low + (high - low) * self.unit()
+    }
+}
+
+/// Random worlds of 3 to 8 spheres on a jittered grid, thrown at each other, with every law; half without gravity
+/// or walls (then momentum and angular momentum are conserved exactly: the contact forces are central and pairwise
+/// opposite), half in a box under gravity. Every run's energy balance closes to 1e-9.
+#[test]
+fn random_worlds_conserve_momentum_and_close_their_energy_balance() {
+    let laws = [
+        "law = \"hertz\"",
+        "law = \"hunt-crossley\"\nrestitution = 0.6",
+        "law = \"carvalho-martins\"\nrestitution = 0.3",
+        "law = \"tsuji\"\nrestitution = 0.5",
+        "law = \"kelvin-voigt\"\nstiffness = 1e6\nexponent = 1.0\nrestitution = 0.7",
+        "law = \"brilliantov\"\ndamping = 1e-6",
+    ];
+    let mut random = Random(0x0007_e5f0_2323_0001);
+    for case in 0..24 {
+        let count = 3 + case % 6;
+        let gravity = case % 2 == 1;
+        let mut text = if gravity {
+            format!("[world]\ngravity = [0.0, 0.0, -9.81]\nmax_contacts = 30\nend_time = 0.3\n\n{FLOOR}")
+        } else {
+            "[world]\nmax_contacts = 30\n\n".to_string()
+        };
+        for k in 0..count {
+            let (ix, iy) = ((k % 3) as f64, (k / 3) as f64);
+            let radius = random.between(0.004, 0.01);
+            let position = [0.03 * ix + random.between(-0.003, 0.003), 0.03 * iy, 0.05 + random.between(0.0, 0.02)];
+            let toward = [0.03 - position[0], 0.015 - position[1], 0.0];
+            let speed = random.between(0.2, 1.0);
+            let velocity = [toward[0] * speed * 20.0, toward[1] * speed * 20.0, random.between(-0.5, 0.5)];
+            text += &sphere(&format!("{k}"), radius, 8000.0 * radius.powi(3) * 4.19, position, velocity, 2e11);
+        }
+        text += &format!("[contact]\n{}\n", laws[case % laws.len()]);
+        let report = run(&text);
+        assert!(report.energy.balance.abs() < 1e-9, "case {case}: {:?}\n{text}", report.energy);
+        if !gravity {
+            let (mut p0, mut p1, mut l0, mut l1, mut scale) = ([0.0; 3], [0.0; 3], [0.0; 3], [0.0; 3], 0.0);
+            for b in report.bodies.iter().filter(|b| b.mass.is_finite()) {
+                let cross = |x: [f64; 3], v: [f64; 3]| {
+                    [x[1] * v[2] - x[2] * v[1], x[2] * v[0] - x[0] * v[2], x[0] * v[1] - x[1] * v[0]]
+                };
+                let (c0, c1) = (cross(b.position_before, b.velocity_before), cross(b.position_after, b.velocity_after));
+                for a in 0..3 {
+                    p0[a] += b.mass * b.velocity_before[a];
+                    p1[a] += b.mass * b.velocity_after[a];
+                    l0[a] += b.mass * c0[a];
+                    l1[a] += b.mass * c1[a];
+                }
+                scale += b.mass * b.velocity_before.iter().map(|v| v * v).sum::<f64>().sqrt();
+            }
+            let size = 0.1 * scale;
+            for a in 0..3 {
+                assert!((p1[a] - p0[a]).abs() < 1e-12 * scale, "case {case}: momentum {p0:?} -> {p1:?}");
+                assert!((l1[a] - l0[a]).abs() < 1e-9 * size, "case {case}: angular momentum {l0:?} -> {l1:?}");
+            }
+        }
+    }
+}
