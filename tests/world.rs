@@ -324,3 +324,117 @@ fn random_worlds_conserve_momentum_and_close_their_energy_balance() {
         }
     }
 }
+
+/// Two balls dropped side by side on a floor, 10 µm apart in height: their contacts with the floor overlap in time
+/// and neither may pass through it (a pair with no body in the island once went unwatched). Each bounces back to
+/// its drop height with an elastic contact.
+#[test]
+fn bodies_outside_the_island_still_meet_what_they_fly_into() {
+    let text = format!(
+        "[world]\ngravity = [0.0, 0.0, -9.81]\nend_time = 0.5\n\n{}{}{FLOOR}[contact]\nlaw = \"hertz\"\n",
+        sphere("A", 0.01, 0.0329, [0.0, 0.0, 0.11], [0.0; 3], 2.1e11),
+        sphere("B", 0.01, 0.0329, [0.1, 0.0, 0.11001], [0.0; 3], 2.1e11)
+    );
+    let report = run(&text);
+    for ball in 0..2 {
+        let heights: Vec<f64> = report
+            .contacts
+            .iter()
+            .filter(|c| c.bodies.contains(&ball))
+            .filter_map(|c| c.velocities_after.map(|v| 0.01 + v[0][2] * v[0][2] / (2.0 * 9.81)))
+            .collect();
+        assert!(heights.len() >= 2, "ball {ball}: {heights:?}");
+        let drop = if ball == 0 { 0.11 } else { 0.11001 };
+        assert!(heights.iter().all(|h| relative(*h, drop) < 1e-9), "ball {ball}: {heights:?}");
+        assert!(report.bodies[ball].position_after[2] > 0.0, "ball {ball} went through the floor");
+    }
+}
+
+/// A ball resting on a floor at the start, under gravity, stays on it: it presses the floor at once (touching, no
+/// approach) and settles at the static penetration; a ball resting on a fixed sphere likewise.
+#[test]
+fn a_ball_resting_at_the_start_presses_its_support() {
+    let contact = "law = \"hunt-crossley\"\nrestitution = 0.8";
+    let report = run(&dropped(0.01, 2.1e11, contact, "end_time = 0.1"));
+    assert_eq!(report.contacts.len(), 1, "{:?}", report.contacts);
+    assert!(report.contacts[0].pushed);
+    assert_eq!(report.contacts[0].restitution_velocity_ratio, None);
+    assert_eq!(report.world.end_reason, "at_rest");
+    let height = report.bodies[0].position_after[2];
+    assert!(height > 0.0099 && height < 0.01, "{height}");
+    let fixed = format!(
+        "[world]\ngravity = [0.0, 0.0, -9.81]\nend_time = 0.1\n\n{}[[bodies]]\nname = \"fixed\"\nradius = 0.02\nmass = inf\n\
+         position = [0.0, 0.0, 0.0]\nvelocity = [0.0, 0.0, 0.0]\nyoung = 2.1e11\npoisson = 0.3\n\n[contact]\n{contact}\n",
+        sphere("ball", 0.01, 0.0329, [0.0, 0.0, 0.03], [0.0; 3], 2.1e11)
+    );
+    let report = run(&fixed);
+    assert_eq!(report.world.end_reason, "at_rest");
+    let height = report.bodies[0].position_after[2];
+    assert!(height > 0.0299 && height < 0.03, "{height}");
+}
+
+/// A run stopped inside a contact, before its penetration's first maximum, reports it as still in contact (no
+/// panic, no null but its end); a graze of two passing spheres at exactly the sum of their radii is no contact; two
+/// touching spheres sliding across each other without gravity part without a contact (the run once hung there).
+#[test]
+fn cut_short_contacts_grazes_and_touching_slides_are_reported_plainly() {
+    let report = run(&dropped(0.11, 2.1e11, "law = \"hertz\"", "end_time = 0.1427845"));
+    assert_eq!(report.world.end_reason, "end_time");
+    let c = &report.contacts[0];
+    assert!(!c.separated && c.end_time.is_none() && c.max_penetration > 0.0, "{c:?}");
+    assert!(report.energy.balance.abs() < 1e-9);
+    let graze = format!(
+        "{}{}[contact]\nlaw = \"hertz\"\n",
+        sphere("a", 0.01, 0.03, [0.0, 0.0, 0.0], [0.0; 3], 2.1e11),
+        sphere("b", 0.01, 0.03, [-1.0, 0.02, 0.0], [1.0, 0.0, 0.0], 2.1e11)
+    ) + &sphere("far", 0.01, 0.03, [100.0, 100.0, 100.0], [0.0; 3], 2.1e11);
+    assert!(run(&graze).contacts.is_empty());
+    let slide = sphere("a", 0.01, 0.0329, [0.11290864530486688, 0.28458872586489115, 0.0], [0.0; 3], 2.1e11)
+        + &sphere(
+            "b",
+            0.01,
+            0.0329,
+            [0.1233669701190052, 0.2675410444365567, 0.0],
+            [0.852384071416723, 0.5229162407069159, 0.0],
+            2.1e11,
+        )
+        + &sphere("far", 0.01, 0.0329, [10.0, 10.0, 10.0], [0.0; 3], 2.1e11)
+        + "[contact]\nlaw = \"hertz\"\n";
+    let report = run(&slide);
+    assert!(report.contacts.iter().all(|c| c.max_force < 1e-6), "{:?}", report.contacts);
+}
+
+/// A struck contact's damping map reads its own approach speed, whatever else the island holds: a ball struck at
+/// about 0.1 m/s while its neighbour lands on the floor at 4 m/s is mapped at its 0.1 m/s, not at the island's speed
+/// (only a contact pushed into being takes the island's speed as its floor).
+#[test]
+fn a_struck_contact_maps_its_damping_at_its_own_speed_inside_an_island() {
+    let text = format!(
+        "{}{}{FLOOR}[contact]\nlaw = \"hunt-crossley\"\nrestitution = 0.8\n",
+        sphere("A", 0.01, 0.0329, [0.0, 0.0, 0.014], [0.0, 0.0, -4.0], 2.1e11),
+        sphere("B", 0.01, 0.0329, [-0.020102, 0.0, 0.0101], [0.1, 0.0, 0.0], 2.1e11)
+    );
+    let report = run(&text);
+    let c = report.contacts.iter().find(|c| c.bodies == [0, 1]).expect("the two balls meet");
+    assert!(!c.pushed && c.approach_speed > 0.0 && c.approach_speed < 0.2, "{c:?}");
+    assert_eq!(c.damping_map_speed, c.approach_speed, "{c:?}");
+}
+
+/// A small ball dropped on a big one resting on a floor bounces on it again and again: each bounce closes a gap,
+/// so none is labelled pushed (a pair that once touched at a segment's start was).
+#[test]
+fn bounces_that_close_a_gap_are_not_pushed() {
+    let text = format!(
+        "[world]\ngravity = [0.0, 0.0, -9.81]\nmax_contacts = 12\n\n{}{}{FLOOR}[contact]\nlaw = \"hunt-crossley\"\n\
+         restitution = 0.8\n",
+        sphere("big", 0.05, 4.11, [0.0, 0.0, 0.05], [0.0; 3], 2.1e11),
+        sphere("small", 0.001, 3.3e-5, [0.0, 0.0, 0.2], [0.0; 3], 2.1e11)
+    );
+    let report = run(&text);
+    let bounces: Vec<_> = report.contacts.iter().filter(|c| c.bodies == [0, 1]).collect();
+    assert!(bounces.len() >= 3, "{:?}", report.contacts);
+    for bounce in &bounces {
+        assert!(!bounce.pushed && bounce.approach_speed > 0.1, "{bounce:?}");
+        assert!(bounce.restitution_velocity_ratio.is_some());
+    }
+}

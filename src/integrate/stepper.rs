@@ -157,12 +157,14 @@ where
             *value = event.value(y);
         }
         let crossed = watch.values.iter().zip(watch.previous_values.iter()).any(|(&v, &p)| falls(p, v));
-        let current = (t, y.clone(), dy.clone());
         if crossed {
-            watch.bracket = Some((watch.previous.clone(), current));
+            watch.bracket = Some((watch.previous.clone(), (t, y.clone(), dy.clone())));
             return true;
         }
-        watch.previous = current;
+        // (In place: a state of run-time size is not reallocated every step.)
+        watch.previous.0 = t;
+        watch.previous.1.clone_from(y);
+        watch.previous.2.clone_from(dy);
         std::mem::swap(watch.previous_values, watch.values);
         false
     }

@@ -5,7 +5,7 @@
 use super::{Vec3, maybe_infinite};
 use crate::law::Separation;
 use crate::scene::{DampingSpec, WorldScene};
-use crate::world::record::{ContactRecord, WorldOutcome};
+use crate::world::record::{Compression, ContactRecord, WorldOutcome};
 use crate::world::sequential::{Sequential, sequential};
 use nalgebra::Vector3;
 use serde::Serialize;
@@ -110,7 +110,7 @@ pub struct WorldEnergy {
     pub kinetic_after: f64,
     /// Work of the contacts' damping.
     pub dissipated: f64,
-    /// Work of gravity on the bodies of finite mass, Σ m g·(x_end - x_start).
+    /// Work of gravity on the bodies of finite mass, Σ m g·Δx over every flight and segment.
     pub gravity_work: f64,
     pub work_of_immovable_bodies: f64,
     /// Spring energy in the contacts still active at the end, plus what contacts ended by their force left in their
@@ -241,7 +241,14 @@ fn shorten(items: &[String]) -> String {
 
 /// One contact's report values from its record.
 fn contact(record: &ContactRecord) -> WorldContact {
-    let max = record.max_compression.expect("every recorded contact has a deepest point");
+    // (The driver gives every contact a deepest point: located, or where it stood when the run stopped.)
+    let max = record.max_compression.unwrap_or(Compression {
+        time: record.start_time,
+        penetration: 0.0,
+        impulse: 0.0,
+        work: 0.0,
+        common_normal_velocity: record.velocities_before[0].dot(&record.normal),
+    });
     let end = record.end.as_ref();
     let separated = end.is_some();
     let (peak_time, peak) = record.peak_force.unwrap_or((record.start_time, 0.0));
@@ -277,19 +284,17 @@ fn contact(record: &ContactRecord) -> WorldContact {
 
 /// The run's energy balance.
 fn energy(scene: &WorldScene, outcome: &WorldOutcome) -> WorldEnergy {
-    let g = scene.world.gravity;
     let mut kinetic_before = 0.0;
     let mut kinetic_after = 0.0;
-    let mut gravity_work = 0.0;
     for (body, end) in scene.bodies.iter().zip(&outcome.bodies) {
         if body.is_immovable() {
             continue;
         }
         kinetic_before += body.kinetic_energy(&body.velocity, &body.angular_velocity);
         kinetic_after += body.kinetic_energy(&end.velocity, &body.angular_velocity);
-        gravity_work += body.mass * g.dot(&(end.position - body.position.unwrap_or_default()));
     }
-    let mut dissipated = 0.0;
+    let gravity_work = outcome.gravity_work;
+    let mut dissipated = outcome.settled;
     let mut elastic = 0.0;
     for record in &outcome.contacts {
         match (&record.end, record.at_stop) {

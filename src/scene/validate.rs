@@ -430,12 +430,13 @@ fn pair(src: &Source, k: usize, raw: &At<RawPair>, contact: &RawContact, count: 
         tangential_stiffness,
         tangential_damping
     );
-    // A pair that names `damping` drops `[contact]`'s `restitution`, and the other way round: it gives its own.
-    if raw.damping.is_some() && raw.restitution.is_none() {
-        merged.restitution = None;
+    // A pair that names `damping` drops `[contact]`'s `restitution`, and the other way round: it gives its own. A
+    // pair that names its own `law` takes neither from `[contact]` (another law's damping means something else).
+    if raw.law.is_some() || (raw.damping.is_some() && raw.restitution.is_none()) {
+        merged.restitution = raw.restitution.clone();
     }
-    if raw.restitution.is_some() && raw.damping.is_none() {
-        merged.damping = None;
+    if raw.law.is_some() || (raw.restitution.is_some() && raw.damping.is_none()) {
+        merged.damping = raw.damping.clone();
     }
     let leaf_key = |leaf: &str| if written.contains(&leaf) { key(leaf) } else { format!("contact.{leaf}") };
     let contact = contact_spec(src, &merged, Some(&table), &leaf_key)?;

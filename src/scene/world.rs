@@ -72,8 +72,9 @@ impl DampingMap {
     }
 }
 
-/// The most contacts a run may be asked to end after (it streams what it writes, so this bounds time, not memory).
-pub const MAX_CONTACTS_LIMIT: u64 = 1_000_000_000;
+/// The most contacts a run may be asked to end after: a run keeps a record of every contact for its report (about
+/// 300 bytes each, and about 1 kB of JSON), so this bounds its memory to a few GB.
+pub const MAX_CONTACTS_LIMIT: u64 = 10_000_000;
 
 /// The default of `[world] max_contacts`.
 pub const DEFAULT_MAX_CONTACTS: u64 = 1000;

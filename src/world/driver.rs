@@ -14,7 +14,7 @@ use crate::integrate::{Counters, Direction, Ending, EventOf, IntegrationError, S
 use crate::law::Separation;
 use crate::scene::{DampingMap, DampingSpec, WorldScene};
 use crate::setup::{SetupError, check_law, resolve_law};
-use nalgebra::{DVector, Dyn};
+use nalgebra::{DVector, Dyn, Vector3};
 use std::collections::BTreeSet;
 
 /// Why a world run could not be completed.
@@ -57,10 +57,14 @@ enum Watched {
     MaxCompression(usize),
     /// Contact's force peaks.
     ForcePeak(usize),
-    /// A watched pair touches (and whether it was touching already when the segment began: pushed together).
-    Touch(usize, usize, bool),
-    /// The island came to rest.
+    /// A watched pair (its index among the segment's watched pairs) touches.
+    Touch(usize),
+    /// The gap of a watched pair that began the segment touching opened beyond the rounding of its positions.
+    Opened(usize),
+    /// The island came to rest (free groups: the run ends).
     Rest,
+    /// A group an immovable body holds came to rest (its index among the island's components): it is frozen.
+    Frozen(usize),
 }
 
 /// The run's state between segments.
@@ -76,13 +80,20 @@ struct World<'a> {
     units: Option<Units>,
     /// The damping-map speed of each pair's first contact (first-contact maps).
     first_speeds: std::collections::HashMap<[usize; 2], f64>,
+    /// The pairs that touched without their gap ever opening since the last segment began: their contact would begin
+    /// pushed (for contacts taken at a segment's end).
+    pressed: BTreeSet<[usize; 2]>,
     ended: u64,
     immovable_work: f64,
+    /// Work of gravity on the bodies of finite mass so far, summed from their displacements, J.
+    gravity_work: f64,
+    /// The bodies at rest on others, held still (frozen) until something touches them (docs/world.md#at-rest).
+    frozen: Vec<bool>,
+    /// The kinetic energy left in groups when they were frozen (below 1e-14 of their energy unit), J.
+    settled: f64,
     counters: Counters,
     reason: Option<EndReason>,
     notes: Vec<String>,
-    /// Whether the island's rest is watched (off once the run has passed it without stopping).
-    watch_rest: bool,
 }
 
 impl<'a> World<'a> {
@@ -100,13 +111,35 @@ impl<'a> World<'a> {
             records: Vec::new(),
             units: None,
             first_speeds: Default::default(),
+            pressed: BTreeSet::new(),
             ended: 0,
             immovable_work: 0.0,
+            gravity_work: 0.0,
+            frozen: vec![false; scene.bodies.len()],
+            settled: 0.0,
             counters: Counters::default(),
             reason: None,
             notes: Vec::new(),
-            watch_rest: true,
         }
+    }
+
+    /// Every body's acceleration in free flight: gravity for a body of finite mass, none for an immovable or a
+    /// frozen one.
+    fn flight_accelerations(&self) -> Vec<Vector3<f64>> {
+        let g = self.scene.world.gravity;
+        self.scene
+            .bodies
+            .iter()
+            .zip(&self.frozen)
+            .map(|(body, &frozen)| if frozen { Vector3::zeros() } else { acceleration(body, &g) })
+            .collect()
+    }
+
+    /// The active contacts that are not frozen (indices into `active`).
+    fn live(&self) -> Vec<usize> {
+        (0..self.active.len())
+            .filter(|&c| self.active[c].pair.iter().any(|&k| !self.scene.bodies[k].is_immovable() && !self.frozen[k]))
+            .collect()
     }
 
     /// The scene time left before `end_time` (infinite without one).
@@ -120,19 +153,42 @@ impl<'a> World<'a> {
         (0..n).flat_map(move |i| (i + 1..n).map(move |j| (i, j))).filter(|&(i, j)| self.scene.interacts(i, j))
     }
 
-    /// The tolerance (m) within which bodies `i` and `j` count as touching: the rounding of their positions.
+    /// The tolerance (m) within which bodies `i` and `j` count as touching: the rounding of their positions, and no
+    /// less than the overlap a scene may start with (1e-12 of the smaller radius).
     fn touching(&self, i: usize, j: usize) -> f64 {
         let size = |k: usize| {
             let body = &self.scene.bodies[k];
             let radius = if body.is_flat() { 0.0 } else { body.radius };
             radius + self.states[k].position.abs().max()
         };
-        64.0 * f64::EPSILON * (size(i) + size(j))
+        let (a, b) = (&self.scene.bodies[i], &self.scene.bodies[j]);
+        (64.0 * f64::EPSILON * (size(i) + size(j))).max(crate::geometry::TOUCH_TOLERANCE * a.radius.min(b.radius))
+    }
+
+    /// The next first touch in free flight among `pairs` (from the bodies' states now), within `left` s: its time
+    /// after now, and every pair touching then.
+    fn next_touch(&self, pairs: &[(usize, usize)], left: f64) -> Option<(f64, Vec<(usize, usize)>)> {
+        let flight = self.flight_accelerations();
+        let mut touches: Vec<(usize, usize, f64)> = Vec::new();
+        for &(i, j) in pairs {
+            let meeting = Meeting::of(self.scene, i, j);
+            let (ga, gb) = (flight[i], flight[j]);
+            let tolerance = self.touching(i, j);
+            if let Some(t) = first_touch(&meeting, &self.states[i], &self.states[j], &ga, &gb, tolerance, left) {
+                touches.push((i, j, t));
+            }
+        }
+        let delay = touches.iter().map(|t| t.2).fold(f64::INFINITY, f64::min);
+        if !delay.is_finite() || delay > left {
+            return None;
+        }
+        let instant = 1e-14 * self.time.abs().max(delay);
+        Some((delay, touches.iter().filter(|t| t.2 <= delay + instant).map(|&(i, j, _)| (i, j)).collect()))
     }
 
     fn go(&mut self) -> Result<(), WorldError> {
         while self.reason.is_none() {
-            if self.active.is_empty() {
+            if self.live().is_empty() {
                 self.fly()?;
             } else {
                 self.segment()?;
@@ -143,63 +199,89 @@ impl<'a> World<'a> {
 
     /// Free flight to the next first touch (or the end), then the island it starts.
     fn fly(&mut self) -> Result<(), WorldError> {
-        let g = self.scene.world.gravity;
-        let left = self.left();
-        let mut next: Option<f64> = None;
-        let mut touches: Vec<(usize, usize, f64)> = Vec::new();
-        for (i, j) in self.pairs() {
-            let (a, b) = (&self.scene.bodies[i], &self.scene.bodies[j]);
-            let meeting = Meeting::of(self.scene, i, j);
-            let (ga, gb) = (acceleration(a, &g), acceleration(b, &g));
-            let tolerance = crate::geometry::TOUCH_TOLERANCE * a.radius.min(b.radius);
-            if let Some(t) = first_touch(&meeting, &self.states[i], &self.states[j], &ga, &gb, tolerance, left) {
-                touches.push((i, j, t));
-                next = Some(next.map_or(t, |n: f64| n.min(t)));
+        let mut pairs: Vec<(usize, usize)> = self.pairs().collect();
+        loop {
+            let left = self.left();
+            let Some((delay, starting)) = self.next_touch(&pairs, left) else {
+                let reason = if left.is_finite() { EndReason::EndTime } else { EndReason::NoMoreContacts };
+                if left.is_finite() {
+                    self.advance(left);
+                }
+                self.reason = Some(reason);
+                return Ok(());
+            };
+            self.advance(delay);
+            // Every pair touching at that instant begins (a cradle's struck ball and its neighbour at once).
+            self.units = None;
+            let mut begun = false;
+            for &(i, j) in &starting {
+                begun |= self.begin(i, j, None, None)?;
             }
-        }
-        let Some(delay) = next.filter(|&t| t <= left) else {
-            let reason = if left.is_finite() { EndReason::EndTime } else { EndReason::NoMoreContacts };
-            if left.is_finite() {
-                self.advance(left);
+            if begun {
+                return Ok(());
             }
-            self.reason = Some(reason);
-            return Ok(());
-        };
-        self.advance(delay);
-        // Every pair touching at that instant begins (a cradle's struck ball and its neighbour at once).
-        let instant = 1e-14 * self.time.abs().max(delay);
-        let starting: Vec<(usize, usize)> =
-            touches.iter().filter(|(_, _, t)| *t <= delay + instant).map(|&(i, j, _)| (i, j)).collect();
-        self.units = None;
-        for (i, j) in starting {
-            self.begin(i, j, None, false)?;
+            // A touch that begins no contact (a graze at the rounding of the velocities): that pair flies on.
+            pairs.retain(|pair| !starting.contains(pair));
         }
-        Ok(())
     }
 
-    /// Moves every body through `delay` s of free flight.
+    /// Moves every body through `delay` s of free flight (and adds gravity's work on the way).
     fn advance(&mut self, delay: f64) {
         let g = self.scene.world.gravity;
-        for (state, body) in self.states.iter_mut().zip(&self.scene.bodies) {
-            *state = state.after(delay, &acceleration(body, &g));
+        let flight = self.flight_accelerations();
+        for ((state, body), a) in self.states.iter_mut().zip(&self.scene.bodies).zip(&flight) {
+            if !body.is_immovable() {
+                self.gravity_work += body.mass * g.dot(&state.displacement(delay, a));
+            }
+            *state = state.after(delay, a);
         }
         self.time += delay;
     }
 
+    /// Frees the frozen bodies that active contacts join to body `k` (a touch wakes the group it rests in).
+    fn wake(&mut self, k: usize) {
+        let mut queue = vec![k];
+        while let Some(body) = queue.pop() {
+            if !self.frozen[body] {
+                continue;
+            }
+            self.frozen[body] = false;
+            for contact in &self.active {
+                if let Some(&other) = contact.pair.iter().find(|&&other| other != body)
+                    && contact.pair.contains(&body)
+                    && self.frozen[other]
+                {
+                    queue.push(other);
+                }
+            }
+        }
+    }
+
     /// Begins the contact of bodies `i` and `j` now (their states current): resolves its law, records its first
-    /// touch. `island` is the speed unit of the island it begins in, if any (the floor of its damping map's speed).
-    fn begin(&mut self, i: usize, j: usize, island: Option<f64>, pushed: bool) -> Result<(), WorldError> {
+    /// touch; whether it began. `island` is the speed unit of the island it begins in, if any; `pushed` whether the
+    /// bodies were already touching, pushed together rather than closing a gap (`None`: decided here, by the
+    /// approach speed being zero).
+    fn begin(&mut self, i: usize, j: usize, island: Option<f64>, pushed: Option<bool>) -> Result<bool, WorldError> {
         let scene = self.scene;
+        self.wake(i);
+        self.wake(j);
         let (a, b) = (&scene.bodies[i], &scene.bodies[j]);
         let (spec, _) = scene.contact_of(i, j);
         let meeting = Meeting::of(scene, i, j);
         let relative = self.states[j].position - self.states[i].position;
         let (_, normal) = meeting.penetration(&relative);
-        let approach = (self.states[i].velocity - self.states[j].velocity).dot(&normal).max(0.0);
+        let relative_velocity = self.states[i].velocity - self.states[j].velocity;
+        let approach = relative_velocity.dot(&normal).max(0.0);
+        let pushed = pushed.unwrap_or(approach == 0.0);
+        if !pushed && approach > 0.0 && approach <= 8.0 * f64::EPSILON * relative_velocity.norm() {
+            // A graze within the rounding of the velocities: no contact.
+            return Ok(false);
+        }
         let effective_mass = crate::geometry::effective_mass(a, b).expect("interacting bodies are not both immovable");
         let rename = |error: SetupError| WorldError::Setup(scene.rename(i, j, error));
-        // The damping map's speed: the approach speed, but never below the island's speed (a contact pushed into
-        // being) or the speed of a resting contact under gravity, sqrt(g d_s) (d_s its static penetration).
+        // The damping map's speed: the approach speed, but never below the speed of a resting contact under
+        // gravity, sqrt(g d_s) (d_s its static penetration), nor — for a contact pushed into being — below the
+        // island's speed.
         let stiffness = resolve_law(spec, [a, b], effective_mass, 1.0).map_err(rename)?.stiffness;
         let g = scene.world.gravity.norm();
         let resting = if g > 0.0 {
@@ -208,15 +290,15 @@ impl<'a> World<'a> {
         } else {
             0.0
         };
-        let floor = island.unwrap_or(0.0).max(resting);
+        let floor = if pushed { island.unwrap_or(0.0).max(resting) } else { resting };
         let mut map_speed = approach.max(floor);
         let maps_by_speed = matches!(spec.damping, DampingSpec::Restitution(_));
         if maps_by_speed && scene.world.damping_map == DampingMap::FirstContact {
             map_speed = *self.first_speeds.entry([i, j]).or_insert(map_speed);
         }
         if map_speed.is_nan() || map_speed <= 0.0 {
-            // Touching at rest without gravity, outside any island: nothing to map from; such a pair is not begun.
-            return Ok(());
+            // Touching without approach, gravity or an island to push them: nothing to begin.
+            return Ok(false);
         }
         let law = resolve_law(spec, [a, b], effective_mass, map_speed).map_err(rename)?;
         check_law(spec, [a, b], &law, effective_mass, map_speed).map_err(rename)?;
@@ -256,8 +338,7 @@ impl<'a> World<'a> {
             work: 0.0,
             dissipated: 0.0,
         });
-        self.watch_rest = true;
-        Ok(())
+        Ok(true)
     }
 
     /// One segment of the island: integrates until a contact begins or ends (or the run's end), and takes it.
@@ -265,25 +346,41 @@ impl<'a> World<'a> {
         let scene = self.scene;
         let units = self.units.expect("an island has units");
         let start = self.states.clone();
-        let island = Island::new(scene, &start, self.active.clone(), units);
-        // The pairs watched for a first touch: every pair with a member that is not an active contact.
+        let flight = self.flight_accelerations();
+        // The island integrates the live contacts (`live[c]` is its contact c's index among the active ones).
+        let live = self.live();
+        let island = Island::new(scene, &start, &flight, live.iter().map(|&c| self.active[c].clone()).collect(), units);
+        let y0 = island.initial_state();
+        // The pairs watched for a first touch: every pair with a member that is not an active contact. A pair
+        // touching at the start is watched from just inside the rounding of its positions, so that its gap starts
+        // open; whether its gap then opens is watched too (a contact it begins without is pushed).
         let active: BTreeSet<[usize; 2]> = self.active.iter().map(|c| c.pair).collect();
-        let watched: Vec<(usize, usize, Meeting, f64)> = self
-            .pairs()
-            .filter(|&(i, j)| !active.contains(&[i, j]) && (island.slot(i).is_some() || island.slot(j).is_some()))
-            .map(|(i, j)| {
+        let all: Vec<(usize, usize)> = self.pairs().filter(|&(i, j)| !active.contains(&[i, j])).collect();
+        let inside = |&(i, j): &(usize, usize)| island.slot(i).is_some() || island.slot(j).is_some();
+        let watched: Vec<(usize, usize, Meeting, f64)> = all
+            .iter()
+            .filter(|p| inside(p))
+            .map(|&(i, j)| {
                 let meeting = Meeting::of(scene, i, j);
-                // A pair touching at the start is watched from just inside the rounding of its positions, so that
-                // its gap starts open.
-                let y0 = island.initial_state();
                 let gap = -island.pair_state(i, j, &meeting, &y0).penetration;
                 let tolerance = self.touching(i, j);
                 let offset = if gap <= tolerance { (-gap).max(0.0) + tolerance } else { 0.0 };
                 (i, j, meeting, offset)
             })
             .collect();
-        let held = scene.bodies.iter().enumerate().all(|(k, b)| b.is_immovable() || island.slot(k).is_some());
-        let watch_rest = self.watch_rest && held;
+        // Pairs with no body in the island fly freely: the segment stops at their next first touch.
+        let outside: Vec<(usize, usize)> = all.iter().copied().filter(|p| !inside(p)).collect();
+        let outside_touch = self.next_touch(&outside, self.left());
+        // Groups that come to rest: one an immovable body holds is frozen; free ones end the run when every movable
+        // body not frozen is in them.
+        let components = island.components();
+        let everyone = scene
+            .bodies
+            .iter()
+            .enumerate()
+            .all(|(k, b)| b.is_immovable() || self.frozen[k] || island.slot(k).is_some());
+        let all_free = components.iter().all(|(_, held)| !held);
+        let all_members: Vec<usize> = (0..island.members.len()).collect();
 
         let mut functions: Vec<EventFunction<'_>> = Vec::new();
         let mut kinds: Vec<(Watched, bool)> = Vec::new();
@@ -297,20 +394,30 @@ impl<'a> World<'a> {
             }
             functions.push(Box::new(move |y| isl.contact_state(c, y).rate / isl.units.speed));
             kinds.push((Watched::MaxCompression(c), false));
-            functions.push(Box::new(move |y| {
-                let accelerations = isl.accelerations(y);
-                isl.force_rate(c, y, &accelerations) * isl.units.time / isl.units.force
-            }));
+            functions.push(Box::new(move |y| isl.force_rate(c, y) * isl.units.time / isl.units.force));
             kinds.push((Watched::ForcePeak(c), false));
         }
-        for (i, j, meeting, offset) in &watched {
+        for (p, (i, j, meeting, offset)) in watched.iter().enumerate() {
             let (i, j, offset) = (*i, *j, *offset);
             functions
                 .push(Box::new(move |y| (offset - isl.pair_state(i, j, meeting, y).penetration) / isl.units.length));
-            kinds.push((Watched::Touch(i, j, offset > 0.0), true));
+            kinds.push((Watched::Touch(p), true));
+            if offset > 0.0 {
+                let open = 8.0 * offset;
+                functions
+                    .push(Box::new(move |y| (open + isl.pair_state(i, j, meeting, y).penetration) / isl.units.length));
+                kinds.push((Watched::Opened(p), false));
+            }
         }
-        if watch_rest {
-            functions.push(Box::new(move |y| isl.motion_energy(y) / isl.units.energy - AT_REST));
+        for (k, (group, held)) in components.iter().enumerate() {
+            if *held {
+                functions.push(Box::new(move |y| isl.motion_energy(y, group, true) / isl.units.energy - AT_REST));
+                kinds.push((Watched::Frozen(k), true));
+            }
+        }
+        if everyone && all_free {
+            let members = &all_members;
+            functions.push(Box::new(move |y| isl.motion_energy(y, members, false) / isl.units.energy - AT_REST));
             kinds.push((Watched::Rest, true));
         }
         let events: Vec<EventOf<'_, Dyn>> = functions
@@ -322,39 +429,62 @@ impl<'a> World<'a> {
         let requested = scene.solver.tolerances;
         let tolerances = Tolerances { rtol: requested.rtol * 0.1, atol: requested.atol * 0.1 };
         let mut stepper = StepperOf::new(&island, tolerances, false);
-        let horizon = (self.left() / units.time).min(SEGMENT_TIME);
-        let y0 = island.initial_state();
+        let by_end = self.left() / units.time;
+        let by_outside = outside_touch.as_ref().map_or(f64::INFINITY, |(delay, _)| delay / units.time);
+        let horizon = by_end.min(by_outside).min(SEGMENT_TIME);
         let end = stepper.run(0.0, y0, horizon, &events)?;
         self.counters.steps += stepper.counters.steps;
         self.counters.rejected_steps += stepper.counters.rejected_steps;
         self.counters.evaluations += stepper.counters.evaluations;
 
-        // The located non-terminal events: maxima of penetration and force.
+        // The located non-terminal events: maxima of penetration and force, gaps that opened.
+        let mut opened = vec![false; watched.len()];
         for crossing in &end.crossings {
             let at = self.time + crossing.time * units.time;
             match kinds[crossing.event].0 {
                 Watched::MaxCompression(c) => self.note_compression(&island, c, &crossing.state, at),
                 Watched::ForcePeak(c) => self.note_peak(&island, c, &crossing.state, at),
+                Watched::Opened(p) => opened[p] = true,
                 _ => {}
             }
         }
-        // The segment's end: every body's state, the contacts' integrals.
+        self.pressed = watched
+            .iter()
+            .zip(&opened)
+            .filter(|((_, _, _, offset), opened)| *offset > 0.0 && !**opened)
+            .map(|((i, j, _, _), _)| [*i, *j])
+            .collect();
+        // The segment's end: every body's state, the contacts' integrals, gravity's and the walls' work.
         let y = &end.state;
+        let now = self.time + end.time * units.time;
         for c in 0..island.contacts.len() {
-            // The force at the segment's ends may be the largest (a contact that begins or ends on a jump).
-            let at = self.time + end.time * units.time;
-            self.note_peak(&island, c, y, at);
+            // The force at the segment's end may be the largest (a contact that ends on a jump).
+            self.note_peak(&island, c, y, now);
+            if self.records[island.contacts[c].record].max_compression.is_none() {
+                // Until a maximum is located, the deepest point so far is where the contact stands now.
+                self.note_compression(&island, c, y, now);
+            }
         }
-        for k in 0..scene.bodies.len() {
+        for (k, body) in scene.bodies.iter().enumerate() {
+            if !body.is_immovable() {
+                self.gravity_work += body.mass * scene.world.gravity.dot(&island.displacement(k, y));
+            }
             self.states[k] = Kinematic { position: island.position(k, y), velocity: island.velocity(k, y) };
         }
-        for (c, contact) in self.active.iter_mut().enumerate() {
+        for (c, &active) in live.iter().enumerate() {
+            let contact = &mut self.active[active];
             (contact.impulse, contact.work, contact.dissipated) = island.integrals(c, y);
         }
         self.immovable_work += island.immovable_work(y);
-        let now = self.time + end.time * units.time;
-        let segment_states: Vec<_> = (0..island.contacts.len()).map(|c| island.contact_state(c, y)).collect();
-        let motion = island.motion_energy(y);
+        let rates: Vec<f64> = (0..island.contacts.len()).map(|c| island.contact_state(c, y).rate).collect();
+        let motion = island.motion_energy(y, &all_members, false);
+        let resting: Vec<usize> = match end.ending {
+            Ending::Event(index) => match kinds[index].0 {
+                Watched::Frozen(k) => components[k].0.iter().map(|&m| island.members[m]).collect(),
+                _ => Vec::new(),
+            },
+            _ => Vec::new(),
+        };
         drop(events);
         drop(functions);
         drop(island);
@@ -362,8 +492,30 @@ impl<'a> World<'a> {
 
         match end.ending {
             Ending::Event(index) => match kinds[index].0 {
-                Watched::Separation(c) => self.finish_contact(c, segment_states[c].rate)?,
-                Watched::Touch(i, j, pushed) => self.begin(i, j, Some(units.speed), pushed)?,
+                Watched::Separation(c) => self.finish_contact(live[c], rates[c])?,
+                Watched::Frozen(_) => {
+                    for k in resting {
+                        let body = &scene.bodies[k];
+                        self.settled += body.kinetic_energy(&self.states[k].velocity, &Vector3::zeros());
+                        self.states[k].velocity = Vector3::zeros();
+                        self.frozen[k] = true;
+                    }
+                    let all_rest = scene.bodies.iter().enumerate().all(|(k, b)| b.is_immovable() || self.frozen[k]);
+                    if all_rest {
+                        self.reason = Some(EndReason::AtRest);
+                        self.notes.push(format!(
+                            "the bodies came to rest at t = {now:.6e} s: the energy of their motion about rest fell \
+                             below {AT_REST:e} of M V² = {:.3e} J",
+                            units.energy
+                        ));
+                        return Ok(());
+                    }
+                }
+                Watched::Touch(p) => {
+                    let (i, j, _, offset) = watched[p];
+                    let pushed = offset > 0.0 && !opened[p];
+                    self.begin(i, j, Some(units.speed), Some(pushed))?;
+                }
                 Watched::Rest => {
                     self.reason = Some(EndReason::AtRest);
                     self.notes.push(format!(
@@ -374,16 +526,25 @@ impl<'a> World<'a> {
                     ));
                     return Ok(());
                 }
-                Watched::MaxCompression(_) | Watched::ForcePeak(_) => unreachable!("not terminal"),
-            },
-            Ending::TimeLimit => {
-                if self.left() <= 0.0 || (self.left() / units.time) <= horizon * (1.0 + 1e-12) && horizon < SEGMENT_TIME
-                {
-                    self.reason = Some(EndReason::EndTime);
-                    return Ok(());
+                Watched::MaxCompression(_) | Watched::ForcePeak(_) | Watched::Opened(_) => {
+                    unreachable!("not terminal")
                 }
-                // A long segment: go on in a fresh one.
+            },
+            Ending::TimeLimit if horizon == by_end => {
+                self.reason = Some(EndReason::EndTime);
+                return Ok(());
             }
+            Ending::TimeLimit if horizon == by_outside => {
+                // Two bodies outside the island touch: their contact begins (and joins the island).
+                for (i, j) in outside_touch.map(|(_, pairs)| pairs).unwrap_or_default() {
+                    self.begin(i, j, Some(units.speed), None)?;
+                }
+            }
+            // A long segment: go on in a fresh one.
+            Ending::TimeLimit => {}
+            // A segment that spent its own step budget goes on in a fresh one (the run's budget decides); a stiff
+            // one ends the run.
+            Ending::GaveUp(why) if why.contains("budget") => {}
             Ending::GaveUp(why) => {
                 self.notes.push(format!("the integration stopped at t = {now:.6e} s: {why}"));
                 self.reason = Some(EndReason::StepBudget);
@@ -406,16 +567,19 @@ impl<'a> World<'a> {
     /// positions): taken at once, each as its own event.
     fn settle_simultaneous(&mut self, speed: f64) -> Result<(), WorldError> {
         loop {
-            // (Without an active contact the island is gone: flight finds what touches next.)
-            if self.ended >= self.scene.world.max_contacts || self.active.is_empty() {
+            // (Without a live contact the island is gone: flight finds what touches next.)
+            let live = self.live();
+            if self.ended >= self.scene.world.max_contacts || live.is_empty() {
                 return Ok(());
             }
             let scene = self.scene;
             let start = self.states.clone();
+            let flight = self.flight_accelerations();
             let units = self.units.expect("an island has units");
-            let island = Island::new(scene, &start, self.active.clone(), units);
+            let island =
+                Island::new(scene, &start, &flight, live.iter().map(|&c| self.active[c].clone()).collect(), units);
             let y = island.initial_state();
-            let parting = (0..island.contacts.len()).find(|&c| {
+            let parting = (0..island.contacts.len()).find_map(|c| {
                 let state = island.contact_state(c, &y);
                 let tolerance = self.touching(island.contacts[c].pair[0], island.contacts[c].pair[1]);
                 let value = if island.contacts[c].on_force {
@@ -423,7 +587,7 @@ impl<'a> World<'a> {
                 } else {
                     state.penetration - tolerance
                 };
-                state.rate < 0.0 && value <= 0.0
+                (state.rate < 0.0 && value <= 0.0).then_some((live[c], state.rate))
             });
             let active: BTreeSet<[usize; 2]> = self.active.iter().map(|c| c.pair).collect();
             let touching = self.pairs().find(|&(i, j)| {
@@ -431,17 +595,15 @@ impl<'a> World<'a> {
                     return false;
                 }
                 let state = island.pair_state(i, j, &Meeting::of(scene, i, j), &y);
-                state.rate > 0.0 && state.penetration >= -self.touching(i, j)
+                let tolerance = self.touching(i, j);
+                state.rate > 0.0 && state.penetration.abs() <= tolerance
             });
             drop(island);
-            if let Some(c) = parting {
-                let rate = {
-                    let island = Island::new(scene, &start, self.active.clone(), units);
-                    island.contact_state(c, &island.initial_state()).rate
-                };
+            if let Some((c, rate)) = parting {
                 self.finish_contact(c, rate)?;
             } else if let Some((i, j)) = touching {
-                self.begin(i, j, Some(speed), true)?;
+                let pushed = self.pressed.contains(&[i, j]);
+                self.begin(i, j, Some(speed), Some(pushed))?;
             } else {
                 return Ok(());
             }
@@ -512,7 +674,7 @@ impl<'a> World<'a> {
             });
         }
         self.ended += 1;
-        if self.active.is_empty() {
+        if self.live().is_empty() {
             self.units = None;
         }
         Ok(())
@@ -520,16 +682,49 @@ impl<'a> World<'a> {
 
     /// The outcome, with the contacts still active when the run stopped closed at their current values.
     fn finish(mut self) -> WorldOutcome {
-        if let Some(units) = self.units {
+        let units = self.units.or_else(|| {
+            self.active.first().map(|c| {
+                let (a, b) = (&self.scene.bodies[c.pair[0]], &self.scene.bodies[c.pair[1]]);
+                let mass = crate::geometry::effective_mass(a, b).unwrap_or(1.0);
+                Units::new(mass, c.law.stiffness, c.law.exponent, 1.0)
+            })
+        });
+        if let Some(units) = units {
             let start = self.states.clone();
-            let island = Island::new(self.scene, &start, self.active.clone(), units);
+            let flight = self.flight_accelerations();
+            let island = Island::new(self.scene, &start, &flight, self.active.clone(), units);
             let y = island.initial_state();
+            let time = self.time;
+            for c in 0..island.contacts.len() {
+                if self.records[island.contacts[c].record].max_compression.is_none() {
+                    self.note_compression(&island, c, &y, time);
+                }
+                self.note_peak(&island, c, &y, time);
+            }
             for (c, contact) in self.active.iter().enumerate() {
                 let state = island.contact_state(c, &y);
                 let elastic = contact.law.elastic_energy(state.penetration.max(0.0));
                 self.records[contact.record].at_stop =
                     Some((contact.impulse, contact.work, contact.dissipated, elastic));
             }
+            if self.reason != Some(EndReason::AtRest) && !self.active.is_empty() {
+                let list: Vec<String> = self.active.iter().map(|c| c.record.to_string()).collect();
+                self.notes.push(format!(
+                    "the run stopped with contact{} {} in progress: the sequential model takes {} as plastic (e = 0), \
+                     which an impact cut short is not",
+                    if list.len() > 1 { "s" } else { "" },
+                    list.join(", "),
+                    if list.len() > 1 { "them" } else { "it" }
+                ));
+            }
+        }
+        let starts: Vec<f64> = self.records.iter().map(|r| r.start_time).collect();
+        if starts.windows(2).any(|pair| pair[0] == pair[1]) {
+            self.notes.push(
+                "contacts began at the same instant: the sequential model takes them one after the other in the order \
+                 listed, and its answer depends on that order"
+                    .into(),
+            );
         }
         WorldOutcome {
             contacts: self.records,
@@ -537,6 +732,8 @@ impl<'a> World<'a> {
             end_time: self.time,
             bodies: self.states,
             immovable_work: self.immovable_work,
+            gravity_work: self.gravity_work,
+            settled: self.settled,
             counters: self.counters,
             method: "dop853",
             notes: self.notes,

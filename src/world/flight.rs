@@ -106,8 +106,9 @@ pub fn first_touch(
     let acc = gb - ga;
     let (gap0, _) = meeting.penetration(&r0);
     let gap0 = -gap0;
-    // The gap as a polynomial in τ (its zeros are the gap's), and its rate at τ = 0 (negative: approaching).
-    let (poly, closing): (Vec<f64>, f64) = match *meeting {
+    // The gap as a polynomial in τ (its zeros are the gap's); its rate and curvature at τ = 0 (negative: closing),
+    // each with the size of its own rounding, below which it counts as zero.
+    let (poly, closing, closing_rounding, curving, curving_rounding): (Vec<f64>, f64, f64, f64, f64) = match *meeting {
         Meeting::Spheres { reach } => {
             // |r0 + w τ + acc τ²/2|² - reach²; the constant term without cancellation: (|r0| - R)(|r0| + R).
             let distance = r0.norm();
@@ -116,35 +117,51 @@ pub fn first_touch(
             let c2 = w.norm_squared() + r0.dot(&acc);
             let c3 = w.dot(&acc);
             let c4 = 0.25 * acc.norm_squared();
-            (vec![c0, c1, c2, c3, c4], c1)
+            let rounding = 16.0 * f64::EPSILON;
+            let curving_rounding = rounding * (w.norm_squared() + distance * acc.norm());
+            (vec![c0, c1, c2, c3, c4], c1, rounding * distance * w.norm(), c2, curving_rounding)
         }
         Meeting::Face { face, sign, .. } => {
             // height - radius = gap0 + sign f·w τ + sign f·acc τ²/2.
             let c1 = sign * face.dot(&w);
-            (vec![gap0, c1, 0.5 * sign * face.dot(&acc)], c1)
+            let c2 = 0.5 * sign * face.dot(&acc);
+            (vec![gap0, c1, c2], c1, 16.0 * f64::EPSILON * w.norm(), c2, 16.0 * f64::EPSILON * acc.norm())
         }
     };
     if gap0.abs() <= tolerance {
-        if closing < 0.0 {
+        // Touching: they begin now if the gap closes — at a speed beyond its rounding, or, not opening, under an
+        // acceleration that closes it (a ball resting on a floor under gravity).
+        let approaching = closing < -closing_rounding;
+        let pressed = closing <= closing_rounding && curving < -curving_rounding;
+        if approaching || pressed {
             return Some(0.0);
         }
-        // Touching and parting (or sliding along): the next touch is a later closing of the gap.
+        // Touching and parting, or sliding along: the next touch is a later closing of the gap.
     } else if gap0 < 0.0 {
         // Overlapping beyond the tolerance: not a flight state (a contact is active).
         return None;
     }
+    // How far below zero the gap polynomial must dip for a contact: a graze within the rounding of the positions is
+    // none (the polynomial of two spheres is the gap times |r| + R).
+    let depth = match *meeting {
+        Meeting::Spheres { reach } => tolerance * 2.0 * reach,
+        Meeting::Face { .. } => tolerance,
+    };
     let roots = real_roots(&trim(&poly), 0.0, horizon);
-    // The first root where the gap goes from open to closed: positive just before, not positive just after.
+    // The first root where the gap crosses from open to closed: positive just before it, negative just after (a
+    // tangency, a graze of zero depth, is no contact).
     let value = |t: f64| evaluate(&poly, t);
-    let mut before = 0.0;
-    for &root in &roots {
-        let probe_before = if root > before { 0.5 * (before + root) } else { root };
-        let opening_before = value(probe_before) > 0.0 || (probe_before == 0.0 && gap0 > 0.0);
-        let slope = derivative_at(&poly, root);
-        if root > 0.0 && opening_before && slope <= 0.0 {
+    for (k, &root) in roots.iter().enumerate() {
+        if root <= 0.0 {
+            continue;
+        }
+        let before = if k == 0 { 0.0 } else { roots[k - 1] };
+        let after = roots.get(k + 1).copied().unwrap_or(if horizon.is_finite() { horizon } else { 2.0 * root + 1.0 });
+        let open_before = if before < root { value(0.5 * (before + root)) > 0.0 } else { false };
+        let closed_after = value(0.5 * (root + after)) < -depth;
+        if open_before && closed_after {
             return Some(root);
         }
-        before = root;
     }
     None
 }
@@ -167,10 +184,6 @@ fn derivative(poly: &[f64]) -> Vec<f64> {
     poly.iter().enumerate().skip(1).map(|(k, &c)| k as f64 * c).collect()
 }
 
-fn derivative_at(poly: &[f64], t: f64) -> f64 {
-    evaluate(&derivative(poly), t)
-}
-
 /// The real roots of `poly` in [lo, hi], ascending: the critical points (roots of the derivative, found the same
 /// way) cut [lo, hi] into pieces on which the polynomial is monotonic, and each piece whose ends differ in sign
 /// holds one root, found by bisection to the last bit. A root of even multiplicity (a tangency) is found as a critical
@@ -190,7 +203,8 @@ pub fn real_roots(poly: &[f64], lo: f64, hi: f64) -> Vec<f64> {
     let mut cuts = vec![lo];
     cuts.extend(real_roots(&derivative(&poly), lo, hi).into_iter().filter(|&t| t > lo && t < hi));
     cuts.push(hi);
-    let scale = poly.iter().enumerate().map(|(k, c)| (c * hi.abs().max(1.0).powi(k as i32)).abs()).fold(0.0, f64::max);
+    // The rounding of p(t): eps times the sum of its terms' sizes there.
+    let rounding = |t: f64| 8.0 * f64::EPSILON * poly.iter().rev().fold(0.0, |acc, &c| acc * t.abs() + c.abs());
     let mut roots: Vec<f64> = Vec::new();
     for piece in cuts.windows(2) {
         let (a, b) = (piece[0], piece[1]);
@@ -199,7 +213,7 @@ pub fn real_roots(poly: &[f64], lo: f64, hi: f64) -> Vec<f64> {
             roots.push(a);
         } else if fa.signum() != fb.signum() && fb != 0.0 {
             roots.push(bisect(&poly, a, b, fa));
-        } else if fa.abs() <= 4.0 * f64::EPSILON * scale && piece[0] != lo {
+        } else if fa.abs() <= rounding(a) && piece[0] != lo {
             // A tangency at a critical point.
             roots.push(a);
         }

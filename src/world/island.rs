@@ -9,7 +9,7 @@
 //! began), on which the free flight of the bodies outside the island depends. A segment lasts until a contact begins
 //! or ends: then the driver builds the next one.
 
-use super::flight::{Kinematic, Meeting, acceleration};
+use super::flight::{Kinematic, Meeting};
 use crate::dynamics::unit_or_one;
 use crate::integrate::{ModelOf, Vector};
 use crate::law::ContactLaw;
@@ -89,6 +89,9 @@ pub struct Island<'a> {
     scene: &'a WorldScene,
     /// Every body's position and velocity when the segment began (scene-indexed), SI.
     start: &'a [Kinematic],
+    /// Every body's acceleration in free flight (scene-indexed), m/s²: gravity for a body of finite mass, none for an
+    /// immovable body or one at rest on others (frozen).
+    flight: &'a [Vector3<f64>],
     /// For each body of the scene, its place among the members (`None`: outside the island, or immovable).
     slots: Vec<Option<usize>>,
     /// The member bodies (finite mass), in state order.
@@ -99,6 +102,8 @@ pub struct Island<'a> {
     gravity: Vector3<f64>,
     /// The dissipated-energy unit of each contact, in energy units (its damping's size: accurate relative to itself).
     dissipation_units: Vec<f64>,
+    /// For each member, the active contacts it takes part in.
+    touching: Vec<Vec<usize>>,
     contact_base: usize,
     immovable_work: usize,
     clock: usize,
@@ -107,7 +112,13 @@ pub struct Island<'a> {
 
 impl<'a> Island<'a> {
     /// The segment of `contacts` (their bodies become the members) from the bodies' states `start`, in `units`.
-    pub fn new(scene: &'a WorldScene, start: &'a [Kinematic], contacts: Vec<ActiveContact>, units: Units) -> Self {
+    pub fn new(
+        scene: &'a WorldScene,
+        start: &'a [Kinematic],
+        flight: &'a [Vector3<f64>],
+        contacts: Vec<ActiveContact>,
+        units: Units,
+    ) -> Self {
         let mut slots = vec![None; scene.bodies.len()];
         let mut members = Vec::new();
         for contact in &contacts {
@@ -120,18 +131,28 @@ impl<'a> Island<'a> {
         }
         let dissipation_units =
             contacts.iter().map(|c| unit_or_one(c.law.damping_ratio(units.length, units.speed).min(1.0))).collect();
+        let mut touching = vec![Vec::new(); members.len()];
+        for (c, contact) in contacts.iter().enumerate() {
+            for &k in &contact.pair {
+                if let Some(m) = slots[k] {
+                    touching[m].push(c);
+                }
+            }
+        }
         let contact_base = 6 * members.len();
         let immovable_work = contact_base + 3 * contacts.len();
         let clock = immovable_work + 1;
         Island {
             scene,
             start,
+            flight,
             slots,
             members,
             contacts,
             units,
             gravity: scene.world.gravity * (units.time / units.speed),
             dissipation_units,
+            touching,
             contact_base,
             immovable_work,
             clock,
@@ -170,11 +191,7 @@ impl<'a> Island<'a> {
     pub fn displacement(&self, k: usize, y: &DVector<f64>) -> Vector3<f64> {
         match self.slots[k] {
             Some(m) => y.fixed_rows::<3>(6 * m).into_owned() * self.units.length,
-            None => {
-                let body = &self.scene.bodies[k];
-                self.start[k]
-                    .displacement(y[self.clock] * self.units.time, &acceleration(body, &self.scene.world.gravity))
-            }
+            None => self.start[k].displacement(y[self.clock] * self.units.time, &self.flight[k]),
         }
     }
 
@@ -182,11 +199,7 @@ impl<'a> Island<'a> {
     pub fn velocity(&self, k: usize, y: &DVector<f64>) -> Vector3<f64> {
         match self.slots[k] {
             Some(m) => y.fixed_rows::<3>(6 * m + 3).into_owned() * self.units.speed,
-            None => {
-                let body = &self.scene.bodies[k];
-                self.start[k].velocity
-                    + acceleration(body, &self.scene.world.gravity) * (y[self.clock] * self.units.time)
-            }
+            None => self.start[k].velocity + self.flight[k] * (y[self.clock] * self.units.time),
         }
     }
 
@@ -227,40 +240,28 @@ impl<'a> Island<'a> {
         (parts.elastic, parts.dissipative)
     }
 
-    /// Every member's acceleration (m/s²) at state `y`.
-    pub fn accelerations(&self, y: &DVector<f64>) -> Vec<Vector3<f64>> {
-        let g = self.scene.world.gravity;
-        let mut a = vec![g; self.members.len()];
-        for c in 0..self.contacts.len() {
+    /// Body `k`'s acceleration at state `y` (m/s²): gravity and the forces of its own contacts (none for a body
+    /// outside the island, whose flight is free, or an immovable one).
+    pub fn acceleration_of(&self, k: usize, y: &DVector<f64>) -> Vector3<f64> {
+        let body = &self.scene.bodies[k];
+        let Some(m) = self.slots[k] else { return self.flight[k] };
+        let mut a = self.scene.world.gravity;
+        for &c in &self.touching[m] {
             let state = self.contact_state(c, y);
             let (elastic, dissipative) = self.force(c, &state);
-            let on_j = state.normal * (elastic + dissipative);
-            let [i, j] = self.contacts[c].pair;
-            if let Some(m) = self.slots[i] {
-                a[m] -= on_j / self.scene.bodies[i].mass;
-            }
-            if let Some(m) = self.slots[j] {
-                a[m] += on_j / self.scene.bodies[j].mass;
-            }
+            let on_j = state.normal * ((elastic + dissipative) / body.mass);
+            if self.contacts[c].pair[1] == k { a += on_j } else { a -= on_j }
         }
         a
     }
 
-    /// Body `k`'s acceleration, from the members' `accelerations` (m/s²).
-    fn acceleration_of(&self, k: usize, accelerations: &[Vector3<f64>]) -> Vector3<f64> {
-        match self.slots[k] {
-            Some(m) => accelerations[m],
-            None => acceleration(&self.scene.bodies[k], &self.scene.world.gravity),
-        }
-    }
-
-    /// dF/dt of contact `c` (N/s): the force's gradient along the motion, with d'' from the bodies' accelerations
-    /// and the turning of the normal. Its fall through zero is the force peak.
-    pub fn force_rate(&self, c: usize, y: &DVector<f64>, accelerations: &[Vector3<f64>]) -> f64 {
+    /// dF/dt of contact `c` (N/s): the force's gradient along the motion, with d'' from the two bodies'
+    /// accelerations and the turning of the normal. Its fall through zero is the force peak.
+    pub fn force_rate(&self, c: usize, y: &DVector<f64>) -> f64 {
         let state = self.contact_state(c, y);
         let contact = &self.contacts[c];
         let [i, j] = contact.pair;
-        let relative_acceleration = self.acceleration_of(j, accelerations) - self.acceleration_of(i, accelerations);
+        let relative_acceleration = self.acceleration_of(j, y) - self.acceleration_of(i, y);
         let u = &state.relative_velocity;
         let turning = if state.distance.is_finite() {
             (u - state.normal * state.normal.dot(u)) / state.distance
@@ -285,45 +286,74 @@ impl<'a> Island<'a> {
         }
     }
 
-    /// The energy of the island's motion about rest (J): Σ ½ m |v - v̄|² + ½ m |a - ā|²/ω², ω² the member's contact
-    /// stiffness over its mass — for a body oscillating on a contact, its oscillation energy, which does not swing
-    /// with the phase as the kinetic energy alone does. v̄ and ā are the island's mean motion when no immovable body
-    /// holds it (bodies stuck together and drifting are at rest relative to each other), zero otherwise.
-    pub fn motion_energy(&self, y: &DVector<f64>) -> f64 {
-        let accelerations = self.accelerations(y);
-        let held = self.contacts.iter().any(|c| c.pair.iter().any(|&k| self.scene.bodies[k].is_immovable()));
-        let masses: Vec<f64> = self.members.iter().map(|&k| self.scene.bodies[k].mass).collect();
+    /// The groups of members that active contacts join (member slots), each with whether an immovable body holds
+    /// it (one of its contacts is with an immovable body).
+    pub fn components(&self) -> Vec<(Vec<usize>, bool)> {
+        let mut group: Vec<usize> = (0..self.members.len()).collect();
+        fn root(group: &mut [usize], mut m: usize) -> usize {
+            while group[m] != m {
+                group[m] = group[group[m]];
+                m = group[m];
+            }
+            m
+        }
+        let mut held = vec![false; self.members.len()];
+        for contact in &self.contacts {
+            let [i, j] = contact.pair;
+            match (self.slots[i], self.slots[j]) {
+                (Some(a), Some(b)) => {
+                    let (ra, rb) = (root(&mut group, a), root(&mut group, b));
+                    group[ra] = rb;
+                }
+                (Some(a), None) | (None, Some(a)) => held[a] = true,
+                (None, None) => {}
+            }
+        }
+        let mut components: std::collections::BTreeMap<usize, (Vec<usize>, bool)> = Default::default();
+        for (m, &holds) in held.iter().enumerate() {
+            let r = root(&mut group, m);
+            let entry = components.entry(r).or_default();
+            entry.0.push(m);
+            entry.1 |= holds;
+        }
+        components.into_values().collect()
+    }
+
+    /// The energy of the motion about rest (J) of the members `group` (slots): Σ ½ m |v - v̄|² + ½ m |a - ā|²/ω², ω²
+    /// the member's contact stiffness over its mass — for a body oscillating on a contact, its oscillation energy,
+    /// which does not swing with the phase as the kinetic energy alone does. v̄ and ā are the group's mean motion
+    /// when no immovable body holds it (`held` false: bodies stuck together and drifting are at rest relative to each
+    /// other), zero otherwise.
+    pub fn motion_energy(&self, y: &DVector<f64>, group: &[usize], held: bool) -> f64 {
+        let masses: Vec<f64> = group.iter().map(|&m| self.scene.bodies[self.members[m]].mass).collect();
+        let accelerations: Vec<Vector3<f64>> =
+            group.iter().map(|&m| self.acceleration_of(self.members[m], y)).collect();
         let total: f64 = masses.iter().sum();
         let (mut mean_v, mut mean_a) = (Vector3::zeros(), Vector3::zeros());
         if !held {
-            for (m, &k) in self.members.iter().enumerate() {
-                mean_v += self.velocity(k, y) * (masses[m] / total);
-                mean_a += accelerations[m] * (masses[m] / total);
-            }
-        }
-        let mut stiffness = vec![0.0; self.members.len()];
-        for c in 0..self.contacts.len() {
-            let state = self.contact_state(c, y);
-            let (k, _) = self.contacts[c].law.force_gradient(state.penetration.max(0.0), 0.0);
-            for &body in &self.contacts[c].pair {
-                if let Some(m) = self.slots[body] {
-                    stiffness[m] += k.max(0.0);
-                }
+            for (g, &m) in group.iter().enumerate() {
+                mean_v += self.velocity(self.members[m], y) * (masses[g] / total);
+                mean_a += accelerations[g] * (masses[g] / total);
             }
         }
         let mut energy = 0.0;
-        for (m, &k) in self.members.iter().enumerate() {
-            let v = self.velocity(k, y) - mean_v;
-            let a = accelerations[m] - mean_a;
-            let omega2 = stiffness[m] / masses[m];
+        for (g, &m) in group.iter().enumerate() {
+            let mut stiffness = 0.0;
+            for &c in &self.touching[m] {
+                let state = self.contact_state(c, y);
+                stiffness += self.contacts[c].law.force_gradient(state.penetration.max(0.0), 0.0).0.max(0.0);
+            }
+            let v = self.velocity(self.members[m], y) - mean_v;
+            let a = accelerations[g] - mean_a;
+            let omega2 = stiffness / masses[g];
             let potential = if omega2 > 0.0 {
-                0.5 * masses[m] * a.norm_squared() / omega2
+                0.5 * masses[g] * a.norm_squared() / omega2
             } else if a.norm() > 0.0 {
                 f64::INFINITY
             } else {
                 0.0
             };
-            energy += 0.5 * masses[m] * v.norm_squared() + potential;
+            energy += 0.5 * masses[g] * v.norm_squared() + potential;
         }
         energy
     }

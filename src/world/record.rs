@@ -115,6 +115,12 @@ pub struct WorldOutcome {
     pub bodies: Vec<Kinematic>,
     /// Work done on the movable bodies by immovable ones (moving walls), J.
     pub immovable_work: f64,
+    /// Work of gravity on the bodies of finite mass, J: summed from their displacements in each flight and segment
+    /// (not from absolute positions, whose rounding grows with their distance from the origin).
+    pub gravity_work: f64,
+    /// The kinetic energy left in groups of bodies when they came to rest and were held still, J (below 1e-14 of
+    /// their energy unit; counted with the dissipated energy).
+    pub settled: f64,
     /// The integrator's work over the run.
     pub counters: Counters,
     /// The path that ran: `dop853` (the world's islands), or the two-body path of a world of two bodies.
