@@ -321,6 +321,8 @@ fn the_gallery_reports_only_the_figures_it_leaves() {
         "kelvin_voigt_force_penetration.png",
         "chung_ooi_20deg_force_time.png",
         "chung_ooi_test4.png",
+        "bouncing_ball_heights.png",
+        "newtons_cradle_3_velocities.png",
     ]
     .map(|name| format!("g/{name}"));
     let mut reported: Vec<String> = paths.iter().map(|p| p.to_string()).collect();

@@ -3,6 +3,9 @@
 //! oscillator under gravity, the static penetration, the exact Hunt–Crossley e(x)), conservation laws, and the
 //! two-body run of today.
 
+mod common;
+
+use common::binary::{Scratch, impact};
 use impact::report::world::WorldReport;
 use impact::scene::{Parsed, WorldScene, parse_any};
 use std::path::Path;
@@ -437,4 +440,51 @@ fn bounces_that_close_a_gap_are_not_pushed() {
         assert!(!bounce.pushed && bounce.approach_speed > 0.1, "{bounce:?}");
         assert!(bounce.restitution_velocity_ratio.is_some());
     }
+}
+
+/// `impact run WORLD --csv FILE --plot DIR --json`: the series has the documented columns, one row per body and per
+/// active contact at each instant; its last instant is where the report leaves the bodies, its largest force the
+/// report's; the figures are drawn (the heights with the simulation's and the model's apexes, under gravity).
+/// `--samples` is refused for a world run.
+#[test]
+fn a_world_run_writes_its_series_and_figures() {
+    let scratch = Scratch::new("a_world_run_writes_its_series_and_figures");
+    let scene = scratch.scene(
+        "bounce.toml",
+        &dropped(0.11, 2.1e11, "law = \"carvalho-martins\"\nrestitution = 0.8", "max_contacts = 4"),
+    );
+    let output = impact(scratch.path(), &["run", &scene, "--json", "--csv", "bounce.csv", "--plot", "figures"]);
+    assert_eq!(output.status.code(), Some(0), "{}", String::from_utf8_lossy(&output.stderr));
+    let report: serde_json::Value = serde_json::from_slice(&output.stdout).expect("the JSON report");
+    let csv = scratch.read("bounce.csv");
+    let mut lines = csv.lines();
+    assert_eq!(lines.next(), Some("time_s,kind,index,x_m,y_m,z_m,vx_m_s,vy_m_s,vz_m_s,penetration_m,force_N"));
+    let rows: Vec<Vec<&str>> = lines.map(|line| line.split(',').collect()).collect();
+    assert!(rows.iter().all(|row| row.len() == 11), "every row has the 11 columns");
+    let last_ball = rows.iter().rev().find(|row| row[1] == "body" && row[2] == "0").expect("rows of the ball");
+    let z: f64 = last_ball[5].parse().unwrap();
+    assert!((z - report["bodies"][0]["position_after"][2].as_f64().unwrap()).abs() < 1e-15, "{z}");
+    let contacts = report["contacts"].as_array().unwrap();
+    for (k, contact) in contacts.iter().enumerate() {
+        let largest = rows
+            .iter()
+            .filter(|row| row[1] == "contact" && row[2] == k.to_string())
+            .map(|row| row[10].parse::<f64>().unwrap())
+            .fold(0.0, f64::max);
+        let peak = contact["max_force"].as_f64().unwrap();
+        assert!(largest <= peak * (1.0 + 1e-12) && largest > 0.99 * peak, "contact {k}: {largest} vs {peak}");
+    }
+    let times: Vec<f64> = rows.iter().map(|row| row[0].parse().unwrap()).collect();
+    assert!(times.windows(2).all(|pair| pair[0] <= pair[1]), "instants in time order");
+    for name in ["contact_forces", "velocities", "heights"] {
+        assert!(
+            scratch.exists(&format!("figures/{name}.png")) && scratch.exists(&format!("figures/{name}.svg")),
+            "{name}"
+        );
+    }
+    let heights = scratch.read("figures/heights.svg");
+    assert!(heights.contains("class=\"apex\"") && heights.contains("class=\"model\""), "apexes drawn");
+    let refused = impact(scratch.path(), &["run", &scene, "--csv", "again.csv", "--samples", "100"]);
+    assert_eq!(refused.status.code(), Some(2));
+    assert!(!scratch.exists("again.csv"));
 }

@@ -4,8 +4,9 @@
 use crate::history::Recording;
 use crate::impact::simulate;
 use crate::output::files::write_atomically;
+use crate::output::world_figures::{self, WorldTrace};
 use crate::output::{figures, render, sweep_figure};
-use crate::scene::Scene;
+use crate::scene::{Parsed, Scene};
 use crate::sweep::grid::{Axis, Grid, Spacing};
 use crate::sweep::key::SceneKey;
 use crate::sweep::{self as sweeps, Sweep, table};
@@ -58,7 +59,32 @@ pub fn run(args: &GalleryArgs) -> anyhow::Result<()> {
     }
     effective_restitution(&args.out)?;
     oblique_forces(&args.out)?;
-    incidence(&args.out)
+    incidence(&args.out)?;
+    worlds(&args.out)
+}
+
+/// The world figures of the gallery: (scene name, scene text, the figure kept). The bouncing ball's heights beside
+/// the instantaneous model's apexes; Newton's cradle's velocities beside the sequential model's.
+const WORLDS: [(&str, &str, &str); 2] = [
+    ("bouncing_ball", include_str!("../../models/bouncing-ball.toml"), "heights"),
+    ("newtons_cradle_3", include_str!("../../models/newtons-cradle-3.toml"), "velocities"),
+];
+
+fn worlds(folder: &Path) -> anyhow::Result<()> {
+    for (name, text, figure) in WORLDS {
+        let path = format!("models/{}.toml", name.replace('_', "-"));
+        let Parsed::World(scene) = crate::scene::parse_any(text, Path::new(&path))? else {
+            return Err(anyhow!("{path} is not a world scene"));
+        };
+        let mut trace = WorldTrace::new();
+        let simulation = crate::world::simulate_observed(&scene, &mut trace)?;
+        let svg = world_figures::svg(figure, &simulation.report, &trace);
+        let target = folder.join(format!("{name}_{figure}.png"));
+        let png = render::png(&svg).with_context(|| format!("cannot render {}", target.display()))?;
+        write_atomically(&target, &png)?;
+        println!("wrote {}", target.display());
+    }
+    Ok(())
 }
 
 /// The contact forces of Chung & Ooi's test 4 at [`OBLIQUE_ANGLE`] degrees: the scene file with its sphere's

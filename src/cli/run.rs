@@ -6,7 +6,7 @@ use crate::history::Recording;
 use crate::impact::{Simulation, simulate};
 use crate::output;
 use crate::output::files::{self, Destination, OutputFile, Staging};
-use crate::scene::{Parsed, Scene, WorldScene};
+use crate::scene::{OutputSpec, Parsed, Scene, WorldScene};
 use clap::Args;
 use std::path::{Path, PathBuf};
 
@@ -69,7 +69,7 @@ pub fn run(args: &RunArgs) -> anyhow::Result<()> {
     if samples.is_some() && args.csv.is_none() && scene.output.series.is_none() {
         return Err(BadInput("--samples applies to the series: give --csv FILE (or [output] series)".into()).into());
     }
-    let plan = Plan::new(args, &scene)?;
+    let plan = Plan::new(args, &scene.output, &output::figures::FIGURES)?;
     // One simulation serves both views when it can: figures alone take a uniform history of their own size.
     let recording = match (&plan.series, samples, &plan.figures) {
         (Some(_), Some(n), _) => Recording::Uniform(n),
@@ -108,20 +108,18 @@ pub struct Figures {
 impl Plan {
     /// The series and figures of `impact run`: from the options, else from the scene's `[output]`, checked against
     /// the scene file and each other (see [`super::paths`]).
-    fn new(args: &RunArgs, scene: &Scene) -> anyhow::Result<Plan> {
+    fn new(args: &RunArgs, output: &OutputSpec, stems: &[&str]) -> anyhow::Result<Plan> {
         let at = |key, line| Origin::Scene { file: args.scene.clone(), key, line };
-        let series = match (&args.csv, &scene.output.series) {
+        let series = match (&args.csv, &output.series) {
             (Some(path), _) => Some((path.clone(), Origin::CommandLine, format!("--csv {}", path.display()))),
-            (None, Some(path)) => Some((
-                path.clone(),
-                at("output.series", scene.output.series_line),
-                format!("the series {}", path.display()),
-            )),
+            (None, Some(path)) => {
+                Some((path.clone(), at("output.series", output.series_line), format!("the series {}", path.display())))
+            }
             (None, None) => None,
         };
-        let plots = match (&args.plot, &scene.output.plots) {
+        let plots = match (&args.plot, &output.plots) {
             (Some(path), _) => Some((path.clone(), Origin::CommandLine, "--plot")),
-            (None, Some(path)) => Some((path.clone(), at("output.plots", scene.output.plots_line), "the plots folder")),
+            (None, Some(path)) => Some((path.clone(), at("output.plots", output.plots_line), "the plots folder")),
             (None, None) => None,
         };
         let mut paths = Paths::default();
@@ -129,7 +127,8 @@ impl Plan {
         if args.json {
             paths.standard_output("the JSON report (--json)".into())?;
         }
-        let figures = plots.map(|(folder, origin, option)| figures(&mut paths, folder, origin, option)).transpose()?;
+        let figures =
+            plots.map(|(folder, origin, option)| figures(&mut paths, folder, origin, option, stems)).transpose()?;
         let series = series.map(|(path, origin, label)| paths.output(label, origin, &path)).transpose()?;
         Ok(Plan { series, figures })
     }
@@ -137,7 +136,13 @@ impl Plan {
     /// The outputs of the demonstration, which reads no file: the series and the figures in `folder`.
     pub fn demonstration(folder: &Path) -> anyhow::Result<Plan> {
         let mut paths = Paths::default();
-        let figures = figures(&mut paths, folder.to_path_buf(), Origin::CommandLine, "the demonstration's folder")?;
+        let figures = figures(
+            &mut paths,
+            folder.to_path_buf(),
+            Origin::CommandLine,
+            "the demonstration's folder",
+            &output::figures::FIGURES,
+        )?;
         let series = folder.join("series.csv");
         let series = paths.output(series.display().to_string(), Origin::CommandLine, &series)?;
         Ok(Plan { series: Some(series), figures: Some(figures) })
@@ -145,7 +150,13 @@ impl Plan {
 }
 
 /// The figure files of the folder `folder` (which must be a folder, or not exist yet), each added to `paths`.
-fn figures(paths: &mut Paths, folder: PathBuf, origin: Origin, option: &str) -> anyhow::Result<Figures> {
+fn figures(
+    paths: &mut Paths,
+    folder: PathBuf,
+    origin: Origin,
+    option: &str,
+    stems: &[&str],
+) -> anyhow::Result<Figures> {
     let shown = folder.display();
     if let Ok(meta) = std::fs::metadata(&folder)
         && !meta.is_dir()
@@ -155,7 +166,7 @@ fn figures(paths: &mut Paths, folder: PathBuf, origin: Origin, option: &str) -> 
         )));
     }
     let mut files = Vec::new();
-    for stem in output::figures::FIGURES {
+    for stem in stems {
         for extension in ["png", "svg"] {
             let name = format!("{stem}.{extension}");
             let path = folder.join(&name);
@@ -209,24 +220,88 @@ pub fn write_outputs(scene: &Scene, simulation: &Simulation, plan: &Plan) -> any
     Ok(written)
 }
 
-/// `impact run` of a world scene: its report, readable or JSON. (Its series and figures come with a later version.)
+/// `impact run` of a world scene: its report, readable or JSON; its series (streamed while it runs) and figures.
 fn run_world(args: &RunArgs, scene: &WorldScene) -> anyhow::Result<()> {
-    if args.csv.is_some() || args.plot.is_some() || args.samples.is_some() {
+    if args.samples.is_some() {
         return Err(BadInput(
-            "--csv, --samples and --plot are not written for a world run yet: its report alone (readable or --json)"
+            "--samples resamples one impact's contact; a world run's series has every step of its islands and \
+             instants of each flight"
                 .into(),
         )
         .into());
     }
-    let simulation = crate::world::simulate(scene).map_err(|error| match error {
-        crate::world::WorldError::Setup(error) => anyhow::Error::new(crate::scene::located(&args.scene, error)),
-        other => anyhow::Error::new(other),
-    })?;
+    let plan = Plan::new(args, &scene.output, &output::world_figures::FIGURES)?;
+    let mut series =
+        plan.series.as_ref().map(|d| OutputFile::create(d).map(output::world_series::SeriesWriter::new)).transpose()?;
+    let mut trace = plan.figures.as_ref().map(|_| output::world_figures::WorldTrace::new());
+    let simulation = {
+        let observed = series.is_some() || trace.is_some();
+        let mut observers = Both { series: series.as_mut(), trace: trace.as_mut() };
+        let run = if observed {
+            crate::world::simulate_observed(scene, &mut observers)
+        } else {
+            crate::world::simulate(scene)
+        };
+        run.map_err(|error| match error {
+            crate::world::WorldError::Setup(error) => anyhow::Error::new(crate::scene::located(&args.scene, error)),
+            other => anyhow::Error::new(other),
+        })?
+    };
+    let mut pending: Vec<OutputFile> = Vec::new();
+    if let (Some(figures), Some(trace)) = (&plan.figures, &trace) {
+        let staging = Staging::inside(&figures.folder)?;
+        for staged in output::world_figures::write_all(&simulation.report, trace, staging.path())? {
+            let name = staged.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
+            let destination = match figures.files.iter().find(|(planned, _)| *planned == name) {
+                Some((_, destination)) => destination.clone(),
+                None => Destination::resolve(&figures.folder.join(&name))?,
+            };
+            pending.push(staging.publish(&staged, &destination)?);
+        }
+    }
+    if let Some(series) = series {
+        pending.push(series.finish()?);
+    }
     let text = if args.json {
         output::json::render_world(&simulation.report)?
     } else {
         output::world_table::render(&simulation.report)
     };
-    print!("{text}");
+    let to_standard_output = plan.series.as_ref().is_some_and(Destination::is_standard_output);
+    if to_standard_output {
+        eprint!("{text}");
+    } else {
+        print!("{text}");
+    }
+    for output in pending {
+        let name = output.shown().to_string();
+        let streamed = plan.series.as_ref().is_some_and(|s| s.is_standard_output() && name == s.shown());
+        output.finish()?;
+        if !streamed {
+            eprintln!("wrote {name}");
+        }
+    }
     Ok(())
+}
+
+/// The series writer and the figures' trace, each if asked for, watching one run.
+struct Both<'a> {
+    series: Option<&'a mut output::world_series::SeriesWriter>,
+    trace: Option<&'a mut output::world_figures::WorldTrace>,
+}
+
+impl crate::world::record::Observer for Both<'_> {
+    fn instant(
+        &mut self,
+        time: f64,
+        bodies: &[crate::world::flight::Kinematic],
+        contacts: &[crate::world::record::ContactSample],
+    ) {
+        if let Some(series) = self.series.as_deref_mut() {
+            series.instant(time, bodies, contacts);
+        }
+        if let Some(trace) = self.trace.as_deref_mut() {
+            trace.instant(time, bodies, contacts);
+        }
+    }
 }

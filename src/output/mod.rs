@@ -12,4 +12,6 @@ pub mod sweep_figure;
 pub mod table;
 pub mod text;
 pub mod units;
+pub mod world_figures;
+pub mod world_series;
 pub mod world_table;

@@ -135,6 +135,8 @@ pub struct SequentialModel {
     pub velocity_after: Vec<Vec3>,
     /// Largest |simulated - sequential| velocity component, m/s.
     pub max_velocity_difference: f64,
+    /// [v_i, v_j] right after each contact in the model, in the order of `contacts`, m/s (an addition).
+    pub contact_velocities_after: Vec<[Vec3; 2]>,
 }
 
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -186,6 +188,7 @@ pub fn build(scene: &WorldScene, outcome: &WorldOutcome, wall_time: f64) -> Worl
         model.map(|s| SequentialModel {
             velocity_after: s.velocity_after.iter().map(vec3).collect(),
             max_velocity_difference: s.max_velocity_difference,
+            contact_velocities_after: s.contact_velocities_after.iter().map(|[a, b]| [vec3(a), vec3(b)]).collect(),
         })
     };
     let mut notes = outcome.notes.clone();
@@ -392,6 +395,7 @@ pub fn from_impact(scene: &WorldScene, impact: &super::Report) -> WorldReport {
         ideal.as_ref().map(|ideal| SequentialModel {
             velocity_after: ideal.velocity_after.to_vec(),
             max_velocity_difference: ideal.max_velocity_difference.unwrap_or(f64::NAN),
+            contact_velocities_after: vec![ideal.velocity_after],
         })
     };
     let s = &impact.solver;

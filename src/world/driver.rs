@@ -9,7 +9,9 @@
 
 use super::flight::{Kinematic, Meeting, acceleration, first_touch};
 use super::island::{ActiveContact, Island, Units};
-use super::record::{Compression, ContactRecord, EndReason, Ending as ContactEnding, WorldOutcome};
+use super::record::{
+    Compression, ContactRecord, ContactSample, EndReason, Ending as ContactEnding, Observer, WorldOutcome,
+};
 use crate::integrate::{Counters, Direction, Ending, EventOf, IntegrationError, StepperOf, Tolerances};
 use crate::law::Separation;
 use crate::scene::{DampingMap, DampingSpec, WorldScene};
@@ -39,10 +41,22 @@ pub const AT_REST: f64 = 1e-14;
 
 /// The run of a world scene.
 pub fn run(scene: &WorldScene) -> Result<WorldOutcome, WorldError> {
-    let mut world = World::new(scene);
+    let mut world = World::new(scene, None);
     world.go()?;
     Ok(world.finish())
 }
+
+/// The run of a world scene, with `observer` shown every instant of its series.
+pub fn run_observed(scene: &WorldScene, observer: &mut dyn Observer) -> Result<WorldOutcome, WorldError> {
+    let mut world = World::new(scene, Some(observer));
+    world.show_now();
+    world.go()?;
+    world.show_now();
+    Ok(world.finish())
+}
+
+/// Instants shown of each flight (evenly spaced, the apexes besides).
+const FLIGHT_INSTANTS: usize = 24;
 
 /// An event function of a segment, on the island's state.
 type EventFunction<'a> = Box<dyn Fn(&DVector<f64>) -> f64 + 'a>;
@@ -94,10 +108,11 @@ struct World<'a> {
     counters: Counters,
     reason: Option<EndReason>,
     notes: Vec<String>,
+    observer: Option<&'a mut dyn Observer>,
 }
 
 impl<'a> World<'a> {
-    fn new(scene: &'a WorldScene) -> Self {
+    fn new(scene: &'a WorldScene, observer: Option<&'a mut dyn Observer>) -> Self {
         let states = scene
             .bodies
             .iter()
@@ -120,6 +135,53 @@ impl<'a> World<'a> {
             counters: Counters::default(),
             reason: None,
             notes: Vec::new(),
+            observer,
+        }
+    }
+
+    /// Shows the observer the world now (no contact forces: between islands, or at the run's ends).
+    fn show_now(&mut self) {
+        let contacts = self.contact_samples();
+        if let Some(observer) = self.observer.as_deref_mut() {
+            observer.instant(self.time, &self.states, &contacts);
+        }
+    }
+
+    /// The active contacts' penetrations and forces now.
+    fn contact_samples(&self) -> Vec<ContactSample> {
+        let Some(units) = self.units.filter(|_| !self.active.is_empty()) else { return Vec::new() };
+        let flight = self.flight_accelerations();
+        let island = Island::new(self.scene, &self.states, &flight, self.active.clone(), units);
+        let y = island.initial_state();
+        (0..island.contacts.len()).map(|c| sample(&island, c, &y)).collect()
+    }
+
+    /// Shows the observer the flight of `delay` s from now: evenly spaced instants and each body's apex (where its
+    /// velocity along gravity turns), before the bodies are moved.
+    fn show_flight(&mut self, delay: f64) {
+        if self.observer.is_none() || delay.is_nan() || delay <= 0.0 || delay.is_infinite() {
+            return;
+        }
+        let g = self.scene.world.gravity;
+        let flight = self.flight_accelerations();
+        let mut times: Vec<f64> = (1..=FLIGHT_INSTANTS).map(|k| delay * k as f64 / FLIGHT_INSTANTS as f64).collect();
+        let down = g.norm();
+        if down > 0.0 {
+            for (state, a) in self.states.iter().zip(&flight) {
+                let rising = -state.velocity.dot(&g) / down;
+                let apex = rising / down;
+                if a.norm() > 0.0 && apex > 0.0 && apex < delay {
+                    times.push(apex);
+                }
+            }
+        }
+        times.sort_by(f64::total_cmp);
+        let start = self.states.clone();
+        for t in times {
+            let bodies: Vec<Kinematic> = start.iter().zip(&flight).map(|(state, a)| state.after(t, a)).collect();
+            if let Some(observer) = self.observer.as_deref_mut() {
+                observer.instant(self.time + t, &bodies, &[]);
+            }
         }
     }
 
@@ -205,11 +267,13 @@ impl<'a> World<'a> {
             let Some((delay, starting)) = self.next_touch(&pairs, left) else {
                 let reason = if left.is_finite() { EndReason::EndTime } else { EndReason::NoMoreContacts };
                 if left.is_finite() {
+                    self.show_flight(left);
                     self.advance(left);
                 }
                 self.reason = Some(reason);
                 return Ok(());
             };
+            self.show_flight(delay);
             self.advance(delay);
             // Every pair touching at that instant begins (a cradle's struck ball and its neighbour at once).
             self.units = None;
@@ -428,7 +492,7 @@ impl<'a> World<'a> {
 
         let requested = scene.solver.tolerances;
         let tolerances = Tolerances { rtol: requested.rtol * 0.1, atol: requested.atol * 0.1 };
-        let mut stepper = StepperOf::new(&island, tolerances, false);
+        let mut stepper = StepperOf::new(&island, tolerances, self.observer.is_some());
         let by_end = self.left() / units.time;
         let by_outside = outside_touch.as_ref().map_or(f64::INFINITY, |(delay, _)| delay / units.time);
         let horizon = by_end.min(by_outside).min(SEGMENT_TIME);
@@ -436,6 +500,15 @@ impl<'a> World<'a> {
         self.counters.steps += stepper.counters.steps;
         self.counters.rejected_steps += stepper.counters.rejected_steps;
         self.counters.evaluations += stepper.counters.evaluations;
+        if let (Some(observer), Some(points)) = (self.observer.as_deref_mut(), stepper.recorded()) {
+            for (t, y) in points {
+                let bodies: Vec<Kinematic> = (0..scene.bodies.len())
+                    .map(|k| Kinematic { position: island.position(k, y), velocity: island.velocity(k, y) })
+                    .collect();
+                let contacts: Vec<ContactSample> = (0..island.contacts.len()).map(|c| sample(&island, c, y)).collect();
+                observer.instant(self.time + t * units.time, &bodies, &contacts);
+            }
+        }
 
         // The located non-terminal events: maxima of penetration and force, gaps that opened.
         let mut opened = vec![false; watched.len()];
@@ -739,4 +812,11 @@ impl<'a> World<'a> {
             notes: self.notes,
         }
     }
+}
+
+/// Contact `c` of `island` at state `y`: its record's index, penetration and force.
+fn sample(island: &Island, c: usize, y: &DVector<f64>) -> ContactSample {
+    let state = island.contact_state(c, y);
+    let (elastic, dissipative) = island.force(c, &state);
+    ContactSample { index: island.contacts[c].record, penetration: state.penetration, force: elastic + dissipative }
 }

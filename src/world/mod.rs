@@ -38,6 +38,18 @@ pub fn simulate(scene: &WorldScene) -> Result<WorldSimulation, WorldError> {
     Ok(WorldSimulation { report, outcome: Some(outcome) })
 }
 
+/// Runs a world scene with `observer` shown every instant of its series (never as one impact: a series needs the
+/// world's own run).
+pub fn simulate_observed(
+    scene: &WorldScene,
+    observer: &mut dyn record::Observer,
+) -> Result<WorldSimulation, WorldError> {
+    let clock = Instant::now();
+    let outcome = driver::run_observed(scene, observer)?;
+    let report = crate::report::world::build(scene, &outcome, clock.elapsed().as_secs_f64());
+    Ok(WorldSimulation { report, outcome: Some(outcome) })
+}
+
 /// A world of two bodies without gravity, run as today's impact of the pair — when they meet, part, and do so
 /// before any end time (otherwise the world's driver takes it).
 fn as_one_impact(scene: &WorldScene) -> Result<Option<WorldSimulation>, WorldError> {

@@ -128,3 +128,18 @@ pub struct WorldOutcome {
     /// What a reader should know about the run.
     pub notes: Vec<String>,
 }
+
+/// One contact at an instant of a run: its index (in order of first touch), its penetration (m) and normal force (N).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ContactSample {
+    pub index: usize,
+    pub penetration: f64,
+    pub force: f64,
+}
+
+/// What watches a run as it goes: the instants of its series (every accepted step of the islands, every located
+/// event, and instants of each flight, apexes included). Only a run asked for a series or figures has one.
+pub trait Observer {
+    /// Every body's state and the active contacts at scene time `time` (s).
+    fn instant(&mut self, time: f64, bodies: &[Kinematic], contacts: &[ContactSample]);
+}

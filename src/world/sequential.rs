@@ -15,6 +15,8 @@ pub struct Sequential {
     pub velocity_after: Vec<Vector3<f64>>,
     /// Largest |simulated - sequential| velocity component over the bodies of finite mass, m/s.
     pub max_velocity_difference: f64,
+    /// The two bodies' velocities right after each contact in the model (in the order of the contacts), m/s.
+    pub contact_velocities_after: Vec<[Vector3<f64>; 2]>,
 }
 
 /// The sequential model of `outcome`'s contacts with the e that `restitution` gives each (`None`: the model cannot
@@ -42,6 +44,7 @@ pub fn sequential(
             }
         }
     };
+    let mut after_each = Vec::with_capacity(outcome.contacts.len());
     for record in &outcome.contacts {
         // A contact still active when the run stopped is a resting contact: plastic (e = 0) in either model.
         let e = if record.end.is_some() { restitution(record)? } else { 0.0 };
@@ -57,14 +60,14 @@ pub fn sequential(
             }
         }
         let approach = (velocities[i] - velocities[j]).dot(&n);
-        if approach <= 0.0 {
-            continue;
+        if approach > 0.0 {
+            let (a, b) = (&bodies[i], &bodies[j]);
+            let effective_mass = crate::geometry::effective_mass(a, b)?;
+            let impulse = (1.0 + e) * effective_mass * approach;
+            velocities[i] -= n * (impulse * a.inverse_mass());
+            velocities[j] += n * (impulse * b.inverse_mass());
         }
-        let (a, b) = (&bodies[i], &bodies[j]);
-        let effective_mass = crate::geometry::effective_mass(a, b)?;
-        let impulse = (1.0 + e) * effective_mass * approach;
-        velocities[i] -= n * (impulse * a.inverse_mass());
-        velocities[j] += n * (impulse * b.inverse_mass());
+        after_each.push([velocities[i], velocities[j]]);
     }
     fly(&mut velocities, &resting, now, outcome.end_time);
     let difference = outcome
@@ -75,5 +78,9 @@ pub fn sequential(
         .filter(|(_, body)| !body.is_immovable())
         .map(|((simulated, ideal), _)| (simulated.velocity - ideal).amax())
         .fold(0.0, f64::max);
-    Some(Sequential { velocity_after: velocities, max_velocity_difference: difference })
+    Some(Sequential {
+        velocity_after: velocities,
+        max_velocity_difference: difference,
+        contact_velocities_after: after_each,
+    })
 }
