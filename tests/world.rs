@@ -488,3 +488,54 @@ fn a_world_run_writes_its_series_and_figures() {
     assert_eq!(refused.status.code(), Some(2));
     assert!(!scratch.exists("again.csv"));
 }
+
+/// `impact sweep` of a world scene: the gap between the second and third ball of a cradle against a contact's
+/// maximum overlap (20 µm at 1 m/s). Touching, the last ball leaves at Herrmann & Schmälzle's 0.9945; with a gap
+/// wider than the overlap the collisions are apart and the sequential model's 1 m/s returns (Donahue et al. 2008).
+/// Columns are paths into the world's report; a point that is not a valid scene is a row saying why; a key the scene
+/// does not have is refused before any row runs.
+#[test]
+fn a_world_sweep_widens_the_cradle_gap_back_to_the_sequential_model() {
+    let scratch = Scratch::new("a_world_sweep_widens_the_cradle_gap");
+    let scene = scratch.scene("cradle.toml", &cradle(0.0, 1.0, 2.1e11, "law = \"hertz\""));
+    let output = impact(
+        scratch.path(),
+        &[
+            "sweep",
+            &scene,
+            "--vary",
+            "bodies.2.position.0=0.04,0.04001,0.04003,0.0405",
+            "--columns",
+            "bodies.2.velocity_after.0,world.contacts,contacts.1.overlapping.0",
+            "--out",
+            "gaps.csv",
+        ],
+    );
+    assert_eq!(output.status.code(), Some(0), "{}", String::from_utf8_lossy(&output.stderr));
+    let csv = scratch.read("gaps.csv");
+    let rows: Vec<Vec<&str>> = csv.lines().skip(1).map(|l| l.split(',').collect()).collect();
+    assert_eq!(
+        csv.lines().next(),
+        Some("index,status,bodies.2.position.0,bodies.2.velocity_after.0,world.contacts,contacts.1.overlapping.0")
+    );
+    let last: Vec<f64> = rows.iter().map(|r| r[3].parse().unwrap()).collect();
+    assert!((last[0] - 0.9945).abs() < 1e-3, "{last:?}");
+    assert!(last[1] > last[0] && last[1] < 1.0, "{last:?}");
+    for v in &last[2..] {
+        assert!((v - 1.0).abs() < 1e-6, "{last:?}");
+    }
+    assert_eq!(rows[0][5], "0", "touching: the contacts overlap");
+    assert_eq!(rows[3][5], "", "far apart: no overlap (an empty cell)");
+    // A point that is not a valid scene: its row says why, the others run.
+    let bad = impact(scratch.path(), &["sweep", &scene, "--vary", "bodies.1.mass=0.0329,-1", "--out", "masses.csv"]);
+    assert_eq!(bad.status.code(), Some(0), "{}", String::from_utf8_lossy(&bad.stderr));
+    let masses = scratch.read("masses.csv");
+    assert!(
+        masses.lines().nth(1).unwrap().contains(",ok,")
+            && masses.lines().nth(2).unwrap().contains("error: bodies.1.mass"),
+        "{masses}"
+    );
+    let refused = impact(scratch.path(), &["sweep", &scene, "--vary", "bodies.7.mass=1,2", "--out", "none.csv"]);
+    assert_eq!(refused.status.code(), Some(2));
+    assert!(!scratch.exists("none.csv"));
+}

@@ -45,6 +45,14 @@ pub fn load_any(path: &Path) -> Result<Parsed, SceneError> {
     parse_any(&text, path)
 }
 
+/// Whether scene text is a world scene (a `[world]` table, `[[pair]]` tables or more than two bodies), read as
+/// loosely as a sweep's base scene may be written (values left out for the sweep to set).
+pub fn is_world(text: &str) -> bool {
+    let Ok(table) = text.parse::<toml::Table>() else { return false };
+    let bodies = table.get("bodies").and_then(toml::Value::as_array).map_or(0, Vec::len);
+    table.contains_key("world") || table.contains_key("pair") || bodies > 2
+}
+
 /// Validates scene text of either kind; `path` names the source in errors and gives the default title.
 pub fn parse_any(text: &str, path: &Path) -> Result<Parsed, SceneError> {
     validate::any(text, path)

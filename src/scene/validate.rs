@@ -191,8 +191,8 @@ fn convert_in(src: &Source) -> Checked<Scene> {
             "bodies",
             span.as_ref(),
             format!(
-                "a world run ({why}) is run by `impact run`; this command takes a scene of exactly two bodies \
-                 without `[world]` or `[[pair]]`"
+                "a world run ({why}) is run by `impact run` and swept by `impact sweep`; this command takes a scene of \
+                 exactly two bodies without `[world]` or `[[pair]]`"
             ),
         ));
     }

@@ -124,6 +124,39 @@ impl Axis {
     }
 }
 
+/// Most values a world sweep's `--vary` may take (its values are kept in memory; a world row can take seconds).
+pub const MAX_WORLD_VALUES: usize = 1_000_000;
+
+/// Parses a world sweep's `--vary` (docs/world.md#sweeps): the dotted key as written (any number of the scene, which
+/// the sweep checks against the scene itself) and its values, in order, finite and distinct.
+pub fn parse_world(spec: &str, default: Spacing) -> Result<(String, Vec<f64>), SweepError> {
+    let shown = cut(spec, MESSAGE_CHARS);
+    let Some((key, range)) = spec.split_once('=') else {
+        return Err(usage(format!(
+            "--vary `{shown}`: expected KEY=START:STOP:COUNT (e.g. bodies.2.position.0=0.04:0.041:11) or KEY=V1,V2,..."
+        )));
+    };
+    let key = key.trim();
+    if key.is_empty() || key.chars().count() > MESSAGE_CHARS {
+        return Err(usage(format!("--vary {shown}: `{}` is not a scene key", cut(key, MESSAGE_CHARS))));
+    }
+    let values = if range.contains(':') {
+        parse_range(&shown, range, default)?
+    } else {
+        Values::List(parse_list(&shown, range)?)
+    };
+    let count = match &values {
+        Values::List(list) => list.len(),
+        Values::Range { count, .. } => *count,
+    };
+    if count > MAX_WORLD_VALUES {
+        return Err(usage(format!("--vary {shown}: a world sweep takes at most {MAX_WORLD_VALUES} values a key")));
+    }
+    let axis = Axis { key: SceneKey::parse("solver.rtol")?, spec: shown, values };
+    axis.check_values()?;
+    Ok((key.to_string(), axis.values().collect()))
+}
+
 fn parse_list(spec: &str, list: &str) -> Result<Vec<f64>, SweepError> {
     let values = list.split(',').map(|item| number(item, "value", spec)).collect::<Result<Vec<_>, _>>()?;
     // Sorted, so that a list as long as a command line allows is checked at once.

@@ -15,6 +15,7 @@ pub mod laws;
 pub mod merge;
 pub mod shard;
 pub mod table;
+pub mod world;
 
 use crate::history::Recording;
 use crate::impact::{Options, simulate_prepared};
