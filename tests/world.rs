@@ -442,6 +442,75 @@ fn bounces_that_close_a_gap_are_not_pushed() {
     }
 }
 
+/// A spring–dashpot contact ended by its force (k d + c d' = 0) leaves the ball overlapping the floor by
+/// d0 = c v / k as it parts at v: the ball then rises from r - d0 and touches again when its centre falls back through
+/// r, after (v + sqrt(v² - 2 g d0))/g, at sqrt(v² - 2 g d0). (A run once lost every ball that parted overlapping: it
+/// fell through the floor.)
+#[test]
+fn a_ball_parted_by_its_force_while_overlapping_comes_back_to_the_floor() {
+    let (k, g) = (1e3_f64, 9.81_f64);
+    let contact = format!("law = \"kelvin-voigt\"\nstiffness = {k:e}\nrestitution = 0.5\nseparation = \"force\"");
+    let report = run(&dropped(0.02, 2.1e11, &contact, "max_contacts = 4"));
+    // The third bounce is too slow to part: the ball comes to rest on the floor in it.
+    assert_eq!(report.contacts.len(), 3, "{:?}", report.contacts);
+    assert_eq!(report.world.end_reason, "at_rest");
+    for pair in report.contacts.windows(2) {
+        let (parted, next) = (&pair[0], &pair[1]);
+        let v = parted.velocities_after.unwrap()[0][2];
+        let d0 = parted.damping * v / k;
+        assert!(d0 > 1e-3 * 0.01 && v * v > 2.0 * g * d0, "a residual overlap that matters: {d0} at {v}");
+        let flight = (v + (v * v - 2.0 * g * d0).sqrt()) / g;
+        let expected = parted.end_time.unwrap() + flight;
+        assert!((next.start_time - expected).abs() < 1e-9 * flight, "{} vs {expected}", next.start_time);
+        assert!(relative(next.approach_speed, (v * v - 2.0 * g * d0).sqrt()) < 1e-9, "{next:?}");
+        assert!(!next.pushed && next.elastic_energy_at_start == 0.0, "{next:?}");
+    }
+    assert!(report.bodies[0].position_after[2] > 0.0, "{:?}", report.bodies[0]);
+    assert!(report.energy.balance.abs() < 1e-9, "{:?}", report.energy);
+}
+
+/// A ball the force parts from the floor too slowly to leave its overlap (v² < 2 g d0, d0 = c v/k) never opens its
+/// gap: gravity brings it back after 2 v/g, pressing deeper than it parted, and the next contact begins there, pushed,
+/// with the spring energy k d0²/2 of that overlap given back. (Such a ball once fell through the floor.)
+#[test]
+fn a_ball_parted_too_slowly_to_open_its_gap_is_pressed_back_into_the_floor() {
+    let (k, g) = (1e3_f64, 9.81_f64);
+    let contact = format!("law = \"kelvin-voigt\"\nstiffness = {k:e}\nrestitution = 0.1\nseparation = \"force\"");
+    let report = run(&dropped(0.01 + 0.02, 2.1e11, &contact, "max_contacts = 3"));
+    assert!(report.contacts.len() >= 2, "{:?}", report.contacts);
+    let (parted, next) = (&report.contacts[0], &report.contacts[1]);
+    let v = parted.velocities_after.unwrap()[0][2];
+    let d0 = parted.damping * v / k;
+    assert!(v * v < 2.0 * g * d0, "the gap must not open: {v} {d0}");
+    assert!(relative(parted.penetration_at_separation.unwrap(), d0) < 1e-9, "{parted:?}");
+    assert!(relative(next.start_time - parted.end_time.unwrap(), 2.0 * v / g) < 1e-6, "{next:?}");
+    assert!(next.pushed && relative(next.elastic_energy_at_start, 0.5 * k * d0 * d0) < 1e-6, "{next:?}");
+    assert!(report.bodies[0].position_after[2] > 0.0, "{:?}", report.bodies[0]);
+    assert!(report.energy.balance.abs() < 1e-9, "{:?}", report.energy);
+}
+
+/// The same parting inside an island (a small ball bouncing on a big one that rocks on a soft spring on the floor,
+/// in contact throughout): the pair's gap opens and closes again, so each later bounce begins at zero overlap,
+/// struck, not pushed on the overlap the last one left.
+#[test]
+fn a_pair_parted_by_its_force_inside_an_island_closes_its_gap_again() {
+    let text = format!(
+        "[world]\ngravity = [0.0, 0.0, -9.81]\nend_time = 0.3\n\n{}{}{FLOOR}[contact]\nlaw = \"kelvin-voigt\"\n\
+         stiffness = 1e3\nrestitution = 0.5\nseparation = \"force\"\n\n[[pair]]\nbodies = [0, 2]\nrestitution = 0.9\n",
+        sphere("big", 0.05, 0.5, [0.0, 0.0, 0.05], [0.0; 3], 2.1e11),
+        sphere("small", 0.01, 0.0329, [0.0, 0.0, 0.13], [0.0; 3], 2.1e11)
+    );
+    let report = run(&text);
+    let floor: Vec<_> = report.contacts.iter().filter(|c| c.bodies == [0, 2]).collect();
+    assert!(floor.len() == 1 && !floor[0].separated, "the big ball stays on its spring: {floor:?}");
+    let bounces: Vec<_> = report.contacts.iter().filter(|c| c.bodies == [0, 1]).collect();
+    assert!(bounces.len() >= 3, "{:?}", report.contacts);
+    for bounce in &bounces {
+        assert!(!bounce.pushed && bounce.elastic_energy_at_start == 0.0 && bounce.approach_speed > 0.01, "{bounce:?}");
+    }
+    assert!(report.energy.balance.abs() < 1e-9, "{:?}", report.energy);
+}
+
 /// `impact run WORLD --csv FILE --plot DIR --json`: the series has the documented columns, one row per body and per
 /// active contact at each instant; its last instant is where the report leaves the bodies, its largest force the
 /// report's; the figures are drawn (the heights with the simulation's and the model's apexes, under gravity).

@@ -83,6 +83,12 @@ pub struct WorldContact {
     pub velocities_before: [Vec3; 2],
     /// [v_i, v_j] at separation, m/s.
     pub velocities_after: Option<[Vec3; 2]>,
+    /// The overlap the bodies part at, m (an addition): zero unless the contact's force ended it while they still
+    /// overlapped (a law that pulls, `separation = "force"`); null while in contact.
+    pub penetration_at_separation: Option<f64>,
+    /// The law's elastic energy at the overlap the contact began on, J (an addition): nonzero only for a contact
+    /// pressed again on the overlap an earlier one, ended by its force, left (docs/world.md#the-driver).
+    pub elastic_energy_at_start: f64,
     /// Indices of the other contacts active during this one.
     pub overlapping: Vec<usize>,
 }
@@ -204,6 +210,22 @@ pub fn build(scene: &WorldScene, outcome: &WorldOutcome, wall_time: f64) -> Worl
             if pushed.len() > 1 { "their" } else { "its" },
         ));
     }
+    let repressed: Vec<String> = outcome
+        .contacts
+        .iter()
+        .enumerate()
+        .filter(|(_, r)| r.elastic_at_start > 0.0)
+        .map(|(k, _)| k.to_string())
+        .collect();
+    if !repressed.is_empty() {
+        notes.push(format!(
+            "contact{} {} began on the overlap an earlier contact of {} pair left when its force ended it (the gap \
+             never opened): the spring energy of that overlap is given back (elastic_energy_at_start)",
+            if repressed.len() > 1 { "s" } else { "" },
+            shorten(&repressed),
+            if repressed.len() > 1 { "their" } else { "its" },
+        ));
+    }
     WorldReport {
         title: scene.title.clone(),
         world: WorldSection {
@@ -281,6 +303,8 @@ fn contact(record: &ContactRecord) -> WorldContact {
         separated,
         velocities_before: [vec3(&record.velocities_before[0]), vec3(&record.velocities_before[1])],
         velocities_after: end.map(|e| [vec3(&e.velocities[0]), vec3(&e.velocities[1])]),
+        penetration_at_separation: end.map(|e| e.penetration.max(0.0)),
+        elastic_energy_at_start: record.elastic_at_start,
         overlapping: record.overlapping.iter().copied().collect(),
     }
 }
@@ -300,6 +324,8 @@ fn energy(scene: &WorldScene, outcome: &WorldOutcome) -> WorldEnergy {
     let mut dissipated = outcome.settled;
     let mut elastic = 0.0;
     for record in &outcome.contacts {
+        // A contact pressed again on the overlap an earlier one left takes that spring energy back.
+        elastic -= record.elastic_at_start;
         match (&record.end, record.at_stop) {
             (Some(end), _) => {
                 dissipated += end.dissipated;
@@ -366,6 +392,11 @@ pub fn from_impact(scene: &WorldScene, impact: &super::Report) -> WorldReport {
         separated: c.separated,
         velocities_before: velocities(false),
         velocities_after: c.separated.then(|| velocities(true)),
+        penetration_at_separation: c.separated.then(|| {
+            let at = |k: usize| Vector3::from(impact.bodies[k].position_at_separation.unwrap_or_default());
+            crate::world::flight::Meeting::of(scene, 0, 1).penetration(&(at(1) - at(0))).0.max(0.0)
+        }),
+        elastic_energy_at_start: 0.0,
         overlapping: Vec::new(),
     };
     let bodies = scene

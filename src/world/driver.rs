@@ -75,6 +75,9 @@ enum Watched {
     Touch(usize),
     /// The gap of a watched pair that began the segment touching opened beyond the rounding of its positions.
     Opened(usize),
+    /// The gap of a watched pair that began the segment overlapping (a contact its force ended before its overlap)
+    /// opened: the segment ends, and the next one watches that pair's gap close from open.
+    Reopened(usize),
     /// The island came to rest (free groups: the run ends).
     Rest,
     /// A group an immovable body holds came to rest (its index among the island's components): it is frozen.
@@ -333,10 +336,11 @@ impl<'a> World<'a> {
         let (spec, _) = scene.contact_of(i, j);
         let meeting = Meeting::of(scene, i, j);
         let relative = self.states[j].position - self.states[i].position;
-        let (_, normal) = meeting.penetration(&relative);
+        let (overlap, normal) = meeting.penetration(&relative);
         let relative_velocity = self.states[i].velocity - self.states[j].velocity;
         let approach = relative_velocity.dot(&normal).max(0.0);
-        let pushed = pushed.unwrap_or(approach == 0.0);
+        // Touching without approach, or pressed again on the overlap a contact ended by its force left: pushed.
+        let pushed = pushed.unwrap_or(approach == 0.0 || overlap > self.touching(i, j));
         if !pushed && approach > 0.0 && approach <= 8.0 * f64::EPSILON * relative_velocity.norm() {
             // A graze within the rounding of the velocities: no contact.
             return Ok(false);
@@ -385,6 +389,7 @@ impl<'a> World<'a> {
             approach_speed: approach,
             pushed,
             velocities_before: [self.states[i].velocity, self.states[j].velocity],
+            elastic_at_start: if overlap > self.touching(i, j) { law.elastic_energy(overlap) } else { 0.0 },
             max_compression: None,
             peak_force: None,
             end: None,
@@ -417,11 +422,13 @@ impl<'a> World<'a> {
         let y0 = island.initial_state();
         // The pairs watched for a first touch: every pair with a member that is not an active contact. A pair
         // touching at the start is watched from just inside the rounding of its positions, so that its gap starts
-        // open; whether its gap then opens is watched too (a contact it begins without is pushed).
+        // open; whether its gap then opens is watched too (a contact it begins without is pushed). A pair that
+        // starts overlapping beyond that rounding (a contact its force ended while the bodies still overlapped) is
+        // watched for its gap to open, which ends the segment: the next one watches the gap close from open.
         let active: BTreeSet<[usize; 2]> = self.active.iter().map(|c| c.pair).collect();
         let all: Vec<(usize, usize)> = self.pairs().filter(|&(i, j)| !active.contains(&[i, j])).collect();
         let inside = |&(i, j): &(usize, usize)| island.slot(i).is_some() || island.slot(j).is_some();
-        let watched: Vec<(usize, usize, Meeting, f64)> = all
+        let watched: Vec<(usize, usize, Meeting, f64, f64)> = all
             .iter()
             .filter(|p| inside(p))
             .map(|&(i, j)| {
@@ -429,7 +436,7 @@ impl<'a> World<'a> {
                 let gap = -island.pair_state(i, j, &meeting, &y0).penetration;
                 let tolerance = self.touching(i, j);
                 let offset = if gap <= tolerance { (-gap).max(0.0) + tolerance } else { 0.0 };
-                (i, j, meeting, offset)
+                (i, j, meeting, offset, tolerance)
             })
             .collect();
         // Pairs with no body in the island fly freely: the segment stops at their next first touch.
@@ -461,12 +468,18 @@ impl<'a> World<'a> {
             functions.push(Box::new(move |y| isl.force_rate(c, y) * isl.units.time / isl.units.force));
             kinds.push((Watched::ForcePeak(c), false));
         }
-        for (p, (i, j, meeting, offset)) in watched.iter().enumerate() {
-            let (i, j, offset) = (*i, *j, *offset);
+        for (p, (i, j, meeting, offset, tolerance)) in watched.iter().enumerate() {
+            let (i, j, offset, tolerance) = (*i, *j, *offset, *tolerance);
             functions
                 .push(Box::new(move |y| (offset - isl.pair_state(i, j, meeting, y).penetration) / isl.units.length));
             kinds.push((Watched::Touch(p), true));
-            if offset > 0.0 {
+            if offset > 2.0 * tolerance {
+                // Overlapping at the start: the gap opening beyond the rounding ends the segment.
+                let open = 2.0 * tolerance;
+                functions
+                    .push(Box::new(move |y| (open + isl.pair_state(i, j, meeting, y).penetration) / isl.units.length));
+                kinds.push((Watched::Reopened(p), true));
+            } else if offset > 0.0 {
                 let open = 8.0 * offset;
                 functions
                     .push(Box::new(move |y| (open + isl.pair_state(i, j, meeting, y).penetration) / isl.units.length));
@@ -521,11 +534,16 @@ impl<'a> World<'a> {
                 _ => {}
             }
         }
+        if let Ending::Event(index) = end.ending
+            && let Watched::Reopened(p) = kinds[index].0
+        {
+            opened[p] = true;
+        }
         self.pressed = watched
             .iter()
             .zip(&opened)
-            .filter(|((_, _, _, offset), opened)| *offset > 0.0 && !**opened)
-            .map(|((i, j, _, _), _)| [*i, *j])
+            .filter(|((_, _, _, offset, _), opened)| *offset > 0.0 && !**opened)
+            .map(|((i, j, _, _, _), _)| [*i, *j])
             .collect();
         // The segment's end: every body's state, the contacts' integrals, gravity's and the walls' work.
         let y = &end.state;
@@ -585,7 +603,7 @@ impl<'a> World<'a> {
                     }
                 }
                 Watched::Touch(p) => {
-                    let (i, j, _, offset) = watched[p];
+                    let (i, j, _, offset, _) = watched[p];
                     let pushed = offset > 0.0 && !opened[p];
                     self.begin(i, j, Some(units.speed), Some(pushed))?;
                 }
@@ -599,6 +617,8 @@ impl<'a> World<'a> {
                     ));
                     return Ok(());
                 }
+                // A gap that opened after a contact its force ended: the next segment watches it afresh.
+                Watched::Reopened(_) => {}
                 Watched::MaxCompression(_) | Watched::ForcePeak(_) | Watched::Opened(_) => {
                     unreachable!("not terminal")
                 }
@@ -733,6 +753,7 @@ impl<'a> World<'a> {
             dissipated: contact.dissipated,
             rate,
             elastic_left,
+            penetration,
             velocities: [self.states[i].velocity, self.states[j].velocity],
         });
         if record.max_compression.is_none() {

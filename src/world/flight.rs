@@ -90,7 +90,9 @@ pub fn overlap(scene: &WorldScene, i: usize, j: usize, time: f64) -> f64 {
 
 /// When bodies `i` and `j`, flying freely from `now` (their states `a` and `b`, accelerations `ga` and `gb`), next
 /// begin a contact: the smallest time τ >= 0 (s, after now) at which the gap closes while they approach — τ = 0 when
-/// they touch (within `tolerance`, m) and approach already. `None` if they never do within `horizon` (s).
+/// they touch (within `tolerance`, m) and approach already; for a pair that starts overlapping (parted by a contact's
+/// force), when its gap closes again after opening, or when it presses deeper than it starts by `tolerance`. `None`
+/// if they never do within `horizon` (s).
 #[allow(clippy::too_many_arguments)]
 pub fn first_touch(
     meeting: &Meeting,
@@ -137,9 +139,6 @@ pub fn first_touch(
             return Some(0.0);
         }
         // Touching and parting, or sliding along: the next touch is a later closing of the gap.
-    } else if gap0 < 0.0 {
-        // Overlapping beyond the tolerance: not a flight state (a contact is active).
-        return None;
     }
     // How far below zero the gap polynomial must dip for a contact: a graze within the rounding of the positions is
     // none (the polynomial of two spheres is the gap times |r| + R).
@@ -147,10 +146,31 @@ pub fn first_touch(
         Meeting::Spheres { reach } => tolerance * 2.0 * reach,
         Meeting::Face { .. } => tolerance,
     };
-    let roots = real_roots(&trim(&poly), 0.0, horizon);
-    // The first root where the gap crosses from open to closed: positive just before it, negative just after (a
-    // tangency, a graze of zero depth, is no contact).
-    let value = |t: f64| evaluate(&poly, t);
+    let closing = first_closing(&poly, horizon, depth);
+    if gap0 < -tolerance {
+        // Overlapping beyond the tolerance (a contact its force ended while the bodies still overlapped): the next
+        // touch is the gap's closing after it opens, or — sooner, when they part too slowly for the gap to open
+        // before gravity brings them back — their pressing deeper than they start, by the tolerance. That is the
+        // gap falling through gap0 - tolerance: for two spheres |r|² through (|r0| - tolerance)².
+        let mut deeper = poly.clone();
+        deeper[0] = match *meeting {
+            Meeting::Spheres { .. } => tolerance * (2.0 * r0.norm() - tolerance),
+            Meeting::Face { .. } => tolerance,
+        };
+        let pressed = first_closing(&deeper, horizon, 0.0);
+        return match (closing, pressed) {
+            (Some(a), Some(b)) => Some(a.min(b)),
+            (a, b) => a.or(b),
+        };
+    }
+    closing
+}
+
+/// The first root of `poly` in (0, horizon] where it crosses from positive to below `-depth` (a tangency, a graze of
+/// zero depth, is no crossing).
+fn first_closing(poly: &[f64], horizon: f64, depth: f64) -> Option<f64> {
+    let roots = real_roots(&trim(poly), 0.0, horizon);
+    let value = |t: f64| evaluate(poly, t);
     for (k, &root) in roots.iter().enumerate() {
         if root <= 0.0 {
             continue;
@@ -261,6 +281,37 @@ mod tests {
         // A double root (tangency): (t - 2)^2.
         let double = real_roots(&[4.0, -4.0, 1.0], 0.0, 5.0);
         assert!(double.iter().any(|r| (r - 2.0).abs() < 1e-12), "{double:?}");
+    }
+
+    /// A ball a contact's force parted from a floor while it still overlaps it by d0, rising at v: if v² > 2 g d0 its
+    /// gap opens and closes again at (v + sqrt(v² - 2 g d0))/g; if not, gravity presses it deeper than it started,
+    /// by the tolerance δ, at (v + sqrt(v² + 2 g δ))/g. Two spheres overlapping by d0 and moving apart never touch
+    /// again without gravity; closing, they press deeper by δ when |r0| - w t = |r0| - δ, at δ/w.
+    #[test]
+    fn a_pair_that_starts_overlapping_touches_again_when_its_gap_closes_or_it_presses_deeper() {
+        let (g, r, d0, tolerance) = (9.81, 0.01, 1e-4, 1e-15);
+        let gravity = Vector3::new(0.0, 0.0, -g);
+        let floor = Meeting::Face { face: Vector3::z(), radius: r, sign: 1.0 };
+        let wall = Kinematic { position: Vector3::zeros(), velocity: Vector3::zeros() };
+        for v in [0.1, 0.02] {
+            let ball = Kinematic { position: Vector3::new(0.0, 0.0, r - d0), velocity: Vector3::new(0.0, 0.0, v) };
+            let t = first_touch(&floor, &wall, &ball, &Vector3::zeros(), &gravity, tolerance, 100.0).unwrap();
+            let expected = if v * v > 2.0 * g * d0 {
+                (v + (v * v - 2.0 * g * d0).sqrt()) / g
+            } else {
+                (v + (v * v + 2.0 * g * tolerance).sqrt()) / g
+            };
+            assert!((t - expected).abs() < 1e-12 * expected, "{v}: {t} vs {expected}");
+        }
+        let spheres = Meeting::Spheres { reach: 0.02 };
+        let (w, tolerance) = (0.5, 1e-9);
+        let first = Kinematic { position: Vector3::zeros(), velocity: Vector3::zeros() };
+        let apart = Kinematic { position: Vector3::new(0.02 - d0, 0.0, 0.0), velocity: Vector3::new(w, 0.0, 0.0) };
+        let none = Vector3::zeros();
+        assert_eq!(first_touch(&spheres, &first, &apart, &none, &none, tolerance, 100.0), None);
+        let closing = Kinematic { velocity: Vector3::new(-w, 0.0, 0.0), ..apart };
+        let t = first_touch(&spheres, &first, &closing, &none, &none, tolerance, 100.0).unwrap();
+        assert!((t - tolerance / w).abs() < 1e-6 * tolerance / w, "{t}");
     }
 
     /// A ball dropped from rest at height h above a floor (centre at h + r) touches after sqrt(2h/g); a ball thrown

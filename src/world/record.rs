@@ -28,6 +28,10 @@ pub struct ContactRecord {
     pub pushed: bool,
     /// The two bodies' velocities at first touch, m/s.
     pub velocities_before: [Vector3<f64>; 2],
+    /// The law's elastic energy at the overlap the contact began on, J: zero for a contact that closes a gap or
+    /// begins touching within the rounding of the positions; that of the overlap an earlier contact of the pair left
+    /// when its force ended it, for one pressed again before the gap opened (the model gives that energy back).
+    pub elastic_at_start: f64,
     /// At the deepest of the penetration's maxima (d' = 0).
     pub max_compression: Option<Compression>,
     /// Scene time (s) and value (N) of the largest compressive force.
@@ -71,6 +75,8 @@ pub struct Ending {
     pub rate: f64,
     /// Elastic energy the contact still holds at its end (a force separation of a law that pulls), J.
     pub elastic_left: f64,
+    /// The bodies' overlap at the end, m: positive when the contact's force ended it before its penetration.
+    pub penetration: f64,
     /// The two bodies' velocities at the end, m/s.
     pub velocities: [Vector3<f64>; 2],
 }

@@ -23,6 +23,8 @@
 //! A scene the program refuses (a scene error), or whose bodies never separate, is a classified outcome, not a
 //! failure — unless an exact result says the contact ends well within the simulated time.
 
+pub mod world;
+
 use crate::history::Recording;
 use crate::impact::{TIME_LIMIT, simulate};
 use crate::law::damping::check_restitution;
@@ -61,6 +63,10 @@ pub const TOLERANCES: &[(&str, f64)] = &[
     ("rigid_body.velocity_after", 1e-9),
     ("rigid_body.angular_velocity_after", 1e-9),
     ("flight.start_time", 1e-9),
+    ("world.energy_balance", 1e-9),
+    ("world.momentum", 1e-12),
+    ("world.angular_momentum", 1e-9),
+    ("world.overlap_after", 1.0),
 ];
 
 /// The tolerance of a quantity of [`TOLERANCES`].
@@ -1011,10 +1017,33 @@ fn worse(error: f64, present: f64, index: u64, present_index: u64) -> bool {
 
 /// Runs cases `start .. start + count` of `seed` on the current rayon pool; `progress` is called after each case.
 pub fn run(seed: u64, start: u64, count: u64, quick: bool, progress: &(dyn Fn() + Sync)) -> Summary {
+    run_cases(seed, start, count, quick, progress, &|index| run_case(seed, index, quick), &|index| {
+        scene_text(seed, index, quick)
+    })
+}
+
+/// Runs world cases `start .. start + count` of `seed` ([`world`]) on the current rayon pool; `quick` runs each a
+/// shorter time.
+pub fn run_worlds(seed: u64, start: u64, count: u64, quick: bool, progress: &(dyn Fn() + Sync)) -> Summary {
+    run_cases(seed, start, count, quick, progress, &|index| world::run_case(seed, index, quick), &|index| {
+        world::scene_text(seed, index, quick)
+    })
+}
+
+/// Runs cases `start .. start + count` with `case`, describing a failed one by its scene `text`.
+fn run_cases(
+    seed: u64,
+    start: u64,
+    count: u64,
+    quick: bool,
+    progress: &(dyn Fn() + Sync),
+    case: &(dyn Fn(u64) -> CaseResult + Sync),
+    text: &(dyn Fn(u64) -> String + Sync),
+) -> Summary {
     let tally = (start..start + count)
         .into_par_iter()
         .map(|index| {
-            let result = run_case(seed, index, quick);
+            let result = case(index);
             progress();
             result
         })
@@ -1024,11 +1053,11 @@ pub fn run(seed: u64, start: u64, count: u64, quick: bool, progress: &(dyn Fn() 
         .failed
         .iter()
         .map(|(index, problems)| {
-            let mut text = String::new();
+            let mut shown = String::new();
             for problem in problems {
-                let _ = writeln!(text, "# FAILED: {problem}");
+                let _ = writeln!(shown, "# FAILED: {problem}");
             }
-            text + &scene_text(seed, *index, quick)
+            shown + &text(*index)
         })
         .collect();
     Summary {

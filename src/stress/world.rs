@@ -1,0 +1,221 @@
+//! The stress run's random worlds (`impact stress --worlds`): 3 to 8 spheres on a jittered grid (some rows touching,
+//! as a cradle's), thrown at each other, half of them under gravity with a floor and sometimes a fixed sphere, every
+//! law, both separation criteria and both damping maps. Each run is checked for what a world must keep whatever
+//! happens in it (docs/world.md#what-is-tested):
+//!
+//! - `world.energy_balance`: the energy balance closes, relative to the largest energy in play;
+//! - `world.momentum`, `world.angular_momentum`: without gravity and immovable bodies, the total momentum and angular
+//!   momentum (about the origin, orbital: the spheres do not spin) are kept, relative to `sum m |v|` and
+//!   `sum m |x| |v|`;
+//! - `world.overlap_after`: when the run stops, no two bodies that are not in an active contact overlap by more than
+//!   the rounding of their positions beyond the overlap their last contact parted them at (a contact its force
+//!   ended; zero otherwise): the measure is that excess over the tolerance, at most 1.
+
+use super::{CaseResult, Draw};
+use crate::law::Family;
+use crate::report::world::WorldReport;
+use crate::scene::{Parsed, WorldScene};
+use crate::world::flight::Meeting;
+use nalgebra::Vector3;
+use std::fmt::Write as _;
+use std::panic::{AssertUnwindSafe, catch_unwind};
+use std::path::Path;
+
+/// The scene text of world case `index` of seed `seed`; `quick` runs each world a shorter time (up to 0.05 s and
+/// 12 contacts rather than 1 s and 60), for a debug build.
+pub fn scene_text(seed: u64, index: u64, quick: bool) -> String {
+    // A stream apart from the impacts' (the same seed and index give another scene).
+    let mut r = Draw::new(seed ^ 0x5eed_0ff0_a11d, index);
+    let count = 3 + (r.unit() * 6.0) as usize;
+    let gravity = r.chance(0.5);
+    let fixed_sphere = gravity && r.chance(0.3);
+    let laws = crate::law::catalogue::LAWS;
+    let law = laws[((r.unit() * laws.len() as f64) as usize).min(laws.len() - 1)].kind;
+    let mut text = format!("title = \"world stress case {index} of seed {seed}\"\n\n[world]\n");
+    if gravity {
+        let _ =
+            writeln!(text, "gravity = [{}, {}, {}]", r.uniform(-1.0, 1.0), r.uniform(-1.0, 1.0), -r.uniform(2.0, 20.0));
+    }
+    let (contacts, end_time) = if quick { (12, r.log(0.005, 0.05)) } else { (60, r.log(0.05, 1.0)) };
+    let _ = writeln!(text, "max_contacts = {contacts}\nend_time = {}", number(end_time));
+    if r.chance(0.3) {
+        text.push_str("damping_map = \"first-contact\"\n");
+    }
+    let spacing = 0.03;
+    let touching_row = r.chance(0.3);
+    for k in 0..count {
+        let radius = if touching_row { 0.01 } else { r.log(0.003, 0.012) };
+        let (ix, iy, iz) = ((k % 3) as f64, ((k / 3) % 2) as f64, (k / 6) as f64);
+        let position = if touching_row && k < 3 {
+            // A touching row along x: a cradle.
+            Vector3::new(0.02 * k as f64, 0.0, 0.05)
+        } else {
+            Vector3::new(
+                spacing * ix + r.uniform(-0.002, 0.002),
+                spacing * (iy + 1.0) + r.uniform(-0.002, 0.002),
+                0.05 + spacing * iz + r.uniform(0.0, 0.003),
+            )
+        };
+        let toward = Vector3::new(0.03, 0.02, 0.05) - position;
+        let velocity = if touching_row && k > 0 && k < 3 {
+            Vector3::zeros()
+        } else {
+            toward * (r.log(0.2, 3.0) / toward.norm().max(1e-9)) + Vector3::new(r.uniform(-0.3, 0.3), 0.0, 0.0)
+        };
+        let density = r.log(1e3, 2e4);
+        let young = r.log(1e9, 4e11);
+        let _ = write!(
+            text,
+            "\n[[bodies]]\nname = \"b{k}\"\nradius = {}\ndensity = {}\nposition = {}\nvelocity = {}\nyoung = {}\n\
+             poisson = {}\n",
+            number(radius),
+            number(density),
+            vector(&position),
+            vector(&velocity),
+            number(young),
+            number(r.uniform(0.1, 0.45))
+        );
+    }
+    if gravity {
+        text.push_str(
+            "\n[[bodies]]\nname = \"floor\"\nradius = inf\nmass = inf\nposition = [0.0, 0.0, 0.0]\nnormal = [0.0, 0.0, 1.0]\n\
+             velocity = [0.0, 0.0, 0.0]\nyoung = 2e11\npoisson = 0.3\n",
+        );
+    }
+    if fixed_sphere {
+        text.push_str(
+            "\n[[bodies]]\nname = \"fixed\"\nradius = 0.015\nmass = inf\nposition = [0.03, 0.02, 0.017]\n\
+             velocity = [0.0, 0.0, 0.0]\nyoung = 2e11\npoisson = 0.3\n",
+        );
+    }
+    let _ = writeln!(text, "\n[contact]\nlaw = \"{}\"", law.name());
+    match law.family() {
+        Family::Elastic => {}
+        Family::Viscoelastic => {
+            let _ = writeln!(text, "damping = {}", number(r.log(1e-9, 1e-6)));
+        }
+        Family::Linear => {
+            let _ = writeln!(
+                text,
+                "stiffness = {}\nrestitution = {}",
+                number(r.log(1e5, 1e7)),
+                number(r.uniform(0.1, 1.0))
+            );
+        }
+        _ => {
+            let e = r.uniform(0.1, 1.0);
+            let e = if crate::law::damping::check_restitution(law, e).is_ok() { e } else { 0.5 };
+            let _ = writeln!(text, "restitution = {}", number(e));
+        }
+    }
+    if law.can_turn_tensile() && r.chance(0.5) {
+        text.push_str("separation = \"force\"\n");
+    }
+    text
+}
+
+fn number(x: f64) -> String {
+    format!("{x:?}")
+}
+
+fn vector(v: &Vector3<f64>) -> String {
+    format!("[{}, {}, {}]", number(v.x), number(v.y), number(v.z))
+}
+
+/// Runs and checks world case `index` of seed `seed` (`quick`: see [`scene_text`]).
+pub fn run_case(seed: u64, index: u64, quick: bool) -> CaseResult {
+    let text = scene_text(seed, index, quick);
+    let outcome = catch_unwind(AssertUnwindSafe(|| check_text(&text)));
+    let (class, errors, problems) = match outcome {
+        Ok(result) => result,
+        Err(panic) => {
+            let message = panic
+                .downcast_ref::<String>()
+                .cloned()
+                .or_else(|| panic.downcast_ref::<&str>().map(|s| s.to_string()))
+                .unwrap_or_default();
+            ("panic".into(), Vec::new(), vec![format!("panicked: {message}")])
+        }
+    };
+    CaseResult { index, class, errors, problems }
+}
+
+/// Parses, runs and checks one world scene: (class, errors, problems).
+pub fn check_text(text: &str) -> (String, Vec<(&'static str, f64)>, Vec<String>) {
+    let scene = match crate::scene::parse_any(text, Path::new("world-stress.toml")) {
+        Ok(Parsed::World(scene)) => *scene,
+        Ok(Parsed::Impact(_)) => return ("error".into(), Vec::new(), vec!["not a world scene".into()]),
+        Err(error) => return (format!("refused: {}", error.key.as_deref().unwrap_or("file")), Vec::new(), Vec::new()),
+    };
+    let report = match crate::world::simulate(&scene) {
+        Ok(simulation) => simulation.report,
+        Err(crate::world::WorldError::Setup(error)) => {
+            return (format!("refused: {}", error.key), Vec::new(), Vec::new());
+        }
+        Err(error) => return ("error".into(), Vec::new(), vec![format!("world run error: {error}")]),
+    };
+    let (errors, problems) = check(&scene, &report);
+    (format!("checked, {}", report.world.end_reason), errors, problems)
+}
+
+/// The checks of one world report (see the module doc).
+pub fn check(scene: &WorldScene, report: &WorldReport) -> (Vec<(&'static str, f64)>, Vec<String>) {
+    let mut errors = Vec::new();
+    let mut problems = Vec::new();
+    let mut record = |quantity: &'static str, error: f64| {
+        errors.push((quantity, error));
+        let limit = super::tolerance(quantity);
+        if error.is_nan() || error > limit {
+            problems.push(format!("{quantity}: {error:e} exceeds {limit:e}"));
+        }
+    };
+    record("world.energy_balance", report.energy.balance.abs());
+    let free = scene.world.gravity == Vector3::zeros() && scene.bodies.iter().all(|b| !b.is_immovable());
+    if free {
+        let (mut p0, mut p1, mut l0, mut l1) = (Vector3::zeros(), Vector3::zeros(), Vector3::zeros(), Vector3::zeros());
+        let (mut p_scale, mut l_scale) = (0.0, 0.0);
+        for (body, out) in scene.bodies.iter().zip(&report.bodies) {
+            let (x0, v0) = (body.position.unwrap_or_default(), body.velocity);
+            let (x1, v1) = (Vector3::from(out.position_after), Vector3::from(out.velocity_after));
+            p0 += v0 * body.mass;
+            p1 += v1 * body.mass;
+            l0 += x0.cross(&v0) * body.mass;
+            l1 += x1.cross(&v1) * body.mass;
+            p_scale += body.mass * v0.norm();
+            l_scale += body.mass * x0.norm().max(x1.norm()) * v0.norm().max(v1.norm());
+        }
+        record("world.momentum", (p1 - p0).amax() / p_scale);
+        record("world.angular_momentum", (l1 - l0).amax() / l_scale);
+    }
+    // No two bodies outside an active contact overlap when the run stops.
+    let active: Vec<[usize; 2]> = report.contacts.iter().filter(|c| !c.separated).map(|c| c.bodies).collect();
+    let mut worst: f64 = 0.0;
+    for i in 0..scene.bodies.len() {
+        for j in i + 1..scene.bodies.len() {
+            if !scene.interacts(i, j) || active.contains(&[i, j]) {
+                continue;
+            }
+            let relative =
+                Vector3::from(report.bodies[j].position_after) - Vector3::from(report.bodies[i].position_after);
+            let (overlap, _) = Meeting::of(scene, i, j).penetration(&relative);
+            // A pair a contact's force parted may still overlap by as much as it parted at, never more.
+            let parted = report
+                .contacts
+                .iter()
+                .rev()
+                .find(|c| c.bodies == [i, j])
+                .and_then(|c| c.penetration_at_separation)
+                .unwrap_or(0.0);
+            let size = |k: usize| {
+                let b = &scene.bodies[k];
+                (if b.is_flat() { 0.0 } else { b.radius }) + Vector3::from(report.bodies[k].position_after).amax()
+            };
+            let (a, b) = (&scene.bodies[i], &scene.bodies[j]);
+            let tolerance = (64.0 * f64::EPSILON * (size(i) + size(j)))
+                .max(crate::geometry::TOUCH_TOLERANCE * a.radius.min(b.radius));
+            worst = worst.max((overlap - parted) / tolerance);
+        }
+    }
+    record("world.overlap_after", worst);
+    (errors, problems)
+}
