@@ -1022,6 +1022,9 @@ fn bad_world_keys_are_rejected_naming_the_key() {
         ("gravity_nan", "gravity = [0.0, 0.0, -9.81]", "gravity = [0.0, 0.0, nan]", "world.gravity", "finite"),
         ("gravity_infinite", "gravity = [0.0, 0.0, -9.81]", "gravity = [inf, 0.0, 0.0]", "world.gravity", "finite"),
         ("damping_map", "max_contacts = 10", "damping_map = \"sometimes\"", "world.damping_map", "each-contact"),
+        ("skin_zero", "max_contacts = 10", "skin = 0.0", "world.skin", "> 0"),
+        ("skin_negative", "max_contacts = 10", "skin = -1e-3", "world.skin", "> 0"),
+        ("skin_nan", "max_contacts = 10", "skin = nan", "world.skin", "not a valid value"),
     ] {
         let new: &'static str = Box::leak(new.to_string().into_boxed_str());
         assert_rejected(test, &edit(WORLD, old, new), key, At::Whole(new), &[mention]);

@@ -26,6 +26,7 @@ pub struct RawWorld {
     pub end_time: Option<At<f64>>,
     pub max_contacts: Option<At<toml::Value>>,
     pub damping_map: Option<At<String>>,
+    pub skin: Option<At<f64>>,
 }
 
 /// A `[[pair]]` table: two bodies and any key of `[contact]`, which it overrides for them.

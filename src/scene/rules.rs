@@ -142,6 +142,9 @@ pub fn check_world(scene: &super::WorldScene) -> Checked {
     if let Some(end) = world.end_time {
         number("world.end_time", end, Allowed::Positive)?;
     }
+    if let Some(skin) = world.skin {
+        number("world.skin", skin, Allowed::PositiveOrInfinite)?;
+    }
     check_solver(&scene.solver)?;
     let contacts = std::iter::once((&scene.contact, None))
         .chain(scene.pairs.iter().enumerate().map(|(k, p)| (&p.contact, Some(k))));

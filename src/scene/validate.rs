@@ -24,6 +24,8 @@ struct Source<'a> {
     text: &'a str,
     file: String,
     lines: std::cell::RefCell<HashMap<String, usize>>,
+    /// The byte offset of every line break of `text`, found once (a scene of thousands of bodies notes every key).
+    breaks: std::cell::OnceCell<Vec<usize>>,
 }
 
 type Checked<T> = Result<T, SceneError>;
@@ -31,7 +33,8 @@ type Checked<T> = Result<T, SceneError>;
 impl Source<'_> {
     fn line(&self, span: &Range<usize>) -> usize {
         let start = span.start.min(self.text.len());
-        self.text[..start].matches('\n').count() + 1
+        let breaks = self.breaks.get_or_init(|| self.text.match_indices('\n').map(|(at, _)| at).collect());
+        breaks.partition_point(|&at| at < start) + 1
     }
 
     /// Records where `key` is written, for the rules' errors.
@@ -180,7 +183,7 @@ pub fn located(text: &str, path: &Path, error: crate::setup::SetupError) -> Scen
 }
 
 fn source<'a>(text: &'a str, path: &Path) -> Source<'a> {
-    Source { text, file: path.display().to_string(), lines: Default::default() }
+    Source { text, file: path.display().to_string(), lines: Default::default(), breaks: Default::default() }
 }
 
 fn convert_in(src: &Source) -> Checked<Scene> {
@@ -482,7 +485,8 @@ fn world(src: &Source, raw: &At<RawWorld>) -> Checked<WorldSpec> {
             )?
         }
     };
-    Ok(WorldSpec { gravity, end_time, max_contacts, damping_map })
+    let skin = raw.skin.as_ref().map(|s| number(src, "world.skin", s));
+    Ok(WorldSpec { gravity, end_time, max_contacts, damping_map, skin })
 }
 
 fn parse_error(src: &Source, error: &toml::de::Error) -> SceneError {

@@ -47,6 +47,8 @@ pub struct WorldSpec {
     pub max_contacts: u64,
     /// How a damping map that depends on the approach speed applies to a pair's successive contacts.
     pub damping_map: DampingMap,
+    /// The neighbour list's skin, m (`None`: the default, docs/world.md#neighbours; infinite: every pair).
+    pub skin: Option<f64>,
 }
 
 /// How a law's damping follows from a nominal e when its map depends on the approach speed (the hysteresis family:
@@ -86,6 +88,7 @@ impl Default for WorldSpec {
             end_time: None,
             max_contacts: DEFAULT_MAX_CONTACTS,
             damping_map: DampingMap::EachContact,
+            skin: None,
         }
     }
 }

@@ -7,6 +7,7 @@
 //! compression, force peak and separation as events of its own. A segment of an island ends at the first contact
 //! that begins or ends; contacts that begin or end at that same instant (a symmetric arrangement) are taken then too.
 
+use super::broad::{Neighbours, skin};
 use super::flight::{Kinematic, Meeting, acceleration, first_touch};
 use super::island::{ActiveContact, Island, Units};
 use super::record::{
@@ -38,6 +39,11 @@ const SEGMENT_TIME: f64 = 1e4;
 
 /// The motion energy about rest, in the island's energy unit, below which an island is at rest.
 pub const AT_REST: f64 = 1e-14;
+
+/// A contact of two free bodies is quiet — ended, the bodies given one velocity — when its penetration and its rate
+/// are both within this many times the integration's absolute tolerance (in the island's units L and V): what is left
+/// of it is the integration's own noise (docs/world.md#quiet-contacts).
+pub const QUIET: f64 = 10.0;
 
 /// The run of a world scene.
 pub fn run(scene: &WorldScene) -> Result<WorldOutcome, WorldError> {
@@ -80,6 +86,8 @@ enum Watched {
     Reopened(usize),
     /// The island came to rest (free groups: the run ends).
     Rest,
+    /// A member reached the bound of the neighbour list: the list is rebuilt.
+    Relist,
     /// A group an immovable body holds came to rest (its index among the island's components): it is frozen.
     Frozen(usize),
 }
@@ -106,9 +114,14 @@ struct World<'a> {
     gravity_work: f64,
     /// The bodies at rest on others, held still (frozen) until something touches them (docs/world.md#at-rest).
     frozen: Vec<bool>,
-    /// The kinetic energy left in groups when they were frozen (below 1e-14 of their energy unit), J.
+    /// The kinetic energy left in groups when they were frozen (below 1e-14 of their energy unit), and the relative
+    /// motion taken from bodies whose quiet contact ended, J.
     settled: f64,
+    /// How many contacts ended quiet.
+    quieted: u64,
     counters: Counters,
+    /// The pairs that may touch before some body moves half the skin (docs/world.md#neighbours).
+    neighbours: Neighbours,
     reason: Option<EndReason>,
     notes: Vec<String>,
     observer: Option<&'a mut dyn Observer>,
@@ -116,11 +129,12 @@ struct World<'a> {
 
 impl<'a> World<'a> {
     fn new(scene: &'a WorldScene, observer: Option<&'a mut dyn Observer>) -> Self {
-        let states = scene
+        let states: Vec<Kinematic> = scene
             .bodies
             .iter()
             .map(|b| Kinematic { position: b.position.unwrap_or_default(), velocity: b.velocity })
             .collect();
+        let neighbours = Neighbours::build(scene, &states, skin(scene));
         World {
             scene,
             time: 0.0,
@@ -135,7 +149,9 @@ impl<'a> World<'a> {
             gravity_work: 0.0,
             frozen: vec![false; scene.bodies.len()],
             settled: 0.0,
+            quieted: 0,
             counters: Counters::default(),
+            neighbours,
             reason: None,
             notes: Vec::new(),
             observer,
@@ -212,10 +228,28 @@ impl<'a> World<'a> {
         self.scene.world.end_time.map_or(f64::INFINITY, |end| end - self.time)
     }
 
-    /// The pairs that can touch, each once (i < j).
+    /// Every pair that can touch, each once (i < j).
     fn pairs(&self) -> impl Iterator<Item = (usize, usize)> + '_ {
         let n = self.scene.bodies.len();
         (0..n).flat_map(move |i| (i + 1..n).map(move |j| (i, j))).filter(|&(i, j)| self.scene.interacts(i, j))
+    }
+
+    /// The flight time (s) within which no body outside `island` (none: every body) reaches the bound of the
+    /// neighbour list: until then only its pairs can touch.
+    fn list_holds(&self, island: Option<&Island>) -> f64 {
+        if self.neighbours.is_everything() {
+            return f64::INFINITY;
+        }
+        let flight = self.flight_accelerations();
+        (0..self.states.len())
+            .filter(|&k| island.is_none_or(|island| island.slot(k).is_none()))
+            .map(|k| self.neighbours.flight_bound(k, &self.states[k], &flight[k]))
+            .fold(f64::INFINITY, f64::min)
+    }
+
+    /// Rebuilds the neighbour list at the bodies' states now.
+    fn relist(&mut self) {
+        self.neighbours.rebuild(self.scene, &self.states);
     }
 
     /// The tolerance (m) within which bodies `i` and `j` count as touching: the rounding of their positions, and no
@@ -253,6 +287,16 @@ impl<'a> World<'a> {
 
     fn go(&mut self) -> Result<(), WorldError> {
         while self.reason.is_none() {
+            // A list nearly spent is rebuilt before the next flight or segment (which would end at once).
+            let reach = self.neighbours.reach();
+            if (0..self.states.len()).any(|k| self.neighbours.margin(k, &self.states[k].position) < reach / 8.0) {
+                self.relist();
+            }
+            while !self.live().is_empty()
+                && let Some(group) = self.quiet_group()
+            {
+                self.quiet(&group)?;
+            }
             if self.live().is_empty() {
                 self.fly()?;
             } else {
@@ -264,10 +308,28 @@ impl<'a> World<'a> {
 
     /// Free flight to the next first touch (or the end), then the island it starts.
     fn fly(&mut self) -> Result<(), WorldError> {
-        let mut pairs: Vec<(usize, usize)> = self.pairs().collect();
+        // Pairs that grazed at the rounding of their velocities fly on, out of this flight's search.
+        let mut grazed: Vec<(usize, usize)> = Vec::new();
         loop {
             let left = self.left();
-            let Some((delay, starting)) = self.next_touch(&pairs, left) else {
+            let holds = self.list_holds(None);
+            let pairs: Vec<(usize, usize)> =
+                self.neighbours.pairs.iter().copied().filter(|pair| !grazed.contains(pair)).collect();
+            let mut next = self.next_touch(&pairs, left.min(holds));
+            if next.is_none() && holds < left {
+                // Nothing in the list touches before it must be rebuilt. Without an end, a run whose bodies never
+                // meet again must still end: every pair is searched (exactly, in closed form) for the next touch.
+                if left.is_infinite() {
+                    let every: Vec<(usize, usize)> = self.pairs().filter(|pair| !grazed.contains(pair)).collect();
+                    next = self.next_touch(&every, left);
+                } else {
+                    self.show_flight(holds);
+                    self.advance(holds);
+                    self.relist();
+                    continue;
+                }
+            }
+            let Some((delay, starting)) = next else {
                 let reason = if left.is_finite() { EndReason::EndTime } else { EndReason::NoMoreContacts };
                 if left.is_finite() {
                     self.show_flight(left);
@@ -278,6 +340,9 @@ impl<'a> World<'a> {
             };
             self.show_flight(delay);
             self.advance(delay);
+            if delay >= holds {
+                self.relist();
+            }
             // Every pair touching at that instant begins (a cradle's struck ball and its neighbour at once).
             self.units = None;
             let mut begun = false;
@@ -288,7 +353,7 @@ impl<'a> World<'a> {
                 return Ok(());
             }
             // A touch that begins no contact (a graze at the rounding of the velocities): that pair flies on.
-            pairs.retain(|pair| !starting.contains(pair));
+            grazed.extend(starting);
         }
     }
 
@@ -389,7 +454,7 @@ impl<'a> World<'a> {
             approach_speed: approach,
             pushed,
             velocities_before: [self.states[i].velocity, self.states[j].velocity],
-            elastic_at_start: if overlap > self.touching(i, j) { law.elastic_energy(overlap) } else { 0.0 },
+            elastic_at_start: if overlap > 2.0 * self.touching(i, j) { law.elastic_energy(overlap) } else { 0.0 },
             max_compression: None,
             peak_force: None,
             end: None,
@@ -426,7 +491,8 @@ impl<'a> World<'a> {
         // starts overlapping beyond that rounding (a contact its force ended while the bodies still overlapped) is
         // watched for its gap to open, which ends the segment: the next one watches the gap close from open.
         let active: BTreeSet<[usize; 2]> = self.active.iter().map(|c| c.pair).collect();
-        let all: Vec<(usize, usize)> = self.pairs().filter(|&(i, j)| !active.contains(&[i, j])).collect();
+        let all: Vec<(usize, usize)> =
+            self.neighbours.pairs.iter().copied().filter(|&(i, j)| !active.contains(&[i, j])).collect();
         let inside = |&(i, j): &(usize, usize)| island.slot(i).is_some() || island.slot(j).is_some();
         let watched: Vec<(usize, usize, Meeting, f64, f64)> = all
             .iter()
@@ -492,6 +558,20 @@ impl<'a> World<'a> {
                 kinds.push((Watched::Frozen(k), true));
             }
         }
+        if !self.neighbours.is_everything() {
+            // The margin left to the member that moved furthest from where the list was built.
+            let (reach, reference) = (self.neighbours.reach(), self.neighbours.references(&isl.members));
+            functions.push(Box::new(move |y| {
+                let moved = isl
+                    .members
+                    .iter()
+                    .zip(&reference)
+                    .map(|(&k, at)| (isl.position(k, y) - at).norm())
+                    .fold(0.0, f64::max);
+                (reach - moved) / isl.units.length
+            }));
+            kinds.push((Watched::Relist, true));
+        }
         if everyone && all_free {
             let members = &all_members;
             functions.push(Box::new(move |y| isl.motion_energy(y, members, false) / isl.units.energy - AT_REST));
@@ -508,7 +588,8 @@ impl<'a> World<'a> {
         let mut stepper = StepperOf::new(&island, tolerances, self.observer.is_some());
         let by_end = self.left() / units.time;
         let by_outside = outside_touch.as_ref().map_or(f64::INFINITY, |(delay, _)| delay / units.time);
-        let horizon = by_end.min(by_outside).min(SEGMENT_TIME);
+        let by_list = self.list_holds(Some(&island)) / units.time;
+        let horizon = by_end.min(by_outside).min(by_list).min(SEGMENT_TIME);
         let end = stepper.run(0.0, y0, horizon, &events)?;
         self.counters.steps += stepper.counters.steps;
         self.counters.rejected_steps += stepper.counters.rejected_steps;
@@ -557,6 +638,11 @@ impl<'a> World<'a> {
             }
         }
         for (k, body) in scene.bodies.iter().enumerate() {
+            if island.slot(k).is_none() && self.states[k].velocity == Vector3::zeros() && flight[k] == Vector3::zeros()
+            {
+                // At rest outside the island: where it was.
+                continue;
+            }
             if !body.is_immovable() {
                 self.gravity_work += body.mass * scene.world.gravity.dot(&island.displacement(k, y));
             }
@@ -619,6 +705,7 @@ impl<'a> World<'a> {
                 }
                 // A gap that opened after a contact its force ended: the next segment watches it afresh.
                 Watched::Reopened(_) => {}
+                Watched::Relist => self.relist(),
                 Watched::MaxCompression(_) | Watched::ForcePeak(_) | Watched::Opened(_) => {
                     unreachable!("not terminal")
                 }
@@ -633,6 +720,8 @@ impl<'a> World<'a> {
                     self.begin(i, j, Some(units.speed), None)?;
                 }
             }
+            // A body outside the island reached the bound of the neighbour list.
+            Ending::TimeLimit if horizon == by_list => self.relist(),
             // A long segment: go on in a fresh one.
             Ending::TimeLimit => {}
             // A segment that spent its own step budget goes on in a fresh one (the run's budget decides); a stiff
@@ -683,7 +772,7 @@ impl<'a> World<'a> {
                 (state.rate < 0.0 && value <= 0.0).then_some((live[c], state.rate))
             });
             let active: BTreeSet<[usize; 2]> = self.active.iter().map(|c| c.pair).collect();
-            let touching = self.pairs().find(|&(i, j)| {
+            let touching = self.neighbours.pairs.iter().copied().find(|&(i, j)| {
                 if active.contains(&[i, j]) || (island.slot(i).is_none() && island.slot(j).is_none()) {
                     return false;
                 }
@@ -697,10 +786,122 @@ impl<'a> World<'a> {
             } else if let Some((i, j)) = touching {
                 let pushed = self.pressed.contains(&[i, j]);
                 self.begin(i, j, Some(speed), Some(pushed))?;
+            } else if let Some(group) = self.quiet_group() {
+                self.quiet(&group)?;
             } else {
                 return Ok(());
             }
         }
+    }
+
+    /// Whether active contact `c` is quiet: its penetration and rate within [`QUIET`] times the absolute tolerance of
+    /// the island's units.
+    fn is_quiet(&self, c: usize, units: &Units) -> bool {
+        let resolution = QUIET * self.scene.solver.tolerances.atol;
+        let contact = &self.active[c];
+        let [i, j] = contact.pair;
+        let relative = self.states[j].position - self.states[i].position;
+        let (penetration, normal) = contact.meeting.penetration(&relative);
+        let rate = (self.states[i].velocity - self.states[j].velocity).dot(&normal);
+        penetration.abs() <= resolution * units.length && rate.abs() <= resolution * units.speed
+    }
+
+    /// A group of active contacts (indices among the active) that is quiet as a whole: joined to each other, every
+    /// body of finite mass and free, every contact quiet, and no other active contact touching its bodies. The first
+    /// found, if any.
+    fn quiet_group(&self) -> Option<Vec<usize>> {
+        let units = self.units?;
+        let free = |k: usize| !self.scene.bodies[k].is_immovable() && !self.frozen[k];
+        let mut touching: std::collections::HashMap<usize, Vec<usize>> = Default::default();
+        for (c, contact) in self.active.iter().enumerate() {
+            for &k in &contact.pair {
+                touching.entry(k).or_default().push(c);
+            }
+        }
+        let mut done = vec![false; self.active.len()];
+        for first in 0..self.active.len() {
+            if done[first] {
+                continue;
+            }
+            // The contacts joined to `first` through shared bodies.
+            let mut group = vec![first];
+            done[first] = true;
+            let mut at = 0;
+            let mut quiet = true;
+            while at < group.len() {
+                let c = group[at];
+                at += 1;
+                quiet &= self.active[c].pair.iter().all(|&k| free(k)) && self.is_quiet(c, &units);
+                for k in self.active[c].pair {
+                    for &other in &touching[&k] {
+                        if !done[other] {
+                            done[other] = true;
+                            group.push(other);
+                        }
+                    }
+                }
+            }
+            if quiet {
+                return Some(group);
+            }
+        }
+        None
+    }
+
+    /// Ends a quiet group of contacts (indices among the active): their bodies, and every body joined to them by an
+    /// earlier quiet group (touching, moving with exactly their velocity), take their common velocity — momentum
+    /// kept, the kinetic energy of their relative motion counted as settled. What such contacts still carry is the
+    /// integration's noise; left alone it keeps the bodies touching and parting at noise speeds, each time a contact
+    /// of its own.
+    fn quiet(&mut self, contacts: &[usize]) -> Result<(), WorldError> {
+        let free = |k: usize| !self.scene.bodies[k].is_immovable() && !self.frozen[k];
+        let mut endings = Vec::new();
+        let mut group: Vec<usize> = Vec::new();
+        for &c in contacts {
+            let contact = &self.active[c];
+            let [i, j] = contact.pair;
+            let relative = self.states[j].position - self.states[i].position;
+            let (penetration, normal) = contact.meeting.penetration(&relative);
+            let rate = (self.states[i].velocity - self.states[j].velocity).dot(&normal);
+            endings.push((contact.record, rate, contact.law.elastic_energy(penetration.max(0.0))));
+            for k in [i, j] {
+                if !group.contains(&k) {
+                    group.push(k);
+                }
+            }
+        }
+        let active: BTreeSet<[usize; 2]> = self.active.iter().map(|c| c.pair).collect();
+        let mut seen: BTreeSet<usize> = group.iter().copied().collect();
+        let mut at = 0;
+        while at < group.len() {
+            let p = group[at];
+            at += 1;
+            for &q in self.neighbours.adjacent(p) {
+                if seen.contains(&q) || !free(q) || active.contains(&[p.min(q), p.max(q)]) {
+                    continue;
+                }
+                if self.states[q].velocity == self.states[p].velocity {
+                    seen.insert(q);
+                    group.push(q);
+                }
+            }
+        }
+        let mass: f64 = group.iter().map(|&k| self.scene.bodies[k].mass).sum();
+        let momentum =
+            group.iter().fold(Vector3::zeros(), |sum, &k| sum + self.states[k].velocity * self.scene.bodies[k].mass);
+        let common = momentum / mass;
+        for &k in &group {
+            let body = &self.scene.bodies[k];
+            self.settled += body.kinetic_energy(&self.states[k].velocity, &Vector3::zeros())
+                - body.kinetic_energy(&common, &Vector3::zeros());
+            self.states[k].velocity = common;
+        }
+        for (record, rate, stored) in endings {
+            self.quieted += 1;
+            let c = self.active.iter().position(|c| c.record == record).expect("a quiet contact is active");
+            self.end_contact(c, rate, Some(stored))?;
+        }
+        Ok(())
     }
 
     /// Records a maximum of contact `c`'s penetration at state `y` (scene time `at`), if it is the deepest so far.
@@ -736,12 +937,20 @@ impl<'a> World<'a> {
 
     /// Ends active contact `c` now (the bodies' states current), parting at penetration rate `rate` (m/s).
     fn finish_contact(&mut self, c: usize, rate: f64) -> Result<(), WorldError> {
+        self.end_contact(c, rate, None)
+    }
+
+    /// Ends active contact `c` now, parting at penetration rate `rate` (m/s), with the elastic energy it leaves
+    /// stored (J; `None`: none, or for a contact ended by its force the energy at its force's zero).
+    fn end_contact(&mut self, c: usize, rate: f64, stored: Option<f64>) -> Result<(), WorldError> {
         let contact = self.active.remove(c);
         let [i, j] = contact.pair;
         let record = &mut self.records[contact.record];
         let relative = self.states[j].position - self.states[i].position;
         let (penetration, _) = contact.meeting.penetration(&relative);
-        let elastic_left = if contact.on_force && penetration > 0.0 {
+        let elastic_left = if let Some(stored) = stored {
+            stored
+        } else if contact.on_force && penetration > 0.0 {
             contact.law.elastic_energy(contact.law.separation_penetration(rate))
         } else {
             0.0
@@ -811,6 +1020,15 @@ impl<'a> World<'a> {
                     if list.len() > 1 { "them" } else { "it" }
                 ));
             }
+        }
+        if self.quieted > 0 {
+            self.notes.push(format!(
+                "{} contact{} ended quiet — penetration and rate within {QUIET} times the absolute tolerance, the \
+                 integration's noise — and {} bodies took one common velocity (docs/world.md#quiet-contacts)",
+                self.quieted,
+                if self.quieted > 1 { "s" } else { "" },
+                if self.quieted > 1 { "their" } else { "its" }
+            ));
         }
         let starts: Vec<f64> = self.records.iter().map(|r| r.start_time).collect();
         if starts.windows(2).any(|pair| pair[0] == pair[1]) {

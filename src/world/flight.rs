@@ -106,6 +106,10 @@ pub fn first_touch(
     let r0 = b.position - a.position;
     let w = b.velocity - a.velocity;
     let acc = gb - ga;
+    if w == Vector3::zeros() && acc == Vector3::zeros() {
+        // Moving together (at rest on each other, or given one velocity): the gap never changes.
+        return None;
+    }
     let (gap0, _) = meeting.penetration(&r0);
     let gap0 = -gap0;
     // The gap as a polynomial in τ (its zeros are the gap's); its rate and curvature at τ = 0 (negative: closing),

@@ -7,6 +7,7 @@
 //! world's special case, and its contact is that impact's to the bit. [`sequential`] is the textbook's answer beside
 //! the simulation: each contact alone and instantaneous, in the order they began.
 
+pub mod broad;
 pub mod driver;
 pub mod flight;
 pub mod island;
