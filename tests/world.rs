@@ -714,4 +714,7 @@ fn hertzian_chain(n: usize, tolerance: f64, end: f64, quiet: bool) {
     if quiet {
         assert!(report.notes.iter().any(|note| note.contains("ended quiet")), "{:?}", report.notes);
     }
+    // The terminal report lists 23 of the bodies (the first 18, the last 5), and says how many it leaves out.
+    let table = impact::output::world_table::render(&report);
+    assert!(table.contains(&format!("... {} more ...", n - 23)), "{table}");
 }

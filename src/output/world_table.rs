@@ -7,8 +7,27 @@ use super::units::{engineering, plain, plain_digits, short};
 use crate::report::Vec3;
 use crate::report::world::{SequentialModel, WorldContact, WorldReport};
 
-/// How many contacts the table lists one by one before it shows only the first and the last ones.
+/// How many contacts (and bodies) the table lists one by one before it shows only the first and the last ones.
 const LISTED: usize = 24;
+
+/// The indices of `count` items the table shows: all of them up to [`LISTED`], else the first and the last ones.
+fn shown(count: usize) -> Vec<usize> {
+    if count <= LISTED { (0..count).collect() } else { (0..LISTED - 6).chain(count - 5..count).collect() }
+}
+
+/// Calls `row` for each shown item of `count`, with a heading for every run of items left out.
+fn each_shown(section: &mut Section, count: usize, mut row: impl FnMut(&mut Section, usize)) {
+    let mut previous: Option<usize> = None;
+    for index in shown(count) {
+        if let Some(p) = previous
+            && index > p + 1
+        {
+            section.heading(format!("... {} more ...", index - p - 1));
+        }
+        previous = Some(index);
+        row(section, index);
+    }
+}
 
 /// The report as aligned text.
 pub fn render(report: &WorldReport) -> String {
@@ -50,19 +69,12 @@ fn world(report: &WorldReport) -> Section {
 fn contacts(report: &WorldReport) -> Section {
     let mut section = Section::new("contacts (times in the scene's time; e by velocities and by impulses)");
     let count = report.contacts.len();
-    let shown: Vec<usize> =
-        if count <= LISTED { (0..count).collect() } else { (0..LISTED - 6).chain(count - 5..count).collect() };
-    let mut previous = None;
-    for index in shown {
-        if previous.is_some_and(|p: usize| index > p + 1) {
-            section.heading(format!("... {} more ...", index - previous.unwrap_or(0) - 1));
-        }
-        previous = Some(index);
+    each_shown(&mut section, count, |section, index| {
         section.row(
             format!("{index}: bodies {} and {}", report.contacts[index].bodies[0], report.contacts[index].bodies[1]),
             line(&report.contacts[index]),
         );
-    }
+    });
     if count == 0 {
         section.heading("none");
     }
@@ -91,7 +103,8 @@ fn line(c: &WorldContact) -> String {
 
 fn bodies(report: &WorldReport) -> Section {
     let mut section = Section::new("bodies (before, and when the run ended)");
-    for body in &report.bodies {
+    each_shown(&mut section, report.bodies.len(), |section, index| {
+        let body = &report.bodies[index];
         let mass = if body.mass.is_infinite() { "immovable".into() } else { engineering(body.mass, "kg") };
         let radius =
             if body.radius.is_infinite() { "flat".into() } else { format!("radius {}", engineering(body.radius, "m")) };
@@ -100,7 +113,7 @@ fn bodies(report: &WorldReport) -> Section {
         section.row("  position after", vector(&body.position_after, "m"));
         section.row("  velocity before", vector(&body.velocity_before, "m/s"));
         section.row("  velocity after", vector(&body.velocity_after, "m/s"));
-    }
+    });
     section
 }
 
@@ -132,11 +145,12 @@ fn sequential(report: &WorldReport) -> Section {
             return;
         };
         section.heading(with.to_string());
-        for (body, v) in report.bodies.iter().zip(&model.velocity_after) {
-            if body.mass.is_finite() {
-                section.row(format!("  velocity after, {}", body.name), vector(v, "m/s"));
-            }
-        }
+        let movable: Vec<usize> = (0..report.bodies.len()).filter(|&k| report.bodies[k].mass.is_finite()).collect();
+        each_shown(&mut section, movable.len(), |section, index| {
+            let k = movable[index];
+            section
+                .row(format!("  velocity after, {}", report.bodies[k].name), vector(&model.velocity_after[k], "m/s"));
+        });
         section.row("  largest difference from simulation", format!("{} m/s", short(model.max_velocity_difference)));
     };
     model("with each pair's nominal e", &report.sequential.nominal);

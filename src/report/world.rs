@@ -255,14 +255,7 @@ pub fn build(scene: &WorldScene, outcome: &WorldOutcome, wall_time: f64) -> Worl
     }
 }
 
-/// A list of indices, its middle left out when long.
-fn shorten(items: &[String]) -> String {
-    if items.len() <= 8 {
-        items.join(", ")
-    } else {
-        format!("{}, ... ({} in all), {}", items[..4].join(", "), items.len(), items[items.len() - 2..].join(", "))
-    }
-}
+use crate::world::record::shorten;
 
 /// One contact's report values from its record.
 fn contact(record: &ContactRecord) -> WorldContact {

@@ -41,8 +41,9 @@ const SEGMENT_TIME: f64 = 1e4;
 pub const AT_REST: f64 = 1e-14;
 
 /// A contact of two free bodies is quiet — ended, the bodies given one velocity — when its penetration and its rate
-/// are both within this many times the integration's absolute tolerance (in the island's units L and V): what is left
-/// of it is the integration's own noise (docs/world.md#quiet-contacts).
+/// are both within this many times the integration's absolute tolerance (in the island's units L and V), or within the
+/// rounding of the positions and velocities: what is left of it is the integration's own noise
+/// (docs/world.md#quiet-contacts).
 pub const QUIET: f64 = 10.0;
 
 /// The run of a world scene.
@@ -803,7 +804,12 @@ impl<'a> World<'a> {
         let relative = self.states[j].position - self.states[i].position;
         let (penetration, normal) = contact.meeting.penetration(&relative);
         let rate = (self.states[i].velocity - self.states[j].velocity).dot(&normal);
-        penetration.abs() <= resolution * units.length && rate.abs() <= resolution * units.speed
+        // Never finer than the rounding of the positions and velocities themselves (far from the origin, or at a
+        // tolerance near the precision's own).
+        let depth = (resolution * units.length).max(2.0 * self.touching(i, j));
+        let speed = self.states[i].velocity.norm() + self.states[j].velocity.norm();
+        let pace = (resolution * units.speed).max(64.0 * f64::EPSILON * speed);
+        penetration.abs() <= depth && rate.abs() <= pace
     }
 
     /// A group of active contacts (indices among the active) that is quiet as a whole: joined to each other, every
@@ -1016,7 +1022,7 @@ impl<'a> World<'a> {
                     "the run stopped with contact{} {} in progress: the sequential model takes {} as plastic (e = 0), \
                      which an impact cut short is not",
                     if list.len() > 1 { "s" } else { "" },
-                    list.join(", "),
+                    super::record::shorten(&list),
                     if list.len() > 1 { "them" } else { "it" }
                 ));
             }

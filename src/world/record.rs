@@ -149,3 +149,12 @@ pub trait Observer {
     /// Every body's state and the active contacts at scene time `time` (s).
     fn instant(&mut self, time: f64, bodies: &[Kinematic], contacts: &[ContactSample]);
 }
+
+/// A list of indices for a note, its middle left out when long.
+pub fn shorten(items: &[String]) -> String {
+    if items.len() <= 8 {
+        items.join(", ")
+    } else {
+        format!("{}, ... ({} in all), {}", items[..4].join(", "), items.len(), items[items.len() - 2..].join(", "))
+    }
+}
