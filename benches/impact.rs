@@ -7,11 +7,11 @@
 //! Run: `cargo bench --bench impact` (filter with e.g. `cargo bench --bench impact -- tsuji`).
 
 use criterion::{Criterion, criterion_group, criterion_main};
-use impact::accuracy::ReferenceDetail;
 use impact::history::Recording;
 use impact::impact::{Options, outcome, simulate, simulate_with};
 use impact::law::LawKind;
 use impact::report::Report;
+use impact::report::accuracy::ReferenceDetail;
 use impact::scene::Scene;
 use impact::setup::Setup;
 use impact::sweep::Sweep;

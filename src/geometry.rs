@@ -1,5 +1,5 @@
 //! Contact geometry: effective mass, radius and modulus, the Hertz stiffness, the contact normal and the
-//! free flight up to first contact (docs/scene.md).
+//! free flight up to first contact (docs/scene.md), and how two bodies of a world meet ([`Meeting`]).
 
 use crate::body::Body;
 use nalgebra::Vector3;
@@ -47,6 +47,41 @@ pub enum PlacementProblem {
     NeverMeet,
     /// Two sphere centres coincide, so no line of centres exists.
     CoincidentCentres,
+}
+
+/// How two bodies `i` and `j` meet: across the line of their centres, or a sphere against a flat face.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Meeting {
+    /// Two spheres; `reach` = r_i + r_j, m.
+    Spheres { reach: f64 },
+    /// A sphere against a flat body's face; `face` is the unit face normal pointing into the sphere's side, `sign`
+    /// +1 when the flat body is body `i` of the pair (the normal from i to j is the face's), -1 when it is `j`.
+    Face { face: Vector3<f64>, radius: f64, sign: f64 },
+}
+
+impl Meeting {
+    /// How bodies `a` (body `i`) and `b` (body `j`) meet, with their faces: a flat body's unit face normal, `None`
+    /// for a sphere (a world scene's `faces`).
+    pub fn between(a: &Body, face_a: Option<Vector3<f64>>, b: &Body, face_b: Option<Vector3<f64>>) -> Meeting {
+        match (face_a, face_b) {
+            (Some(face), _) => Meeting::Face { face, radius: b.radius, sign: 1.0 },
+            (_, Some(face)) => Meeting::Face { face, radius: a.radius, sign: -1.0 },
+            _ => Meeting::Spheres { reach: a.radius + b.radius },
+        }
+    }
+
+    /// The penetration (m, positive overlapping) and the unit normal from body i to body j, for `relative` =
+    /// x_j - x_i (m).
+    pub fn penetration(&self, relative: &Vector3<f64>) -> (f64, Vector3<f64>) {
+        match *self {
+            Meeting::Spheres { reach } => {
+                let distance = relative.norm();
+                (reach - distance, relative / distance)
+            }
+            // The sphere's height above the face: f·(x_sphere - x_face), which is sign · f·(x_j - x_i).
+            Meeting::Face { face, radius, sign } => (radius - sign * face.dot(relative), face * sign),
+        }
+    }
 }
 
 /// Relative tolerance (of the smaller radius) within which bodies count as just touching.

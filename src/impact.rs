@@ -6,16 +6,17 @@
 //! the force rate does; a frictional contact adds the switches between sticking and sliding. Every event is located
 //! on the integrator's solution.
 
-use crate::accuracy::ReferenceDetail;
+use crate::dynamics::ContactModel;
 use crate::dynamics::normal::NormalContact;
 use crate::dynamics::pair::PairContact;
-use crate::dynamics::{ContactModel, Snapshot};
 use crate::fast::Quantities;
 use crate::history::{History, Recording};
 use crate::integrate::{
     Counters, Crossing, Direction, Ending, Event, IntegrationError, Scheme, State, Stepper, Tolerances,
 };
+use crate::outcome::{Outcome, SETTLED, TIME_LIMIT, stiffness_causes};
 use crate::report::Report;
+use crate::report::accuracy::ReferenceDetail;
 use crate::scene::{Method, Scene};
 use crate::setup::{Motion, Setup, SetupError};
 use std::time::Instant;
@@ -38,54 +39,8 @@ pub enum SimulationError {
     Compression(String),
 }
 
-/// What typically makes a contact's equations too stiff for the step budget.
-pub fn stiffness_causes(frictional: bool) -> &'static str {
-    if frictional {
-        "stiff equations are typical of very heavy damping and of a tangential spring far stiffer than the normal \
-         contact"
-    } else {
-        "a creeping, stiff restitution is typical of very heavy damping"
-    }
-}
-
-/// Scaled time after which a contact that has not separated is declared stuck (elastic contacts last about 3).
-pub const TIME_LIMIT: f64 = 1e4;
-/// Scaled size of |d| + |d'| below which the relative motion counts as died out.
-pub const SETTLED: f64 = 1e-10;
 /// Most stick–slip switches one impact may take before the run is abandoned as chattering.
 pub const MAX_SWITCHES: u32 = 10_000;
-
-/// What the phases of one impact came to, in SI units: the report is built from it alone.
-#[derive(Debug, Clone)]
-pub struct Outcome {
-    /// At maximum compression (d' = 0).
-    pub max_compression: Snapshot,
-    /// Where the contact ended: separation, or where the run stopped when the bodies did not part.
-    pub end: Snapshot,
-    /// Time since first contact (s) and value (N) of the largest compressive force.
-    pub peak_force: (f64, f64),
-    pub separated: bool,
-    /// How the restitution run ended.
-    pub ending: Ending,
-    /// Time the tangential force of a frictional contact spent below the Coulomb limit mu Fn (the spring held), s
-    /// (0: it stayed on the limit throughout, or the contact is smooth).
-    pub below_limit_duration: f64,
-    /// Time since first contact at which the contact points' slip first came to rest (gross sliding ended), s;
-    /// `None` when it never did (the contact slid throughout) or the contact is smooth.
-    pub slip_rest_time: Option<f64>,
-    /// Stick–slip switches taken.
-    pub switches: u32,
-    /// The integrator's work for the impact itself (before any resampling).
-    pub counters: Counters,
-    /// The path that ran (`dop853`, `dopri5`, `taylor`).
-    pub method: &'static str,
-    /// The restitution impulse (N s) and the energy returned in restitution (J), when the path integrated them on
-    /// their own from maximum compression (accurate relative to themselves when e is small); otherwise they are the
-    /// differences of the snapshots' integrals.
-    pub restitution: Option<(f64, f64)>,
-    /// Why the path that ran did not separate the bodies, when it says more than `ending` (a note for the report).
-    pub note: Option<String>,
-}
 
 /// What a run computes beyond the impact itself.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]

@@ -1,24 +1,29 @@
 //! impact: simulate the collision of two bodies with a compliant contact law and measure what the
 //! instantaneous-impact idealisation hides.
 
-pub mod accuracy;
 pub mod bench;
 pub mod body;
 pub mod calibrate;
 pub mod cli;
+pub mod draw;
 pub mod dynamics;
 pub mod fast;
+pub mod files;
 pub mod geometry;
 pub mod history;
 pub mod impact;
 pub mod instantaneous;
 pub mod integrate;
 pub mod law;
+pub mod outcome;
 pub mod output;
 pub mod reference;
 pub mod report;
+pub mod scales;
 pub mod scene;
 pub mod setup;
 pub mod stress;
 pub mod sweep;
+pub mod text;
 pub mod world;
+pub mod world_run;

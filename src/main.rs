@@ -11,7 +11,7 @@ use std::process::ExitCode;
 static ALLOCATOR: mimalloc::MiMalloc = mimalloc::MiMalloc;
 
 fn main() -> ExitCode {
-    if let Err(error) = impact::output::files::remove_temporaries_on_signal() {
+    if let Err(error) = impact::files::remove_temporaries_on_signal() {
         // Outputs are still complete or absent; only an interrupted run could leave a temporary file behind.
         eprintln!("impact: warning: cannot watch for Ctrl-C ({error})");
     }

@@ -2,14 +2,23 @@
 //! and the resolved law. Every physics-level rule of docs/scene.md (its sections on placement, the normal and first
 //! contact, on walls and fixed spheres, and its rules across keys) is checked here, and a broken rule names the
 //! scene key at fault.
+//!
+//! Reading a scene with every rule checked is here too, one layer above `scene`, which reads the form and checks the
+//! value rules: [`Scene::load`], [`Scene::parse`] and [`Scene::check`], and [`load_any`] and [`parse_any`] for a scene
+//! of either kind; a physics-level rule broken there is located at its key's line.
 
 use crate::body::Body;
-use crate::dynamics::Scales;
 use crate::geometry::{self, PlacementProblem};
 use crate::law::damping::{MapError, damping_for_restitution};
 use crate::law::{ContactLaw, Family, Separation};
-use crate::scene::{ContactSpec, DampingSpec, Scene, StiffnessSpec, TangentialStiffnessSpec};
+use crate::scales::Scales;
+use crate::scene::{ContactSpec, DampingSpec, Parsed, Scene, SceneError, StiffnessSpec, TangentialStiffnessSpec};
 use nalgebra::Vector3;
+use std::path::Path;
+
+/// A broken physics-level rule: the key at fault and what is wrong (the type of the scene's own value rules, which
+/// it shares).
+pub use crate::scene::SetupError;
 
 /// The contact of a scene, ready to integrate (SI units).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -69,14 +78,6 @@ pub struct Friction {
     pub damping_ratio: f64,
     /// m_t = 1/B, B = 1/m1 + 1/m2 + r1²/I1 + r2²/I2: the mass the tangential force sees at the contact point, kg.
     pub tangential_mass: f64,
-}
-
-/// A broken physics-level rule: the key at fault and what is wrong.
-#[derive(Debug, Clone, PartialEq)]
-pub struct SetupError {
-    /// Dotted scene key, 0-based (`bodies.1.velocity`).
-    pub key: String,
-    pub message: String,
 }
 
 fn fail<T>(key: impl Into<String>, message: impl Into<String>) -> Result<T, SetupError> {
@@ -150,6 +151,48 @@ impl Setup {
             |body: &Body, sign: f64| if body.is_flat() { Vector3::zeros() } else { normal * (sign * body.radius) };
         [arm(a, 1.0), arm(b, -1.0)]
     }
+}
+
+impl Scene {
+    /// Reads and validates a scene file.
+    pub fn load(path: &Path) -> Result<Scene, SceneError> {
+        let text = std::fs::read_to_string(path)
+            .map_err(|error| SceneError::file(path, format!("cannot read the scene: {error}")))?;
+        Scene::parse(&text, path)
+    }
+
+    /// Validates scene text: its form, every value rule and the physics-level rules of [`Setup`], a broken one
+    /// located; `path` names the source in errors and gives the default title.
+    pub fn parse(text: &str, path: &Path) -> Result<Scene, SceneError> {
+        let read = Scene::read(text, path)?;
+        Setup::new(&read.scene).map_err(|error| read.located(error))?;
+        Ok(read.scene)
+    }
+
+    /// Checks every value rule of a scene (ranges, and the rules between keys) and the physics-level rules of
+    /// [`Setup`]: the same rules [`Scene::parse`] applies, on a scene already typed (a sweep's point). The error
+    /// names the key; it has no file or line.
+    pub fn check(&self) -> Result<Setup, SetupError> {
+        self.check_rules()?;
+        Setup::new(self)
+    }
+}
+
+/// Reads and validates a scene file of either kind.
+pub fn load_any(path: &Path) -> Result<Parsed, SceneError> {
+    let text = std::fs::read_to_string(path)
+        .map_err(|error| SceneError::file(path, format!("cannot read the scene: {error}")))?;
+    parse_any(&text, path)
+}
+
+/// Validates scene text of either kind (for a two-body scene, the physics-level rules of [`Setup`] too); `path` names
+/// the source in errors and gives the default title.
+pub fn parse_any(text: &str, path: &Path) -> Result<Parsed, SceneError> {
+    let read = crate::scene::read_any(text, path)?;
+    if let Parsed::Impact(scene) = &read.scene {
+        Setup::new(scene).map_err(|error| read.located(error))?;
+    }
+    Ok(read.scene)
 }
 
 /// The contact law of `contact` between `bodies` (effective mass `effective_mass`, kg), its damping mapped from a

@@ -7,7 +7,7 @@
 mod common;
 
 use common::binary::{Scratch, assert_success, describe, impact, stderr, stdout};
-use impact::output::files::{Destination, OutputFile};
+use impact::files::{Destination, OutputFile};
 use std::fs;
 use std::os::unix::fs::FileTypeExt;
 use std::path::Path;

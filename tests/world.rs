@@ -7,7 +7,8 @@ mod common;
 
 use common::binary::{Scratch, impact};
 use impact::report::world::WorldReport;
-use impact::scene::{Parsed, WorldScene, parse_any};
+use impact::scene::{Parsed, WorldScene};
+use impact::setup::parse_any;
 use std::path::Path;
 
 fn world(text: &str) -> WorldScene {
@@ -19,7 +20,7 @@ fn world(text: &str) -> WorldScene {
 
 fn run(text: &str) -> WorldReport {
     let scene = world(text);
-    impact::world::simulate(&scene).unwrap_or_else(|e| panic!("{e}\n{text}")).report
+    impact::world_run::simulate(&scene).unwrap_or_else(|e| panic!("{e}\n{text}")).report
 }
 
 fn relative(value: f64, expected: f64) -> f64 {

@@ -1,10 +1,10 @@
 //! The reference impacts of the study and their exact values, in the scaled units `m* = K = v0 = 1` (so that
 //! `L = T = F0 = 1` and the exact references of [`crate::reference`] need no conversion).
 
-use crate::dynamics::Scales;
 use crate::fast::{Quantities, Request};
 use crate::law::{ContactLaw, LawKind, Separation};
 use crate::reference::{self, ContactReference};
+use crate::scales::Scales;
 
 /// One reference impact.
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -6,8 +6,8 @@
 use super::BadInput;
 use super::paths::{Origin, Paths};
 use crate::bench::{self, Method, Setting};
+use crate::files::{Destination, OutputFile, figure_folder_problem};
 use crate::output::bench_figure::{self, BenchFigure, Curve};
-use crate::output::files::{Destination, OutputFile, figure_folder_problem};
 use crate::output::render;
 use anyhow::Context;
 use clap::Args;

@@ -5,8 +5,8 @@
 use super::BadInput;
 use crate::calibrate::{Calibration, CalibrationError, Request, calibrate, readable};
 use crate::law::{LawKind, Separation};
-use crate::output::text::{MESSAGE_CHARS, cut};
 use crate::scene::Scene;
+use crate::text::{MESSAGE_CHARS, cut};
 use clap::Args;
 use std::fmt::Write as _;
 use std::path::PathBuf;

@@ -21,7 +21,7 @@ pub fn run() -> anyhow::Result<()> {
     let folder = Path::new(FOLDER);
     let mut written = write_outputs(&scene, &simulation, &Plan::demonstration(folder)?)?;
     let json = folder.join("report.json");
-    output::files::write_atomically(&json, output::json::render(&simulation.report)?.as_bytes())?;
+    crate::files::write_atomically(&json, output::json::render(&simulation.report)?.as_bytes())?;
     written.push(json.display().to_string());
     println!("\nThe demonstration wrote into {FOLDER}/:");
     for path in written {

@@ -1,9 +1,9 @@
 //! `impact gallery`: regenerates the README's committed figures in `plots/` (and only on this explicit command).
 //! Every figure is computed in memory and written straight to its place (atomically); only those paths are printed.
 
+use crate::files::write_atomically;
 use crate::history::Recording;
 use crate::impact::simulate;
-use crate::output::files::write_atomically;
 use crate::output::world_figures::{self, WorldTrace};
 use crate::output::{figures, render, sweep_figure};
 use crate::scene::{Parsed, Scene};
@@ -73,11 +73,11 @@ const WORLDS: [(&str, &str, &str); 2] = [
 fn worlds(folder: &Path) -> anyhow::Result<()> {
     for (name, text, figure) in WORLDS {
         let path = format!("models/{}.toml", name.replace('_', "-"));
-        let Parsed::World(scene) = crate::scene::parse_any(text, Path::new(&path))? else {
+        let Parsed::World(scene) = crate::setup::parse_any(text, Path::new(&path))? else {
             return Err(anyhow!("{path} is not a world scene"));
         };
         let mut trace = WorldTrace::new();
-        let simulation = crate::world::simulate_observed(&scene, &mut trace)?;
+        let simulation = crate::world_run::simulate_observed(&scene, &mut trace)?;
         let svg = world_figures::svg(figure, &simulation.report, &trace);
         let target = folder.join(format!("{name}_{figure}.png"));
         let png = render::png(&svg).with_context(|| format!("cannot render {}", target.display()))?;

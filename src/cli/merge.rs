@@ -4,7 +4,7 @@
 use super::BadInput;
 use super::paths::{Origin, Paths};
 use super::sweep::{bad, check_names, check_plot_columns, figure_output};
-use crate::output::files::OutputFile;
+use crate::files::OutputFile;
 use crate::sweep::merge::{ShardFile, merge};
 use clap::Args;
 use std::path::PathBuf;

@@ -4,7 +4,7 @@
 //! be examined (its parent is a file, it is a folder) is an I/O error (status 1) from [`Destination::resolve`].
 
 use super::BadInput;
-use crate::output::files::{Destination, Identity};
+use crate::files::{Destination, Identity};
 use crate::scene::SceneError;
 use std::path::{Path, PathBuf};
 

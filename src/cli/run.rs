@@ -2,10 +2,10 @@
 
 use super::BadInput;
 use super::paths::{Origin, Paths};
+use crate::files::{self, Destination, OutputFile, Staging};
 use crate::history::Recording;
 use crate::impact::{Simulation, simulate};
 use crate::output;
-use crate::output::files::{self, Destination, OutputFile, Staging};
 use crate::scene::{OutputSpec, Parsed, Scene, WorldScene};
 use clap::Args;
 use std::path::{Path, PathBuf};
@@ -62,7 +62,7 @@ pub fn run(args: &RunArgs) -> anyhow::Result<()> {
     {
         return Err(BadInput(format!("--plot {}: {why}", path.display())).into());
     }
-    let scene = match crate::scene::load_any(&args.scene)? {
+    let scene = match crate::setup::load_any(&args.scene)? {
         Parsed::Impact(scene) => *scene,
         Parsed::World(world) => return run_world(args, &world),
     };
@@ -238,9 +238,9 @@ fn run_world(args: &RunArgs, scene: &WorldScene) -> anyhow::Result<()> {
         let observed = series.is_some() || trace.is_some();
         let mut observers = Both { series: series.as_mut(), trace: trace.as_mut() };
         let run = if observed {
-            crate::world::simulate_observed(scene, &mut observers)
+            crate::world_run::simulate_observed(scene, &mut observers)
         } else {
-            crate::world::simulate(scene)
+            crate::world_run::simulate(scene)
         };
         run.map_err(|error| match error {
             crate::world::WorldError::Setup(error) => anyhow::Error::new(crate::scene::located(&args.scene, error)),

@@ -3,7 +3,7 @@
 
 use super::BadInput;
 use super::paths::{Origin, Paths};
-use crate::output::files::{self, Destination, OutputFile, Staging};
+use crate::files::{self, Destination, OutputFile, Staging};
 use crate::output::sweep_figure;
 use crate::scene::SceneError;
 use crate::sweep::grid::{Axis, Grid, Spacing};

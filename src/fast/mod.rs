@@ -31,7 +31,7 @@
 //!   Very heavy damping (x >> 100) creeps and is stiff for an explicit method: the steps grow like x (x = 1e4:
 //!   about 1500 steps, 1 ms), accurate throughout.
 //!
-//! Everything is scaled as in [`crate::dynamics::Scales`]: lengths in `L`, speeds in `v0`, time in `T`, force in
+//! Everything is scaled as in [`crate::scales::Scales`]: lengths in `L`, speeds in `v0`, time in `T`, force in
 //! `F0`, impulse in `m* v0`, energy in `m* v0²`.
 
 mod panels;
@@ -39,10 +39,10 @@ mod quadrature;
 mod regularised;
 mod taylor;
 
-use crate::dynamics::Scales;
+use crate::scales::Scales;
 // Scaled `δ + |v|` below which the relative motion counts as died out: the general path's level.
-use crate::impact::SETTLED;
 use crate::law::{ContactLaw, Family, Separation};
+use crate::outcome::SETTLED;
 use panels::{End, Segments};
 use quadrature::{JacobiRules, node_digits, nodes_needed};
 use regularised::{Expansion, Regularised, State};

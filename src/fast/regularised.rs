@@ -1,7 +1,7 @@
 //! The physics of the regularised normal contact: each covered law as a polynomial system in `(w, v)` and the
 //! Taylor-coefficient recursions of its states (docs/numerics.md#the-fast-path).
 //!
-//! Scaled variables as in [`crate::dynamics::Scales`]: penetration `δ = d/L`, rate `v = d'/v0`, time `t/T`,
+//! Scaled variables as in [`crate::scales::Scales`]: penetration `δ = d/L`, rate `v = d'/v0`, time `t/T`,
 //! force `F/F0`, impulse in `m* v0`, energy in `m* v0²`. With `'` the derivative in the regularised time `τ`:
 //!
 //! * hysteresis family, `F = δ^n (1 + x v)` (`x = alpha v0`; elastic Hertz is `x = 0`):
@@ -21,8 +21,8 @@
 use super::FastError;
 use super::quadrature::{self, MAX_NODES};
 use super::taylor::{self, Coefficients, INVERSE, MAX_ORDER};
-use crate::dynamics::Scales;
 use crate::law::{ContactLaw, Family};
+use crate::scales::Scales;
 
 /// Which polynomial system.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -634,7 +634,7 @@ mod tests {
     /// left alone, and a lower order gives the leading coefficients of a higher one bit for bit.
     #[test]
     fn hysteresis_series_are_the_cauchy_recursion() {
-        let mut draw = crate::stress::Draw::new(29, 0);
+        let mut draw = crate::draw::Draw::new(29, 0);
         for _ in 0..200 {
             let (x, n) = (10f64.powf(draw.uniform(-3.0, 3.0)), draw.uniform(1.0, 3.0));
             let system = hysteresis(x, n);
@@ -753,7 +753,7 @@ mod tests {
     #[test]
     fn zero_distance_bound_is_a_lower_bound() {
         let systems = [hysteresis(0.0, 1.5), hysteresis(0.5, 2.2), hysteresis(10.0, 1.0), tsuji(0.3), tsuji(1.5)];
-        let mut draw = crate::stress::Draw::new(5, 0);
+        let mut draw = crate::draw::Draw::new(5, 0);
         for system in systems {
             let mut checked = 0;
             while checked < 40 {
@@ -823,7 +823,7 @@ mod tests {
             hysteresis(1.3, 0.5),
             linear(1.25, 0.4, 0.2, 0.8),
         ];
-        let mut draw = crate::stress::Draw::new(3, 0);
+        let mut draw = crate::draw::Draw::new(3, 0);
         for system in systems {
             for _ in 0..2000 {
                 let w = 10f64.powf(draw.uniform(-12.0, 0.5));

@@ -353,7 +353,7 @@ mod tests {
     /// (odd and even) and points of both signs inside and at the radius of convergence.
     #[test]
     fn values_split_agree_with_horner() {
-        let mut draw = crate::stress::Draw::new(3, 0);
+        let mut draw = crate::draw::Draw::new(3, 0);
         for len in 1..=MAX_ORDER + 1 {
             let c: Vec<f64> = (0..len).map(|k| draw.uniform(-1.0, 1.0) * 0.7f64.powi(k as i32)).collect();
             let at = [-1.4, -0.3, 0.0, 0.5, 1.0, 1.4, 0.01, -0.9];

@@ -3,7 +3,10 @@
 //! Sources are in [`super::catalogue::LAWS`]; formulas in docs/laws.md.
 
 use super::{Family, LawKind};
-use std::f64::consts::PI;
+
+/// The maps of the linear laws: the exact inverses of their restitution (in [`crate::reference`], beside
+/// [`hunt_crossley_chi`](crate::reference::hunt_crossley_chi), the exact map of the hysteresis family).
+pub use crate::reference::{kelvin_voigt_zeta, tsuji_damping};
 
 /// Why a law's map cannot turn a nominal e into damping.
 #[derive(Debug, Clone, PartialEq)]
@@ -38,25 +41,6 @@ pub fn hysteresis_chi(kind: LawKind, e: f64) -> Result<f64, MapError> {
         _ => return Err(MapError::NoMap),
     };
     Ok(chi)
-}
-
-/// Kelvin–Voigt damping ratio zeta(e) = -ln e / sqrt(pi² + ln² e) (docs/laws.md, exact for separation at
-/// d = 0); e = 0 gives 1 (critical, the limit), e = 1 gives 0, and NaN for e outside [0, 1].
-pub fn kelvin_voigt_zeta(e: f64) -> f64 {
-    if !(0.0..=1.0).contains(&e) {
-        return f64::NAN;
-    }
-    if e == 0.0 {
-        return 1.0;
-    }
-    let log = -e.ln();
-    log / PI.hypot(log)
-}
-
-/// Tsuji's dimensionless damping a(e) = -sqrt(5) ln e / sqrt(pi² + ln² e) = sqrt(5) zeta(e) (docs/laws.md),
-/// e = 0 -> sqrt(5); NaN for e outside [0, 1].
-pub fn tsuji_damping(e: f64) -> f64 {
-    5f64.sqrt() * kelvin_voigt_zeta(e)
 }
 
 /// The damping parameter (in the law's own units, docs/laws.md) that `kind`'s published map assigns to a nominal

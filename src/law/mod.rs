@@ -7,26 +7,8 @@
 pub mod catalogue;
 pub mod damping;
 
+pub use crate::reference::Separation;
 pub use catalogue::{Family, LawKind};
-
-/// Which event ends the contact (docs/laws.md).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub enum Separation {
-    /// The penetration returns to zero (tension allowed before that).
-    Penetration,
-    /// The contact force returns to zero.
-    Force,
-}
-
-impl Separation {
-    /// The scene/report spelling.
-    pub fn name(self) -> &'static str {
-        match self {
-            Separation::Penetration => "penetration",
-            Separation::Force => "force",
-        }
-    }
-}
 
 /// A contact law with its parameters resolved to numbers (SI units).
 #[derive(Debug, Clone, Copy, PartialEq)]

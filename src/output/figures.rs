@@ -8,8 +8,8 @@
 //! dashed Coulomb limits ±μF, with the stretches below the limit (the tangential spring holding) shaded.
 
 use super::chart::{self, Axis, Chart, Colour, Layer, Mark, Marker, Shape, Stack, Stroke, fixed, prefix, si};
-use super::files::write_atomically;
 use super::render;
+use crate::files::write_atomically;
 use crate::history::{History, Phase};
 use crate::report::Report;
 use anyhow::Context;
@@ -38,7 +38,7 @@ const CURVE: f64 = 2.2;
 /// is made here.
 pub fn caption(title: &str, what: &str) -> String {
     // A title is the user's string, whatever its length: cut, so that the figure renders at once.
-    let title = super::text::cut(title, super::text::TITLE_CHARS);
+    let title = crate::text::cut(title, crate::text::TITLE_CHARS);
     if what.is_empty() { title } else { format!("{title} — {what}") }
 }
 

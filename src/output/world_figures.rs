@@ -5,8 +5,8 @@
 
 use super::chart::{self, Axis, Chart, Colour, Layer, Mark, Marker, Shape, Stroke, prefix};
 use super::figures::caption;
-use super::files::write_atomically;
 use super::render;
+use crate::files::write_atomically;
 use crate::report::world::WorldReport;
 use crate::world::flight::Kinematic;
 use crate::world::record::{ContactSample, Observer};

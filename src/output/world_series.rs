@@ -1,7 +1,7 @@
 //! The series of a world run as CSV, streamed while the run goes (docs/report.md#the-world-series-csv): one row per
 //! body and per active contact at each instant, so that a run of any length holds only the rows of its last chunk.
 
-use super::files::{FileError, OutputFile};
+use crate::files::{FileError, OutputFile};
 use crate::world::flight::Kinematic;
 use crate::world::record::{ContactSample, Observer};
 use std::fmt::Write;

@@ -162,10 +162,22 @@ fn max_force(osc: &UnitOscillator) -> f64 {
     }
 }
 
+/// Kelvin–Voigt damping ratio zeta(e) = -ln e / sqrt(pi² + ln² e) (docs/laws.md, exact for separation at
+/// d = 0); e = 0 gives 1 (critical, the limit), e = 1 gives 0, and NaN for e outside [0, 1].
+pub fn kelvin_voigt_zeta(e: f64) -> f64 {
+    if !(0.0..=1.0).contains(&e) {
+        return f64::NAN;
+    }
+    if e == 0.0 {
+        return 1.0;
+    }
+    let log = -e.ln();
+    log / PI.hypot(log)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::law::damping::kelvin_voigt_zeta;
     use SeparationCriterion::{Force, Penetration};
 
     fn rel(a: f64, b: f64) -> f64 {

@@ -16,14 +16,13 @@ mod kelvin_voigt;
 mod numerics;
 mod tsuji;
 
-pub use crate::law::damping::{kelvin_voigt_zeta, tsuji_damping};
 pub use brilliantov::{brilliantov_c1, brilliantov_c2, brilliantov_restitution_series};
 pub use hertz::hertz_elastic;
 pub use hunt_crossley::{hunt_crossley_chi, hunt_crossley_loss, hunt_crossley_restitution};
 pub use hysteresis::hysteresis_contact;
-pub use kelvin_voigt::kelvin_voigt;
+pub use kelvin_voigt::{kelvin_voigt, kelvin_voigt_zeta};
 pub use numerics::beta;
-pub use tsuji::tsuji;
+pub use tsuji::{tsuji, tsuji_damping};
 
 /// Nondimensional exact values of one impact (units `L`, `T`, `F0` of the module docs; restitution dimensionless).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -52,5 +51,25 @@ impl ContactReference {
     };
 }
 
-/// Which event ends the contact (docs/laws.md); the law module's type, under the name this module always used.
-pub use crate::law::Separation as SeparationCriterion;
+/// Which event ends the contact (docs/laws.md): the laws' (`law::Separation`), defined here, below them, because the
+/// exact references take it too.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Separation {
+    /// The penetration returns to zero (tension allowed before that).
+    Penetration,
+    /// The contact force returns to zero.
+    Force,
+}
+
+impl Separation {
+    /// The scene/report spelling.
+    pub fn name(self) -> &'static str {
+        match self {
+            Separation::Penetration => "penetration",
+            Separation::Force => "force",
+        }
+    }
+}
+
+/// [`Separation`] under the name this module always used.
+pub use Separation as SeparationCriterion;

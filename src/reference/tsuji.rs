@@ -5,7 +5,7 @@
 //! `s = omega0 tau`, `omega0 = sqrt(5)/2`, this is the unit Kelvin–Voigt oscillator with `zeta = a/sqrt(5)`:
 //! `w = omega0 D(s)`, `d' = D'(s)`, `dt = omega0^(-6/5) D^(-1/5) ds`, `F = omega0^(6/5) D^(1/5) (D + 2 zeta D')`.
 
-use super::kelvin_voigt::UnitOscillator;
+use super::kelvin_voigt::{UnitOscillator, kelvin_voigt_zeta};
 use super::numerics::{bisect, integrate};
 use super::{ContactReference, SeparationCriterion};
 
@@ -92,10 +92,15 @@ fn max_scaled_force(osc: &UnitOscillator) -> f64 {
     scaled(s).max(scaled(t0))
 }
 
+/// Tsuji's dimensionless damping a(e) = -sqrt(5) ln e / sqrt(pi² + ln² e) = sqrt(5) zeta(e) (docs/laws.md),
+/// e = 0 -> sqrt(5); NaN for e outside [0, 1].
+pub fn tsuji_damping(e: f64) -> f64 {
+    5f64.sqrt() * kelvin_voigt_zeta(e)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::law::damping::tsuji_damping;
     use SeparationCriterion::{Force, Penetration};
 
     #[test]

@@ -1,15 +1,15 @@
 //! Building the [`Report`] from the outcome of an impact's phases: the one place where simulated numbers become
 //! report values.
 
+use super::accuracy::{self, Measured, ReferenceDetail};
 use super::{
     BodyReport, ContactReport, EnergyReport, InstantaneousReport, LawReport, ObliqueReport, Report, RigidBodyReport,
     SolverReport, Vec3,
 };
-use crate::accuracy::{self, Measured, ReferenceDetail};
 use crate::body::Body;
-use crate::impact::{Outcome, TIME_LIMIT, stiffness_causes};
 use crate::instantaneous::{Instantaneous, direct_impact, rigid_body_impact};
 use crate::integrate::Ending;
+use crate::outcome::{Outcome, TIME_LIMIT, stiffness_causes};
 use crate::scene::{DampingSpec, Scene};
 use crate::setup::{Motion, Setup};
 use nalgebra::Vector3;

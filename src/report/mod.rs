@@ -1,6 +1,7 @@
 //! The report: the one product of a simulation (the JSON report of the README). Every view is built from it, and it
-//! is built in one place ([`build`]) from the phases' outcome.
+//! is built in one place ([`build`]) from the phases' outcome; [`accuracy`] makes its `reference` section.
 
+pub mod accuracy;
 mod build;
 pub mod world;
 

@@ -387,7 +387,7 @@ pub fn from_impact(scene: &WorldScene, impact: &super::Report) -> WorldReport {
         velocities_after: c.separated.then(|| velocities(true)),
         penetration_at_separation: c.separated.then(|| {
             let at = |k: usize| Vector3::from(impact.bodies[k].position_at_separation.unwrap_or_default());
-            crate::world::flight::Meeting::of(scene, 0, 1).penetration(&(at(1) - at(0))).0.max(0.0)
+            scene.meeting(0, 1).penetration(&(at(1) - at(0))).0.max(0.0)
         }),
         elastic_energy_at_start: 0.0,
         overlapping: Vec::new(),

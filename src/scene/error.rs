@@ -1,4 +1,4 @@
-//! A bad scene, located: file, key, line.
+//! A bad scene, located (file, key, line), and a broken rule before it is located (the key alone).
 
 use std::fmt;
 use std::path::Path;
@@ -37,4 +37,14 @@ impl fmt::Display for SceneError {
         }
         write!(f, ": {}", self.message)
     }
+}
+
+/// A broken rule of a scene, not yet located: the key at fault and what is wrong. The scene's value rules
+/// (`rules.rs`) and the physics-level rules of `setup::Setup` both give it; whoever knows the file adds the line
+/// ([`located`](super::located), or the lines recorded while reading).
+#[derive(Debug, Clone, PartialEq)]
+pub struct SetupError {
+    /// Dotted scene key, 0-based (`bodies.1.velocity`).
+    pub key: String,
+    pub message: String,
 }

@@ -1,7 +1,11 @@
 //! The scene: what a user asks to simulate, typed and validated.
 //!
 //! `file` reads the TOML format of docs/scene.md into raw, span-carrying structs; `validate` turns those into a
-//! [`Scene`] whose every value has been checked, or a [`SceneError`] naming the file, the key and the line.
+//! [`Scene`] whose every value has been checked (`rules`), or a [`SceneError`] naming the file, the key and the line.
+//!
+//! The physics-level rules (placement, first contact, the law at the contact's scales) are [`crate::setup`]'s, the
+//! layer above: reading a scene with every rule checked — [`Scene::load`], [`Scene::parse`], [`Scene::check`], and
+//! `setup::load_any` and `setup::parse_any` for either kind — is defined there, on the [`Read`] this module gives.
 
 mod error;
 mod file;
@@ -9,7 +13,8 @@ mod rules;
 mod validate;
 pub mod world;
 
-pub use error::SceneError;
+pub use error::{SceneError, SetupError};
+pub use validate::Read;
 pub use world::{DampingMap, PairSpec, WorldScene, WorldSpec};
 
 use crate::body::Body;
@@ -38,13 +43,6 @@ pub enum Parsed {
     World(Box<WorldScene>),
 }
 
-/// Reads and validates a scene file of either kind.
-pub fn load_any(path: &Path) -> Result<Parsed, SceneError> {
-    let text = std::fs::read_to_string(path)
-        .map_err(|error| SceneError::file(path, format!("cannot read the scene: {error}")))?;
-    parse_any(&text, path)
-}
-
 /// Whether scene text is a world scene (a `[world]` table, `[[pair]]` tables or more than two bodies), read as
 /// loosely as a sweep's base scene may be written (values left out for the sweep to set).
 pub fn is_world(text: &str) -> bool {
@@ -53,14 +51,15 @@ pub fn is_world(text: &str) -> bool {
     table.contains_key("world") || table.contains_key("pair") || bodies > 2
 }
 
-/// Validates scene text of either kind; `path` names the source in errors and gives the default title.
-pub fn parse_any(text: &str, path: &Path) -> Result<Parsed, SceneError> {
+/// Reads scene text of either kind: its form and every value rule, errors located; `path` names the source in errors
+/// and gives the default title. The physics-level rules of a two-body scene are still to check (`setup::parse_any`).
+pub fn read_any<'a>(text: &'a str, path: &Path) -> Result<Read<'a, Parsed>, SceneError> {
     validate::any(text, path)
 }
 
 /// A rule found broken while running a scene (a world's contact at its own speed), located in the scene file: its
 /// line read off the file again.
-pub fn located(path: &Path, error: crate::setup::SetupError) -> SceneError {
+pub fn located(path: &Path, error: SetupError) -> SceneError {
     let text = std::fs::read_to_string(path).unwrap_or_default();
     validate::located(&text, path, error)
 }
@@ -199,23 +198,15 @@ impl Scene {
         self.contact.resolve();
     }
 
-    /// Checks every value rule of a scene (ranges, and the rules between keys) and the physics-level rules of
-    /// [`crate::setup::Setup`]: the same rules [`Scene::parse`] applies, on a scene already typed (a sweep's point).
-    /// The error names the key; it has no file or line.
-    pub fn check(&self) -> Result<crate::setup::Setup, crate::setup::SetupError> {
-        rules::check(self)?;
-        crate::setup::Setup::new(self)
+    /// Checks every value rule of a scene (ranges, and the rules between keys): the same rules [`Scene::read`]
+    /// applies, on a scene already typed. The error names the key; it has no file or line.
+    pub fn check_rules(&self) -> Result<(), SetupError> {
+        rules::check(self)
     }
 
-    /// Reads and validates a scene file.
-    pub fn load(path: &Path) -> Result<Scene, SceneError> {
-        let text = std::fs::read_to_string(path)
-            .map_err(|error| SceneError::file(path, format!("cannot read the scene: {error}")))?;
-        Scene::parse(&text, path)
-    }
-
-    /// Validates scene text; `path` names the source in errors and gives the default title.
-    pub fn parse(text: &str, path: &Path) -> Result<Scene, SceneError> {
+    /// Reads two-body scene text: its form and every value rule, errors located; `path` names the source in errors
+    /// and gives the default title. The physics-level rules are still to check ([`Scene::parse`]).
+    pub fn read<'a>(text: &'a str, path: &Path) -> Result<Read<'a, Scene>, SceneError> {
         validate::scene(text, path)
     }
 

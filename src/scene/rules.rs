@@ -4,11 +4,10 @@
 //! set), so that both obey exactly the same rules. A broken rule names the key; the file and line are added by the
 //! caller that knows them.
 
-use super::{DampingSpec, Scene, StiffnessSpec, TangentialStiffnessSpec};
+use super::{DampingSpec, Scene, SetupError, StiffnessSpec, TangentialStiffnessSpec};
 use crate::body::Body;
 use crate::law::Family;
 use crate::law::damping::{MapError, check_restitution};
-use crate::setup::SetupError;
 use nalgebra::Vector3;
 
 type Checked = Result<(), SetupError>;
@@ -192,7 +191,8 @@ fn check_pair_at_start(scene: &super::WorldScene, i: usize, j: usize) -> Checked
             );
         }
     }
-    let overlap = crate::world::flight::overlap(scene, i, j, 0.0);
+    let at = |k: usize| scene.bodies[k].position.unwrap_or_default();
+    let overlap = scene.meeting(i, j).penetration(&(at(j) - at(i))).0;
     let smallest = a.radius.min(b.radius);
     if overlap > crate::geometry::TOUCH_TOLERANCE * smallest {
         return fail(

@@ -1,19 +1,19 @@
-//! From the raw file to a checked [`Scene`], each failure naming file, key and line: first the file's form is
-//! converted (TOML syntax, known keys, value types, what must be there) into a typed scene, then every value rule is
-//! checked on it ([`super::rules`], the same rules a sweep's points obey), then the physics-level rules of
-//! [`Setup`] (docs/scene.md lists them all). Lines come from the spans the conversion records for every key.
+//! From the raw file to a [`Scene`] whose values are checked, each failure naming file, key and line: first the
+//! file's form is converted (TOML syntax, known keys, value types, what must be there) into a typed scene, then every
+//! value rule is checked on it ([`super::rules`], the same rules a sweep's points obey). The physics-level rules
+//! come after, in `setup.rs` (docs/scene.md lists them all), located by the [`Read`] this gives. Lines come from the
+//! spans the conversion records for every key.
 
 use super::file::{At, RawBody, RawContact, RawOutput, RawPair, RawScene, RawSolver, RawWorld};
 use super::world::{DampingMap, MAX_CONTACTS_LIMIT, PairSpec, WorldScene, WorldSpec};
 use super::{
-    ContactSpec, DampingSpec, Method, OutputSpec, Parsed, Scene, SceneError, SolverSpec, StiffnessSpec,
+    ContactSpec, DampingSpec, Method, OutputSpec, Parsed, Scene, SceneError, SetupError, SolverSpec, StiffnessSpec,
     TangentialStiffnessSpec,
 };
 use crate::body::Body;
 use crate::integrate::Tolerances;
 use crate::law::{LawKind, Separation};
-use crate::output::{files, text};
-use crate::setup::Setup;
+use crate::{files, text};
 use nalgebra::Vector3;
 use std::collections::HashMap;
 use std::ops::Range;
@@ -44,7 +44,7 @@ impl Source<'_> {
 
     /// A broken rule, located: the key's recorded line, or the line its name is found on (for a key not written, its
     /// table's header).
-    fn located(&self, error: crate::setup::SetupError) -> SceneError {
+    fn located(&self, error: SetupError) -> SceneError {
         let line = self.lines.borrow().get(&error.key).copied().or_else(|| self.line_of_key(&error.key));
         SceneError { file: self.file.clone(), key: Some(error.key), line, message: error.message, form: false }
     }
@@ -160,13 +160,27 @@ fn vector(src: &Source, key: &str, value: &At<Vec<f64>>) -> Checked<Vector3<f64>
     Ok(Vector3::new(items[0], items[1], items[2]))
 }
 
-/// Parses and checks a whole scene.
-pub fn scene(text: &str, path: &Path) -> Checked<Scene> {
+/// A scene as read from its text: its form converted and every value rule checked, with the line of every key
+/// written, which locates a rule found broken after reading (the physics-level rules of `setup::Setup`).
+pub struct Read<'a, T> {
+    /// The scene read.
+    pub scene: T,
+    source: Source<'a>,
+}
+
+impl<T> Read<'_, T> {
+    /// A rule broken after reading, located: the key's recorded line, or the line its name is found on.
+    pub fn located(&self, error: SetupError) -> SceneError {
+        self.source.located(error)
+    }
+}
+
+/// Reads a two-body scene: its form, then every value rule.
+pub fn scene<'a>(text: &'a str, path: &Path) -> Checked<Read<'a, Scene>> {
     let src = source(text, path);
     let scene = convert_in(&src)?;
     super::rules::check(&scene).map_err(|error| src.located(error))?;
-    Setup::new(&scene).map_err(|error| src.located(error))?;
-    Ok(scene)
+    Ok(Read { scene, source: src })
 }
 
 /// The typed scene of `text` with its form checked and its values not (see [`Scene::convert`]), and the line of
@@ -178,7 +192,7 @@ pub fn convert(text: &str, path: &Path) -> Checked<(Scene, HashMap<String, usize
 }
 
 /// A broken rule located in `text`: the line of its key.
-pub fn located(text: &str, path: &Path, error: crate::setup::SetupError) -> SceneError {
+pub fn located(text: &str, path: &Path, error: SetupError) -> SceneError {
     source(text, path).located(error)
 }
 
@@ -261,19 +275,18 @@ fn convert_impact(src: &Source, raw: &RawScene) -> Checked<Scene> {
     Ok(scene)
 }
 
-/// Parses and checks a scene of either kind: a two-body impact, or a world run.
-pub fn any(text: &str, path: &Path) -> Checked<Parsed> {
+/// Reads a scene of either kind, a two-body impact or a world run: its form, then every value rule.
+pub fn any<'a>(text: &'a str, path: &Path) -> Checked<Read<'a, Parsed>> {
     let src = source(text, path);
     let raw: RawScene = toml::from_str(src.text).map_err(|error| parse_error(&src, &error))?;
     if world_reason(&raw).is_none() {
         let scene = convert_impact(&src, &raw)?;
         super::rules::check(&scene).map_err(|error| src.located(error))?;
-        Setup::new(&scene).map_err(|error| src.located(error))?;
-        return Ok(Parsed::Impact(Box::new(scene)));
+        return Ok(Read { scene: Parsed::Impact(Box::new(scene)), source: src });
     }
     let world = convert_world(&src, &raw)?;
     super::rules::check_world(&world).map_err(|error| src.located(error))?;
-    Ok(Parsed::World(Box::new(world)))
+    Ok(Read { scene: Parsed::World(Box::new(world)), source: src })
 }
 
 fn convert_world(src: &Source, raw: &RawScene) -> Checked<WorldScene> {

@@ -3,9 +3,9 @@
 //! two-body scene it makes (the same value rules, the same law rules), with the keys at fault renamed to where they
 //! are written.
 
-use super::{ContactSpec, OutputSpec, Scene, SolverSpec};
+use super::{ContactSpec, OutputSpec, Scene, SetupError, SolverSpec};
 use crate::body::Body;
-use crate::setup::SetupError;
+use crate::geometry::Meeting;
 use nalgebra::Vector3;
 
 /// A validated world scene (SI units).
@@ -94,6 +94,11 @@ impl Default for WorldSpec {
 }
 
 impl WorldScene {
+    /// How bodies `i` and `j` meet: as two spheres, or a sphere against a flat body's face.
+    pub fn meeting(&self, i: usize, j: usize) -> Meeting {
+        Meeting::between(&self.bodies[i], self.faces[i], &self.bodies[j], self.faces[j])
+    }
+
     /// Re-derives what follows from written values (masses from densities, inertias, exponents).
     pub fn resolve(&mut self) {
         for body in &mut self.bodies {

@@ -25,16 +25,16 @@
 
 pub mod world;
 
+use crate::draw::Draw;
 use crate::history::Recording;
-use crate::impact::{TIME_LIMIT, simulate};
+use crate::impact::simulate;
 use crate::law::damping::check_restitution;
 use crate::law::{Family, LawKind};
+use crate::outcome::TIME_LIMIT;
 use crate::reference;
 use crate::report::Report;
 use crate::scene::Scene;
 use nalgebra::Vector3;
-use rand_chacha::ChaCha8Rng;
-use rand_chacha::rand_core::{RngCore, SeedableRng};
 use rayon::prelude::*;
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
@@ -72,62 +72,6 @@ pub const TOLERANCES: &[(&str, f64)] = &[
 /// The tolerance of a quantity of [`TOLERANCES`].
 pub fn tolerance(quantity: &str) -> f64 {
     TOLERANCES.iter().find(|(name, _)| *name == quantity).map_or(0.0, |(_, t)| *t)
-}
-
-// -------------------------------------------------------------------------------------------------------------
-// Random numbers
-
-/// The random stream of one case.
-pub struct Draw(ChaCha8Rng);
-
-impl Draw {
-    /// Stream `index` of seed `seed`.
-    pub fn new(seed: u64, index: u64) -> Draw {
-        let mut rng = ChaCha8Rng::seed_from_u64(seed);
-        rng.set_stream(index);
-        Draw(rng)
-    }
-
-    /// Uniform in [0, 1), 53 random bits.
-    pub fn unit(&mut self) -> f64 {
-        (self.0.next_u64() >> 11) as f64 * (1.0 / (1u64 << 53) as f64)
-    }
-
-    pub fn uniform(&mut self, low: f64, high: f64) -> f64 {
-        low + (high - low) * self.unit()
-    }
-
-    /// Log-uniform in [low, high] (both > 0).
-    pub fn log(&mut self, low: f64, high: f64) -> f64 {
-        (low.ln() + (high.ln() - low.ln()) * self.unit()).exp()
-    }
-
-    pub fn chance(&mut self, probability: f64) -> bool {
-        self.unit() < probability
-    }
-
-    pub fn pick<T: Copy>(&mut self, items: &[T]) -> T {
-        items[((self.unit() * items.len() as f64) as usize).min(items.len() - 1)]
-    }
-
-    /// A unit vector, uniform on the sphere.
-    pub fn direction(&mut self) -> Vector3<f64> {
-        let z = self.uniform(-1.0, 1.0);
-        let phi = self.uniform(0.0, std::f64::consts::TAU);
-        let r = (1.0 - z * z).sqrt();
-        Vector3::new(r * phi.cos(), r * phi.sin(), z)
-    }
-
-    /// A unit vector across `normal`, uniform on the circle.
-    pub fn across(&mut self, normal: &Vector3<f64>) -> Vector3<f64> {
-        loop {
-            let v = self.direction();
-            let t = v - normal * v.dot(normal);
-            if t.norm() > 1e-3 {
-                return t.normalize();
-            }
-        }
-    }
 }
 
 // -------------------------------------------------------------------------------------------------------------
@@ -501,7 +445,7 @@ pub fn check_text(text: &str) -> (String, Vec<(&'static str, f64)>, Vec<String>)
         // A motion that dies out with an exact e below the level at which the simulator counts motion as settled
         // (the bodies would part at e v0 < 1e-10 v0, after a restitution of vanishing speeds) is the right outcome.
         if let Some((duration, e)) = expected_contact(&scene, &report)
-            && !(class.contains("died out") && e < crate::impact::SETTLED)
+            && !(class.contains("died out") && e < crate::outcome::SETTLED)
             && duration < 0.5 * TIME_LIMIT
             && !class.contains("budget")
             && !class.contains("stiff")

@@ -11,11 +11,11 @@
 //!   the rounding of their positions beyond the overlap their last contact parted them at (a contact its force
 //!   ended; zero otherwise): the measure is that excess over the tolerance, at most 1.
 
-use super::{CaseResult, Draw};
+use super::CaseResult;
+use crate::draw::Draw;
 use crate::law::Family;
 use crate::report::world::WorldReport;
 use crate::scene::{Parsed, WorldScene};
-use crate::world::flight::Meeting;
 use nalgebra::Vector3;
 use std::fmt::Write as _;
 use std::panic::{AssertUnwindSafe, catch_unwind};
@@ -142,12 +142,12 @@ pub fn run_case(seed: u64, index: u64, quick: bool) -> CaseResult {
 
 /// Parses, runs and checks one world scene: (class, errors, problems).
 pub fn check_text(text: &str) -> (String, Vec<(&'static str, f64)>, Vec<String>) {
-    let scene = match crate::scene::parse_any(text, Path::new("world-stress.toml")) {
+    let scene = match crate::setup::parse_any(text, Path::new("world-stress.toml")) {
         Ok(Parsed::World(scene)) => *scene,
         Ok(Parsed::Impact(_)) => return ("error".into(), Vec::new(), vec!["not a world scene".into()]),
         Err(error) => return (format!("refused: {}", error.key.as_deref().unwrap_or("file")), Vec::new(), Vec::new()),
     };
-    let report = match crate::world::simulate(&scene) {
+    let report = match crate::world_run::simulate(&scene) {
         Ok(simulation) => simulation.report,
         Err(crate::world::WorldError::Setup(error)) => {
             return (format!("refused: {}", error.key), Vec::new(), Vec::new());
@@ -197,7 +197,7 @@ pub fn check(scene: &WorldScene, report: &WorldReport) -> (Vec<(&'static str, f6
             }
             let relative =
                 Vector3::from(report.bodies[j].position_after) - Vector3::from(report.bodies[i].position_after);
-            let (overlap, _) = Meeting::of(scene, i, j).penetration(&relative);
+            let (overlap, _) = scene.meeting(i, j).penetration(&relative);
             // A pair a contact's force parted may still overlap by as much as it parted at, never more.
             let parted = report
                 .contacts

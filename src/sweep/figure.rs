@@ -23,7 +23,7 @@ use crate::law::LawKind;
 use crate::output::chart::prefix;
 use crate::output::incidence_figure::{IncidenceFigure, IncidenceSeries, Threshold};
 use crate::output::sweep_figure::{Curve, SweepFigure, SweepPlot};
-use crate::output::text::{TITLE_CHARS, cut};
+use crate::text::{TITLE_CHARS, cut};
 
 /// The figure of the sweep whose CSV is `text` (the whole sweep or one shard).
 pub fn from_csv(text: &str) -> Result<SweepFigure, SweepError> {

@@ -3,7 +3,7 @@
 
 use super::SweepError;
 use super::key::SceneKey;
-use crate::output::text::{MESSAGE_CHARS, cut};
+use crate::text::{MESSAGE_CHARS, cut};
 
 /// How a range `START:STOP:COUNT` is filled.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

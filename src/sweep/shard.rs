@@ -6,7 +6,7 @@
 //! that the shards make up the whole sweep and put the rows back in order.
 
 use super::SweepError;
-use crate::output::text::{MESSAGE_CHARS, cut};
+use crate::text::{MESSAGE_CHARS, cut};
 use std::fmt;
 
 /// Shard `number` of `count` (1-based).

@@ -13,10 +13,10 @@
 
 use super::SweepError;
 use super::shard::Shard;
-use crate::accuracy::ReferenceDetail;
 use crate::fast::Quantities;
-use crate::output::text::{MESSAGE_CHARS, cut};
 use crate::report::Report;
+use crate::report::accuracy::ReferenceDetail;
+use crate::text::{MESSAGE_CHARS, cut};
 
 /// The report's scalar results, after the varied keys.
 pub const RESULT_COLUMNS: [&str; 41] = [

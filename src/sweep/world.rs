@@ -7,8 +7,8 @@
 
 use super::SweepError;
 use super::table::number;
-use crate::output::text::{MESSAGE_CHARS, cut};
 use crate::scene::{Parsed, WorldScene};
+use crate::text::{MESSAGE_CHARS, cut};
 use rayon::prelude::*;
 use serde_json::Value as Json;
 use std::path::{Path, PathBuf};
@@ -157,12 +157,12 @@ impl WorldSweep {
             set(&mut document, key, value).map_err(|why| format!("{key}: {why}"))?;
         }
         let text = toml::to_string(&document).map_err(|error| error.to_string())?;
-        let scene: WorldScene = match crate::scene::parse_any(&text, &self.path) {
+        let scene: WorldScene = match crate::setup::parse_any(&text, &self.path) {
             Ok(Parsed::World(scene)) => *scene,
             Ok(Parsed::Impact(_)) => return Err("the point is no longer a world scene".into()),
             Err(error) => return Err(format!("{}: {}", error.key.as_deref().unwrap_or("scene"), error.message)),
         };
-        let simulation = crate::world::simulate(&scene).map_err(|error| match error {
+        let simulation = crate::world_run::simulate(&scene).map_err(|error| match error {
             crate::world::WorldError::Setup(error) => format!("{}: {}", error.key, error.message),
             other => other.to_string(),
         })?;
@@ -175,8 +175,8 @@ impl WorldSweep {
         indices: Vec<usize>,
         pool: &rayon::ThreadPool,
         mut done: impl FnMut(usize),
-        mut take: impl FnMut(WorldRow) -> Result<(), crate::output::files::FileError>,
-    ) -> Result<(), crate::output::files::FileError> {
+        mut take: impl FnMut(WorldRow) -> Result<(), crate::files::FileError>,
+    ) -> Result<(), crate::files::FileError> {
         for chunk in indices.chunks(CHUNK) {
             let rows: Vec<WorldRow> = pool.install(|| chunk.par_iter().map(|&i| self.row(i)).collect());
             done(rows.len());

@@ -8,11 +8,12 @@
 //! that begins or ends; contacts that begin or end at that same instant (a symmetric arrangement) are taken then too.
 
 use super::broad::{Neighbours, skin};
-use super::flight::{Kinematic, Meeting, acceleration, first_touch};
+use super::flight::{Kinematic, acceleration, first_touch};
 use super::island::{ActiveContact, Island, Units};
 use super::record::{
     Compression, ContactRecord, ContactSample, EndReason, Ending as ContactEnding, Observer, WorldOutcome,
 };
+use crate::geometry::Meeting;
 use crate::integrate::{Counters, Direction, Ending, EventOf, IntegrationError, StepperOf, Tolerances};
 use crate::law::Separation;
 use crate::scene::{DampingMap, DampingSpec, WorldScene};
@@ -271,7 +272,7 @@ impl<'a> World<'a> {
         let flight = self.flight_accelerations();
         let mut touches: Vec<(usize, usize, f64)> = Vec::new();
         for &(i, j) in pairs {
-            let meeting = Meeting::of(self.scene, i, j);
+            let meeting = self.scene.meeting(i, j);
             let (ga, gb) = (flight[i], flight[j]);
             let tolerance = self.touching(i, j);
             if let Some(t) = first_touch(&meeting, &self.states[i], &self.states[j], &ga, &gb, tolerance, left) {
@@ -400,7 +401,7 @@ impl<'a> World<'a> {
         self.wake(j);
         let (a, b) = (&scene.bodies[i], &scene.bodies[j]);
         let (spec, _) = scene.contact_of(i, j);
-        let meeting = Meeting::of(scene, i, j);
+        let meeting = scene.meeting(i, j);
         let relative = self.states[j].position - self.states[i].position;
         let (overlap, normal) = meeting.penetration(&relative);
         let relative_velocity = self.states[i].velocity - self.states[j].velocity;
@@ -499,7 +500,7 @@ impl<'a> World<'a> {
             .iter()
             .filter(|p| inside(p))
             .map(|&(i, j)| {
-                let meeting = Meeting::of(scene, i, j);
+                let meeting = scene.meeting(i, j);
                 let gap = -island.pair_state(i, j, &meeting, &y0).penetration;
                 let tolerance = self.touching(i, j);
                 let offset = if gap <= tolerance { (-gap).max(0.0) + tolerance } else { 0.0 };
@@ -777,7 +778,7 @@ impl<'a> World<'a> {
                 if active.contains(&[i, j]) || (island.slot(i).is_none() && island.slot(j).is_none()) {
                     return false;
                 }
-                let state = island.pair_state(i, j, &Meeting::of(scene, i, j), &y);
+                let state = island.pair_state(i, j, &scene.meeting(i, j), &y);
                 let tolerance = self.touching(i, j);
                 state.rate > 0.0 && state.penetration.abs() <= tolerance
             });

@@ -8,7 +8,7 @@
 //! polished by bisection on the polynomial and Newton steps on the gap itself — never by stepping in time.
 
 use crate::body::Body;
-use crate::scene::WorldScene;
+use crate::geometry::Meeting;
 use nalgebra::Vector3;
 
 /// Where a body is and how it moves at one instant (SI).
@@ -38,54 +38,6 @@ impl Kinematic {
     pub fn displacement(&self, time: f64, a: &Vector3<f64>) -> Vector3<f64> {
         self.velocity * time + a * (0.5 * time * time)
     }
-}
-
-/// How bodies `i` and `j` meet: across the line of their centres, or a sphere against a flat face.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub enum Meeting {
-    /// Two spheres; `reach` = r_i + r_j, m.
-    Spheres { reach: f64 },
-    /// A sphere against a flat body's face; `face` is the unit face normal pointing into the sphere's side, `sign`
-    /// +1 when the flat body is body `i` of the pair (the normal from i to j is the face's), -1 when it is `j`.
-    Face { face: Vector3<f64>, radius: f64, sign: f64 },
-}
-
-impl Meeting {
-    /// How bodies `i` and `j` of `scene` meet.
-    pub fn of(scene: &WorldScene, i: usize, j: usize) -> Meeting {
-        let (a, b) = (&scene.bodies[i], &scene.bodies[j]);
-        match (scene.faces[i], scene.faces[j]) {
-            (Some(face), _) => Meeting::Face { face, radius: b.radius, sign: 1.0 },
-            (_, Some(face)) => Meeting::Face { face, radius: a.radius, sign: -1.0 },
-            _ => Meeting::Spheres { reach: a.radius + b.radius },
-        }
-    }
-
-    /// The penetration (m, positive overlapping) and the unit normal from body i to body j, for `relative` =
-    /// x_j - x_i (m).
-    pub fn penetration(&self, relative: &Vector3<f64>) -> (f64, Vector3<f64>) {
-        match *self {
-            Meeting::Spheres { reach } => {
-                let distance = relative.norm();
-                (reach - distance, relative / distance)
-            }
-            // The sphere's height above the face: f·(x_sphere - x_face), which is sign · f·(x_j - x_i).
-            Meeting::Face { face, radius, sign } => (radius - sign * face.dot(relative), face * sign),
-        }
-    }
-}
-
-/// The penetration of bodies `i` and `j` at their scene positions, m (positive: overlapping), after `time` s of
-/// free flight.
-pub fn overlap(scene: &WorldScene, i: usize, j: usize, time: f64) -> f64 {
-    let g = &scene.world.gravity;
-    let state = |k: usize| {
-        let body = &scene.bodies[k];
-        Kinematic { position: body.position.unwrap_or_default(), velocity: body.velocity }
-            .after(time, &acceleration(body, g))
-    };
-    let relative = state(j).position - state(i).position;
-    Meeting::of(scene, i, j).penetration(&relative).0
 }
 
 /// When bodies `i` and `j`, flying freely from `now` (their states `a` and `b`, accelerations `ga` and `gb`), next

@@ -9,8 +9,9 @@
 //! began), on which the free flight of the bodies outside the island depends. A segment lasts until a contact begins
 //! or ends: then the driver builds the next one.
 
-use super::flight::{Kinematic, Meeting};
+use super::flight::Kinematic;
 use crate::dynamics::unit_or_one;
+use crate::geometry::Meeting;
 use crate::integrate::{ModelOf, Vector};
 use crate::law::ContactLaw;
 use crate::scene::WorldScene;

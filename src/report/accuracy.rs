@@ -4,8 +4,8 @@
 use crate::instantaneous::direct_impact;
 use crate::law::{Family, Separation};
 
+use super::{ReferenceErrors, ReferenceReport};
 use crate::reference::{self, ContactReference};
-use crate::report::{ReferenceErrors, ReferenceReport};
 use crate::scene::Scene;
 use crate::setup::Setup;
 
