@@ -122,3 +122,26 @@ fn dopri5_is_a_solver_method_named_in_the_report() {
     }
     assert_close("e", report.contact.restitution_velocity_ratio.unwrap(), 1.0, 1e-8);
 }
+
+/// The world study (`impact bench --worlds`): each run's error against the reference run shrinks with the tolerance,
+/// and stays within a few hundred tolerances (the chain's error is global: it accumulates along the pulse's path).
+/// Run here on a chain of 30 beads and the 5-ball cradle, at two tolerances.
+#[test]
+fn the_world_study_measures_errors_that_follow_the_tolerance() {
+    use impact::bench::worlds;
+    let cases = vec![worlds::chain(30), worlds::cradle()];
+    let mut seen = 0;
+    let rows = worlds::study(&cases, &[1e-6, 1e-10], |_| seen += 1).expect("the study runs");
+    assert_eq!(seen, 4);
+    for case in ["chain-30", "cradle-5"] {
+        let own: Vec<_> = rows.iter().filter(|r| r.case == case).collect();
+        assert_eq!(own.len(), 2, "{rows:?}");
+        let (loose, tight) = (own[0], own[1]);
+        assert!(loose.error > tight.error, "{rows:?}");
+        assert!(loose.error < 300.0 * 1e-6 && tight.error < 300.0 * 1e-10, "{rows:?}");
+        assert!(own.iter().all(|r| r.seconds > 0.0 && r.steps > 0 && r.contacts >= 4), "{rows:?}");
+    }
+    let csv = worlds::csv(&rows);
+    assert!(csv.starts_with("case,tolerance,error,seconds,steps,contacts\n"), "{csv}");
+    assert_eq!(csv.lines().count(), 5);
+}

@@ -16,6 +16,7 @@
 
 pub mod baselines;
 pub mod cases;
+pub mod worlds;
 
 use crate::fast::{Quantities, Request};
 use crate::reference::ContactReference;

@@ -17,6 +17,9 @@ use std::path::PathBuf;
 /// The files the study writes into its folder.
 const OUTPUTS: [&str; 3] = ["bench.csv", "bench.png", "bench.svg"];
 
+/// The files the world study (`--worlds`) writes into its folder.
+const WORLD_OUTPUTS: [&str; 3] = ["bench-worlds.csv", "bench-worlds.png", "bench-worlds.svg"];
+
 #[derive(Debug, Args)]
 pub struct BenchArgs {
     /// A short run: four cases (one per law family), a few settings per method, fewer repeats.
@@ -28,9 +31,31 @@ pub struct BenchArgs {
     /// Only the cases whose name contains TEXT (repeatable; names as in the CSV, e.g. "hunt-crossley x=0.5 n=1.5").
     #[arg(long = "case", value_name = "TEXT")]
     pub cases: Vec<String>,
+    /// World runs instead of single impacts: a Hertzian chain of 1000 beads struck at one end (100 with --quick)
+    /// and the 5-ball cradle at a sweep of tolerances, each against a run at 1e-13 (bench-worlds.csv, .png, .svg).
+    #[arg(long)]
+    pub worlds: bool,
 }
 
 pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
+    check_folder(args)?;
+    if args.worlds {
+        return worlds(args);
+    }
+    let mut paths = Paths::default();
+    let outputs: Vec<Destination> = OUTPUTS
+        .iter()
+        .map(|&name| {
+            let path = args.out.join(name);
+            let label = format!("--out {} ({})", args.out.display(), path.display());
+            paths.output(label, Origin::CommandLine, &path)
+        })
+        .collect::<anyhow::Result<_>>()?;
+    study(args, outputs)
+}
+
+/// Refuses an --out that cannot take the study's files.
+fn check_folder(args: &BenchArgs) -> anyhow::Result<()> {
     if let Some(why) = figure_folder_problem(&args.out) {
         return Err(BadInput(format!("--out {}: {why}", args.out.display())).into());
     }
@@ -44,15 +69,11 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
         ))
         .into());
     }
-    let mut paths = Paths::default();
-    let outputs: Vec<Destination> = OUTPUTS
-        .iter()
-        .map(|&name| {
-            let path = args.out.join(name);
-            let label = format!("--out {} ({})", args.out.display(), path.display());
-            paths.output(label, Origin::CommandLine, &path)
-        })
-        .collect::<anyhow::Result<_>>()?;
+    Ok(())
+}
+
+/// The single-impact study into `outputs` (in the order of [`OUTPUTS`]).
+fn study(args: &BenchArgs, outputs: Vec<Destination>) -> anyhow::Result<()> {
     let all = if args.quick { bench::quick_cases() } else { bench::reference_cases() };
     let names: Vec<String> = all.iter().map(|c| c.name()).collect();
     let cases: Vec<_> = all
@@ -100,10 +121,22 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
     let svg = bench_figure::svg(&figure);
     let png = render::png(&svg).context("cannot render bench.png")?;
     let csv = bench::csv(&rows);
-    // All three or none: each is written to its temporary first, and only then are they moved into place.
+    write_all(&outputs, [csv.as_bytes(), png.as_slice(), svg.as_bytes()])?;
+    println!("machine: {machine} (at the start); load average at the end {}", bench::load_average());
+    println!("cases: {}\n", cases.iter().map(|c| c.name()).collect::<Vec<_>>().join(", "));
+    print!("{}", bench::summary_table(&summaries));
+    if summaries.iter().any(|s| s.method == Method::Taylor && matches!(s.setting, Setting::Tolerance(_))) {
+        println!("\nfast path targets (issue 8), over these cases:");
+        print!("{}", bench::targets(&summaries));
+    }
+    println!("\nwrote {}", outputs.iter().map(|d| d.shown().to_string()).collect::<Vec<_>>().join(", "));
+    Ok(())
+}
+
+/// Writes `contents` to `outputs` (CSV, PNG, SVG): all three or none — each to its temporary first, and only then
+/// are they moved into place.
+fn write_all(outputs: &[Destination], contents: [&[u8]; 3]) -> anyhow::Result<()> {
     let mut pending = Vec::new();
-    // In the order of OUTPUTS.
-    let contents = [csv.as_bytes(), png.as_slice(), svg.as_bytes()];
     for (destination, bytes) in outputs.iter().zip(contents) {
         let mut file = OutputFile::create(destination)?;
         file.write_bytes(bytes)?;
@@ -112,12 +145,73 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
     for file in pending {
         file.finish()?;
     }
+    Ok(())
+}
+
+/// The world study (`--worlds`): the chain and the cradle at a sweep of tolerances.
+fn worlds(args: &BenchArgs) -> anyhow::Result<()> {
+    use crate::bench::worlds;
+    if !args.cases.is_empty() {
+        return Err(
+            BadInput("--case selects the single-impact cases; --worlds runs its two scenes whole".into()).into()
+        );
+    }
+    let mut paths = Paths::default();
+    let outputs: Vec<Destination> = WORLD_OUTPUTS
+        .iter()
+        .map(|&name| {
+            let path = args.out.join(name);
+            let label = format!("--out {} ({})", args.out.display(), path.display());
+            paths.output(label, Origin::CommandLine, &path)
+        })
+        .collect::<anyhow::Result<_>>()?;
+    let cases = worlds::cases(args.quick);
+    let tolerances: &[f64] = if args.quick { &worlds::QUICK_TOLERANCES } else { &worlds::TOLERANCES };
+    let machine = bench::machine();
+    let bar = ProgressBar::with_draw_target(
+        Some((cases.len() * tolerances.len()) as u64),
+        ProgressDrawTarget::stderr_with_hz(4),
+    );
+    bar.set_style(
+        ProgressStyle::with_template("{bar:40} {pos}/{len} {msg}").unwrap_or_else(|_| ProgressStyle::default_bar()),
+    );
+    let rows = worlds::study(&cases, tolerances, |row| {
+        bar.set_message(format!("{} at {:e}", row.case, row.tolerance));
+        bar.inc(1);
+    })
+    .map_err(|why| anyhow::anyhow!("impact bench --worlds: {why}"))?;
+    bar.finish_and_clear();
+    let figure = BenchFigure {
+        title: "Work–precision of world runs: a Hertzian chain struck at one end, the 5-ball cradle".into(),
+        x_label: "time of the run (s, one core)".into(),
+        y_label: "largest velocity error over the bodies / v0 (against tolerance 1e-13)".into(),
+        curves: cases
+            .iter()
+            .map(|case| {
+                let own: Vec<_> = rows.iter().filter(|r| r.case == case.name).collect();
+                Curve {
+                    label: format!(
+                        "{}, tolerance {:e} to {:e}",
+                        case.name,
+                        tolerances[0],
+                        tolerances[tolerances.len() - 1]
+                    ),
+                    points: own.iter().map(|r| (r.seconds, r.error)).collect(),
+                }
+            })
+            .collect(),
+    };
+    let svg = bench_figure::svg(&figure);
+    let png = render::png(&svg).context("cannot render bench-worlds.png")?;
+    let csv = worlds::csv(&rows);
+    write_all(&outputs, [csv.as_bytes(), png.as_slice(), svg.as_bytes()])?;
     println!("machine: {machine} (at the start); load average at the end {}", bench::load_average());
-    println!("cases: {}\n", cases.iter().map(|c| c.name()).collect::<Vec<_>>().join(", "));
-    print!("{}", bench::summary_table(&summaries));
-    if summaries.iter().any(|s| s.method == Method::Taylor && matches!(s.setting, Setting::Tolerance(_))) {
-        println!("\nfast path targets (issue 8), over these cases:");
-        print!("{}", bench::targets(&summaries));
+    println!("{:<12} {:>10} {:>10} {:>10} {:>8} {:>9}", "case", "tolerance", "error", "seconds", "steps", "contacts");
+    for r in &rows {
+        println!(
+            "{:<12} {:>10.0e} {:>10.2e} {:>10.4} {:>8} {:>9}",
+            r.case, r.tolerance, r.error, r.seconds, r.steps, r.contacts
+        );
     }
     println!("\nwrote {}", outputs.iter().map(|d| d.shown().to_string()).collect::<Vec<_>>().join(", "));
     Ok(())

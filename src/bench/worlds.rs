@@ -1,0 +1,185 @@
+//! World runs in the work–precision study (`impact bench --worlds`, docs/world.md#cost): a Hertzian chain of equal
+//! steel beads struck at one end, run until its pulse has crossed and the last bead left, and the 5-ball cradle of
+//! `models/newtons-cradle-5.toml`, each at a sweep of tolerances. The error of a run is the largest difference of any
+//! body's final velocity from a run of the same scene at [`REFERENCE_TOLERANCE`], over the largest initial speed;
+//! the time is the run alone (the report's `solver.wall_time_s`), the median of up to 5 runs on one thread. The reference is the program's
+//! own tight run: the test suite holds chains of 40 and 60 beads to an independent RK4 integration, and the 1000-bead
+//! chain agrees with LAMMPS at its finest step to LAMMPS's own rounding (3e-8, docs/world.md#cost).
+
+use crate::scene::{Parsed, WorldScene};
+use crate::setup::parse_any;
+use std::path::Path;
+
+/// The tolerance (rtol = atol) of the reference runs.
+pub const REFERENCE_TOLERANCE: f64 = 1e-13;
+
+/// The tolerances of the full study, and of `--quick`.
+pub const TOLERANCES: [f64; 5] = [1e-6, 1e-7, 1e-8, 1e-9, 1e-10];
+pub const QUICK_TOLERANCES: [f64; 3] = [1e-6, 1e-8, 1e-10];
+
+/// Beads of the chain in the full study, and in `--quick`.
+pub const BEADS: usize = 1000;
+pub const QUICK_BEADS: usize = 100;
+
+/// A world scene of the study: its name and its text without `[solver]`.
+#[derive(Debug, Clone)]
+pub struct WorldCase {
+    pub name: String,
+    pub text: String,
+}
+
+/// One run of the study.
+#[derive(Debug, Clone)]
+pub struct WorldRow {
+    pub case: String,
+    pub tolerance: f64,
+    /// Largest difference of a body's final velocity from the reference run, over the largest initial speed.
+    pub error: f64,
+    /// The run alone, s.
+    pub seconds: f64,
+    pub steps: u64,
+    pub contacts: usize,
+}
+
+/// The two-ball contact time of the chain's beads at `speed` (s): `C (m*² / (K² v0))^(1/5)` for `F = K d^(3/2)`,
+/// `C = 2 (5/4)^(2/5) sqrt(pi) Gamma(7/5) / Gamma(9/10) = 3.2180654597`.
+fn bead_contact_time(radius: f64, density: f64, young: f64, poisson: f64, speed: f64) -> f64 {
+    let mass = density * 4.0 / 3.0 * std::f64::consts::PI * radius.powi(3);
+    let reduced = mass / 2.0;
+    let stiffness = 4.0 / 3.0 * young / (2.0 * (1.0 - poisson * poisson)) * (radius / 2.0).sqrt();
+    3.218_065_459_7 * (reduced * reduced / (stiffness * stiffness * speed)).powf(0.2)
+}
+
+/// A chain of `beads` steel beads (radius 5 mm, touching, the first at 1 m/s into the rest), run for the pulse's
+/// transit and 10 contact times more: 0.488 contact times per bead (measured on a 300-bead chain), in whole contact
+/// times (498 for 1000 beads, 14.98 ms).
+pub fn chain(beads: usize) -> WorldCase {
+    let (radius, density, young, poisson, speed) = (0.005, 7850.0, 2.1e11, 0.3, 1.0);
+    let tau = bead_contact_time(radius, density, young, poisson, speed);
+    let end = (0.488 * (beads.max(1) - 1) as f64 + 10.0).ceil() * tau;
+    let mut text = format!(
+        "title = \"Hertzian chain of {beads} steel beads struck at one end\"\n\n[world]\nend_time = {end:e}\n\
+         max_contacts = 10000000\n\n"
+    );
+    for k in 0..beads {
+        let v = if k == 0 { speed } else { 0.0 };
+        text += &format!(
+            "[[bodies]]\nradius = {radius}\ndensity = {density}\nyoung = {young:e}\npoisson = {poisson}\n\
+             position = [{:?}, 0.0, 0.0]\nvelocity = [{v:?}, 0.0, 0.0]\n\n",
+            2.0 * radius * k as f64
+        );
+    }
+    text += "[contact]\nlaw = \"hertz\"\n";
+    WorldCase { name: format!("chain-{beads}"), text }
+}
+
+/// The 5-ball cradle of `models/newtons-cradle-5.toml`.
+pub fn cradle() -> WorldCase {
+    WorldCase { name: "cradle-5".into(), text: include_str!("../../models/newtons-cradle-5.toml").to_string() }
+}
+
+/// The cases of the study (`quick`: a chain of [`QUICK_BEADS`]).
+pub fn cases(quick: bool) -> Vec<WorldCase> {
+    vec![chain(if quick { QUICK_BEADS } else { BEADS }), cradle()]
+}
+
+/// The scene of `case` at `tolerance`.
+fn scene(case: &WorldCase, tolerance: f64) -> Result<WorldScene, String> {
+    let text = format!("{}\n[solver]\nrtol = {tolerance:e}\natol = {tolerance:e}\n", case.text);
+    match parse_any(&text, Path::new(&format!("{}.toml", case.name))) {
+        Ok(Parsed::World(scene)) => Ok(*scene),
+        Ok(Parsed::Impact(_)) => Err(format!("{}: not a world scene", case.name)),
+        Err(error) => Err(format!("{}: {error}", case.name)),
+    }
+}
+
+/// What one run of a case gave.
+struct Ran {
+    /// Every body's final velocity, m/s.
+    velocities: Vec<[f64; 3]>,
+    /// The run alone, s.
+    seconds: f64,
+    steps: u64,
+    contacts: usize,
+}
+
+fn run(case: &WorldCase, tolerance: f64) -> Result<Ran, String> {
+    let scene = scene(case, tolerance)?;
+    let report = crate::world_run::simulate(&scene).map_err(|error| format!("{}: {error}", case.name))?.report;
+    Ok(Ran {
+        velocities: report.bodies.iter().map(|b| b.velocity_after).collect(),
+        seconds: report.solver.wall_time_s,
+        steps: report.solver.steps,
+        contacts: report.contacts.len(),
+    })
+}
+
+/// Runs the study: each case at [`REFERENCE_TOLERANCE`], then at each of `tolerances`; `progress` sees each row.
+pub fn study(
+    cases: &[WorldCase],
+    tolerances: &[f64],
+    mut progress: impl FnMut(&WorldRow),
+) -> Result<Vec<WorldRow>, String> {
+    let mut rows = Vec::new();
+    for case in cases {
+        let speed = scene(case, REFERENCE_TOLERANCE)?.bodies.iter().map(|b| b.velocity.norm()).fold(0.0, f64::max);
+        let reference = run(case, REFERENCE_TOLERANCE)?.velocities;
+        for &tolerance in tolerances {
+            // The median time of up to 5 runs (as many as fit in about 2 s): one run is at the mercy of the machine.
+            let Ran { velocities, seconds: first, steps, contacts } = run(case, tolerance)?;
+            let mut times = vec![first];
+            while times.len() < 5 && times.iter().sum::<f64>() < 2.0 {
+                times.push(run(case, tolerance)?.seconds);
+            }
+            times.sort_by(f64::total_cmp);
+            let seconds = times[times.len() / 2];
+            let error = velocities
+                .iter()
+                .zip(&reference)
+                .map(|(v, r)| (0..3).map(|k| (v[k] - r[k]).powi(2)).sum::<f64>().sqrt())
+                .fold(0.0, f64::max)
+                / speed;
+            let row = WorldRow { case: case.name.clone(), tolerance, error, seconds, steps, contacts };
+            progress(&row);
+            rows.push(row);
+        }
+    }
+    Ok(rows)
+}
+
+/// The rows as CSV: `case, tolerance, error, seconds, steps, contacts`.
+pub fn csv(rows: &[WorldRow]) -> String {
+    let mut text = String::from("case,tolerance,error,seconds,steps,contacts\n");
+    for r in rows {
+        text += &format!("{},{:e},{:e},{:e},{},{}\n", r.case, r.tolerance, r.error, r.seconds, r.steps, r.contacts);
+    }
+    text
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The contact time's constant from its definition: 2 (5/4)^(2/5) times the integral of (1 - u^(5/2))^(-1/2) over
+    /// (0, 1), by the substitution u = 1 - s² (which removes the end singularity) and Simpson's rule.
+    #[test]
+    fn the_bead_contact_time_constant_is_the_hertz_integral() {
+        let n = 20_000;
+        let f = |s: f64| {
+            let u: f64 = 1.0 - s * s;
+            let rest = 1.0 - u.powf(2.5);
+            if rest <= 0.0 { 2.0 / 2.5f64.sqrt() } else { 2.0 * s / rest.sqrt() }
+        };
+        let h = 1.0 / n as f64;
+        let mut sum = f(0.0) + f(1.0);
+        for k in 1..n {
+            sum += f(k as f64 * h) * if k % 2 == 1 { 4.0 } else { 2.0 };
+        }
+        let integral = sum * h / 3.0;
+        let constant = 2.0 * 1.25f64.powf(0.4) * integral;
+        assert!((constant - 3.218_065_459_7).abs() < 1e-8, "{constant}");
+        // The chain's default end: 498 contact times for 1000 beads.
+        let tau = bead_contact_time(0.005, 7850.0, 2.1e11, 0.3, 1.0);
+        assert!((tau - 3.008_205_689e-5).abs() < 1e-12, "{tau}");
+    }
+}
