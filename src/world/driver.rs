@@ -43,9 +43,13 @@ pub const AT_REST: f64 = 1e-14;
 
 /// A contact of two free bodies is quiet — ended, the bodies given one velocity — when its penetration and its rate
 /// are both within this many times the integration's absolute tolerance (in the island's units L and V), or within the
-/// rounding of the positions and velocities: what is left of it is the integration's own noise
+/// rounding of the positions and velocities ([`ROUNDING`]): what is left of it is the integration's own noise
 /// (docs/world.md#quiet-contacts).
 pub const QUIET: f64 = 10.0;
+
+/// The rounding of a difference of two positions or velocities, relative to their sizes: a few units in the last
+/// place (the floor of the quiet bounds).
+const ROUNDING: f64 = 4.0 * f64::EPSILON;
 
 /// The run of a world scene.
 pub fn run(scene: &WorldScene) -> Result<WorldOutcome, WorldError> {
@@ -807,9 +811,9 @@ impl<'a> World<'a> {
         let rate = (self.states[i].velocity - self.states[j].velocity).dot(&normal);
         // Never finer than the rounding of the positions and velocities themselves (far from the origin, or at a
         // tolerance near the precision's own).
-        let depth = (resolution * units.length).max(2.0 * self.touching(i, j));
-        let speed = self.states[i].velocity.norm() + self.states[j].velocity.norm();
-        let pace = (resolution * units.speed).max(64.0 * f64::EPSILON * speed);
+        let (a, b) = (&self.states[i], &self.states[j]);
+        let depth = (resolution * units.length).max(ROUNDING * (a.position.norm() + b.position.norm()));
+        let pace = (resolution * units.speed).max(ROUNDING * (a.velocity.norm() + b.velocity.norm()));
         penetration.abs() <= depth && rate.abs() <= pace
     }
 
