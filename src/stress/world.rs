@@ -111,6 +111,13 @@ pub fn scene_text(seed: u64, index: u64, quick: bool) -> String {
     if law.can_turn_tensile() && r.chance(0.5) {
         text.push_str("separation = \"force\"\n");
     }
+    // Half the worlds search a neighbour list with a skin of 0.1 to 30 mm (rebuilt often in flight and in islands),
+    // drawn from a stream of its own so that the rest of each scene is the same with or without it.
+    let mut list = Draw::new(seed ^ 0x5c1_7ab1e, index);
+    if list.chance(0.5) {
+        let skin = number(list.log(1e-4, 3e-2));
+        text = text.replacen("[world]\n", &format!("[world]\nskin = {skin}\n"), 1);
+    }
     text
 }
 
