@@ -17,8 +17,9 @@ use crate::integrate::{
 use crate::outcome::{Outcome, SETTLED, TIME_LIMIT, stiffness_causes};
 use crate::report::Report;
 use crate::report::accuracy::ReferenceDetail;
+use crate::scene::SetupError;
 use crate::scene::{Method, Scene};
-use crate::setup::{Motion, Setup, SetupError};
+use crate::setup::{Motion, Setup};
 use std::time::Instant;
 
 /// A run's products: the report, and the contact history when one was asked for.

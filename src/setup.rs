@@ -18,7 +18,7 @@ use std::path::Path;
 
 /// A broken physics-level rule: the key at fault and what is wrong (the type of the scene's own value rules, which
 /// it shares).
-pub use crate::scene::SetupError;
+use crate::scene::SetupError;
 
 /// The contact of a scene, ready to integrate (SI units).
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -4,10 +4,10 @@
 mod fast_support;
 
 use fast_support::{Case, QUANTITIES, errors, reference_cases};
-use impact::dynamics::Scales;
 use impact::fast::{Ending, FastError, Outcome, Quantities, Request, covers, simulate_normal};
 use impact::law::{ContactLaw, LawKind, Separation};
 use impact::reference;
+use impact::scales::Scales;
 
 fn run(case: &Case, tolerance: f64) -> Outcome {
     simulate_normal(&case.request(tolerance)).unwrap_or_else(|e| panic!("{}: {e}", case.name()))

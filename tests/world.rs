@@ -109,19 +109,26 @@ fn apexes(report: &WorldReport) -> Vec<f64> {
     report.contacts.iter().filter_map(|c| c.velocities_after.map(|v| 0.01 + v[0][2] * v[0][2] / (2.0 * 9.81))).collect()
 }
 
+/// The elastic ball of `dropped(0.11, ...)` after `bounces` contacts: every apex at the drop height to 1e-9, the
+/// first touch after the free fall sqrt(2 (h0 - r)/g) of the centre from 0.11 m to r = 0.01 m.
+fn assert_bounces_to_its_drop_height(report: &WorldReport, bounces: usize) {
+    let apexes = apexes(report);
+    assert_eq!(apexes.len(), bounces);
+    for apex in &apexes {
+        assert!(relative(*apex, 0.11) < 1e-9, "{apexes:?}");
+    }
+    let first = &report.contacts[0];
+    assert!(relative(first.start_time, (2.0 * 0.1 / 9.81f64).sqrt()) < 1e-12, "{}", first.start_time);
+}
+
 /// An elastic contact is reversible, gravity or not: the ball leaves each contact as fast as it came, and every apex
 /// is the drop height; it first touches after the free fall sqrt(2 (h0 - r)/g) at sqrt(2 g (h0 - r)).
 #[test]
 fn an_elastic_ball_bounces_back_to_its_drop_height_every_time() {
     let report = run(&dropped(0.11, 2.1e11, "law = \"hertz\"", "max_contacts = 6"));
     assert_eq!(report.world.end_reason, "max_contacts");
-    let apexes = apexes(&report);
-    assert_eq!(apexes.len(), 6);
-    for apex in &apexes {
-        assert!(relative(*apex, 0.11) < 1e-9, "{apexes:?}");
-    }
+    assert_bounces_to_its_drop_height(&report, 6);
     let first = &report.contacts[0];
-    assert!(relative(first.start_time, (2.0 * 0.1 / 9.81f64).sqrt()) < 1e-12, "{}", first.start_time);
     assert!(relative(first.approach_speed, (2.0 * 9.81 * 0.1f64).sqrt()) < 1e-12);
     assert!(report.energy.balance.abs() < 1e-9, "{:?}", report.energy);
 }
@@ -633,13 +640,7 @@ fn a_neighbour_list_rebuilt_many_times_finds_the_same_contacts() {
     assert_eq!(report.contacts.len(), 2, "{:?}", report.contacts);
     // A drop of 10 cm with a skin of 1 mm: the list is rebuilt every 0.5 mm of the fall.
     let report = run(&dropped(0.11, 2.1e11, "law = \"hertz\"", "max_contacts = 3\nskin = 1e-3\nend_time = 10.0"));
-    let apexes = apexes(&report);
-    assert_eq!(apexes.len(), 3);
-    for apex in &apexes {
-        assert!(relative(*apex, 0.11) < 1e-9, "{apexes:?}");
-    }
-    let first = &report.contacts[0];
-    assert!(relative(first.start_time, (2.0 * 0.1 / 9.81f64).sqrt()) < 1e-12, "{}", first.start_time);
+    assert_bounces_to_its_drop_height(&report, 3);
 }
 
 /// Hertzian chains of 40 and 60 equal steel beads (radius 5 mm), touching, the first struck at 1 m/s: the pulse

@@ -39,11 +39,14 @@ pub struct BenchArgs {
 
 pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
     check_folder(args)?;
-    if args.worlds {
-        return worlds(args);
+    if args.worlds && !args.cases.is_empty() {
+        return Err(
+            BadInput("--case selects the single-impact cases; --worlds runs its two scenes whole".into()).into()
+        );
     }
+    let names = if args.worlds { WORLD_OUTPUTS } else { OUTPUTS };
     let mut paths = Paths::default();
-    let outputs: Vec<Destination> = OUTPUTS
+    let outputs: Vec<Destination> = names
         .iter()
         .map(|&name| {
             let path = args.out.join(name);
@@ -51,7 +54,16 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
             paths.output(label, Origin::CommandLine, &path)
         })
         .collect::<anyhow::Result<_>>()?;
-    study(args, outputs)
+    if args.worlds { worlds(args, outputs) } else { study(args, outputs) }
+}
+
+/// A progress bar of `len` steps on standard error (drawn only on a terminal).
+fn progress(len: usize) -> ProgressBar {
+    let bar = ProgressBar::with_draw_target(Some(len as u64), ProgressDrawTarget::stderr_with_hz(4));
+    bar.set_style(
+        ProgressStyle::with_template("{bar:40} {pos}/{len} {msg}").unwrap_or_else(|_| ProgressStyle::default_bar()),
+    );
+    bar
 }
 
 /// Refuses an --out that cannot take the study's files.
@@ -87,11 +99,7 @@ fn study(args: &BenchArgs, outputs: Vec<Destination>) -> anyhow::Result<()> {
     let plan = bench::settings(args.quick);
     let timing = if args.quick { bench::Timing::QUICK } else { bench::Timing::FULL };
     let machine = bench::machine();
-    let bar =
-        ProgressBar::with_draw_target(Some((cases.len() * plan.len()) as u64), ProgressDrawTarget::stderr_with_hz(4));
-    bar.set_style(
-        ProgressStyle::with_template("{bar:40} {pos}/{len} {msg}").unwrap_or_else(|_| ProgressStyle::default_bar()),
-    );
+    let bar = progress(cases.len() * plan.len());
     let rows = bench::study(&cases, &plan, timing, |row| {
         bar.set_message(format!("{} {}", row.method.name(), row.setting));
         if let Some(why) = &row.failure {
@@ -148,33 +156,14 @@ fn write_all(outputs: &[Destination], contents: [&[u8]; 3]) -> anyhow::Result<()
     Ok(())
 }
 
-/// The world study (`--worlds`): the chain and the cradle at a sweep of tolerances.
-fn worlds(args: &BenchArgs) -> anyhow::Result<()> {
+/// The world study (`--worlds`) into `outputs` (in the order of [`WORLD_OUTPUTS`]): the chain and the cradle at a
+/// sweep of tolerances.
+fn worlds(args: &BenchArgs, outputs: Vec<Destination>) -> anyhow::Result<()> {
     use crate::bench::worlds;
-    if !args.cases.is_empty() {
-        return Err(
-            BadInput("--case selects the single-impact cases; --worlds runs its two scenes whole".into()).into()
-        );
-    }
-    let mut paths = Paths::default();
-    let outputs: Vec<Destination> = WORLD_OUTPUTS
-        .iter()
-        .map(|&name| {
-            let path = args.out.join(name);
-            let label = format!("--out {} ({})", args.out.display(), path.display());
-            paths.output(label, Origin::CommandLine, &path)
-        })
-        .collect::<anyhow::Result<_>>()?;
     let cases = worlds::cases(args.quick);
     let tolerances: &[f64] = if args.quick { &worlds::QUICK_TOLERANCES } else { &worlds::TOLERANCES };
     let machine = bench::machine();
-    let bar = ProgressBar::with_draw_target(
-        Some((cases.len() * tolerances.len()) as u64),
-        ProgressDrawTarget::stderr_with_hz(4),
-    );
-    bar.set_style(
-        ProgressStyle::with_template("{bar:40} {pos}/{len} {msg}").unwrap_or_else(|_| ProgressStyle::default_bar()),
-    );
+    let bar = progress(cases.len() * tolerances.len());
     let rows = worlds::study(&cases, tolerances, |row| {
         bar.set_message(format!("{} at {:e}", row.case, row.tolerance));
         bar.inc(1);

@@ -17,7 +17,7 @@ pub mod pair;
 use crate::integrate::{Model, State};
 use nalgebra::Vector3;
 
-pub use crate::scales::Scales;
+use crate::scales::Scales;
 
 /// The contact and both bodies at one instant, in SI units: what a report and a history are built from.
 #[derive(Debug, Clone, Copy, PartialEq)]

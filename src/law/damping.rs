@@ -6,7 +6,7 @@ use super::{Family, LawKind};
 
 /// The maps of the linear laws: the exact inverses of their restitution (in [`crate::reference`], beside
 /// [`hunt_crossley_chi`](crate::reference::hunt_crossley_chi), the exact map of the hysteresis family).
-pub use crate::reference::{kelvin_voigt_zeta, tsuji_damping};
+use crate::reference::{kelvin_voigt_zeta, tsuji_damping};
 
 /// Why a law's map cannot turn a nominal e into damping.
 #[derive(Debug, Clone, PartialEq)]

@@ -398,11 +398,17 @@ pub struct CaseResult {
     pub problems: Vec<String>,
 }
 
+/// What checking one case gave: its class, each checked quantity's error, and why it failed (empty: it passed).
+pub type Checked = (String, Vec<(&'static str, f64)>, Vec<String>);
+
 /// Runs and checks case `index` of seed `seed`.
 pub fn run_case(seed: u64, index: u64, quick: bool) -> CaseResult {
-    let text = scene_text(seed, index, quick);
-    let outcome = catch_unwind(AssertUnwindSafe(|| check_text(&text)));
-    let (class, errors, problems) = match outcome {
+    checked(index, &scene_text(seed, index, quick), check_text)
+}
+
+/// Case `index` (scene `text`) checked by `check`; a panic inside it is the case's failure, not the run's.
+fn checked(index: u64, text: &str, check: fn(&str) -> Checked) -> CaseResult {
+    let (class, errors, problems) = match catch_unwind(AssertUnwindSafe(|| check(text))) {
         Ok(result) => result,
         Err(panic) => {
             let message = panic
@@ -417,7 +423,7 @@ pub fn run_case(seed: u64, index: u64, quick: bool) -> CaseResult {
 }
 
 /// Parses, simulates and checks one scene text: (class, errors, problems).
-pub fn check_text(text: &str) -> (String, Vec<(&'static str, f64)>, Vec<String>) {
+pub fn check_text(text: &str) -> Checked {
     let scene = match Scene::parse(text, Path::new("stress.toml")) {
         Ok(scene) => scene,
         Err(error) => {

@@ -18,7 +18,6 @@ use crate::report::world::WorldReport;
 use crate::scene::{Parsed, WorldScene};
 use nalgebra::Vector3;
 use std::fmt::Write as _;
-use std::panic::{AssertUnwindSafe, catch_unwind};
 use std::path::Path;
 
 /// The scene text of world case `index` of seed `seed`; `quick` runs each world a shorter time (up to 0.05 s and
@@ -131,24 +130,11 @@ fn vector(v: &Vector3<f64>) -> String {
 
 /// Runs and checks world case `index` of seed `seed` (`quick`: see [`scene_text`]).
 pub fn run_case(seed: u64, index: u64, quick: bool) -> CaseResult {
-    let text = scene_text(seed, index, quick);
-    let outcome = catch_unwind(AssertUnwindSafe(|| check_text(&text)));
-    let (class, errors, problems) = match outcome {
-        Ok(result) => result,
-        Err(panic) => {
-            let message = panic
-                .downcast_ref::<String>()
-                .cloned()
-                .or_else(|| panic.downcast_ref::<&str>().map(|s| s.to_string()))
-                .unwrap_or_default();
-            ("panic".into(), Vec::new(), vec![format!("panicked: {message}")])
-        }
-    };
-    CaseResult { index, class, errors, problems }
+    super::checked(index, &scene_text(seed, index, quick), check_text)
 }
 
 /// Parses, runs and checks one world scene: (class, errors, problems).
-pub fn check_text(text: &str) -> (String, Vec<(&'static str, f64)>, Vec<String>) {
+pub fn check_text(text: &str) -> super::Checked {
     let scene = match crate::setup::parse_any(text, Path::new("world-stress.toml")) {
         Ok(Parsed::World(scene)) => *scene,
         Ok(Parsed::Impact(_)) => return ("error".into(), Vec::new(), vec!["not a world scene".into()]),

@@ -26,13 +26,10 @@ pub struct Neighbours {
     pub pairs: Vec<(usize, usize)>,
     /// Every body's position when the list was built, m.
     reference: Vec<Vector3<f64>>,
-    /// How far each body may move from its reference before the list must be rebuilt (half the skin), m; infinite
-    /// for a list of every pair.
-    reach: f64,
+    /// The skin, m; infinite for a list of every pair.
+    skin: f64,
     /// For each body, the bodies it is paired with in the list.
     adjacent: Vec<Vec<usize>>,
-    /// How many times the list was built.
-    pub builds: u64,
 }
 
 /// The skin of `scene` (m): its `[world] skin`, or the default — infinite (every pair) up to
@@ -100,19 +97,17 @@ impl Neighbours {
             adjacent[i].push(j);
             adjacent[j].push(i);
         }
-        Neighbours { pairs, reference, reach: skin / 2.0, adjacent, builds: 1 }
+        Neighbours { pairs, reference, skin, adjacent }
     }
 
     /// The list rebuilt at `states` with the same skin.
     pub fn rebuild(&mut self, scene: &WorldScene, states: &[Kinematic]) {
-        let builds = self.builds;
-        *self = Neighbours::build(scene, states, 2.0 * self.reach);
-        self.builds = builds + 1;
+        *self = Neighbours::build(scene, states, self.skin);
     }
 
     /// How far each body may move from where the list was built (half the skin), m.
     pub fn reach(&self) -> f64 {
-        self.reach
+        self.skin / 2.0
     }
 
     /// The positions (m) of `bodies` when the list was built.
@@ -127,7 +122,7 @@ impl Neighbours {
 
     /// Whether the list holds every pair for the whole run (an infinite skin).
     pub fn is_everything(&self) -> bool {
-        self.reach.is_infinite()
+        self.skin.is_infinite()
     }
 
     /// How far (m) body `k`, now at `position`, may still move before the list must be rebuilt (negative: beyond).
@@ -135,7 +130,7 @@ impl Neighbours {
         if self.is_everything() {
             return f64::INFINITY;
         }
-        self.reach - (position - self.reference[k]).norm()
+        self.reach() - (position - self.reference[k]).norm()
     }
 
     /// A flight time (s) within which body `k`, now at `state` and flying under the acceleration `a`, surely stays

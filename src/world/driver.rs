@@ -16,8 +16,9 @@ use super::record::{
 use crate::geometry::Meeting;
 use crate::integrate::{Counters, Direction, Ending, EventOf, IntegrationError, StepperOf, Tolerances};
 use crate::law::Separation;
+use crate::scene::SetupError;
 use crate::scene::{DampingMap, DampingSpec, WorldScene};
-use crate::setup::{SetupError, check_law, resolve_law};
+use crate::setup::{check_law, resolve_law};
 use nalgebra::{DVector, Dyn, Vector3};
 use std::collections::BTreeSet;
 
@@ -224,9 +225,20 @@ impl<'a> World<'a> {
 
     /// The active contacts that are not frozen (indices into `active`).
     fn live(&self) -> Vec<usize> {
-        (0..self.active.len())
-            .filter(|&c| self.active[c].pair.iter().any(|&k| !self.scene.bodies[k].is_immovable() && !self.frozen[k]))
-            .collect()
+        (0..self.active.len()).filter(|&c| self.active[c].pair.iter().any(|&k| self.free(k))).collect()
+    }
+
+    /// Whether body `k` moves: of finite mass and not frozen.
+    fn free(&self, k: usize) -> bool {
+        !self.scene.bodies[k].is_immovable() && !self.frozen[k]
+    }
+
+    /// Active contact `c`'s penetration (m) and penetration rate (m/s) at the bodies' states now.
+    fn standing(&self, c: usize) -> (f64, f64) {
+        let contact = &self.active[c];
+        let [i, j] = contact.pair;
+        let (penetration, normal) = contact.meeting.penetration(&(self.states[j].position - self.states[i].position));
+        (penetration, (self.states[i].velocity - self.states[j].velocity).dot(&normal))
     }
 
     /// The scene time left before `end_time` (infinite without one).
@@ -804,11 +816,8 @@ impl<'a> World<'a> {
     /// the island's units.
     fn is_quiet(&self, c: usize, units: &Units) -> bool {
         let resolution = QUIET * self.scene.solver.tolerances.atol;
-        let contact = &self.active[c];
-        let [i, j] = contact.pair;
-        let relative = self.states[j].position - self.states[i].position;
-        let (penetration, normal) = contact.meeting.penetration(&relative);
-        let rate = (self.states[i].velocity - self.states[j].velocity).dot(&normal);
+        let [i, j] = self.active[c].pair;
+        let (penetration, rate) = self.standing(c);
         // Never finer than the rounding of the positions and velocities themselves (far from the origin, or at a
         // tolerance near the precision's own).
         let (a, b) = (&self.states[i], &self.states[j]);
@@ -822,7 +831,6 @@ impl<'a> World<'a> {
     /// found, if any.
     fn quiet_group(&self) -> Option<Vec<usize>> {
         let units = self.units?;
-        let free = |k: usize| !self.scene.bodies[k].is_immovable() && !self.frozen[k];
         let mut touching: std::collections::HashMap<usize, Vec<usize>> = Default::default();
         for (c, contact) in self.active.iter().enumerate() {
             for &k in &contact.pair {
@@ -842,7 +850,7 @@ impl<'a> World<'a> {
             while at < group.len() {
                 let c = group[at];
                 at += 1;
-                quiet &= self.active[c].pair.iter().all(|&k| free(k)) && self.is_quiet(c, &units);
+                quiet &= self.active[c].pair.iter().all(|&k| self.free(k)) && self.is_quiet(c, &units);
                 for k in self.active[c].pair {
                     for &other in &touching[&k] {
                         if !done[other] {
@@ -865,17 +873,13 @@ impl<'a> World<'a> {
     /// integration's noise; left alone it keeps the bodies touching and parting at noise speeds, each time a contact
     /// of its own.
     fn quiet(&mut self, contacts: &[usize]) -> Result<(), WorldError> {
-        let free = |k: usize| !self.scene.bodies[k].is_immovable() && !self.frozen[k];
         let mut endings = Vec::new();
         let mut group: Vec<usize> = Vec::new();
         for &c in contacts {
             let contact = &self.active[c];
-            let [i, j] = contact.pair;
-            let relative = self.states[j].position - self.states[i].position;
-            let (penetration, normal) = contact.meeting.penetration(&relative);
-            let rate = (self.states[i].velocity - self.states[j].velocity).dot(&normal);
+            let (penetration, rate) = self.standing(c);
             endings.push((contact.record, rate, contact.law.elastic_energy(penetration.max(0.0))));
-            for k in [i, j] {
+            for k in contact.pair {
                 if !group.contains(&k) {
                     group.push(k);
                 }
@@ -888,7 +892,7 @@ impl<'a> World<'a> {
             let p = group[at];
             at += 1;
             for &q in self.neighbours.adjacent(p) {
-                if seen.contains(&q) || !free(q) || active.contains(&[p.min(q), p.max(q)]) {
+                if seen.contains(&q) || !self.free(q) || active.contains(&[p.min(q), p.max(q)]) {
                     continue;
                 }
                 if self.states[q].velocity == self.states[p].velocity {

@@ -44,9 +44,8 @@ impl Units {
     /// The units of a contact of effective mass `mass` (kg), stiffness `stiffness` (N/m^n) and exponent `exponent`
     /// at the speed `speed` (m/s, > 0): L = (M V²/K)^(1/(n+1)).
     pub fn new(mass: f64, stiffness: f64, exponent: f64, speed: f64) -> Units {
-        let energy = mass * speed * speed;
-        let length = (energy / stiffness).powf(1.0 / (exponent + 1.0));
-        Units { length, speed, time: length / speed, mass, force: energy / length, impulse: mass * speed, energy }
+        let s = crate::scales::Scales::new(mass, stiffness, exponent, speed);
+        Units { length: s.length, speed, time: s.time, mass, force: s.force, impulse: s.impulse, energy: s.energy }
     }
 }
 

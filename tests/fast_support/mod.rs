@@ -5,10 +5,10 @@
 //! Shared by tests/fast_path.rs and benches/fast.rs.
 #![allow(dead_code)]
 
-use impact::dynamics::Scales;
 use impact::fast::{Outcome, Quantities, Request};
 use impact::law::{ContactLaw, LawKind, Separation};
 use impact::reference::{self, ContactReference};
+use impact::scales::Scales;
 use std::f64::consts::FRAC_PI_2;
 
 /// One reference impact, in the scaled units (m* = K = v0 = 1).
