@@ -347,11 +347,20 @@ fn check_finite_motion(bodies: &[Body; 2]) -> Result<(), SetupError> {
 
 /// The tangential contact of a frictional scene, or `None` for a smooth one.
 fn friction(scene: &Scene, effective_mass: f64) -> Result<Option<Friction>, SetupError> {
-    let contact = &scene.contact;
+    let [a, b] = &scene.bodies;
+    friction_of(&scene.contact, [a, b], effective_mass)
+}
+
+/// The tangential contact `contact` gives bodies `a` and `b` (of effective mass `effective_mass`, kg), or `None` for a
+/// smooth one; errors name the keys of `[contact]` (a world renames them to its pair's).
+pub fn friction_of(
+    contact: &ContactSpec,
+    [a, b]: [&Body; 2],
+    effective_mass: f64,
+) -> Result<Option<Friction>, SetupError> {
     if contact.friction == 0.0 {
         return Ok(None);
     }
-    let [a, b] = &scene.bodies;
     let (stiffness, stiffness_exponent) = match contact.tangential_stiffness {
         TangentialStiffnessSpec::Value(k) => (k, 0.0),
         TangentialStiffnessSpec::Mindlin => (mindlin_coefficient(a, b)?, 0.5),

@@ -43,7 +43,14 @@ pub fn simulate_observed(
 /// A world of two bodies without gravity, run as today's impact of the pair — when they meet, part, and do so
 /// before any end time (otherwise the world's driver takes it).
 fn as_one_impact(scene: &WorldScene) -> Result<Option<WorldSimulation>, WorldError> {
-    if scene.bodies.len() != 2 || scene.world.gravity != nalgebra::Vector3::zeros() || !scene.interacts(0, 1) {
+    // (A frictional pair runs in the world's driver too: its report then has the rigid-body frictional sequential model
+    // beside it, the same for every world.)
+    let (contact, _) = scene.contact_of(0, 1);
+    if scene.bodies.len() != 2
+        || scene.world.gravity != nalgebra::Vector3::zeros()
+        || !scene.interacts(0, 1)
+        || contact.friction > 0.0
+    {
         return Ok(None);
     }
     let mut pair = scene.pair_scene(0, 1);

@@ -1063,14 +1063,19 @@ fn a_pair_key_out_of_range_is_rejected_naming_the_pair() {
     );
 }
 
+/// Friction in a world takes the Mindlin tangential stiffness by default, which needs every elastic body's `young` and
+/// `poisson`: a world whose law has its own stiffness (so Hertz needs neither) but whose ball lacks `poisson` is
+/// refused before anything moves, naming the key that chose Mindlin.
 #[test]
-fn friction_in_a_world_is_refused_for_now_naming_the_key() {
-    let text = edit(WORLD, "law = \"hertz\"", "law = \"hertz\"\nfriction = 0.3");
+fn friction_in_a_world_without_the_elastic_constants_mindlin_needs_is_refused() {
+    let text = edit(WORLD, "law = \"hertz\"", "law = \"hertz\"\nstiffness = 1e9\nfriction = 0.3");
+    // (The ball is the first body: its `poisson` goes.)
+    let text = text.replacen("young = 2.1e11\npoisson = 0.3\n", "young = 2.1e11\n", 1);
     assert_rejected(
-        "friction_in_a_world",
+        "friction_in_a_world_without_mindlin_constants",
         &text,
-        "contact.friction",
-        At::Whole("friction = 0.3"),
-        &["not supported yet"],
+        "contact.tangential_stiffness",
+        At::Nowhere,
+        &["Mindlin", "bodies.0 lacks"],
     );
 }

@@ -230,9 +230,10 @@ impl Tangential {
         if slip == 0.0 || contact_force > 0.0 {
             return Mode::Stick;
         }
-        // d = rate t and kt = k d^a give |T| = k d^(a+1) slip / ((a + 1) rate).
-        let spring = self.stiffness_at(probe) * probe * slip / ((self.exponent + 1.0) * rate);
-        if spring > self.friction * normal_force { Mode::Slip } else { Mode::Stick }
+        // d = rate t and kt = k d^a give |T| = k d^(a+1) slip / ((a + 1) rate), compared with the cap multiplied
+        // through by the rate: a contact pushed into being (rate 0) with slip slides from the start.
+        let spring = self.stiffness_at(probe) * probe * slip;
+        if spring > self.friction * normal_force * (self.exponent + 1.0) * rate { Mode::Slip } else { Mode::Stick }
     }
 }
 

@@ -91,6 +91,16 @@ pub struct WorldContact {
     pub elastic_energy_at_start: f64,
     /// Indices of the other contacts active during this one.
     pub overlapping: Vec<usize>,
+    /// Energy the tangential force dissipated over the contact (or so far, while active), J (an addition; included in
+    /// `energy.dissipated`; zero for a smooth contact).
+    pub friction_work: f64,
+    /// "smooth", "sliding" (the contact points slid throughout) or "sticking" (their slip stopped at some time),
+    /// as one impact's `oblique.regime` (an addition).
+    pub regime: &'static str,
+    /// [ω_i, ω_j] at first touch, rad/s (an addition).
+    pub angular_velocities_before: [Vec3; 2],
+    /// [ω_i, ω_j] at separation, rad/s (an addition).
+    pub angular_velocities_after: Option<[Vec3; 2]>,
 }
 
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -141,6 +151,8 @@ pub struct SequentialModel {
     pub velocity_after: Vec<Vec3>,
     /// Largest |simulated - sequential| velocity component, m/s.
     pub max_velocity_difference: f64,
+    /// One angular velocity per body, rad/s (an addition: friction turns the bodies in the model too).
+    pub angular_velocity_after: Vec<Vec3>,
     /// [v_i, v_j] right after each contact in the model, in the order of `contacts`, m/s (an addition).
     pub contact_velocities_after: Vec<[Vec3; 2]>,
 }
@@ -174,7 +186,7 @@ pub fn build(scene: &WorldScene, outcome: &WorldOutcome, wall_time: f64) -> Worl
             velocity_before: vec3(&body.velocity),
             position_before: vec3(&body.position.unwrap_or_default()),
             velocity_after: vec3(&end.velocity),
-            angular_velocity_after: vec3(&body.angular_velocity),
+            angular_velocity_after: vec3(&end.spin),
             position_after: vec3(&end.position),
         })
         .collect();
@@ -194,6 +206,7 @@ pub fn build(scene: &WorldScene, outcome: &WorldOutcome, wall_time: f64) -> Worl
         model.map(|s| SequentialModel {
             velocity_after: s.velocity_after.iter().map(vec3).collect(),
             max_velocity_difference: s.max_velocity_difference,
+            angular_velocity_after: s.spin_after.iter().map(vec3).collect(),
             contact_velocities_after: s.contact_velocities_after.iter().map(|[a, b]| [vec3(a), vec3(b)]).collect(),
         })
     };
@@ -299,6 +312,26 @@ fn contact(record: &ContactRecord) -> WorldContact {
         penetration_at_separation: end.map(|e| e.penetration.max(0.0)),
         elastic_energy_at_start: record.elastic_at_start,
         overlapping: record.overlapping.iter().copied().collect(),
+        friction_work: friction_work(record),
+        regime: if record.friction == 0.0 {
+            "smooth"
+        } else if record.began_sliding && record.switches == 0 {
+            "sliding"
+        } else {
+            "sticking"
+        },
+        angular_velocities_before: [vec3(&record.spins_before[0]), vec3(&record.spins_before[1])],
+        angular_velocities_after: end.map(|e| [vec3(&e.spins[0]), vec3(&e.spins[1])]),
+    }
+}
+
+/// The energy a contact's tangential force dissipated, J: what it took from the motion, less what its spring still
+/// holds (nothing once the contact has ended: the spring lets go).
+fn friction_work(record: &ContactRecord) -> f64 {
+    match (&record.end, &record.at_stop) {
+        (Some(end), _) => -end.tangential_work,
+        (None, Some(stop)) => -stop.tangential_work - stop.tangential_elastic,
+        (None, None) => 0.0,
     }
 }
 
@@ -311,7 +344,7 @@ fn energy(scene: &WorldScene, outcome: &WorldOutcome) -> WorldEnergy {
             continue;
         }
         kinetic_before += body.kinetic_energy(&body.velocity, &body.angular_velocity);
-        kinetic_after += body.kinetic_energy(&end.velocity, &body.angular_velocity);
+        kinetic_after += body.kinetic_energy(&end.velocity, &end.spin);
     }
     let gravity_work = outcome.gravity_work;
     let mut dissipated = outcome.settled;
@@ -319,6 +352,7 @@ fn energy(scene: &WorldScene, outcome: &WorldOutcome) -> WorldEnergy {
     for record in &outcome.contacts {
         // A contact pressed again on the overlap an earlier one left takes that spring energy back.
         elastic -= record.elastic_at_start;
+        dissipated += friction_work(record);
         match (&record.end, record.at_stop) {
             (Some(end), _) => {
                 dissipated += end.dissipated;
@@ -326,9 +360,9 @@ fn energy(scene: &WorldScene, outcome: &WorldOutcome) -> WorldEnergy {
                     elastic += end.elastic_left;
                 }
             }
-            (None, Some((_, _, lost, stored))) => {
-                dissipated += lost;
-                elastic += stored;
+            (None, Some(stop)) => {
+                dissipated += stop.dissipated;
+                elastic += stop.elastic + stop.tangential_elastic;
             }
             (None, None) => {}
         }
@@ -391,6 +425,17 @@ pub fn from_impact(scene: &WorldScene, impact: &super::Report) -> WorldReport {
         }),
         elastic_energy_at_start: 0.0,
         overlapping: Vec::new(),
+        // (A frictional pair runs in the world's driver: this one is smooth.)
+        friction_work: 0.0,
+        regime: "smooth",
+        angular_velocities_before: [impact.bodies[0].angular_velocity_before, impact.bodies[1].angular_velocity_before],
+        angular_velocities_after: c.separated.then(|| {
+            let spin = |k: usize| {
+                let body = &impact.bodies[k];
+                body.angular_velocity_after.unwrap_or(body.angular_velocity_before)
+            };
+            [spin(0), spin(1)]
+        }),
     };
     let bodies = scene
         .bodies
@@ -419,6 +464,8 @@ pub fn from_impact(scene: &WorldScene, impact: &super::Report) -> WorldReport {
         ideal.as_ref().map(|ideal| SequentialModel {
             velocity_after: ideal.velocity_after.to_vec(),
             max_velocity_difference: ideal.max_velocity_difference.unwrap_or(f64::NAN),
+            // A smooth impact leaves the spins as they were.
+            angular_velocity_after: impact.bodies.iter().map(|b| b.angular_velocity_before).collect(),
             contact_velocities_after: vec![ideal.velocity_after],
         })
     };

@@ -113,8 +113,8 @@ fn check_solver(solver: &super::SolverSpec) -> Checked {
 
 /// A world scene's rules (docs/scene.md#worlds): every body's, each contact table's (the keys renamed to where the
 /// pair writes them), the `[world]` table's, and the rules between bodies that hold before anything moves — flat
-/// bodies immovable with a face, no friction yet, Hertz stiffness available for every pair that can touch, and no
-/// two bodies overlapping at the start by more than 1e-12 of the smaller radius.
+/// bodies immovable with a face, Hertz and Mindlin stiffnesses available for every pair that can touch, and no two
+/// bodies overlapping at the start by more than 1e-12 of the smaller radius.
 pub fn check_world(scene: &super::WorldScene) -> Checked {
     for (i, body) in scene.bodies.iter().enumerate() {
         check_body(i, body)?;
@@ -145,17 +145,6 @@ pub fn check_world(scene: &super::WorldScene) -> Checked {
         number("world.skin", skin, Allowed::PositiveOrInfinite)?;
     }
     check_solver(&scene.solver)?;
-    let contacts = std::iter::once((&scene.contact, None))
-        .chain(scene.pairs.iter().enumerate().map(|(k, p)| (&p.contact, Some(k))));
-    for (contact, k) in contacts {
-        if contact.friction > 0.0 {
-            let key = k.map_or("contact.friction".to_string(), |k| format!("pair.{k}.friction"));
-            return fail(
-                key,
-                "friction in a world run is not supported yet (one contact of two bodies takes it): set it to 0",
-            );
-        }
-    }
     let n = scene.bodies.len();
     for i in 0..n {
         for j in i + 1..n {
@@ -167,8 +156,8 @@ pub fn check_world(scene: &super::WorldScene) -> Checked {
     Ok(())
 }
 
-/// The rules of one pair that hold before anything moves: a Hertz stiffness can be formed, and the bodies do not
-/// start overlapped.
+/// The rules of one pair that hold before anything moves: a Hertz stiffness and (with friction) a Mindlin tangential
+/// stiffness can be formed, and the bodies do not start overlapped.
 fn check_pair_at_start(scene: &super::WorldScene, i: usize, j: usize) -> Checked {
     let (a, b) = (&scene.bodies[i], &scene.bodies[j]);
     let (contact, _) = scene.contact_of(i, j);
@@ -188,6 +177,31 @@ fn check_pair_at_start(scene: &super::WorldScene, i: usize, j: usize) -> Checked
             return fail(
                 BodyKey(j, "young"),
                 format!("bodies {i} and {j} are both rigid (young = inf): their Hertz stiffness would be infinite"),
+            );
+        }
+    }
+    if contact.friction > 0.0 && contact.tangential_stiffness == super::TangentialStiffnessSpec::Mindlin {
+        let key = |leaf: &str| {
+            scene.rename(i, j, super::SetupError { key: format!("contact.{leaf}"), message: String::new() }).key
+        };
+        for (k, body) in [(i, a), (j, b)] {
+            if body.young.is_some_and(f64::is_infinite) {
+                continue;
+            }
+            if body.young.is_none() || body.poisson.is_none() {
+                return fail(
+                    key("tangential_stiffness"),
+                    format!(
+                        "the Mindlin tangential stiffness (the default with friction) needs `young` and `poisson` of \
+                         every elastic body (bodies.{k} lacks them): give them, or a numeric `tangential_stiffness` in N/m"
+                    ),
+                );
+            }
+        }
+        if a.young.is_some_and(f64::is_infinite) && b.young.is_some_and(f64::is_infinite) {
+            return fail(
+                key("tangential_stiffness"),
+                format!("bodies {i} and {j} are both rigid (young = inf): their Mindlin stiffness would be infinite"),
             );
         }
     }

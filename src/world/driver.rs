@@ -11,14 +11,15 @@ use super::broad::{Neighbours, skin};
 use super::flight::{Kinematic, acceleration, first_touch};
 use super::island::{ActiveContact, Island, Units};
 use super::record::{
-    Compression, ContactRecord, ContactSample, EndReason, Ending as ContactEnding, Observer, WorldOutcome,
+    Compression, ContactRecord, ContactSample, EndReason, Ending as ContactEnding, Observer, Stop, WorldOutcome,
 };
+use crate::dynamics::contact::{Mode, Tangential};
 use crate::geometry::Meeting;
 use crate::integrate::{Counters, Direction, Ending, EventOf, IntegrationError, StepperOf, Tolerances};
 use crate::law::Separation;
 use crate::scene::SetupError;
 use crate::scene::{DampingMap, DampingSpec, WorldScene};
-use crate::setup::{check_law, resolve_law};
+use crate::setup::{check_law, friction_of, resolve_law};
 use nalgebra::{DVector, Dyn, Vector3};
 use std::collections::BTreeSet;
 
@@ -47,6 +48,10 @@ pub const AT_REST: f64 = 1e-14;
 /// rounding of the positions and velocities ([`ROUNDING`]): what is left of it is the integration's own noise
 /// (docs/world.md#quiet-contacts).
 pub const QUIET: f64 = 10.0;
+
+/// Scaled penetration (of the contact's own length unit) at which a frictional contact's first stick-or-slip is read
+/// off the leading terms, as in one impact.
+const PROBE: f64 = 1e-6;
 
 /// The rounding of a difference of two positions or velocities, relative to their sizes: a few units in the last
 /// place (the floor of the quiet bounds).
@@ -97,6 +102,8 @@ enum Watched {
     Relist,
     /// A group an immovable body holds came to rest (its index among the island's components): it is frozen.
     Frozen(usize),
+    /// A frictional contact (index among the active) switches between sticking and sliding.
+    Switch(usize),
 }
 
 /// The run's state between segments.
@@ -139,7 +146,11 @@ impl<'a> World<'a> {
         let states: Vec<Kinematic> = scene
             .bodies
             .iter()
-            .map(|b| Kinematic { position: b.position.unwrap_or_default(), velocity: b.velocity })
+            .map(|b| Kinematic {
+                position: b.position.unwrap_or_default(),
+                velocity: b.velocity,
+                spin: b.angular_velocity,
+            })
             .collect();
         let neighbours = Neighbours::build(scene, &states, skin(scene));
         World {
@@ -453,9 +464,35 @@ impl<'a> World<'a> {
         }
         let law = resolve_law(spec, [a, b], effective_mass, map_speed).map_err(rename)?;
         check_law(spec, [a, b], &law, effective_mass, map_speed).map_err(rename)?;
+        let friction = friction_of(spec, [a, b], effective_mass).map_err(rename)?;
+        let contact_units = Units::new(effective_mass, law.stiffness, law.exponent, map_speed);
         if self.units.is_none() {
-            self.units = Some(Units::new(effective_mass, law.stiffness, law.exponent, map_speed));
+            self.units = Some(contact_units);
         }
+        let spins = [self.states[i].spin, self.states[j].spin];
+        let mode = match friction {
+            Some(f) => {
+                // The contact points' slip (body i's relative to body j's, across the normal); the arms are the
+                // radii along the normal at first touch, none for a flat body.
+                let arm = |body: &crate::body::Body, sign: f64| {
+                    if body.is_flat() { Vector3::zeros() } else { normal * (sign * body.radius) }
+                };
+                let point = relative_velocity + spins[0].cross(&arm(a, 1.0)) - spins[1].cross(&arm(b, -1.0));
+                let slip = (point - normal * point.dot(&normal)).norm();
+                let sliding = Tangential {
+                    friction: f.coefficient,
+                    stiffness: f.stiffness,
+                    exponent: f.stiffness_exponent,
+                    damping: 0.0,
+                };
+                // In SI: the spring a tiny penetration (a millionth of the contact's length unit) would load against
+                // the Coulomb limit there.
+                let probe = PROBE * contact_units.length;
+                let contact_force = law.force(0.0, approach);
+                sliding.initial_mode(slip, approach, probe, contact_force, law.force(probe, approach))
+            }
+            None => Mode::Stick,
+        };
         let index = self.records.len();
         let mut overlapping = BTreeSet::new();
         for other in &self.active {
@@ -472,6 +509,10 @@ impl<'a> World<'a> {
             approach_speed: approach,
             pushed,
             velocities_before: [self.states[i].velocity, self.states[j].velocity],
+            spins_before: spins,
+            friction: spec.friction,
+            began_sliding: friction.is_some() && mode == Mode::Slip,
+            switches: 0,
             elastic_at_start: if overlap > 2.0 * self.touching(i, j) { law.elastic_energy(overlap) } else { 0.0 },
             max_compression: None,
             peak_force: None,
@@ -489,6 +530,10 @@ impl<'a> World<'a> {
             impulse: 0.0,
             work: 0.0,
             dissipated: 0.0,
+            friction,
+            mode,
+            spring: Vector3::zeros(),
+            tangential_work: 0.0,
         });
         Ok(true)
     }
@@ -551,6 +596,10 @@ impl<'a> World<'a> {
             kinds.push((Watched::MaxCompression(c), false));
             functions.push(Box::new(move |y| isl.force_rate(c, y) * isl.units.time / isl.units.force));
             kinds.push((Watched::ForcePeak(c), false));
+            if isl.contacts[c].friction.is_some() {
+                functions.push(Box::new(move |y| isl.switch_value(c, y).unwrap_or(1.0)));
+                kinds.push((Watched::Switch(c), true));
+            }
         }
         for (p, (i, j, meeting, offset, tolerance)) in watched.iter().enumerate() {
             let (i, j, offset, tolerance) = (*i, *j, *offset, *tolerance);
@@ -615,7 +664,11 @@ impl<'a> World<'a> {
         if let (Some(observer), Some(points)) = (self.observer.as_deref_mut(), stepper.recorded()) {
             for (t, y) in points {
                 let bodies: Vec<Kinematic> = (0..scene.bodies.len())
-                    .map(|k| Kinematic { position: island.position(k, y), velocity: island.velocity(k, y) })
+                    .map(|k| Kinematic {
+                        position: island.position(k, y),
+                        velocity: island.velocity(k, y),
+                        spin: island.spin(k, y),
+                    })
                     .collect();
                 let contacts: Vec<ContactSample> = (0..island.contacts.len()).map(|c| sample(&island, c, y)).collect();
                 observer.instant(self.time + t * units.time, &bodies, &contacts);
@@ -664,11 +717,13 @@ impl<'a> World<'a> {
             if !body.is_immovable() {
                 self.gravity_work += body.mass * scene.world.gravity.dot(&island.displacement(k, y));
             }
-            self.states[k] = Kinematic { position: island.position(k, y), velocity: island.velocity(k, y) };
+            self.states[k] =
+                Kinematic { position: island.position(k, y), velocity: island.velocity(k, y), spin: island.spin(k, y) };
         }
         for (c, &active) in live.iter().enumerate() {
             let contact = &mut self.active[active];
             (contact.impulse, contact.work, contact.dissipated) = island.integrals(c, y);
+            (contact.spring, contact.tangential_work, _) = island.tangential_integrals(c, y);
         }
         self.immovable_work += island.immovable_work(y);
         let rates: Vec<f64> = (0..island.contacts.len()).map(|c| island.contact_state(c, y).rate).collect();
@@ -691,8 +746,9 @@ impl<'a> World<'a> {
                 Watched::Frozen(_) => {
                     for k in resting {
                         let body = &scene.bodies[k];
-                        self.settled += body.kinetic_energy(&self.states[k].velocity, &Vector3::zeros());
+                        self.settled += body.kinetic_energy(&self.states[k].velocity, &self.states[k].spin);
                         self.states[k].velocity = Vector3::zeros();
+                        self.states[k].spin = Vector3::zeros();
                         self.frozen[k] = true;
                     }
                     let all_rest = scene.bodies.iter().enumerate().all(|(k, b)| b.is_immovable() || self.frozen[k]);
@@ -724,6 +780,24 @@ impl<'a> World<'a> {
                 // A gap that opened after a contact its force ended: the next segment watches it afresh.
                 Watched::Reopened(_) => {}
                 Watched::Relist => self.relist(),
+                Watched::Switch(c) => {
+                    let contact = &mut self.active[live[c]];
+                    contact.mode = match contact.mode {
+                        Mode::Stick => Mode::Slip,
+                        Mode::Slip => Mode::Stick,
+                    };
+                    let record = &mut self.records[contact.record];
+                    record.switches += 1;
+                    if record.switches >= crate::impact::MAX_SWITCHES {
+                        self.notes.push(format!(
+                            "contact {} switched between sticking and sliding {} times by t = {now:.6e} s: the run \
+                             stopped there",
+                            contact.record, record.switches
+                        ));
+                        self.reason = Some(EndReason::StepBudget);
+                        return Ok(());
+                    }
+                }
                 Watched::MaxCompression(_) | Watched::ForcePeak(_) | Watched::Opened(_) => {
                     unreachable!("not terminal")
                 }
@@ -979,6 +1053,8 @@ impl<'a> World<'a> {
             elastic_left,
             penetration,
             velocities: [self.states[i].velocity, self.states[j].velocity],
+            spins: [self.states[i].spin, self.states[j].spin],
+            tangential_work: contact.tangential_work,
         });
         if record.max_compression.is_none() {
             // A contact that ended before any maximum of its penetration was located (a graze, or a pushed contact
@@ -1021,9 +1097,15 @@ impl<'a> World<'a> {
             }
             for (c, contact) in self.active.iter().enumerate() {
                 let state = island.contact_state(c, &y);
-                let elastic = contact.law.elastic_energy(state.penetration.max(0.0));
-                self.records[contact.record].at_stop =
-                    Some((contact.impulse, contact.work, contact.dissipated, elastic));
+                let (_, tangential_work, tangential_elastic) = island.tangential_integrals(c, &y);
+                self.records[contact.record].at_stop = Some(Stop {
+                    impulse: contact.impulse,
+                    work: contact.work,
+                    dissipated: contact.dissipated,
+                    elastic: contact.law.elastic_energy(state.penetration.max(0.0)),
+                    tangential_work,
+                    tangential_elastic,
+                });
             }
             if self.reason != Some(EndReason::AtRest) && !self.active.is_empty() {
                 let list: Vec<String> = self.active.iter().map(|c| c.record.to_string()).collect();

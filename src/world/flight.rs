@@ -18,6 +18,8 @@ pub struct Kinematic {
     pub position: Vector3<f64>,
     /// Velocity, m/s.
     pub velocity: Vector3<f64>,
+    /// Angular velocity, rad/s: constant in flight (only a contact's friction changes it).
+    pub spin: Vector3<f64>,
 }
 
 /// The acceleration of `body` in free flight: g for a finite mass, none for an immovable body.
@@ -31,6 +33,7 @@ impl Kinematic {
         Kinematic {
             position: self.position + self.velocity * time + a * (0.5 * time * time),
             velocity: self.velocity + a * time,
+            spin: self.spin,
         }
     }
 
@@ -248,9 +251,13 @@ mod tests {
         let (g, r, d0, tolerance) = (9.81, 0.01, 1e-4, 1e-15);
         let gravity = Vector3::new(0.0, 0.0, -g);
         let floor = Meeting::Face { face: Vector3::z(), radius: r, sign: 1.0 };
-        let wall = Kinematic { position: Vector3::zeros(), velocity: Vector3::zeros() };
+        let wall = Kinematic { position: Vector3::zeros(), velocity: Vector3::zeros(), spin: Vector3::zeros() };
         for v in [0.1, 0.02] {
-            let ball = Kinematic { position: Vector3::new(0.0, 0.0, r - d0), velocity: Vector3::new(0.0, 0.0, v) };
+            let ball = Kinematic {
+                position: Vector3::new(0.0, 0.0, r - d0),
+                velocity: Vector3::new(0.0, 0.0, v),
+                spin: Vector3::zeros(),
+            };
             let t = first_touch(&floor, &wall, &ball, &Vector3::zeros(), &gravity, tolerance, 100.0).unwrap();
             let expected = if v * v > 2.0 * g * d0 {
                 (v + (v * v - 2.0 * g * d0).sqrt()) / g
@@ -261,8 +268,12 @@ mod tests {
         }
         let spheres = Meeting::Spheres { reach: 0.02 };
         let (w, tolerance) = (0.5, 1e-9);
-        let first = Kinematic { position: Vector3::zeros(), velocity: Vector3::zeros() };
-        let apart = Kinematic { position: Vector3::new(0.02 - d0, 0.0, 0.0), velocity: Vector3::new(w, 0.0, 0.0) };
+        let first = Kinematic { position: Vector3::zeros(), velocity: Vector3::zeros(), spin: Vector3::zeros() };
+        let apart = Kinematic {
+            position: Vector3::new(0.02 - d0, 0.0, 0.0),
+            velocity: Vector3::new(w, 0.0, 0.0),
+            spin: Vector3::zeros(),
+        };
         let none = Vector3::zeros();
         assert_eq!(first_touch(&spheres, &first, &apart, &none, &none, tolerance, 100.0), None);
         let closing = Kinematic { velocity: Vector3::new(-w, 0.0, 0.0), ..apart };
@@ -278,21 +289,33 @@ mod tests {
         let g = Vector3::new(0.0, 0.0, -9.81);
         let (h, r) = (1.0, 0.01);
         let floor = Meeting::Face { face: Vector3::z(), radius: r, sign: 1.0 };
-        let wall = Kinematic { position: Vector3::zeros(), velocity: Vector3::zeros() };
+        let wall = Kinematic { position: Vector3::zeros(), velocity: Vector3::zeros(), spin: Vector3::zeros() };
         for u in [0.0, 3.0] {
-            let ball = Kinematic { position: Vector3::new(0.0, 0.0, h + r), velocity: Vector3::new(0.5, 0.0, u) };
+            let ball = Kinematic {
+                position: Vector3::new(0.0, 0.0, h + r),
+                velocity: Vector3::new(0.5, 0.0, u),
+                spin: Vector3::zeros(),
+            };
             let t = first_touch(&floor, &wall, &ball, &Vector3::zeros(), &g, 1e-14, 100.0).unwrap();
             let expected = (u + (u * u + 2.0 * 9.81 * h).sqrt()) / 9.81;
             assert!((t - expected).abs() < 1e-14 * expected.max(1.0), "{u}: {t} vs {expected}");
         }
         // A ball resting on the floor, just parted upwards at 1 m/s: the next touch is the parabola's, 2 u/g.
-        let parted = Kinematic { position: Vector3::new(0.0, 0.0, r), velocity: Vector3::new(0.0, 0.0, 1.0) };
+        let parted = Kinematic {
+            position: Vector3::new(0.0, 0.0, r),
+            velocity: Vector3::new(0.0, 0.0, 1.0),
+            spin: Vector3::zeros(),
+        };
         let t = first_touch(&floor, &wall, &parted, &Vector3::zeros(), &g, 1e-14, 100.0).unwrap();
         assert!((t - 2.0 / 9.81).abs() < 1e-14, "{t}");
         // A fixed sphere of radius 0.02 at the origin, a ball of 0.01 above it at 1 m, thrown up at 2 m/s: the quartic
         // of |x(t)|² = 0.03² has its first root at the ball's fall back, (2 + sqrt(4 + 2 g (1 - 0.03)))/g.
         let fixed = Meeting::Spheres { reach: 0.03 };
-        let ball = Kinematic { position: Vector3::new(0.0, 0.0, 1.0), velocity: Vector3::new(0.0, 0.0, 2.0) };
+        let ball = Kinematic {
+            position: Vector3::new(0.0, 0.0, 1.0),
+            velocity: Vector3::new(0.0, 0.0, 2.0),
+            spin: Vector3::zeros(),
+        };
         let t = first_touch(&fixed, &wall, &ball, &Vector3::zeros(), &g, 1e-14, 100.0).unwrap();
         let expected = (2.0 + (4.0 + 2.0 * 9.81 * 0.97f64).sqrt()) / 9.81;
         assert!((t - expected).abs() < 1e-12, "{t} vs {expected}");

@@ -6,15 +6,19 @@
 //! relative position at the segment's start plus the difference of two small displacements, without the rounding of
 //! where they are in the scene) and the velocity; for each active contact its normal impulse, the work of its normal
 //! force and the work of its damping; the work done by immovable bodies; and the clock (scaled time since the segment
-//! began), on which the free flight of the bodies outside the island depends. A segment lasts until a contact begins
-//! or ends: then the driver builds the next one.
+//! began), on which the free flight of the bodies outside the island depends. When a contact has friction, the state
+//! goes on (after the clock, so that a smooth island's state is unchanged) with every member's spin, scaled as
+//! ω r / V like one impact's, and each contact's tangential spring (in M V²/L) and tangential work. A segment lasts
+//! until a contact begins or ends, or one switches between sticking and sliding: then the driver builds the next one.
 
 use super::flight::Kinematic;
+use crate::dynamics::contact::{Kinematics, Mode, Tangential};
 use crate::dynamics::unit_or_one;
 use crate::geometry::Meeting;
 use crate::integrate::{ModelOf, Vector};
 use crate::law::ContactLaw;
 use crate::scene::WorldScene;
+use crate::setup::Friction;
 use nalgebra::{DVector, Dyn, Vector3};
 
 /// Scaled penetration below zero that still counts as the edge of a contact: the located end sees the force from
@@ -66,6 +70,15 @@ pub struct ActiveContact {
     pub work: f64,
     /// ∫ F_dissipative d' dt so far, J.
     pub dissipated: f64,
+    /// The tangential contact, resolved at first touch; `None` for a smooth one.
+    pub friction: Option<Friction>,
+    /// Sticking or sliding: constant within a segment (a switch ends it).
+    pub mode: Mode,
+    /// The tangential spring's force on body `pair[0]`, N.
+    pub spring: Vector3<f64>,
+    /// ∫ Ft·slip dt so far, J: the tangential force's power on the contact points' slip (negative: energy taken
+    /// from the bodies' motion, dissipated or held in the spring).
+    pub tangential_work: f64,
 }
 
 /// One contact's kinematics at an instant (SI).
@@ -104,6 +117,17 @@ pub struct Island<'a> {
     dissipation_units: Vec<f64>,
     /// For each member, the active contacts it takes part in.
     touching: Vec<Vec<usize>>,
+    /// Each contact's tangential law in the island's units (`None`: smooth).
+    tangentials: Vec<Option<Tangential>>,
+    /// The unit of each contact's tangential work state, in energy units (its mu, or 1 for a smooth contact).
+    friction_units: Vec<f64>,
+    /// For each member, M r²/I: how a scaled torque changes its scaled spin.
+    spin_gains: Vec<f64>,
+    /// Whether any contact has friction: the state then holds spins and tangential springs.
+    frictional: bool,
+    /// Where the members' spins (3 each) and the contacts' tangential states (spring 3, work 1) begin.
+    spin_base: usize,
+    tangential_base: usize,
     contact_base: usize,
     immovable_work: usize,
     clock: usize,
@@ -142,6 +166,29 @@ impl<'a> Island<'a> {
         let contact_base = 6 * members.len();
         let immovable_work = contact_base + 3 * contacts.len();
         let clock = immovable_work + 1;
+        let tangentials: Vec<Option<Tangential>> = contacts
+            .iter()
+            .map(|c| {
+                c.friction.map(|f| Tangential {
+                    friction: f.coefficient,
+                    stiffness: f.stiffness * units.length.powf(f.stiffness_exponent + 1.0) / units.force,
+                    exponent: f.stiffness_exponent,
+                    damping: 2.0 * f.damping_ratio * (f.tangential_mass / units.mass).sqrt(),
+                })
+            })
+            .collect();
+        let frictional = tangentials.iter().any(Option::is_some);
+        let friction_units = tangentials.iter().map(|t| unit_or_one(t.map_or(0.0, |t| t.friction))).collect();
+        let spin_gains = members
+            .iter()
+            .map(|&k| {
+                let body = &scene.bodies[k];
+                if body.rotates() { units.mass * body.radius * body.radius / body.inertia } else { 0.0 }
+            })
+            .collect();
+        let spin_base = clock + 1;
+        let tangential_base = spin_base + if frictional { 3 * members.len() } else { 0 };
+        let size = tangential_base + if frictional { 4 * contacts.len() } else { 0 };
         Island {
             scene,
             start,
@@ -153,10 +200,16 @@ impl<'a> Island<'a> {
             gravity: scene.world.gravity * (units.time / units.speed),
             dissipation_units,
             touching,
+            tangentials,
+            friction_units,
+            spin_gains,
+            frictional,
+            spin_base,
+            tangential_base,
             contact_base,
             immovable_work,
             clock,
-            size: clock + 1,
+            size,
         }
     }
 
@@ -173,6 +226,17 @@ impl<'a> Island<'a> {
             y[at] = contact.impulse / u.impulse;
             y[at + 1] = contact.work / u.energy;
             y[at + 2] = contact.dissipated / (u.energy * self.dissipation_units[c]);
+        }
+        if self.frictional {
+            for (m, &k) in self.members.iter().enumerate() {
+                let spin = self.start[k].spin * (self.scene.bodies[k].radius / u.speed);
+                y.fixed_rows_mut::<3>(self.spin_base + 3 * m).copy_from(&spin);
+            }
+            for (c, contact) in self.contacts.iter().enumerate() {
+                let at = self.tangential_base + 4 * c;
+                y.fixed_rows_mut::<3>(at).copy_from(&(contact.spring / u.force));
+                y[at + 3] = contact.tangential_work / (u.energy * self.friction_units[c]);
+            }
         }
         y
     }
@@ -201,6 +265,115 @@ impl<'a> Island<'a> {
             Some(m) => y.fixed_rows::<3>(6 * m + 3).into_owned() * self.units.speed,
             None => self.start[k].velocity + self.flight[k] * (y[self.clock] * self.units.time),
         }
+    }
+
+    /// Body `k`'s spin, scaled as ω r / V (zero for a flat body, whose lever arms are zero).
+    fn scaled_spin(&self, k: usize, y: &DVector<f64>) -> Vector3<f64> {
+        let body = &self.scene.bodies[k];
+        match self.slots[k] {
+            Some(m) if self.frictional => y.fixed_rows::<3>(self.spin_base + 3 * m).into_owned(),
+            _ if body.is_flat() => Vector3::zeros(),
+            _ => self.start[k].spin * (body.radius / self.units.speed),
+        }
+    }
+
+    /// Body `k`'s angular velocity, rad/s.
+    pub fn spin(&self, k: usize, y: &DVector<f64>) -> Vector3<f64> {
+        match self.slots[k] {
+            Some(m) if self.frictional => {
+                y.fixed_rows::<3>(self.spin_base + 3 * m).into_owned()
+                    * (self.units.speed / self.scene.bodies[k].radius)
+            }
+            _ => self.start[k].spin,
+        }
+    }
+
+    /// Contact `c`'s kinematics at `state` (its SI kinematics at `y`) in the island's units, as one impact's
+    /// tangential law reads them: penetration in L, rate and slip in V, the turning of the normal in 1/T, and the
+    /// lever arms over the radii. Two spheres share the overlap in the ratio of their radii (the arms add up to the line
+    /// of centres, so free spheres keep their angular momentum); on a face the sphere's arm is its radius.
+    fn kinematics(&self, c: usize, state: &ContactState, y: &DVector<f64>) -> Kinematics {
+        let u = &self.units;
+        let contact = &self.contacts[c];
+        let [i, j] = contact.pair;
+        let n = state.normal;
+        let arms = match contact.meeting {
+            Meeting::Spheres { reach } => {
+                let arm = n * (state.distance / reach);
+                [arm, -arm]
+            }
+            Meeting::Face { sign, .. } if sign > 0.0 => [Vector3::zeros(), -n],
+            Meeting::Face { .. } => [n, Vector3::zeros()],
+        };
+        let w = state.relative_velocity / u.speed;
+        let normal_rate = if state.distance.is_finite() {
+            (w - n * n.dot(&w)) * (u.length / state.distance)
+        } else {
+            Vector3::zeros()
+        };
+        let relative = -w + self.scaled_spin(i, y).cross(&arms[0]) - self.scaled_spin(j, y).cross(&arms[1]);
+        Kinematics {
+            normal: n,
+            penetration: state.penetration / u.length,
+            rate: state.rate / u.speed,
+            arms,
+            slip: relative - n * relative.dot(&n),
+            normal_rate,
+        }
+    }
+
+    /// Contact `c`'s tangential spring at `y` (in M V²/L), kept in the tangent plane of the normal `normal`.
+    fn spring(&self, c: usize, normal: &Vector3<f64>, y: &DVector<f64>) -> Vector3<f64> {
+        let raw = y.fixed_rows::<3>(self.tangential_base + 4 * c).into_owned();
+        raw - normal * raw.dot(normal)
+    }
+
+    /// Contact `c`'s tangential force on body `pair[0]` (in M V²/L) and its law's parts, for its normal force
+    /// `normal_force` (M V²/L) and that force's rate `normal_force_rate` (in M V²/L per T; only a sliding spring's rate
+    /// needs it): `None` for a smooth contact.
+    fn tangential(
+        &self,
+        c: usize,
+        state: &ContactState,
+        normal_force: f64,
+        normal_force_rate: f64,
+        y: &DVector<f64>,
+    ) -> Option<(Kinematics, Vector3<f64>, crate::dynamics::contact::TangentialForce)> {
+        let law = self.tangentials[c].as_ref()?;
+        let kinematics = self.kinematics(c, state, y);
+        let spring = self.spring(c, &kinematics.normal, y);
+        let force = law.evaluate(self.contacts[c].mode, &spring, &kinematics, normal_force, normal_force_rate);
+        Some((kinematics, spring, force))
+    }
+
+    /// The function whose fall through zero switches contact `c` between sticking and sliding (in the island's
+    /// force or force-rate units); `None` for a smooth contact.
+    pub fn switch_value(&self, c: usize, y: &DVector<f64>) -> Option<f64> {
+        let law = self.tangentials[c].as_ref()?;
+        let u = &self.units;
+        let state = self.contact_state(c, y);
+        let (elastic, dissipative) = self.force(c, &state);
+        let normal_force = (elastic + dissipative) / u.force;
+        let kinematics = self.kinematics(c, &state, y);
+        let spring = self.spring(c, &kinematics.normal, y);
+        let mode = self.contacts[c].mode;
+        let rate = if mode == Mode::Slip { self.force_rate(c, y) * u.time / u.force } else { 0.0 };
+        Some(law.switch_function(mode, &spring, &kinematics, normal_force, rate))
+    }
+
+    /// Contact `c`'s tangential state at `y` (SI): the spring's force on body `pair[0]` (N), the tangential work (J)
+    /// and the energy the spring holds (J; no more than the Coulomb cap lets it hold, as in one impact).
+    pub fn tangential_integrals(&self, c: usize, y: &DVector<f64>) -> (Vector3<f64>, f64, f64) {
+        let Some(law) = self.tangentials[c].as_ref() else { return (Vector3::zeros(), 0.0, 0.0) };
+        let u = &self.units;
+        let at = self.tangential_base + 4 * c;
+        let state = self.contact_state(c, y);
+        let (elastic, dissipative) = self.force(c, &state);
+        let spring = self.spring(c, &state.normal, y);
+        let kt = law.stiffness_at(state.penetration / u.length);
+        let stored = spring.norm().min(law.friction * ((elastic + dissipative) / u.force).max(0.0));
+        let energy = if kt > 0.0 { stored * stored / (2.0 * kt) } else { 0.0 };
+        (spring * u.force, y[at + 3] * u.energy * self.friction_units[c], energy * u.energy)
     }
 
     /// Body `k`'s position, m.
@@ -249,7 +422,12 @@ impl<'a> Island<'a> {
         for &c in &self.touching[m] {
             let state = self.contact_state(c, y);
             let (elastic, dissipative) = self.force(c, &state);
-            let on_j = state.normal * ((elastic + dissipative) / body.mass);
+            let mut on_j = state.normal * ((elastic + dissipative) / body.mass);
+            if let Some((_, _, tangential)) =
+                self.tangential(c, &state, (elastic + dissipative) / self.units.force, 0.0, y)
+            {
+                on_j -= tangential.force * (self.units.force / body.mass);
+            }
             if self.contacts[c].pair[1] == k { a += on_j } else { a -= on_j }
         }
         a
@@ -354,6 +532,11 @@ impl<'a> Island<'a> {
                 0.0
             };
             energy += 0.5 * masses[g] * v.norm_squared() + potential;
+            if held && self.frictional {
+                // A body an immovable one holds is at rest only when it no longer turns either.
+                let body = &self.scene.bodies[self.members[m]];
+                energy += body.kinetic_energy(&Vector3::zeros(), &self.spin(self.members[m], y));
+            }
         }
         energy
     }
@@ -379,6 +562,8 @@ impl ModelOf<Dyn> for Island<'_> {
             dy.fixed_rows_mut::<3>(6 * m).copy_from(&w);
             dy.fixed_rows_mut::<3>(6 * m + 3).copy_from(&self.gravity);
         }
+        // Spins change and springs load only through friction (added below).
+        dy.rows_mut(self.spin_base, self.size - self.spin_base).fill(0.0);
         let mut immovable_power = 0.0;
         for c in 0..self.contacts.len() {
             let state = self.contact_state(c, y);
@@ -403,6 +588,36 @@ impl ModelOf<Dyn> for Island<'_> {
             dy[at] = force;
             dy[at + 1] = force * rate;
             dy[at + 2] = dissipative / u.force * rate / self.dissipation_units[c];
+            if self.tangentials[c].is_none() {
+                continue;
+            }
+            // Friction: the tangential force Ft on body i (-Ft on body j) at the contact point, its torques, and the
+            // spring's rate (a sliding spring follows the Coulomb cap, so it needs the normal force's rate).
+            let sliding = self.contacts[c].mode == Mode::Slip && force > 0.0;
+            let force_rate = if sliding { self.force_rate(c, y) * u.time / u.force } else { 0.0 };
+            let (kinematics, _, tangential) =
+                self.tangential(c, &state, force, force_rate, y).expect("a frictional contact");
+            for (k, sign, arm) in [(i, 1.0, kinematics.arms[0]), (j, -1.0, kinematics.arms[1])] {
+                let on_k = tangential.force * sign;
+                match self.slots[k] {
+                    Some(m) => {
+                        let share = u.mass / self.scene.bodies[k].mass;
+                        let mut dw = dy.fixed_rows_mut::<3>(6 * m + 3);
+                        dw += on_k * share;
+                        let torque = arm.cross(&on_k) * self.spin_gains[m];
+                        let mut ds = dy.fixed_rows_mut::<3>(self.spin_base + 3 * m);
+                        ds += torque;
+                    }
+                    None => {
+                        let power =
+                            on_k.dot(&(self.velocity(k, y) / u.speed)) + arm.cross(&on_k).dot(&self.scaled_spin(k, y));
+                        immovable_power -= power;
+                    }
+                }
+            }
+            let at = self.tangential_base + 4 * c;
+            dy.fixed_rows_mut::<3>(at).copy_from(&tangential.spring_rate);
+            dy[at + 3] = tangential.force.dot(&kinematics.slip) / self.friction_units[c];
         }
         dy[self.immovable_work] = immovable_power;
         dy[self.clock] = 1.0;

@@ -28,6 +28,14 @@ pub struct ContactRecord {
     pub pushed: bool,
     /// The two bodies' velocities at first touch, m/s.
     pub velocities_before: [Vector3<f64>; 2],
+    /// The two bodies' angular velocities at first touch, rad/s.
+    pub spins_before: [Vector3<f64>; 2],
+    /// Coulomb coefficient of the contact (0: smooth).
+    pub friction: f64,
+    /// Whether a frictional contact began sliding (its tangential spring at the Coulomb limit from first touch).
+    pub began_sliding: bool,
+    /// How many times a frictional contact switched between sticking and sliding.
+    pub switches: u32,
     /// The law's elastic energy at the overlap the contact began on, J: zero for a contact that closes a gap or
     /// begins touching within the rounding of the positions; that of the overlap an earlier contact of the pair left
     /// when its force ended it, for one pressed again before the gap opened (the model gives that energy back).
@@ -38,11 +46,27 @@ pub struct ContactRecord {
     pub peak_force: Option<(f64, f64)>,
     /// Where the contact ended; `None` while it is active (when the run stopped).
     pub end: Option<Ending>,
-    /// The integrals when the run stopped, for a contact still active then: normal impulse (N s), normal work (J),
-    /// dissipated energy (J), elastic energy stored (J).
-    pub at_stop: Option<(f64, f64, f64, f64)>,
+    /// The integrals when the run stopped, for a contact still active then.
+    pub at_stop: Option<Stop>,
     /// Indices of the other contacts active at some time during this one.
     pub overlapping: BTreeSet<usize>,
+}
+
+/// A contact still active when the run stopped, as it stood then (SI).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Stop {
+    /// ∫ Fn dt, N s.
+    pub impulse: f64,
+    /// ∫ Fn d' dt, J.
+    pub work: f64,
+    /// Work of the normal damping, J.
+    pub dissipated: f64,
+    /// Elastic energy of the normal spring, J.
+    pub elastic: f64,
+    /// ∫ Ft·slip dt, J (negative: taken from the motion).
+    pub tangential_work: f64,
+    /// Energy the tangential spring holds, J.
+    pub tangential_elastic: f64,
 }
 
 /// A contact at its deepest penetration.
@@ -79,6 +103,11 @@ pub struct Ending {
     pub penetration: f64,
     /// The two bodies' velocities at the end, m/s.
     pub velocities: [Vector3<f64>; 2],
+    /// The two bodies' angular velocities at the end, rad/s.
+    pub spins: [Vector3<f64>; 2],
+    /// ∫ Ft·slip dt over the contact, J (negative: taken from the motion; the spring's energy is released when the
+    /// contact ends, so all of it is dissipated).
+    pub tangential_work: f64,
 }
 
 /// Why a world run stopped.
@@ -117,7 +146,7 @@ pub struct WorldOutcome {
     pub end_reason: EndReason,
     /// Scene time when the run stopped, s.
     pub end_time: f64,
-    /// Every body's position and velocity when the run stopped.
+    /// Every body's position, velocity and spin when the run stopped.
     pub bodies: Vec<Kinematic>,
     /// Work done on the movable bodies by immovable ones (moving walls), J.
     pub immovable_work: f64,

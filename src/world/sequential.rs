@@ -3,8 +3,12 @@
 //! finite mass flies under gravity. A contact whose bodies no longer approach along its normal (the instantaneous
 //! impacts before it have already parted them) gives no impulse. A contact still active when the run stopped (the
 //! bodies at rest on it) is plastic in the model, and a body resting on an immovable one no longer falls into it.
+//! A frictional contact is the rigid-body impact with Coulomb friction (docs/oblique.md): it slides throughout, or
+//! its tangential impulse stops the contact points' slip, and the bodies' spins change with it.
 
 use super::record::{ContactRecord, WorldOutcome};
+use crate::body::Body;
+use crate::instantaneous::rigid_body_impact;
 use crate::scene::WorldScene;
 use nalgebra::Vector3;
 
@@ -15,6 +19,8 @@ pub struct Sequential {
     pub velocity_after: Vec<Vector3<f64>>,
     /// Largest |simulated - sequential| velocity component over the bodies of finite mass, m/s.
     pub max_velocity_difference: f64,
+    /// Every body's angular velocity at the run's end, rad/s.
+    pub spin_after: Vec<Vector3<f64>>,
     /// The two bodies' velocities right after each contact in the model (in the order of the contacts), m/s.
     pub contact_velocities_after: Vec<[Vector3<f64>; 2]>,
 }
@@ -29,6 +35,7 @@ pub fn sequential(
     let bodies = &scene.bodies;
     let g = scene.world.gravity;
     let mut velocities: Vec<Vector3<f64>> = bodies.iter().map(|b| b.velocity).collect();
+    let mut spins: Vec<Vector3<f64>> = bodies.iter().map(|b| b.angular_velocity).collect();
     let mut now = 0.0;
     // Bodies resting on an immovable one (a contact that had not separated when the run stopped): gravity no longer
     // moves them into it. (body, unit normal from it into the immovable body)
@@ -61,11 +68,23 @@ pub fn sequential(
         }
         let approach = (velocities[i] - velocities[j]).dot(&n);
         if approach > 0.0 {
-            let (a, b) = (&bodies[i], &bodies[j]);
-            let effective_mass = crate::geometry::effective_mass(a, b)?;
-            let impulse = (1.0 + e) * effective_mass * approach;
-            velocities[i] -= n * (impulse * a.inverse_mass());
-            velocities[j] += n * (impulse * b.inverse_mass());
+            let mut pair = [bodies[i].clone(), bodies[j].clone()];
+            for (body, k) in pair.iter_mut().zip([i, j]) {
+                body.velocity = velocities[k];
+                body.angular_velocity = spins[k];
+            }
+            let effective_mass = crate::geometry::effective_mass(&pair[0], &pair[1])?;
+            // The slip of the contact points (body i's relative to body j's) across the normal; a flat body has no
+            // lever arm.
+            let arm = |body: &Body, sign: f64| if body.is_flat() { Vector3::zeros() } else { n * (sign * body.radius) };
+            let point = velocities[i] + spins[i].cross(&arm(&pair[0], 1.0))
+                - velocities[j]
+                - spins[j].cross(&arm(&pair[1], -1.0));
+            let slip = point - n * point.dot(&n);
+            let friction = scene.contact_of(i, j).0.friction;
+            let after = rigid_body_impact(&pair, &n, effective_mass, e, friction, &slip);
+            [velocities[i], velocities[j]] = after.velocity_after;
+            [spins[i], spins[j]] = after.angular_velocity_after;
         }
         after_each.push([velocities[i], velocities[j]]);
     }
@@ -81,6 +100,7 @@ pub fn sequential(
     Some(Sequential {
         velocity_after: velocities,
         max_velocity_difference: difference,
+        spin_after: spins,
         contact_velocities_after: after_each,
     })
 }
