@@ -189,8 +189,8 @@ impl Tangential {
                 let (size, limit) = (turn.norm(), MAX_TURN_RATE * spring.norm());
                 if size <= MISALIGNMENT * loading.norm() {
                     turn = Vector3::zeros();
-                } else if size > limit {
-                    turn *= limit / size;
+                } else if loading.norm() > limit {
+                    turn *= limit / loading.norm();
                 }
                 TangentialForce { force: *spring, spring_rate: turn + along * cap_rate + turning }
             }

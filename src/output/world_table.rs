@@ -91,8 +91,15 @@ fn line(c: &WorldContact) -> String {
         let list: Vec<String> = c.overlapping.iter().map(usize::to_string).collect();
         format!(", overlapping {}", list.join(", "))
     };
+    let friction = match (c.regime, c.slip_rest_time) {
+        ("smooth", _) => String::new(),
+        (_, Some(at)) => {
+            format!(", slip at rest after {}, friction {}", engineering(at, "s"), engineering(c.friction_work, "J"))
+        }
+        _ => format!(", sliding throughout, friction {}", engineering(c.friction_work, "J")),
+    };
     format!(
-        "at {} {duration}, approach {}, e {} / {}, peak {}{overlap}",
+        "at {} {duration}, approach {}, e {} / {}, peak {}{friction}{overlap}",
         engineering(c.start_time, "s"),
         engineering(c.approach_speed, "m/s"),
         e(c.restitution_velocity_ratio),
@@ -101,7 +108,13 @@ fn line(c: &WorldContact) -> String {
     )
 }
 
+/// Whether any body spins, before or after: the table then shows the angular velocities too.
+fn spinning(report: &WorldReport) -> bool {
+    report.bodies.iter().any(|b| b.angular_velocity_before != [0.0; 3] || b.angular_velocity_after != [0.0; 3])
+}
+
 fn bodies(report: &WorldReport) -> Section {
+    let spinning = spinning(report);
     let mut section = Section::new("bodies (before, and when the run ended)");
     each_shown(&mut section, report.bodies.len(), |section, index| {
         let body = &report.bodies[index];
@@ -113,6 +126,10 @@ fn bodies(report: &WorldReport) -> Section {
         section.row("  position after", vector(&body.position_after, "m"));
         section.row("  velocity before", vector(&body.velocity_before, "m/s"));
         section.row("  velocity after", vector(&body.velocity_after, "m/s"));
+        if spinning && body.mass.is_finite() {
+            section.row("  angular velocity before", vector(&body.angular_velocity_before, "rad/s"));
+            section.row("  angular velocity after", vector(&body.angular_velocity_after, "rad/s"));
+        }
     });
     section
 }
@@ -126,7 +143,13 @@ fn energy(report: &WorldReport) -> Section {
         section.row("work done by immovable bodies", engineering(e.work_of_immovable_bodies, "J"));
     }
     section.row("kinetic energy after", engineering(e.kinetic_after, "J"));
-    section.row("dissipated by damping", engineering(e.dissipated, "J"));
+    let friction: f64 = report.contacts.iter().map(|c| c.friction_work).sum();
+    if report.contacts.iter().any(|c| c.regime != "smooth") {
+        section.row("dissipated (damping and friction)", engineering(e.dissipated, "J"));
+        section.row("  of which by friction", engineering(friction, "J"));
+    } else {
+        section.row("dissipated by damping", engineering(e.dissipated, "J"));
+    }
     if e.elastic_stored_at_end != 0.0 {
         section.row("elastic energy stored at the end", engineering(e.elastic_stored_at_end, "J"));
     }
@@ -138,6 +161,7 @@ fn energy(report: &WorldReport) -> Section {
 }
 
 fn sequential(report: &WorldReport) -> Section {
+    let spinning = spinning(report);
     let mut section = Section::new("the textbook's sequential model: each contact alone, instantaneous, in order");
     let mut model = |with: &str, model: &Option<SequentialModel>| {
         let Some(model) = model else {
@@ -148,8 +172,14 @@ fn sequential(report: &WorldReport) -> Section {
         let movable: Vec<usize> = (0..report.bodies.len()).filter(|&k| report.bodies[k].mass.is_finite()).collect();
         each_shown(&mut section, movable.len(), |section, index| {
             let k = movable[index];
-            section
-                .row(format!("  velocity after, {}", report.bodies[k].name), vector(&model.velocity_after[k], "m/s"));
+            let name = &report.bodies[k].name;
+            section.row(format!("  velocity after, {name}"), vector(&model.velocity_after[k], "m/s"));
+            if spinning {
+                section.row(
+                    format!("  angular velocity after, {name}"),
+                    vector(&model.angular_velocity_after[k], "rad/s"),
+                );
+            }
         });
         section.row("  largest difference from simulation", format!("{} m/s", short(model.max_velocity_difference)));
     };

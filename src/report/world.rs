@@ -94,9 +94,12 @@ pub struct WorldContact {
     /// Energy the tangential force dissipated over the contact (or so far, while active), J (an addition; included in
     /// `energy.dissipated`; zero for a smooth contact).
     pub friction_work: f64,
-    /// "smooth", "sliding" (the contact points slid throughout) or "sticking" (their slip stopped at some time),
+    /// "smooth", "sliding" (the contact points slid throughout) or "sticking" (their slip came to rest at some time),
     /// as one impact's `oblique.regime` (an addition).
     pub regime: &'static str,
+    /// When the contact points' slip came to rest, s since first touch (0 for a contact without slip); null for a
+    /// smooth or a sliding contact (an addition).
+    pub slip_rest_time: Option<f64>,
     /// [ω_i, ω_j] at first touch, rad/s (an addition).
     pub angular_velocities_before: [Vec3; 2],
     /// [ω_i, ω_j] at separation, rad/s (an addition).
@@ -111,6 +114,8 @@ pub struct WorldBody {
     #[serde(serialize_with = "maybe_infinite")]
     pub radius: f64,
     pub velocity_before: Vec3,
+    /// rad/s (an addition).
+    pub angular_velocity_before: Vec3,
     pub position_before: Vec3,
     /// At the end of the run.
     pub velocity_after: Vec3,
@@ -184,6 +189,7 @@ pub fn build(scene: &WorldScene, outcome: &WorldOutcome, wall_time: f64) -> Worl
             mass: body.mass,
             radius: body.radius,
             velocity_before: vec3(&body.velocity),
+            angular_velocity_before: vec3(&body.angular_velocity),
             position_before: vec3(&body.position.unwrap_or_default()),
             velocity_after: vec3(&end.velocity),
             angular_velocity_after: vec3(&end.spin),
@@ -315,11 +321,12 @@ fn contact(record: &ContactRecord) -> WorldContact {
         friction_work: friction_work(record),
         regime: if record.friction == 0.0 {
             "smooth"
-        } else if record.began_sliding && record.switches == 0 {
+        } else if record.slip_rest.is_none() {
             "sliding"
         } else {
             "sticking"
         },
+        slip_rest_time: record.slip_rest.map(|at| at - record.start_time),
         angular_velocities_before: [vec3(&record.spins_before[0]), vec3(&record.spins_before[1])],
         angular_velocities_after: end.map(|e| [vec3(&e.spins[0]), vec3(&e.spins[1])]),
     }
@@ -428,6 +435,7 @@ pub fn from_impact(scene: &WorldScene, impact: &super::Report) -> WorldReport {
         // (A frictional pair runs in the world's driver: this one is smooth.)
         friction_work: 0.0,
         regime: "smooth",
+        slip_rest_time: None,
         angular_velocities_before: [impact.bodies[0].angular_velocity_before, impact.bodies[1].angular_velocity_before],
         angular_velocities_after: c.separated.then(|| {
             let spin = |k: usize| {
@@ -446,6 +454,7 @@ pub fn from_impact(scene: &WorldScene, impact: &super::Report) -> WorldReport {
             mass: body.mass,
             radius: body.radius,
             velocity_before: report.velocity_before,
+            angular_velocity_before: report.angular_velocity_before,
             position_before: vec3(&body.position.unwrap_or_default()),
             velocity_after: report.velocity_after.unwrap_or(report.velocity_before),
             angular_velocity_after: report.angular_velocity_after.unwrap_or(report.angular_velocity_before),

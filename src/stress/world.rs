@@ -1,12 +1,13 @@
 //! The stress run's random worlds (`impact stress --worlds`): 3 to 8 spheres on a jittered grid (some rows touching,
 //! as a cradle's), thrown at each other, half of them under gravity with a floor and sometimes a fixed sphere, every
-//! law, both separation criteria and both damping maps. Each run is checked for what a world must keep whatever
+//! law, both separation criteria and both damping maps; half of them with friction (a Mindlin or a constant tangential
+//! spring, with or without its damping) and spinning bodies. Each run is checked for what a world must keep whatever
 //! happens in it (docs/world.md#what-is-tested):
 //!
 //! - `world.energy_balance`: the energy balance closes, relative to the largest energy in play;
 //! - `world.momentum`, `world.angular_momentum`: without gravity and immovable bodies, the total momentum and angular
-//!   momentum (about the origin, orbital: the spheres do not spin) are kept, relative to `sum m |v|` and
-//!   `sum m |x| |v|`;
+//!   momentum (about the origin, orbital and spin) are kept, relative to `sum m |v|` and
+//!   `sum (m |x| |v| + I |ω|)`;
 //! - `world.overlap_after`: when the run stops, no two bodies that are not in an active contact overlap by more than
 //!   the rounding of their positions beyond the overlap their last contact parted them at (a contact its force
 //!   ended; zero otherwise): the measure is that excess over the tolerance, at most 1.
@@ -117,6 +118,26 @@ pub fn scene_text(seed: u64, index: u64, quick: bool) -> String {
         let skin = number(list.log(1e-4, 3e-2));
         text = text.replacen("[world]\n", &format!("[world]\nskin = {skin}\n"), 1);
     }
+    // Half the worlds are rough: a Coulomb coefficient of 0.05 to 1, a Mindlin or a constant tangential spring, with
+    // or without damping, and bodies spinning at up to 300 rad/s — from a stream of their own as well.
+    let mut rough = Draw::new(seed ^ 0xf41c_7105, index);
+    if rough.chance(0.5) {
+        let mut keys = format!("friction = {}\n", number(rough.log(0.05, 1.0)));
+        if rough.chance(0.3) {
+            let _ = writeln!(keys, "tangential_stiffness = {}", number(rough.log(1e4, 1e8)));
+        }
+        if rough.chance(0.5) {
+            let _ = writeln!(keys, "tangential_damping = {}", number(rough.uniform(0.0, 1.0)));
+        }
+        text += &keys;
+        for k in 0..count {
+            if rough.chance(0.6) {
+                let spin = Vector3::new(rough.uniform(-1.0, 1.0), rough.uniform(-1.0, 1.0), rough.uniform(-1.0, 1.0));
+                let name = format!("name = \"b{k}\"\n");
+                text = text.replacen(&name, &format!("{name}angular_velocity = {}\n", vector(&(spin * 300.0))), 1);
+            }
+        }
+    }
     text
 }
 
@@ -168,14 +189,16 @@ pub fn check(scene: &WorldScene, report: &WorldReport) -> (Vec<(&'static str, f6
         let (mut p0, mut p1, mut l0, mut l1) = (Vector3::zeros(), Vector3::zeros(), Vector3::zeros(), Vector3::zeros());
         let (mut p_scale, mut l_scale) = (0.0, 0.0);
         for (body, out) in scene.bodies.iter().zip(&report.bodies) {
-            let (x0, v0) = (body.position.unwrap_or_default(), body.velocity);
+            let (x0, v0, w0) = (body.position.unwrap_or_default(), body.velocity, body.angular_velocity);
             let (x1, v1) = (Vector3::from(out.position_after), Vector3::from(out.velocity_after));
+            let w1 = Vector3::from(out.angular_velocity_after);
             p0 += v0 * body.mass;
             p1 += v1 * body.mass;
-            l0 += x0.cross(&v0) * body.mass;
-            l1 += x1.cross(&v1) * body.mass;
+            l0 += x0.cross(&v0) * body.mass + w0 * body.inertia;
+            l1 += x1.cross(&v1) * body.mass + w1 * body.inertia;
             p_scale += body.mass * v0.norm();
-            l_scale += body.mass * x0.norm().max(x1.norm()) * v0.norm().max(v1.norm());
+            l_scale += body.mass * x0.norm().max(x1.norm()) * v0.norm().max(v1.norm())
+                + body.inertia * w0.norm().max(w1.norm());
         }
         record("world.momentum", (p1 - p0).amax() / p_scale);
         record("world.angular_momentum", (l1 - l0).amax() / l_scale);

@@ -104,6 +104,8 @@ enum Watched {
     Frozen(usize),
     /// A frictional contact (index among the active) switches between sticking and sliding.
     Switch(usize),
+    /// A frictional contact's slip comes to rest (its component along its first direction falls through zero).
+    SlipRest(usize),
 }
 
 /// The run's state between segments.
@@ -470,6 +472,7 @@ impl<'a> World<'a> {
             self.units = Some(contact_units);
         }
         let spins = [self.states[i].spin, self.states[j].spin];
+        let mut slip_direction = Vector3::zeros();
         let mode = match friction {
             Some(f) => {
                 // The contact points' slip (body i's relative to body j's, across the normal); the arms are the
@@ -478,7 +481,11 @@ impl<'a> World<'a> {
                     if body.is_flat() { Vector3::zeros() } else { normal * (sign * body.radius) }
                 };
                 let point = relative_velocity + spins[0].cross(&arm(a, 1.0)) - spins[1].cross(&arm(b, -1.0));
-                let slip = (point - normal * point.dot(&normal)).norm();
+                let across = point - normal * point.dot(&normal);
+                let slip = across.norm();
+                if slip > 0.0 {
+                    slip_direction = across / slip;
+                }
                 let sliding = Tangential {
                     friction: f.coefficient,
                     stiffness: f.stiffness,
@@ -511,7 +518,7 @@ impl<'a> World<'a> {
             velocities_before: [self.states[i].velocity, self.states[j].velocity],
             spins_before: spins,
             friction: spec.friction,
-            began_sliding: friction.is_some() && mode == Mode::Slip,
+            slip_rest: (friction.is_some() && slip_direction == Vector3::zeros()).then_some(self.time),
             switches: 0,
             elastic_at_start: if overlap > 2.0 * self.touching(i, j) { law.elastic_energy(overlap) } else { 0.0 },
             max_compression: None,
@@ -532,6 +539,7 @@ impl<'a> World<'a> {
             dissipated: 0.0,
             friction,
             mode,
+            slip_direction,
             spring: Vector3::zeros(),
             tangential_work: 0.0,
         });
@@ -599,6 +607,10 @@ impl<'a> World<'a> {
             if isl.contacts[c].friction.is_some() {
                 functions.push(Box::new(move |y| isl.switch_value(c, y).unwrap_or(1.0)));
                 kinds.push((Watched::Switch(c), true));
+                if self.records[isl.contacts[c].record].slip_rest.is_none() {
+                    functions.push(Box::new(move |y| isl.slip_along_start(c, y)));
+                    kinds.push((Watched::SlipRest(c), false));
+                }
             }
         }
         for (p, (i, j, meeting, offset, tolerance)) in watched.iter().enumerate() {
@@ -683,6 +695,10 @@ impl<'a> World<'a> {
                 Watched::MaxCompression(c) => self.note_compression(&island, c, &crossing.state, at),
                 Watched::ForcePeak(c) => self.note_peak(&island, c, &crossing.state, at),
                 Watched::Opened(p) => opened[p] = true,
+                Watched::SlipRest(c) => {
+                    let record = &mut self.records[island.contacts[c].record];
+                    record.slip_rest = record.slip_rest.or(Some(at));
+                }
                 _ => {}
             }
         }
@@ -798,7 +814,7 @@ impl<'a> World<'a> {
                         return Ok(());
                     }
                 }
-                Watched::MaxCompression(_) | Watched::ForcePeak(_) | Watched::Opened(_) => {
+                Watched::MaxCompression(_) | Watched::ForcePeak(_) | Watched::Opened(_) | Watched::SlipRest(_) => {
                     unreachable!("not terminal")
                 }
             },
@@ -818,7 +834,10 @@ impl<'a> World<'a> {
             Ending::TimeLimit => {}
             // A segment that spent its own step budget goes on in a fresh one (the run's budget decides); a stiff
             // one ends the run.
-            Ending::GaveUp(why) if why.contains("budget") => {}
+            // So does one the integrator found stiff: a sliding contact whose slip turns (in 3-D, driven by other
+            // contacts) keeps its spring following at the fastest turning rate (docs/world.md#friction); only the run's
+            // own budget ends it.
+            Ending::GaveUp(why) if why.contains("budget") || why.contains("stiff") => {}
             Ending::GaveUp(why) => {
                 self.notes.push(format!("the integration stopped at t = {now:.6e} s: {why}"));
                 self.reason = Some(EndReason::StepBudget);

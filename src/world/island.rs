@@ -76,6 +76,9 @@ pub struct ActiveContact {
     pub mode: Mode,
     /// The tangential spring's force on body `pair[0]`, N.
     pub spring: Vector3<f64>,
+    /// The direction of the contact points' slip at first touch (zero without friction or without slip): the slip
+    /// comes to rest where its component along it falls through zero.
+    pub slip_direction: Vector3<f64>,
     /// ∫ Ft·slip dt so far, J: the tangential force's power on the contact points' slip (negative: energy taken
     /// from the bodies' motion, dissipated or held in the spring).
     pub tangential_work: f64,
@@ -320,6 +323,12 @@ impl<'a> Island<'a> {
             slip: relative - n * relative.dot(&n),
             normal_rate,
         }
+    }
+
+    /// The component of contact `c`'s slip along its direction at first touch, in V.
+    pub fn slip_along_start(&self, c: usize, y: &DVector<f64>) -> f64 {
+        let state = self.contact_state(c, y);
+        self.kinematics(c, &state, y).slip.dot(&self.contacts[c].slip_direction)
     }
 
     /// Contact `c`'s tangential spring at `y` (in M V²/L), kept in the tangent plane of the normal `normal`.

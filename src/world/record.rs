@@ -32,8 +32,9 @@ pub struct ContactRecord {
     pub spins_before: [Vector3<f64>; 2],
     /// Coulomb coefficient of the contact (0: smooth).
     pub friction: f64,
-    /// Whether a frictional contact began sliding (its tangential spring at the Coulomb limit from first touch).
-    pub began_sliding: bool,
+    /// Scene time (s) at which a frictional contact's slip came to rest — its component along its direction at first
+    /// touch fell through zero (its first touch for a contact without slip); `None` while it slides.
+    pub slip_rest: Option<f64>,
     /// How many times a frictional contact switched between sticking and sliding.
     pub switches: u32,
     /// The law's elastic energy at the overlap the contact began on, J: zero for a contact that closes a gap or
