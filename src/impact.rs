@@ -40,8 +40,7 @@ pub enum SimulationError {
     Compression(String),
 }
 
-/// Most stick–slip switches one impact may take before the run is abandoned as chattering.
-pub const MAX_SWITCHES: u32 = 10_000;
+use crate::dynamics::contact::MAX_SWITCHES;
 
 /// What a run computes beyond the impact itself.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]

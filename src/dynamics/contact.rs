@@ -83,6 +83,9 @@ impl Shape {
 /// lasts about 3 T): faster turning is a quasi-static alignment, approximated at this rate.
 pub const MAX_TURN_RATE: f64 = 1e4;
 
+/// Most stick–slip switches one contact may take before the run is abandoned as chattering.
+pub const MAX_SWITCHES: u32 = 10_000;
+
 /// Angle (radians) between a sliding spring and its loading below which they count as aligned.
 pub const MISALIGNMENT: f64 = 1e-9;
 

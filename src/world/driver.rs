@@ -743,6 +743,7 @@ impl<'a> World<'a> {
         }
         self.immovable_work += island.immovable_work(y);
         let rates: Vec<f64> = (0..island.contacts.len()).map(|c| island.contact_state(c, y).rate).collect();
+        let rough = island.contacts.iter().any(|c| c.friction.is_some());
         let motion = island.motion_energy(y, &all_members, false);
         let resting: Vec<usize> = match end.ending {
             Ending::Event(index) => match kinds[index].0 {
@@ -804,7 +805,7 @@ impl<'a> World<'a> {
                     };
                     let record = &mut self.records[contact.record];
                     record.switches += 1;
-                    if record.switches >= crate::impact::MAX_SWITCHES {
+                    if record.switches >= crate::dynamics::contact::MAX_SWITCHES {
                         self.notes.push(format!(
                             "contact {} switched between sticking and sliding {} times by t = {now:.6e} s: the run \
                              stopped there",
@@ -832,12 +833,11 @@ impl<'a> World<'a> {
             Ending::TimeLimit if horizon == by_list => self.relist(),
             // A long segment: go on in a fresh one.
             Ending::TimeLimit => {}
-            // A segment that spent its own step budget goes on in a fresh one (the run's budget decides); a stiff
-            // one ends the run.
-            // So does one the integrator found stiff: a sliding contact whose slip turns (in 3-D, driven by other
-            // contacts) keeps its spring following at the fastest turning rate (docs/world.md#friction); only the run's
-            // own budget ends it.
-            Ending::GaveUp(why) if why.contains("budget") || why.contains("stiff") => {}
+            // A segment that spent its own step budget goes on in a fresh one (the run's budget decides). So does a
+            // frictional one the integrator found stiff: a sliding contact whose slip other contacts turn has its
+            // spring follow at the fastest turning rate (docs/world.md#friction), a stretch that ends; a smooth
+            // island found stiff ends the run.
+            Ending::GaveUp(why) if why.contains("budget") || (rough && why.contains("stiff")) => {}
             Ending::GaveUp(why) => {
                 self.notes.push(format!("the integration stopped at t = {now:.6e} s: {why}"));
                 self.reason = Some(EndReason::StepBudget);
