@@ -25,5 +25,6 @@ pub mod setup;
 pub mod stress;
 pub mod sweep;
 pub mod text;
+pub mod validate;
 pub mod world;
 pub mod world_run;

@@ -10,6 +10,7 @@ pub mod paths;
 pub mod run;
 mod stress;
 pub mod sweep;
+mod validate;
 
 use clap::{Parser, Subcommand};
 
@@ -40,6 +41,8 @@ pub enum Command {
     Gallery(gallery::GalleryArgs),
     /// Run random scenes over the whole accepted range, checking each against invariants and exact results.
     Stress(stress::StressArgs),
+    /// The validation suite: the program on cases with known answers, each quantity beside its reference.
+    Validate(validate::ValidateArgs),
 }
 
 /// A bad scene or bad arguments: exit status 2.
@@ -59,6 +62,7 @@ pub fn dispatch(cli: Cli) -> anyhow::Result<()> {
         Some(Command::Gallery(args)) => gallery::run(&args),
         Some(Command::Bench(args)) => bench::run(&args),
         Some(Command::Stress(args)) => stress::run(&args),
+        Some(Command::Validate(args)) => validate::run(&args),
     }
 }
 
