@@ -472,10 +472,15 @@ pub fn check_text(text: &str) -> Checked {
 /// carries an error of about atol / e relative (the absolute tolerance on speeds in units of v0, over the speed
 /// they part with; the report says so in a note when it exceeds 1e-9). Below, the times of a creeping or
 /// overdamped contact are not held to the exact references — only the invariants, energies, e (absolutely),
-/// penetration and force are.
+/// penetration and force are. "About" is a few times: the speed's error is a few atol, and seed 11's case 5941
+/// (Tsuji, a = 24, e = 0.0021, atol 1e-12) ended 3.2 atol / e = 1.5e-9 from the exact duration; times are checked
+/// where [`TIME_CONDITIONING`] atol / e stays within the resolution.
 pub fn times_resolved(scene: &Scene, e: f64) -> bool {
-    scene.solver.tolerances.atol / e <= TIME_RESOLUTION
+    TIME_CONDITIONING * scene.solver.tolerances.atol / e <= TIME_RESOLUTION
 }
+
+/// How many times atol / e a slow separation's time may be off (see [`times_resolved`]).
+pub const TIME_CONDITIONING: f64 = 4.0;
 
 /// The accuracy the stress run holds contact times to.
 pub const TIME_RESOLUTION: f64 = 1e-9;
