@@ -76,6 +76,11 @@ pub fn cases() -> Vec<Case> {
             about: "an elastic ball dropped 10 cm on a floor: free fall, bounce, free flight, in closed form",
             run: bouncing_elastic,
         },
+        Case {
+            name: "spring-dashpot-drop",
+            about: "a ball on a soft spring–dashpot dropped 1 cm: the contact with gravity in closed form",
+            run: spring_dashpot_drop,
+        },
     ]);
     cases
 }
@@ -357,6 +362,65 @@ fn bouncing_elastic(case: &'static str) -> Result<Vec<Row>, String> {
         ));
     }
     Ok(rows)
+}
+
+/// A ball dropped from rest 1 cm onto a floor through a linear spring–dashpot soft enough that gravity matters during
+/// contact (g/(w v) = 0.39): its contact in closed form. With d the penetration, `m d'' = m g - k d - c d'` from
+/// d = 0, d' = v = sqrt(2 g h): `d = g/w² + exp(-zeta w t) (A cos wd t + B sin wd t)`, A = -g/w², B = (v + zeta w A)/wd;
+/// the contact ends at the first zero of d after its maximum (bisected to the last bit), and e = -d'(end)/v — no
+/// longer the nominal e = 0.5 of the map without gravity.
+fn spring_dashpot_drop(case: &'static str) -> Result<Vec<Row>, String> {
+    let (k, h, g, nominal) = (1e3_f64, 0.01_f64, 9.81_f64, 0.5_f64);
+    let text = include_str!("../models/bouncing-ball.toml")
+        .replace(
+            "law = \"carvalho-martins\"\nrestitution = 0.8",
+            &format!("law = \"kelvin-voigt\"\nstiffness = {k:e}\nrestitution = {nominal}"),
+        )
+        .replace("gravity = [0.0, 0.0, -9.81]", "gravity = [0.0, 0.0, -9.81]\nmax_contacts = 1")
+        .replace("position = [0.0, 0.0, 0.11]", "position = [0.0, 0.0, 0.02]");
+    let report = world(&text)?;
+    let m = report.bodies[0].mass;
+    let zeta = -nominal.ln() / (std::f64::consts::PI.powi(2) + nominal.ln().powi(2)).sqrt();
+    let w = (k / m).sqrt();
+    let wd = w * (1.0 - zeta * zeta).sqrt();
+    let v = (2.0 * g * h).sqrt();
+    let a = -g / (w * w);
+    let b = (v + zeta * w * a) / wd;
+    let d = |t: f64| g / (w * w) + (-zeta * w * t).exp() * (a * (wd * t).cos() + b * (wd * t).sin());
+    let rate = |t: f64| {
+        (-zeta * w * t).exp()
+            * (-zeta * w * (a * (wd * t).cos() + b * (wd * t).sin()) + wd * (b * (wd * t).cos() - a * (wd * t).sin()))
+    };
+    // The penetration peaks within the first half period and returns to zero within one: scanned from a quarter
+    // period in steps of 1/4000 of a period, then bisected.
+    let step = std::f64::consts::TAU / wd / 4000.0;
+    let mut low = 1000.0 * step;
+    while d(low + step) > 0.0 {
+        low += step;
+        if low > 4000.0 * step {
+            return Err("the exact contact does not end within a period".into());
+        }
+    }
+    let mut high = low + step;
+    for _ in 0..200 {
+        let middle = 0.5 * (low + high);
+        if d(middle) > 0.0 { low = middle } else { high = middle }
+    }
+    let duration = 0.5 * (low + high);
+    let c = report.contacts.first().ok_or("no contact")?;
+    let source = "the damped oscillator under gravity in closed form (Kelvin–Voigt, zeta from e = 0.5)";
+    Ok(vec![
+        row(case, "duration, s", c.duration.ok_or("the ball did not leave")?, duration, source, 1e-9),
+        row(
+            case,
+            "e, velocity ratio",
+            c.restitution_velocity_ratio.ok_or("the ball did not leave")?,
+            -rate(duration) / v,
+            source,
+            1e-9,
+        ),
+        row(case, "first touch, s", c.start_time, (2.0 * h / g).sqrt(), "free fall (closed form)", 1e-12),
+    ])
 }
 
 #[cfg(test)]
