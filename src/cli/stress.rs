@@ -20,7 +20,7 @@ pub struct StressArgs {
     #[arg(long, default_value_t = 0)]
     pub start: u64,
     /// Narrower ranges that run fast (damping ratios up to 10, e >= 0.1, no friction): what the test suite runs. With
-    /// --worlds: each world runs up to 0.05 s and 12 contacts instead of 1 s and 60.
+    /// --worlds: each world runs up to 0.05 s and 12 contacts instead of 1 s and 60 (half of them rough, as without it).
     #[arg(long)]
     pub quick: bool,
     /// Print the JSON summary on stdout instead of the readable one.
