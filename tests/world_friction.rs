@@ -597,3 +597,79 @@ fn a_world_contact_with_friction_is_the_two_body_impact() {
     let balance = number(&report["energy"]["balance"], "balance");
     assert!(balance.abs() < 1e-9, "energy balance {balance:e}: {}", report["energy"]);
 }
+
+// ---------------------------------------------------------------------------------------------------------------
+// 5. A ball set down at rest on a slope; a spin no friction can change
+
+/// A steel ball set down at rest on a floor under a gravity tilted by 30° (the same as a ball on a 30° slope), μ = 0.1:
+/// it cannot roll (rolling needs μ >= (2/7) tan 30° = 0.165), so it slides from the start, although its contact
+/// points have no slip at first touch. With the normal impulse ∫ F_n dt = m g cos θ t (the normal motion settled,
+/// its rate below 1e-7 m/s), friction μ F_n up the slope gives, in closed form,
+///   v(t) = g (sin θ - μ cos θ) t,   ω(t) r = (5/2) μ g cos θ t
+/// (the torque r μ F_n over I = (2/5) m r²). The contact slid throughout: regime "sliding". (Before the stick switch
+/// function was kept above zero at first touch, such a contact — cap and spring both zero — stayed "sticking" with
+/// its spring outgrowing the cap unseen, and a slip that later reversed kept friction pointing the old way.)
+#[test]
+fn a_ball_set_down_on_a_steep_slope_slides_from_the_start() {
+    let (r, m, g, theta, mu, t) = (0.01, 0.0329, 9.81, 30f64.to_radians(), 0.1, 0.05);
+    let ball = Ball {
+        name: "ball",
+        radius: r,
+        mass: m,
+        position: [0.0, 0.0, r],
+        velocity: [0.0; 3],
+        spin: [0.0; 3],
+        inertia: None,
+        young: 2.1e11,
+        poisson: 0.3,
+    };
+    let scene = format!(
+        "[world]\ngravity = [{:?}, 0.0, {:?}]\nend_time = {t}\n\n{}{FLOOR}[contact]\nlaw = \"hunt-crossley\"\n\
+         restitution = 0.5\nfriction = {mu}\ntangential_damping = 0.5\n",
+        g * theta.sin(),
+        -g * theta.cos(),
+        ball.toml()
+    );
+    let report = run(&scene);
+    let contact = &report["contacts"][0];
+    assert_eq!(text(&contact["regime"], "regime"), "sliding", "{contact}");
+    assert!(contact["slip_rest_time"].is_null(), "{contact}");
+    let body = &report["bodies"][0];
+    let v = vector(&body["velocity_after"], "velocity");
+    let w = vector(&body["angular_velocity_after"], "spin");
+    assert!(v[2].abs() < 1e-7, "the normal motion has settled: {v:?}");
+    let expected_v = g * (theta.sin() - mu * theta.cos()) * t;
+    let expected_spin = 2.5 * mu * g * theta.cos() * t / r;
+    assert!(relative(v[0], expected_v) < 1e-6, "v {} against {expected_v}", v[0]);
+    assert!(relative(w[1], expected_spin) < 1e-6, "ω_y {} against {expected_spin}", w[1]);
+    assert!(number(&report["energy"]["balance"], "balance").abs() < 1e-9);
+}
+
+/// A ball dropped with a spin about the vertical onto a rough floor: point contacts carry no torsion, so no friction
+/// can change that spin; the ball still comes to rest (its motion about rest dies out) and keeps its spin, 40 rad/s.
+/// A smooth floor changes no spin at all: a ball dropped turning about a horizontal axis too keeps (10, 0, 40) rad/s.
+#[test]
+fn a_spin_no_friction_can_change_is_kept_when_the_ball_comes_to_rest() {
+    for (friction, spin) in [(0.2, [0.0, 0.0, 40.0]), (0.0, [10.0, 0.0, 40.0])] {
+        let ball = Ball {
+            name: "ball",
+            radius: 0.01,
+            mass: 0.0329,
+            position: [0.0, 0.0, 0.02],
+            velocity: [0.0; 3],
+            spin,
+            inertia: None,
+            young: 2.1e11,
+            poisson: 0.3,
+        };
+        let scene = format!(
+            "[world]\ngravity = [0.0, 0.0, -9.81]\n\n{}{FLOOR}[contact]\nlaw = \"hunt-crossley\"\nrestitution = 0.5\n\
+             friction = {friction}\n",
+            ball.toml()
+        );
+        let report = run(&scene);
+        assert_eq!(text(&report["world"]["end_reason"], "end_reason"), "at_rest", "μ = {friction}");
+        assert_vector("spin kept", vector(&report["bodies"][0]["angular_velocity_after"], "spin"), spin, 1e-12);
+        assert!(number(&report["energy"]["balance"], "balance").abs() < 1e-9);
+    }
+}

@@ -254,6 +254,25 @@ impl<'a> World<'a> {
         (penetration, (self.states[i].velocity - self.states[j].velocity).dot(&normal))
     }
 
+    /// Active contact `c`'s slip now (m/s): the velocity of body i's contact point relative to body j's, across the
+    /// normal. The contact point divides the line of centres in the ratio of the radii; a flat body has no arm.
+    fn slip_now(&self, c: usize) -> Vector3<f64> {
+        let contact = &self.active[c];
+        let [i, j] = contact.pair;
+        let (a, b) = (&self.scene.bodies[i], &self.scene.bodies[j]);
+        let relative = self.states[j].position - self.states[i].position;
+        let (_, n) = contact.meeting.penetration(&relative);
+        let arms = match contact.meeting {
+            Meeting::Spheres { reach } => [relative * (a.radius / reach), -relative * (b.radius / reach)],
+            Meeting::Face { sign, .. } if sign > 0.0 => [Vector3::zeros(), -n * b.radius],
+            Meeting::Face { .. } => [n * a.radius, Vector3::zeros()],
+        };
+        let point = self.states[i].velocity + self.states[i].spin.cross(&arms[0])
+            - self.states[j].velocity
+            - self.states[j].spin.cross(&arms[1]);
+        point - n * point.dot(&n)
+    }
+
     /// The scene time left before `end_time` (infinite without one).
     fn left(&self) -> f64 {
         self.scene.world.end_time.map_or(f64::INFINITY, |end| end - self.time)
@@ -495,7 +514,9 @@ impl<'a> World<'a> {
                 // In SI: the spring a tiny penetration (a millionth of the contact's length unit) would load against
                 // the Coulomb limit there.
                 let probe = PROBE * contact_units.length;
-                let contact_force = law.force(0.0, approach);
+                // The force the contact begins with: the law's at the overlap it starts on (a contact pressed again on
+                // the overlap an earlier one left starts under a finite cap), at the approach rate.
+                let contact_force = law.force(overlap.max(0.0), approach);
                 sliding.initial_mode(slip, approach, probe, contact_force, law.force(probe, approach))
             }
             None => Mode::Stick,
@@ -745,9 +766,18 @@ impl<'a> World<'a> {
         let rates: Vec<f64> = (0..island.contacts.len()).map(|c| island.contact_state(c, y).rate).collect();
         let rough = island.contacts.iter().any(|c| c.friction.is_some());
         let motion = island.motion_energy(y, &all_members, false);
-        let resting: Vec<usize> = match end.ending {
+        // The bodies a group at rest freezes, each with the spin it keeps: a smooth contact cannot change a spin, a
+        // rough one all but the spin about a point contact's normal (docs/world.md#at-rest).
+        let resting: Vec<(usize, Vector3<f64>)> = match end.ending {
             Ending::Event(index) => match kinds[index].0 {
-                Watched::Frozen(k) => components[k].0.iter().map(|&m| island.members[m]).collect(),
+                Watched::Frozen(k) => components[k]
+                    .0
+                    .iter()
+                    .map(|&m| {
+                        let k = island.members[m];
+                        (k, if rough { island.torsion(k, y) } else { island.spin(k, y) })
+                    })
+                    .collect(),
                 _ => Vec::new(),
             },
             _ => Vec::new(),
@@ -761,11 +791,12 @@ impl<'a> World<'a> {
             Ending::Event(index) => match kinds[index].0 {
                 Watched::Separation(c) => self.finish_contact(live[c], rates[c])?,
                 Watched::Frozen(_) => {
-                    for k in resting {
+                    for (k, kept) in resting {
                         let body = &scene.bodies[k];
-                        self.settled += body.kinetic_energy(&self.states[k].velocity, &self.states[k].spin);
+                        self.settled += body.kinetic_energy(&self.states[k].velocity, &self.states[k].spin)
+                            - body.kinetic_energy(&Vector3::zeros(), &kept);
                         self.states[k].velocity = Vector3::zeros();
-                        self.states[k].spin = Vector3::zeros();
+                        self.states[k].spin = kept;
                         self.frozen[k] = true;
                     }
                     let all_rest = scene.bodies.iter().enumerate().all(|(k, b)| b.is_immovable() || self.frozen[k]);
@@ -798,12 +829,19 @@ impl<'a> World<'a> {
                 Watched::Reopened(_) => {}
                 Watched::Relist => self.relist(),
                 Watched::Switch(c) => {
+                    let slip = self.slip_now(live[c]);
                     let contact = &mut self.active[live[c]];
                     contact.mode = match contact.mode {
                         Mode::Stick => Mode::Slip,
                         Mode::Slip => Mode::Stick,
                     };
                     let record = &mut self.records[contact.record];
+                    // A contact that began without slip and now slides (driven by gravity or other contacts, not by
+                    // its approach) has not come to rest yet: its slip's rest is watched from here, along this slip.
+                    if contact.mode == Mode::Slip && contact.slip_direction == Vector3::zeros() && slip.norm() > 0.0 {
+                        contact.slip_direction = slip / slip.norm();
+                        record.slip_rest = None;
+                    }
                     record.switches += 1;
                     if record.switches >= crate::dynamics::contact::MAX_SWITCHES {
                         self.notes.push(format!(

@@ -25,6 +25,10 @@ use nalgebra::{DVector, Dyn, Vector3};
 /// inside (Kelvin–Voigt's jump), as in the one-contact models.
 const EDGE: f64 = crate::dynamics::normal::EDGE;
 
+/// How far (in the island's force unit) a sticking contact's spring may outgrow the Coulomb cap before it slides: a
+/// margin far below the integration's accuracy that keeps the stick switch function above zero at first touch.
+const STICK_MARGIN: f64 = 1e-9;
+
 /// The units of an island's scaled state.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Units {
@@ -367,7 +371,23 @@ impl<'a> Island<'a> {
         let spring = self.spring(c, &kinematics.normal, y);
         let mode = self.contacts[c].mode;
         let rate = if mode == Mode::Slip { self.force_rate(c, y) * u.time / u.force } else { 0.0 };
-        Some(law.switch_function(mode, &spring, &kinematics, normal_force, rate))
+        let value = law.switch_function(mode, &spring, &kinematics, normal_force, rate);
+        // A sticking contact may begin with cap and spring both zero (no slip at first touch, no force yet): its
+        // `mu Fn - |T|` starts at zero, and a spring that then outgrows the cap (a ball set down on a slope) would
+        // never be seen to fall through it. Sticking holds to STICK_MARGIN of the force unit beyond the cap — far
+        // below the integration's accuracy — so that the function starts above zero.
+        Some(if mode == Mode::Stick { value + STICK_MARGIN } else { value })
+    }
+
+    /// The part of body `k`'s angular velocity (rad/s) that no friction of its contacts can change: the spin about
+    /// their common normal when all its active contacts share one normal's line (a ball on a floor spinning about the
+    /// vertical: point contacts carry no torsion), none otherwise.
+    pub fn torsion(&self, k: usize, y: &DVector<f64>) -> Vector3<f64> {
+        let spin = self.spin(k, y);
+        let Some(m) = self.slots[k] else { return spin };
+        let normals: Vec<Vector3<f64>> = self.touching[m].iter().map(|&c| self.contact_state(c, y).normal).collect();
+        let Some(first) = normals.first() else { return spin };
+        if normals.iter().all(|n| n.cross(first).norm() <= 1e-9) { first * first.dot(&spin) } else { Vector3::zeros() }
     }
 
     /// Contact `c`'s tangential state at `y` (SI): the spring's force on body `pair[0]` (N), the tangential work (J)
@@ -542,9 +562,11 @@ impl<'a> Island<'a> {
             };
             energy += 0.5 * masses[g] * v.norm_squared() + potential;
             if held && self.frictional {
-                // A body an immovable one holds is at rest only when it no longer turns either.
-                let body = &self.scene.bodies[self.members[m]];
-                energy += body.kinetic_energy(&Vector3::zeros(), &self.spin(self.members[m], y));
+                // A body an immovable one holds is at rest only when it no longer turns either — but for the spin no
+                // friction can change (about the normal of a point contact).
+                let k = self.members[m];
+                let turning = self.spin(k, y) - self.torsion(k, y);
+                energy += self.scene.bodies[k].kinetic_energy(&Vector3::zeros(), &turning);
             }
         }
         energy
