@@ -70,6 +70,19 @@ impl Meeting {
         }
     }
 
+    /// The lever arms (m) from the centres of bodies i and j (radii `radii`) to their contact point, for `relative` =
+    /// x_j - x_i (m): the point divides the line of centres in the ratio of the radii (the arms add up to it, so two
+    /// free spheres keep their angular momentum); on a face the sphere's arm is its radius along the normal, the flat
+    /// body's none.
+    pub fn lever_arms(&self, relative: &Vector3<f64>, radii: [f64; 2]) -> [Vector3<f64>; 2] {
+        let (_, n) = self.penetration(relative);
+        match *self {
+            Meeting::Spheres { reach } => [relative * (radii[0] / reach), -relative * (radii[1] / reach)],
+            Meeting::Face { sign, .. } if sign > 0.0 => [Vector3::zeros(), -n * radii[1]],
+            Meeting::Face { .. } => [n * radii[0], Vector3::zeros()],
+        }
+    }
+
     /// The penetration (m, positive overlapping) and the unit normal from body i to body j, for `relative` =
     /// x_j - x_i (m).
     pub fn penetration(&self, relative: &Vector3<f64>) -> (f64, Vector3<f64>) {
@@ -82,6 +95,26 @@ impl Meeting {
             Meeting::Face { face, radius, sign } => (radius - sign * face.dot(relative), face * sign),
         }
     }
+}
+
+/// The slip of two bodies' contact points (m/s): the velocity of body i's point relative to body j's, across the unit
+/// normal `normal`, for their `velocities`, angular velocities `spins` and lever arms `arms` (m, from each centre to
+/// the contact point).
+pub fn slip(
+    normal: &Vector3<f64>,
+    velocities: [Vector3<f64>; 2],
+    spins: [Vector3<f64>; 2],
+    arms: [Vector3<f64>; 2],
+) -> Vector3<f64> {
+    let point = velocities[0] + spins[0].cross(&arms[0]) - velocities[1] - spins[1].cross(&arms[1]);
+    point - normal * point.dot(normal)
+}
+
+/// The lever arms of two bodies at first touch along the unit normal `normal` (body i to body j): each radius along
+/// the normal towards the other, none for a flat body — rigid-body theory's arms.
+pub fn touch_arms(a: &Body, b: &Body, normal: &Vector3<f64>) -> [Vector3<f64>; 2] {
+    let arm = |body: &Body, sign: f64| if body.is_flat() { Vector3::zeros() } else { normal * (sign * body.radius) };
+    [arm(a, 1.0), arm(b, -1.0)]
 }
 
 /// Relative tolerance (of the smaller radius) within which bodies count as just touching.

@@ -5,6 +5,7 @@
 mod common;
 
 use common::binary::{Scratch, impact as binary};
+use common::vectors::{V, add, cross, dot, norm, scale, sub};
 use impact::history::Recording;
 use impact::impact::simulate;
 use impact::report::Report;
@@ -18,27 +19,6 @@ fn run(text: &str) -> Report {
 
 fn relative(simulated: f64, expected: f64) -> f64 {
     ((simulated - expected) / expected).abs()
-}
-
-type V = [f64; 3];
-
-fn sub(a: V, b: V) -> V {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-fn add(a: V, b: V) -> V {
-    [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
-}
-fn scale(a: V, k: f64) -> V {
-    [a[0] * k, a[1] * k, a[2] * k]
-}
-fn dot(a: V, b: V) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-fn cross(a: V, b: V) -> V {
-    [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
-}
-fn norm(a: V) -> f64 {
-    dot(a, a).sqrt()
 }
 
 /// A small deterministic generator (xorshift64*), so that the random scenes are the same on every run.

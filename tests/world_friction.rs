@@ -13,34 +13,11 @@
 
 mod common;
 
+use common::vectors::{V, add, cross, dot, norm, scale, sub, unit};
 use impact::scene::{Parsed, WorldScene};
 use impact::setup::parse_any;
 use serde_json::Value;
 use std::path::Path;
-
-type V = [f64; 3];
-
-fn add(a: V, b: V) -> V {
-    [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
-}
-fn sub(a: V, b: V) -> V {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-fn scale(a: V, k: f64) -> V {
-    [a[0] * k, a[1] * k, a[2] * k]
-}
-fn dot(a: V, b: V) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-fn cross(a: V, b: V) -> V {
-    [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
-}
-fn norm(a: V) -> f64 {
-    dot(a, a).sqrt()
-}
-fn unit(a: V) -> V {
-    scale(a, 1.0 / norm(a))
-}
 
 fn relative(value: f64, expected: f64) -> f64 {
     ((value - expected) / expected).abs()

@@ -259,18 +259,11 @@ impl<'a> World<'a> {
     fn slip_now(&self, c: usize) -> Vector3<f64> {
         let contact = &self.active[c];
         let [i, j] = contact.pair;
-        let (a, b) = (&self.scene.bodies[i], &self.scene.bodies[j]);
-        let relative = self.states[j].position - self.states[i].position;
+        let (a, b) = (&self.states[i], &self.states[j]);
+        let relative = b.position - a.position;
         let (_, n) = contact.meeting.penetration(&relative);
-        let arms = match contact.meeting {
-            Meeting::Spheres { reach } => [relative * (a.radius / reach), -relative * (b.radius / reach)],
-            Meeting::Face { sign, .. } if sign > 0.0 => [Vector3::zeros(), -n * b.radius],
-            Meeting::Face { .. } => [n * a.radius, Vector3::zeros()],
-        };
-        let point = self.states[i].velocity + self.states[i].spin.cross(&arms[0])
-            - self.states[j].velocity
-            - self.states[j].spin.cross(&arms[1]);
-        point - n * point.dot(&n)
+        let arms = contact.meeting.lever_arms(&relative, [self.scene.bodies[i].radius, self.scene.bodies[j].radius]);
+        crate::geometry::slip(&n, [a.velocity, b.velocity], [a.spin, b.spin], arms)
     }
 
     /// The scene time left before `end_time` (infinite without one).
@@ -494,13 +487,10 @@ impl<'a> World<'a> {
         let mut slip_direction = Vector3::zeros();
         let mode = match friction {
             Some(f) => {
-                // The contact points' slip (body i's relative to body j's, across the normal); the arms are the
-                // radii along the normal at first touch, none for a flat body.
-                let arm = |body: &crate::body::Body, sign: f64| {
-                    if body.is_flat() { Vector3::zeros() } else { normal * (sign * body.radius) }
-                };
-                let point = relative_velocity + spins[0].cross(&arm(a, 1.0)) - spins[1].cross(&arm(b, -1.0));
-                let across = point - normal * point.dot(&normal);
+                // The contact points' slip at first touch (body i's relative to body j's, across the normal).
+                let velocities = [self.states[i].velocity, self.states[j].velocity];
+                let across =
+                    crate::geometry::slip(&normal, velocities, spins, crate::geometry::touch_arms(a, b, &normal));
                 let slip = across.norm();
                 if slip > 0.0 {
                     slip_direction = across / slip;
@@ -764,7 +754,7 @@ impl<'a> World<'a> {
         }
         self.immovable_work += island.immovable_work(y);
         let rates: Vec<f64> = (0..island.contacts.len()).map(|c| island.contact_state(c, y).rate).collect();
-        let rough = island.contacts.iter().any(|c| c.friction.is_some());
+        let rough = island.frictional();
         let motion = island.motion_energy(y, &all_members, false);
         // The bodies a group at rest freezes, each with the spin it keeps: a smooth contact cannot change a spin, a
         // rough one all but the spin about a point contact's normal (docs/world.md#at-rest).

@@ -351,24 +351,38 @@ impl<'a> Island<'a> {
         normal_force: f64,
         normal_force_rate: f64,
         y: &DVector<f64>,
-    ) -> Option<(Kinematics, Vector3<f64>, crate::dynamics::contact::TangentialForce)> {
+    ) -> Option<(Kinematics, crate::dynamics::contact::TangentialForce)> {
+        let (law, kinematics, spring) = self.tangential_state(c, state, y)?;
+        let force = law.evaluate(self.contacts[c].mode, &spring, &kinematics, normal_force, normal_force_rate);
+        Some((kinematics, force))
+    }
+
+    /// Contact `c`'s tangential law, its kinematics at `state` and its spring (`None` for a smooth contact).
+    fn tangential_state(
+        &self,
+        c: usize,
+        state: &ContactState,
+        y: &DVector<f64>,
+    ) -> Option<(&Tangential, Kinematics, Vector3<f64>)> {
         let law = self.tangentials[c].as_ref()?;
         let kinematics = self.kinematics(c, state, y);
         let spring = self.spring(c, &kinematics.normal, y);
-        let force = law.evaluate(self.contacts[c].mode, &spring, &kinematics, normal_force, normal_force_rate);
-        Some((kinematics, spring, force))
+        Some((law, kinematics, spring))
+    }
+
+    /// Whether any contact of the island has friction.
+    pub fn frictional(&self) -> bool {
+        self.frictional
     }
 
     /// The function whose fall through zero switches contact `c` between sticking and sliding (in the island's
     /// force or force-rate units); `None` for a smooth contact.
     pub fn switch_value(&self, c: usize, y: &DVector<f64>) -> Option<f64> {
-        let law = self.tangentials[c].as_ref()?;
         let u = &self.units;
         let state = self.contact_state(c, y);
+        let (law, kinematics, spring) = self.tangential_state(c, &state, y)?;
         let (elastic, dissipative) = self.force(c, &state);
         let normal_force = (elastic + dissipative) / u.force;
-        let kinematics = self.kinematics(c, &state, y);
-        let spring = self.spring(c, &kinematics.normal, y);
         let mode = self.contacts[c].mode;
         let rate = if mode == Mode::Slip { self.force_rate(c, y) * u.time / u.force } else { 0.0 };
         let value = law.switch_function(mode, &spring, &kinematics, normal_force, rate);
@@ -452,7 +466,7 @@ impl<'a> Island<'a> {
             let state = self.contact_state(c, y);
             let (elastic, dissipative) = self.force(c, &state);
             let mut on_j = state.normal * ((elastic + dissipative) / body.mass);
-            if let Some((_, _, tangential)) =
+            if let Some((_, tangential)) =
                 self.tangential(c, &state, (elastic + dissipative) / self.units.force, 0.0, y)
             {
                 on_j -= tangential.force * (self.units.force / body.mass);
@@ -626,7 +640,7 @@ impl ModelOf<Dyn> for Island<'_> {
             // spring's rate (a sliding spring follows the Coulomb cap, so it needs the normal force's rate).
             let sliding = self.contacts[c].mode == Mode::Slip && force > 0.0;
             let force_rate = if sliding { self.force_rate(c, y) * u.time / u.force } else { 0.0 };
-            let (kinematics, _, tangential) =
+            let (kinematics, tangential) =
                 self.tangential(c, &state, force, force_rate, y).expect("a frictional contact");
             for (k, sign, arm) in [(i, 1.0, kinematics.arms[0]), (j, -1.0, kinematics.arms[1])] {
                 let on_k = tangential.force * sign;

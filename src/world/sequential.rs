@@ -7,7 +7,6 @@
 //! its tangential impulse stops the contact points' slip, and the bodies' spins change with it.
 
 use super::record::{ContactRecord, WorldOutcome};
-use crate::body::Body;
 use crate::instantaneous::rigid_body_impact;
 use crate::scene::WorldScene;
 use nalgebra::Vector3;
@@ -74,13 +73,8 @@ pub fn sequential(
                 body.angular_velocity = spins[k];
             }
             let effective_mass = crate::geometry::effective_mass(&pair[0], &pair[1])?;
-            // The slip of the contact points (body i's relative to body j's) across the normal; a flat body has no
-            // lever arm.
-            let arm = |body: &Body, sign: f64| if body.is_flat() { Vector3::zeros() } else { n * (sign * body.radius) };
-            let point = velocities[i] + spins[i].cross(&arm(&pair[0], 1.0))
-                - velocities[j]
-                - spins[j].cross(&arm(&pair[1], -1.0));
-            let slip = point - n * point.dot(&n);
+            let arms = crate::geometry::touch_arms(&pair[0], &pair[1], &n);
+            let slip = crate::geometry::slip(&n, [velocities[i], velocities[j]], [spins[i], spins[j]], arms);
             let friction = scene.contact_of(i, j).0.friction;
             let after = rigid_body_impact(&pair, &n, effective_mass, e, friction, &slip);
             [velocities[i], velocities[j]] = after.velocity_after;
