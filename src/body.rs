@@ -31,6 +31,10 @@ pub struct Body {
     pub young: Option<f64>,
     /// Poisson's ratio; needed only for Hertz stiffness.
     pub poisson: Option<f64>,
+    /// Yield stress Y in Pa (`f64::INFINITY` for a body that never yields): plastic flow begins under a contact
+    /// whose peak pressure reaches 1.6 Y (Johnson, Contact Mechanics, ch. 11). Used by the `elastic` verdict and by
+    /// the `thornton` law.
+    pub yield_stress: Option<f64>,
 }
 
 impl Body {

@@ -402,6 +402,7 @@ pub fn default_scene(law: LawKind, approach_speed: f64, separation: Separation) 
         inertia_given: None,
         young: None,
         poisson: None,
+        yield_stress: None,
     };
     let exponent = if law.family() == Family::Linear { 1.0 } else { 1.5 };
     Scene {

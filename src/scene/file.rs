@@ -59,6 +59,7 @@ pub struct RawBody {
     pub inertia: Option<At<f64>>,
     pub young: Option<At<f64>>,
     pub poisson: Option<At<f64>>,
+    pub yield_stress: Option<At<f64>>,
     /// A flat body's face normal in a world run.
     pub normal: Option<At<Vec<f64>>>,
 }

@@ -269,6 +269,9 @@ fn check_body(i: usize, body: &Body) -> Checked {
     if let Some(young) = body.young {
         number(key("young"), young, Allowed::PositiveOrInfinite)?;
     }
+    if let Some(stress) = body.yield_stress {
+        number(key("yield_stress"), stress, Allowed::PositiveOrInfinite)?;
+    }
     if let Some(nu) = body.poisson {
         number(key("poisson"), nu, Allowed::Any)?;
         if !(nu > -1.0 && nu <= 0.5) {

@@ -543,6 +543,7 @@ fn body(src: &Source, i: usize, raw: &At<RawBody>) -> Checked<Body> {
     let inertia_given = raw.inertia.as_ref().map(|i| number(src, &key("inertia"), i));
     let young = raw.young.as_ref().map(|e| number(src, &key("young"), e));
     let poisson = raw.poisson.as_ref().map(|nu| number(src, &key("poisson"), nu));
+    let yield_stress = raw.yield_stress.as_ref().map(|y| number(src, &key("yield_stress"), y));
     let name = raw.name.as_ref().map_or_else(|| format!("body {}", i + 1), |n| n.get_ref().clone());
     Ok(Body {
         name,
@@ -556,6 +557,7 @@ fn body(src: &Source, i: usize, raw: &At<RawBody>) -> Checked<Body> {
         inertia_given,
         young,
         poisson,
+        yield_stress,
     })
 }
 

@@ -109,7 +109,7 @@ fn unit_of(key: &str) -> &'static str {
         "radius" | "position" => "m",
         "mass" => "kg",
         "density" => "kg/m³",
-        "young" => "Pa",
+        "young" | "yield_stress" => "Pa",
         "velocity" => "m/s",
         "angular_velocity" => "rad/s",
         "stiffness" => "N/m^n",

@@ -20,7 +20,8 @@ use nalgebra::Vector3;
 use std::fmt;
 use toml::{Table, Value};
 
-const BODY_NUMBERS: [&str; 7] = ["radius", "mass", "density", "young", "poisson", "inertia", "incidence_deg"];
+const BODY_NUMBERS: [&str; 8] =
+    ["radius", "mass", "density", "young", "poisson", "yield_stress", "inertia", "incidence_deg"];
 const BODY_VECTORS: [&str; 3] = ["velocity", "position", "angular_velocity"];
 const CONTACT_NUMBERS: [&str; 7] =
     ["restitution", "damping", "stiffness", "exponent", "friction", "tangential_stiffness", "tangential_damping"];
@@ -29,7 +30,7 @@ const SOLVER_NUMBERS: [&str; 2] = ["rtol", "atol"];
 
 /// The keys a sweep accepts, for error messages.
 pub const VALID_KEYS: &str = "bodies.I.radius, bodies.I.mass, bodies.I.density, bodies.I.young, bodies.I.poisson, \
-     bodies.I.inertia, bodies.I.velocity.J, bodies.I.position.J, bodies.I.angular_velocity.J, bodies.I.incidence_deg, \
+     bodies.I.yield_stress, bodies.I.inertia, bodies.I.velocity.J, bodies.I.position.J, bodies.I.angular_velocity.J, bodies.I.incidence_deg, \
      contact.restitution, contact.damping, contact.stiffness, contact.exponent, contact.friction, \
      contact.tangential_stiffness, contact.tangential_damping, contact.normal.J, solver.rtol, solver.atol \
      (I = 0 or 1, the body; J = 0, 1 or 2, the component)";
@@ -304,6 +305,7 @@ impl SceneKey {
                     ("density", None) => body.density = Some(value),
                     ("young", None) => body.young = Some(value),
                     ("poisson", None) => body.poisson = Some(value),
+                    ("yield_stress", None) => body.yield_stress = Some(value),
                     ("inertia", None) => body.inertia_given = Some(value),
                     ("velocity", Some(j)) => body.velocity[j] = value,
                     ("angular_velocity", Some(j)) => body.angular_velocity[j] = value,
