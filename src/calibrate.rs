@@ -267,7 +267,7 @@ fn published_map(law: LawKind, target: f64, contact: &Contact, has_scene: bool) 
             (zeta, reference::kelvin_voigt(zeta, contact.separation)?.restitution)
         }
         Family::Tsuji => (damping / 5f64.sqrt(), reference::tsuji(damping, contact.separation)?.restitution),
-        Family::Elastic | Family::Viscoelastic => return None,
+        Family::Elastic | Family::Viscoelastic | Family::Plastic => return None,
     };
     let damping = (has_scene || law.family() != Family::Linear).then_some(damping);
     Some(PublishedMap { map: law.info().map, damping, dimensionless, restitution })
@@ -418,6 +418,7 @@ pub fn default_scene(law: LawKind, approach_speed: f64, separation: Separation) 
             friction: 0.0,
             tangential_stiffness: crate::scene::TangentialStiffnessSpec::Mindlin,
             tangential_damping: 0.0,
+            yield_pressure: None,
             normal: None,
             normal_given: None,
         },
@@ -467,7 +468,7 @@ impl Contact {
             Family::Tsuji => damping / 5f64.sqrt(),
             // b = (3/2) A (K/m*)^(2/5) v0^(1/5) (docs/references.md).
             Family::Viscoelastic => damping * self.brilliantov_b_per_a(),
-            Family::Elastic => 0.0,
+            Family::Elastic | Family::Plastic => 0.0,
         }
     }
 
@@ -483,7 +484,7 @@ fn dimensionless_symbol(law: LawKind) -> &'static str {
         Family::Linear => "zeta = c / (2 sqrt(k m*))",
         Family::Tsuji => "zeta = a / sqrt(5)",
         Family::Viscoelastic => "b = (3/2) A (K/m*)^(2/5) v0^(1/5)",
-        Family::Elastic => "-",
+        Family::Elastic | Family::Plastic => "-",
     }
 }
 
@@ -570,7 +571,7 @@ fn solve(
             })
         }
         Family::Viscoelastic => brilliantov(target, contact, simulations),
-        Family::Elastic => Err(CalibrationError::NoDamping),
+        Family::Elastic | Family::Plastic => Err(CalibrationError::NoDamping),
     }
 }
 

@@ -169,6 +169,7 @@ fn run<const N: usize, M: ContactModel<N>>(
         below_limit_since: (frictional && !model.sliding(&start)).then_some(0.0),
         below_limit: 0.0,
         switches: 0,
+        resume: usize::MAX,
     };
     stepper.note(0.0, start);
 
@@ -182,17 +183,25 @@ fn run<const N: usize, M: ContactModel<N>>(
     // Whether to watch for the slip coming to rest (a frictional contact that starts slipping).
     let slipping = model.slip_along_start(&start).is_some();
 
-    // Event lists: the phase's own events first, then the slip's rest (watched, not terminal), then (for a frictional
-    // model only) the stick–slip switch, last.
+    let yielding = |y: &State<N>| model.yield_margin(y).unwrap_or(1.0);
+
+    // Event lists: the phase's own events first, then the slip's rest (watched, not terminal), then the onset of yield
+    // (a step boundary on the kink of a yielding law's force), then (for a frictional model only) the stick–slip
+    // switch, last.
     let mut compression = vec![event(&rate, true), event(&force_rate, false)];
     let slip_in_compression = compression.len();
     if slipping {
         compression.push(event(&slip, false));
     }
+    if model.yield_margin(&start).is_some_and(|margin| margin > 0.0) {
+        phases.resume = compression.len();
+        compression.push(event(&yielding, true));
+    }
     if frictional {
         compression.push(event(&switch, true));
     }
     let compressed = phases.run(&mut stepper, model, 0.0, start, &compression, frictional)?;
+    phases.resume = usize::MAX;
     if compressed.ending != Ending::Event(0) {
         return Err(SimulationError::Compression(match compressed.ending {
             Ending::GaveUp(reason) if frictional => {
@@ -204,9 +213,10 @@ fn run<const N: usize, M: ContactModel<N>>(
     }
     // A force separation is located on the law's continued force, and never later than d = 0 (docs/numerics.md):
     // the penetration is a second separation event then. Laws that never turn tensile end at d = 0 whichever
-    // criterion is named.
+    // criterion is named, but a yielding one, whose force returns to zero at its dent, ends there.
     let law = &scene.contact;
-    let on_force = law.separation == crate::law::Separation::Force && law.law.can_turn_tensile();
+    let yields = law.law.family() == crate::law::Family::Plastic;
+    let on_force = (law.separation == crate::law::Separation::Force && law.law.can_turn_tensile()) || yields;
     let ending: &dyn Fn(&State<N>) -> f64 = if on_force { &separation_force } else { &penetration };
     let mut restitution = vec![event(ending, true), event(&settled, true), event(&force_rate, false)];
     if on_force {
@@ -354,6 +364,8 @@ struct Phases {
     /// Time spent below the limit in finished stretches.
     below_limit: f64,
     switches: u32,
+    /// The terminal event after which the phase simply goes on (the onset of yield); `usize::MAX` for none.
+    resume: usize,
 }
 
 /// How a phase ended (the run's end, with the crossings of all its stretches).
@@ -381,6 +393,11 @@ impl Phases {
         loop {
             let end = stepper.run(time, state, TIME_LIMIT, events)?;
             crossings.extend(end.crossings);
+            if end.ending == Ending::Event(self.resume) {
+                // A step boundary at the event, and on.
+                (time, state) = (end.time, end.state);
+                continue;
+            }
             if end.ending != Ending::Event(switch_event) {
                 return Ok(PhaseEnd { time: end.time, state: end.state, ending: end.ending, crossings });
             }

@@ -228,7 +228,44 @@ pub fn resolve_law(
         return fail(damping_key(contact), format!("the damping {damping} is not a finite number"));
     }
     let tsuji_scale = if kind.family() == Family::Tsuji { (effective_mass * stiffness).sqrt() } else { 0.0 };
-    Ok(ContactLaw { kind, stiffness, exponent, damping, tsuji_scale })
+    let yield_penetration =
+        if kind.family() == Family::Plastic { yield_penetration(contact, bodies, stiffness)? } else { f64::INFINITY };
+    Ok(ContactLaw { kind, stiffness, exponent, damping, tsuji_scale, yield_penetration })
+}
+
+/// The `thornton` law's yield pressure p_y, Pa: the contact's `yield_pressure`, or 1.6 times the smaller
+/// `yield_stress` of the bodies that give one (the onset of yield under a Hertz contact, Johnson, Contact Mechanics
+/// ch. 11); `None` when neither is given.
+pub fn yield_pressure(contact: &ContactSpec, bodies: [&Body; 2]) -> Option<f64> {
+    contact.yield_pressure.or_else(|| {
+        let stresses = bodies.iter().filter_map(|body| body.yield_stress);
+        stresses.reduce(f64::min).map(|stress| 1.6 * stress)
+    })
+}
+
+/// The penetration d_y (m) at which a `thornton` contact of stiffness K = `stiffness` starts to yield:
+/// d_y = (pi p_y / (2 E*))² R* with E* = 3 K / (4 sqrt(R*)), that is R* (2 pi p_y sqrt(R*) / (3 K))²; infinite for an
+/// infinite yield pressure (the contact is Hertz's).
+fn yield_penetration(contact: &ContactSpec, bodies: [&Body; 2], stiffness: f64) -> Result<f64, SetupError> {
+    let Some(pressure) = yield_pressure(contact, bodies) else {
+        return fail(
+            "contact.yield_pressure",
+            "missing: `thornton` needs `yield_pressure` p_y in Pa, or `yield_stress` (Pa) of a body",
+        );
+    };
+    let [a, b] = bodies;
+    let radius = crate::geometry::effective_radius(a, b).unwrap_or(f64::NAN);
+    let scaled = 2.0 * std::f64::consts::PI * pressure * radius.sqrt() / (3.0 * stiffness);
+    let penetration = radius * scaled * scaled;
+    if penetration.is_nan() || penetration <= 0.0 {
+        return fail(
+            "contact.yield_pressure",
+            format!(
+                "the yield pressure {pressure:e} Pa gives no yield penetration (R* = {radius:e} m, K = {stiffness:e})"
+            ),
+        );
+    }
+    Ok(penetration)
 }
 
 /// The scene key the damping comes from.

@@ -1079,3 +1079,66 @@ fn friction_in_a_world_without_the_elastic_constants_mindlin_needs_is_refused() 
         &["Mindlin", "bodies.0 lacks"],
     );
 }
+
+// ---------------------------------------------------------------------------------------------------------------
+// The elastic–plastic law (`thornton`) and yield
+
+/// A valid `thornton` contact.
+const THORNTON: &str = "law = \"thornton\"\nyield_pressure = 1.6e9";
+
+#[test]
+fn the_thornton_scene_is_valid() {
+    let scratch = Scratch::new("the_thornton_scene_is_valid");
+    let path = scratch.path().join("thornton.toml");
+    fs::write(&path, scene(LEFT_BALL, RIGHT_BALL, THORNTON)).unwrap();
+    let output = impact(scratch.path(), &["run", path.to_str().unwrap()]);
+    assert_eq!(output.status.code(), Some(0), "{}", String::from_utf8_lossy(&output.stderr));
+}
+
+#[test]
+fn a_yield_pressure_that_is_not_positive_is_rejected() {
+    for (i, bad) in ["yield_pressure = 0.0", "yield_pressure = -1e9", "yield_pressure = nan"].into_iter().enumerate() {
+        let text = scene(LEFT_BALL, RIGHT_BALL, &edit(THORNTON, "yield_pressure = 1.6e9", bad));
+        assert_rejected(
+            &format!("yield_pressure_not_positive_{i}"),
+            &text,
+            "contact.yield_pressure",
+            At::Whole(bad),
+            &[],
+        );
+    }
+}
+
+#[test]
+fn a_yield_pressure_for_a_law_that_does_not_yield_is_rejected() {
+    let text = scene(LEFT_BALL, RIGHT_BALL, &with(HUNT_CROSSLEY, "yield_pressure = 1.6e9"));
+    let test = "yield_pressure_for_a_law_that_does_not_yield";
+    assert_rejected(test, &text, "contact.yield_pressure", At::Line("yield_pressure"), &["hunt-crossley", "thornton"]);
+}
+
+#[test]
+fn thornton_without_a_yield_pressure_or_yield_stress_is_rejected() {
+    let text = scene(LEFT_BALL, RIGHT_BALL, "law = \"thornton\"");
+    let test = "thornton_without_a_yield_pressure";
+    assert_rejected(test, &text, "contact.yield_pressure", At::Line("[contact]"), &["yield_stress"]);
+}
+
+#[test]
+fn thornton_takes_no_damping() {
+    let text = scene(LEFT_BALL, RIGHT_BALL, &with(THORNTON, "restitution = 0.8"));
+    assert_rejected("thornton_takes_no_restitution", &text, "contact.restitution", At::Line("restitution"), &[]);
+    let text = scene(LEFT_BALL, RIGHT_BALL, &with(THORNTON, "damping = 0.1"));
+    assert_rejected("thornton_takes_no_damping", &text, "contact.damping", At::Line("damping"), &[]);
+}
+
+#[test]
+fn a_yield_stress_that_is_not_positive_is_rejected() {
+    let text = scene(&with(LEFT_BALL, "yield_stress = 0.0"), RIGHT_BALL, HUNT_CROSSLEY);
+    assert_rejected("yield_stress_not_positive", &text, "bodies.0.yield_stress", At::Line("yield_stress"), &[]);
+}
+
+#[test]
+fn thornton_in_a_world_is_refused_naming_the_law() {
+    let text = edit(&edit(WORLD, "law = \"hunt-crossley\"", "law = \"thornton\""), "restitution = 0.7", "");
+    assert_rejected("thornton_in_a_world", &text, "pair.0.law", At::Whole("law = \"thornton\""), &["thornton"]);
+}

@@ -77,7 +77,10 @@ impl Case {
             Case::Tsuji { e, separation } => (LawKind::Tsuji, 1.5, reference::tsuji_damping(e), separation),
         };
         let tsuji_scale = if kind == LawKind::Tsuji { 1.0 } else { 0.0 };
-        (ContactLaw { kind, stiffness: 1.0, exponent: n, damping, tsuji_scale }, separation)
+        (
+            ContactLaw { kind, stiffness: 1.0, exponent: n, damping, tsuji_scale, yield_penetration: f64::INFINITY },
+            separation,
+        )
     }
 
     /// Whether the separation is on the force (for the laws that turn tensile) rather than the penetration.

@@ -32,6 +32,9 @@ pub mod index {
     /// delta when it is light (see [`super::dissipation_scale`]), so that a light damping's small dissipation is
     /// integrated to the tolerance relative to itself (docs/numerics.md).
     pub const DISSIPATED: usize = 4;
+    /// For a yielding law (which has no damping, so that it takes this slot): the deepest penetration so far / L,
+    /// which its force remembers ([`crate::law::ContactLaw::split_force_after`]).
+    pub const DEEPEST: usize = 4;
 }
 
 /// The relative normal motion m* d'' = -F(d, d').
@@ -71,8 +74,19 @@ impl<'a> NormalContact<'a> {
         let s = &self.scales;
         let penetration =
             if y[index::PENETRATION] > -EDGE { y[index::PENETRATION].max(0.0) } else { y[index::PENETRATION] };
-        let parts = self.law.split_force(penetration * s.length, y[index::RATE] * s.speed);
+        let parts = if self.law.yields() {
+            self.law.split_force_after(penetration * s.length, 0.0, self.deepest(y))
+        } else {
+            self.law.split_force(penetration * s.length, y[index::RATE] * s.speed)
+        };
         (parts.elastic / s.force, parts.dissipative / s.force)
+    }
+
+    /// The deepest penetration so far, m, for a yielding law: its state, or the penetration where that is deeper
+    /// (the state grows only while the penetration is at it: [`deepening`]).
+    #[inline]
+    fn deepest(&self, y: &State<SIZE>) -> f64 {
+        y[index::DEEPEST].max(y[index::PENETRATION]) * self.scales.length
     }
 
     /// [`ContactModel::snapshot`] with the contact force (N) and the elastic energy (J) already known: the fast
@@ -133,7 +147,11 @@ impl Model<SIZE> for NormalContact<'_> {
         dy[index::RATE] = -force;
         dy[index::IMPULSE] = force;
         dy[index::WORK] = force * rate;
-        dy[index::DISSIPATED] = dissipative * rate * self.per_dissipation;
+        dy[index::DISSIPATED] = if self.law.yields() {
+            deepening(y[index::PENETRATION], y[index::DEEPEST], rate)
+        } else {
+            dissipative * rate * self.per_dissipation
+        };
     }
 }
 
@@ -163,18 +181,47 @@ impl ContactModel<SIZE> for NormalContact<'_> {
     fn force_rate(&self, y: &State<SIZE>) -> f64 {
         let s = &self.scales;
         let (d, rate) = (y[index::PENETRATION] * s.length, y[index::RATE] * s.speed);
-        let (by_penetration, by_rate) = self.law.force_gradient(d, rate);
+        let (by_penetration, by_rate) = self.law.force_gradient_after(d, rate, self.deepest(y));
         let acceleration = -self.force(y) * s.speed / s.time;
         (by_penetration * rate + by_rate * acceleration) * s.time / s.force
     }
 
     fn separation_force(&self, y: &State<SIZE>) -> f64 {
         let s = &self.scales;
-        self.law.separation_function(y[index::PENETRATION] * s.length, y[index::RATE] * s.speed)
+        let (d, rate) = (y[index::PENETRATION] * s.length, y[index::RATE] * s.speed);
+        if self.law.yields() {
+            // In units of L, as the penetration it is.
+            self.law.separation_function_after(d, rate, self.deepest(y)) / s.length
+        } else {
+            self.law.separation_function(d, rate)
+        }
+    }
+
+    fn yield_margin(&self, y: &State<SIZE>) -> Option<f64> {
+        let onset = self.law.yield_penetration / self.scales.length;
+        (self.law.yields() && onset.is_finite()).then(|| onset - y[index::PENETRATION])
     }
 
     fn snapshot(&self, t: f64, y: &State<SIZE>) -> Snapshot {
-        let elastic_energy = self.law.elastic_energy(y[index::PENETRATION] * self.scales.length);
-        self.snapshot_with(t, y, self.force(y) * self.scales.force, elastic_energy)
+        let d = y[index::PENETRATION] * self.scales.length;
+        let elastic_energy = if self.law.yields() {
+            self.law.elastic_energy_after(d, self.deepest(y))
+        } else {
+            self.law.elastic_energy(d)
+        };
+        let mut snapshot = self.snapshot_with(t, y, self.force(y) * self.scales.force, elastic_energy);
+        if self.law.yields() {
+            // What the contact force took from the motion and the unloading will not give back: the dent's work.
+            snapshot.dissipated_normal = snapshot.normal_work - elastic_energy;
+        }
+        snapshot
     }
+}
+
+/// The rate of a yielding contact's remembered depth (scaled): the penetration rate while the penetration is at or
+/// beyond it and deepening, zero otherwise (unloading, or reloading below it along the unloading curve). In a single
+/// load–unload cycle it is d' up to the maximum compression (a located event) and 0 after it.
+#[inline]
+pub fn deepening(penetration: f64, deepest: f64, rate: f64) -> f64 {
+    if rate > 0.0 && penetration >= deepest { rate } else { 0.0 }
 }

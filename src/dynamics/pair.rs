@@ -36,6 +36,8 @@ pub mod index {
     pub const NORMAL_WORK: usize = 16;
     /// ∫ F_dissipative d' dt, in the energy unit times delta (the damping's size).
     pub const DISSIPATED: usize = 17;
+    /// For a yielding law (no damping: it takes this slot), the deepest penetration so far, in L.
+    pub const DEEPEST: usize = 17;
     /// ∫ Ft·slip dt, in the energy unit times mu.
     pub const TANGENTIAL_WORK: usize = 18;
     /// Work of an immovable body on the movable one, in the energy unit.
@@ -167,12 +169,14 @@ impl<'a> PairContact<'a> {
         let k = &kinematics;
         // The located edge of the contact sees the force from inside (Kelvin–Voigt's jump), as in the normal model.
         let d = if k.penetration > -EDGE { k.penetration.max(0.0) } else { k.penetration };
-        let parts = self.law.split_force(d * s.length, k.rate * s.speed);
+        // A yielding law's memory (the penetration where that is deeper: the state grows only at it).
+        let deepest = y[index::DEEPEST].max(d) * s.length;
+        let parts = self.law.split_force_after(d * s.length, k.rate * s.speed, deepest);
         let (elastic, dissipative) = (parts.elastic / s.force, parts.dissipative / s.force);
         let normal_force = elastic + dissipative;
         // d'' = -(dw/dt·n + w·dn/dt), and dw/dt·n = Fn (the tangential force lies across the normal).
         let acceleration = -(normal_force * self.impulse_gain + relative_velocity.dot(&k.normal_rate));
-        let (by_penetration, by_rate) = self.law.force_gradient(d * s.length, k.rate * s.speed);
+        let (by_penetration, by_rate) = self.law.force_gradient_after(d * s.length, k.rate * s.speed, deepest);
         let normal_force_rate = (by_penetration * s.length * k.rate + by_rate * s.speed * acceleration) / s.force;
         let raw_spring = vector(y, index::SPRING);
         let spring = raw_spring - k.normal * raw_spring.dot(&k.normal);
@@ -211,7 +215,11 @@ impl Model<SIZE> for PairContact<'_> {
         set_vector(dy, index::SPRING, &e.spring_rate);
         dy[index::NORMAL_IMPULSE] = normal_force;
         dy[index::NORMAL_WORK] = normal_force * k.rate;
-        dy[index::DISSIPATED] = e.dissipative * k.rate / self.dissipation_scale;
+        dy[index::DISSIPATED] = if self.law.yields() {
+            super::normal::deepening(k.penetration, y[index::DEEPEST], k.rate)
+        } else {
+            e.dissipative * k.rate / self.dissipation_scale
+        };
         dy[index::TANGENTIAL_WORK] = e.tangential.dot(&k.slip) / self.friction_scale;
         // Power the contact feeds into an immovable body, with the opposite sign: the work it does on the other.
         let [a, b] = self.bodies;
@@ -272,7 +280,12 @@ impl ContactModel<SIZE> for PairContact<'_> {
     fn separation_force(&self, y: &State<SIZE>) -> f64 {
         let s = &self.scales;
         let k = self.evaluate(y).kinematics;
-        self.law.separation_function(k.penetration * s.length, k.rate * s.speed)
+        if self.law.yields() {
+            let deepest = y[index::DEEPEST].max(k.penetration) * s.length;
+            self.law.separation_function_after(k.penetration * s.length, k.rate * s.speed, deepest) / s.length
+        } else {
+            self.law.separation_function(k.penetration * s.length, k.rate * s.speed)
+        }
     }
 
     fn switch_function(&self, y: &State<SIZE>) -> Option<f64> {
@@ -295,6 +308,11 @@ impl ContactModel<SIZE> for PairContact<'_> {
 
     fn slip_along_start(&self, y: &State<SIZE>) -> Option<f64> {
         (self.slip_direction != Vector3::zeros()).then(|| self.evaluate(y).kinematics.slip.dot(&self.slip_direction))
+    }
+
+    fn yield_margin(&self, y: &State<SIZE>) -> Option<f64> {
+        let onset = self.law.yield_penetration / self.scales.length;
+        (self.law.yields() && onset.is_finite()).then(|| onset - self.evaluate(y).kinematics.penetration)
     }
 
     fn snapshot(&self, t: f64, y: &State<SIZE>) -> Snapshot {
@@ -322,6 +340,18 @@ impl ContactModel<SIZE> for PairContact<'_> {
         let cap = self.tangential.map_or(0.0, |t| t.friction * (e.elastic + e.dissipative).max(0.0));
         let stored = e.spring.norm().min(cap);
         let tangential_elastic = if kt > 0.0 { stored * stored / (2.0 * kt) } else { 0.0 };
+        let normal_work = y[index::NORMAL_WORK] * s.energy;
+        let (elastic_energy, dissipated_normal) = if self.law.yields() {
+            let deepest = y[index::DEEPEST].max(k.penetration) * s.length;
+            let elastic = self.law.elastic_energy_after(k.penetration * s.length, deepest);
+            // What the normal force took and the unloading will not give back: the dent's work.
+            (elastic, normal_work - elastic)
+        } else {
+            (
+                self.law.elastic_energy(k.penetration * s.length),
+                y[index::DISSIPATED] * s.energy * self.dissipation_scale,
+            )
+        };
         Snapshot {
             time,
             penetration: k.penetration * s.length,
@@ -334,11 +364,11 @@ impl ContactModel<SIZE> for PairContact<'_> {
             spins: [spin(a, &e.spins[0]), spin(b, &e.spins[1])],
             positions,
             normal_impulse: y[index::NORMAL_IMPULSE] * s.impulse,
-            normal_work: y[index::NORMAL_WORK] * s.energy,
-            dissipated_normal: y[index::DISSIPATED] * s.energy * self.dissipation_scale,
+            normal_work,
+            dissipated_normal,
             tangential_work: y[index::TANGENTIAL_WORK] * s.energy * self.friction_scale,
             work_of_immovable_bodies: y[index::IMMOVABLE_WORK] * s.energy,
-            elastic_energy: self.law.elastic_energy(k.penetration * s.length),
+            elastic_energy,
             tangential_elastic_energy: tangential_elastic * s.energy,
         }
     }

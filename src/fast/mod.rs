@@ -178,9 +178,10 @@ pub enum FastError {
     Stalled(f64),
 }
 
-/// Whether [`simulate_normal`] handles this law: every family but Brilliantov's viscoelastic law.
+/// Whether [`simulate_normal`] handles this law: every family but Brilliantov's viscoelastic law and Thornton's
+/// elastic–plastic one (whose force remembers its deepest point).
 pub fn covers(law: &ContactLaw) -> bool {
-    law.kind.family() != Family::Viscoelastic
+    !matches!(law.kind.family(), Family::Viscoelastic | Family::Plastic)
 }
 
 /// Integrates one normal impact from first contact to separation.
@@ -836,8 +837,14 @@ mod tests {
     /// the smooth `∫ 5 s³ Q(s^5)^(-1/5) ds`, summed by composite Gauss–Legendre. Hunt–Crossley x = 0.5, n = 3/2.
     #[test]
     fn first_step_time_agrees_with_a_smooth_quadrature() {
-        let law =
-            ContactLaw { kind: LawKind::HuntCrossley, stiffness: 1.0, exponent: 1.5, damping: 0.5, tsuji_scale: 0.0 };
+        let law = ContactLaw {
+            kind: LawKind::HuntCrossley,
+            stiffness: 1.0,
+            exponent: 1.5,
+            damping: 0.5,
+            tsuji_scale: 0.0,
+            yield_penetration: f64::INFINITY,
+        };
         let system = Regularised::new(&law, &Scales::new(1.0, 1.0, 1.5, 1.0)).unwrap();
         let mut e = Expansion::default();
         system.expand(&State::FIRST_CONTACT, 20, &mut e);

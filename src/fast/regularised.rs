@@ -194,7 +194,7 @@ impl Regularised {
     /// belong to the law's stiffness and exponent.
     pub fn new(law: &ContactLaw, scales: &Scales) -> Result<Regularised, FastError> {
         let family = law.kind.family();
-        if family == Family::Viscoelastic {
+        if matches!(family, Family::Viscoelastic | Family::Plastic) {
             return Err(FastError::NotCovered(law.kind.name()));
         }
         let n = law.exponent;
@@ -263,7 +263,7 @@ impl Regularised {
                     elastic_factor: 0.4,
                 }
             }
-            Family::Viscoelastic => unreachable!("rejected above"),
+            Family::Viscoelastic | Family::Plastic => unreachable!("rejected above"),
         })
     }
 

@@ -17,6 +17,7 @@ pub enum LawKind {
     CarvalhoMartins,
     Tsuji,
     Brilliantov,
+    Thornton,
 }
 
 /// Laws that share one force expression and so one set of exact results.
@@ -32,6 +33,9 @@ pub enum Family {
     Tsuji,
     /// F = K (d^(3/2) + (3/2) A d^(1/2) d').
     Viscoelastic,
+    /// Hertz up to the yield penetration, then the plastic line tangent to it; unloading Hertzian from the dent
+    /// with the enlarged radius of the deepest point reached (Thornton 1997). The force remembers that point.
+    Plastic,
 }
 
 /// One row of the law table: what `impact models` prints.
@@ -53,7 +57,7 @@ pub struct LawInfo {
 const HYSTERESIS_FORCE: &str = "K d^n (1 + alpha d'), alpha = chi / v0";
 
 /// The law table. Order is the order of docs/laws.md.
-pub const LAWS: [LawInfo; 14] = [
+pub const LAWS: [LawInfo; 15] = [
     LawInfo {
         kind: LawKind::Hertz,
         name: "hertz",
@@ -179,6 +183,15 @@ pub const LAWS: [LawInfo; 14] = [
         map: "none (e depends on impact speed)",
         damping_units: "A in s",
         source: "Brilliantov et al., Phys. Rev. E 53 (1996); Kuwabara & Kono (1987)",
+    },
+    LawInfo {
+        kind: LawKind::Thornton,
+        name: "thornton",
+        family: Family::Plastic,
+        formula: "K d^(3/2) to d_y, then K d_y^(3/2) + (3/2) K d_y^(1/2) (d - d_y); unloading K_p (d - d_p)^(3/2)",
+        map: "none (e = 1 below the yield speed, then falls with speed)",
+        damping_units: "none: give yield_pressure p_y in Pa",
+        source: "Thornton, J. Appl. Mech. 64 (1997)",
     },
 ];
 

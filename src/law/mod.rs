@@ -23,6 +23,9 @@ pub struct ContactLaw {
     pub damping: f64,
     /// sqrt(m* K), N s/m^(5/4) — the Tsuji damping scale (docs/laws.md); unused by other laws.
     pub tsuji_scale: f64,
+    /// d_y, m: the penetration at which a `thornton` contact starts to yield (infinite for every other law, and for
+    /// bodies that never yield).
+    pub yield_penetration: f64,
 }
 
 /// `d^n` for a penetration `d >= 0`: the common exponents by square roots and products (Hertz's 3/2 as `d sqrt(d)`,
@@ -93,7 +96,76 @@ impl ContactLaw {
                 let root = d.sqrt();
                 ForceParts { elastic: k * d * root, dissipative: 1.5 * k * c * root * rate }
             }
+            // Loading from an undented surface; a remembered deepest point is `split_force_after`'s.
+            Family::Plastic => ForceParts { elastic: self.loading(d), dissipative: 0.0 },
         }
+    }
+
+    /// Whether the force depends on the deepest penetration reached so far (the `thornton` law), which a model
+    /// then carries in its state ([`ContactLaw::split_force_after`]).
+    #[inline]
+    pub fn yields(&self) -> bool {
+        self.kind.family() == Family::Plastic
+    }
+
+    /// [`ContactLaw::split_force`] for a contact whose deepest penetration so far is `deepest` (m): a yielding law
+    /// unloads (and reloads) elastically below it; every other law ignores it.
+    #[inline]
+    pub fn split_force_after(&self, d: f64, rate: f64, deepest: f64) -> ForceParts {
+        if !self.yields() {
+            return self.split_force(d, rate);
+        }
+        ForceParts { elastic: self.plastic_force(d, deepest), dissipative: 0.0 }
+    }
+
+    /// The `thornton` loading curve at penetration `d >= 0` (m), N: Hertz K d^(3/2) to the yield penetration d_y,
+    /// then the line tangent to it there, K d_y^(3/2) + (3/2) K d_y^(1/2) (d - d_y) — Thornton's plastic loading
+    /// F_y + pi p_y R* (d - d_y), since pi p_y R* = (3/2) K d_y^(1/2) for d_y = (pi p_y / (2 E*))² R*.
+    #[inline]
+    fn loading(&self, d: f64) -> f64 {
+        let (k, yielding) = (self.stiffness, self.yield_penetration);
+        if d <= yielding {
+            k * d * d.sqrt()
+        } else {
+            let root = yielding.sqrt();
+            k * root * (yielding + 1.5 * (d - yielding))
+        }
+    }
+
+    /// The `thornton` unloading curve from a deepest penetration `deepest` > d_y (m): its stiffness K_p (N/m^(3/2))
+    /// and the depth of the permanent dent d_p (m), where the force returns to zero. Thornton's enlarged radius
+    /// R_p* = (4 E* / (3 F*)) ((2 F* + F_y) / (2 pi p_y))^(3/2) for a peak force F*, written with f = F*/F_y, is
+    /// R_p*/R* = ((2 f + 1)/3)^(3/2) / f (1 at the onset of yield), so K_p = K sqrt(R_p*/R*); the curve
+    /// K_p (d - d_p)^(3/2) passes through (deepest, F*).
+    fn unloading(&self, deepest: f64) -> (f64, f64) {
+        let yielding = self.yield_penetration;
+        let peak = self.loading(deepest);
+        let f = peak / (self.stiffness * yielding * yielding.sqrt());
+        let ratio = ((2.0 * f + 1.0) / 3.0).powf(1.5) / f;
+        let stiffness = self.stiffness * ratio.sqrt();
+        let relief = (peak / stiffness).powf(2.0 / 3.0);
+        (stiffness, deepest - relief)
+    }
+
+    /// The `thornton` force at penetration `d` (m) after a deepest penetration `deepest` (m), N: the loading curve
+    /// at or beyond the deepest point (or while it has not yielded), the unloading curve below it — zero at and
+    /// above the dent (never a power of a negative number).
+    fn plastic_force(&self, d: f64, deepest: f64) -> f64 {
+        if d <= 0.0 {
+            return 0.0;
+        }
+        if d >= deepest || deepest <= self.yield_penetration {
+            return self.loading(d);
+        }
+        let (stiffness, dent) = self.unloading(deepest);
+        let x = d - dent;
+        if x > 0.0 { stiffness * x * x.sqrt() } else { 0.0 }
+    }
+
+    /// The depth of the permanent dent after a deepest penetration `deepest` (m): where a yielding contact's force
+    /// returns to zero (0 for an unyielded contact and for every other law).
+    pub fn dent(&self, deepest: f64) -> f64 {
+        if self.yields() && deepest > self.yield_penetration { self.unloading(deepest).1 } else { 0.0 }
     }
 
     /// Total contact force, N.
@@ -116,11 +188,18 @@ impl ContactLaw {
     pub fn separation_function(&self, d: f64, rate: f64) -> f64 {
         let (k, c) = (self.stiffness, self.damping);
         match self.kind.family() {
-            Family::Elastic | Family::Hysteresis => d,
+            Family::Elastic | Family::Hysteresis | Family::Plastic => d,
             Family::Linear => k * d + c * rate,
             Family::Tsuji => k * d * d.abs().sqrt().sqrt() + c * self.tsuji_scale * rate,
             Family::Viscoelastic => k * (d + 1.5 * c * rate),
         }
+    }
+
+    /// [`ContactLaw::separation_function`] after a deepest penetration `deepest` (m): for a yielding law the
+    /// penetration beyond the permanent dent, d - d_p (m), whose fall through zero is where its force returns to
+    /// zero; for every other law the function without memory.
+    pub fn separation_function_after(&self, d: f64, rate: f64, deepest: f64) -> f64 {
+        if self.yields() { d - self.dent(deepest) } else { self.separation_function(d, rate) }
     }
 
     /// The penetration (m) at which the force vanishes at penetration rate `rate` (m/s): the zero in d of
@@ -135,7 +214,7 @@ impl ContactLaw {
         }
         let (k, c) = (self.stiffness, self.damping);
         match self.kind.family() {
-            Family::Elastic | Family::Hysteresis => 0.0,
+            Family::Elastic | Family::Hysteresis | Family::Plastic => 0.0,
             Family::Linear => -c * rate / k,
             Family::Tsuji => (-c * self.tsuji_scale * rate / k).powf(0.8),
             Family::Viscoelastic => -1.5 * c * rate,
@@ -150,6 +229,22 @@ impl ContactLaw {
         }
         let n = self.exponent;
         self.stiffness * power(d, n + 1.0) / (n + 1.0)
+    }
+
+    /// [`ContactLaw::elastic_energy`] after a deepest penetration `deepest` (m): for a yielding law the energy the
+    /// unloading curve through this point gives back, (2/5) K_p (d - d_p)^(5/2) (Hertz's below d_y); the rest of
+    /// the work done on the contact went into the plastic dent.
+    pub fn elastic_energy_after(&self, d: f64, deepest: f64) -> f64 {
+        if !self.yields() || d <= 0.0 {
+            return self.elastic_energy(d);
+        }
+        let deepest = deepest.max(d);
+        if deepest <= self.yield_penetration {
+            return 0.4 * self.stiffness * d * d * d.sqrt();
+        }
+        let (stiffness, dent) = self.unloading(deepest);
+        let x = (d - dent).max(0.0);
+        0.4 * stiffness * x * x * x.sqrt()
     }
 
     /// Partial derivatives (dF/dd in N/m, dF/dd' in N s/m), for the force-rate event dF/dt = F_d d' + F_v d''.
@@ -176,7 +271,30 @@ impl ContactLaw {
                 let root = d.sqrt();
                 (1.5 * k * root + 0.75 * k * c / root * rate, 1.5 * k * c * root)
             }
+            Family::Plastic => (self.plastic_stiffness(d, d), 0.0),
         }
+    }
+
+    /// [`ContactLaw::force_gradient`] after a deepest penetration `deepest` (m).
+    pub fn force_gradient_after(&self, d: f64, rate: f64, deepest: f64) -> (f64, f64) {
+        if !self.yields() {
+            return self.force_gradient(d, rate);
+        }
+        if d <= 0.0 {
+            return (0.0, 0.0);
+        }
+        (self.plastic_stiffness(d, deepest), 0.0)
+    }
+
+    /// dF/dd of the `thornton` force at `d > 0` after `deepest`, N/m.
+    fn plastic_stiffness(&self, d: f64, deepest: f64) -> f64 {
+        let (k, yielding) = (self.stiffness, self.yield_penetration);
+        if d >= deepest || deepest <= yielding {
+            return 1.5 * k * d.min(yielding).sqrt();
+        }
+        let (stiffness, dent) = self.unloading(deepest);
+        let x = d - dent;
+        if x > 0.0 { 1.5 * stiffness * x.sqrt() } else { 0.0 }
     }
 }
 

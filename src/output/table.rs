@@ -156,7 +156,7 @@ fn law(report: &Report) -> Section {
         section.row("exponent n", short(law.exponent));
     }
     let damping = match family {
-        Some(Family::Elastic) => None,
+        Some(Family::Elastic | Family::Plastic) => None,
         Some(Family::Linear) => Some(("damping c", "N s/m")),
         Some(Family::Hysteresis) => Some(("damping alpha", "s/m")),
         Some(Family::Tsuji) => Some(("damping a", "")),
@@ -169,6 +169,12 @@ fn law(report: &Report) -> Section {
     }
     if let (Some(e), false) = (law.restitution_nominal, family == Some(Family::Elastic)) {
         section.row("nominal e", short(e));
+    }
+    if let Some(pressure) = law.yield_pressure {
+        section.row("yield pressure p_y", engineering(pressure, "Pa"));
+    }
+    if let Some(speed) = law.yield_speed {
+        section.row("yield speed V_y (e = 1 below it)", engineering(speed, "m/s"));
     }
     section.row("contact ends where", format!("the {} returns to zero", law.separation));
     section
@@ -207,6 +213,9 @@ fn contact(report: &Report, scales: &Scales) -> Section {
     let impulse = |value: f64| engineering(denoise(value, scales.impulse), "N s");
     section.row("deformation impulse", impulse(c.deformation_impulse));
     section.row("restitution impulse", maybe(c.restitution_impulse, impulse));
+    if let Some(dent) = c.permanent_dent {
+        section.row("permanent dent (force zero at)", engineering(dent, "m"));
+    }
     section
 }
 
@@ -237,7 +246,12 @@ fn energy(report: &Report, scales: &Scales) -> Section {
     section.row("kinetic energy after", maybe(e.kinetic_after, joules));
     let frictional = report.oblique.as_ref().is_some_and(|o| o.friction_work.is_some_and(|w| w != 0.0));
     if family(report) != Some(Family::Elastic) || frictional {
-        let what = if frictional { "dissipated (damping and friction)" } else { "dissipated by damping" };
+        let what = match (frictional, family(report) == Some(Family::Plastic)) {
+            (true, true) => "dissipated (plastic dent and friction)",
+            (true, false) => "dissipated (damping and friction)",
+            (false, true) => "dissipated in the plastic dent",
+            (false, false) => "dissipated by damping",
+        };
         section.row(what, maybe(e.dissipated, contact_joules));
     }
     if let Some(left) = e.elastic_left_at_separation.filter(|l| denoise(*l, impact_energy) != 0.0) {

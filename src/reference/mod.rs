@@ -14,6 +14,7 @@ mod hunt_crossley;
 mod hysteresis;
 mod kelvin_voigt;
 mod numerics;
+mod thornton;
 mod tsuji;
 
 pub use brilliantov::{brilliantov_c1, brilliantov_c2, brilliantov_restitution_series};
@@ -22,6 +23,7 @@ pub use hunt_crossley::{hunt_crossley_chi, hunt_crossley_loss, hunt_crossley_res
 pub use hysteresis::hysteresis_contact;
 pub use kelvin_voigt::{kelvin_voigt, kelvin_voigt_zeta};
 pub use numerics::beta;
+pub use thornton::{thornton, thornton_restitution, thornton_yield_speed};
 pub use tsuji::{tsuji, tsuji_damping};
 
 /// Nondimensional exact values of one impact (units `L`, `T`, `F0` of the module docs; restitution dimensionless).

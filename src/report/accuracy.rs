@@ -56,6 +56,10 @@ fn exact_restitution(setup: &Setup, separation: Separation) -> Option<(f64, &'st
             "Tsuji law mapped to a linear oscillator",
         )),
         Family::Viscoelastic => None,
+        Family::Plastic => Some((
+            reference::thornton_restitution(1.0 / reference::thornton_yield_speed(scaled_yield(setup))),
+            "Thornton's closed form",
+        )),
     }
 }
 
@@ -93,7 +97,16 @@ fn exact(setup: &Setup, separation: Separation) -> Option<(ContactReference, &'s
             "Tsuji law mapped to a linear oscillator (docs/references.md#tsuji)",
         )),
         Family::Viscoelastic => None,
+        Family::Plastic => Some((
+            reference::thornton(scaled_yield(setup)),
+            "Thornton's closed form, energy and quadrature (docs/references.md#thornton)",
+        )),
     }
+}
+
+/// The yield penetration in the contact's length unit, d_y / L (infinite for bodies that never yield).
+fn scaled_yield(setup: &Setup) -> f64 {
+    setup.law.yield_penetration / setup.scales.length
 }
 
 /// Exact values for this contact (SI units) and the relative errors of `measured` against them.

@@ -45,6 +45,8 @@ pub fn build(scene: &Scene, setup: &Setup, outcome: &Outcome, detail: ReferenceD
     };
 
     let nominal = match scene.contact.damping {
+        // A yielding law has no nominal e: its e follows from the impact speed.
+        DampingSpec::None if setup.law.yields() => None,
         DampingSpec::None => Some(1.0),
         DampingSpec::Restitution(e) => Some(e),
         DampingSpec::Parameter(_) => None,
@@ -123,7 +125,13 @@ pub fn build(scene: &Scene, setup: &Setup, outcome: &Outcome, detail: ReferenceD
             exponent: setup.law.exponent,
             damping: setup.law.damping,
             restitution_nominal: nominal,
-            separation: scene.contact.separation.name(),
+            // A yielding contact ends where its force returns to zero, at its dent.
+            separation: if setup.law.yields() { "force" } else { scene.contact.separation.name() },
+            yield_pressure: setup.law.yields().then(|| crate::setup::yield_pressure(&scene.contact, [a, b])).flatten(),
+            yield_speed: setup.law.yields().then(|| {
+                let scaled = setup.law.yield_penetration / setup.scales.length;
+                crate::reference::thornton_yield_speed(scaled) * setup.approach_speed
+            }),
         },
         effective_mass: setup.effective_mass,
         approach_speed: setup.approach_speed,
@@ -143,6 +151,7 @@ pub fn build(scene: &Scene, setup: &Setup, outcome: &Outcome, detail: ReferenceD
             restitution_velocity_ratio: when(e_velocity),
             restitution_energy: when((restitution_work.max(0.0) / compression_work).sqrt()),
             separated: done,
+            permanent_dent: (done && setup.law.yields()).then_some(end.penetration.max(0.0)),
         },
         bodies: [body(0, a), body(1, b)],
         energy: EnergyReport {

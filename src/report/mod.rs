@@ -58,6 +58,11 @@ pub struct LawReport {
     pub restitution_nominal: Option<f64>,
     /// "penetration" or "force".
     pub separation: &'static str,
+    /// The `thornton` law's yield pressure p_y, Pa (null for every other law).
+    pub yield_pressure: Option<f64>,
+    /// The approach speed at which a `thornton` contact starts to yield, V_y in m/s: e = 1 below it (null for every
+    /// other law).
+    pub yield_speed: Option<f64>,
 }
 
 /// The contact phases and what was measured in them. Times in s from the scene's t = 0.
@@ -86,6 +91,9 @@ pub struct ContactReport {
     /// Stronge's e: sqrt(restitution work / compression work).
     pub restitution_energy: Option<f64>,
     pub separated: bool,
+    /// The depth of the permanent dent a yielding (`thornton`) contact leaves, m: the penetration at which its force
+    /// returned to zero (null for the laws that do not yield, and before separation).
+    pub permanent_dent: Option<f64>,
 }
 
 #[derive(Debug, Clone, PartialEq, Serialize)]

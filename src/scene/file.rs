@@ -43,6 +43,7 @@ pub struct RawPair {
     pub friction: Option<At<f64>>,
     pub tangential_stiffness: Option<At<toml::Value>>,
     pub tangential_damping: Option<At<f64>>,
+    pub yield_pressure: Option<At<f64>>,
     pub normal: Option<At<Vec<f64>>>,
 }
 
@@ -76,6 +77,7 @@ pub struct RawContact {
     pub friction: Option<At<f64>>,
     pub tangential_stiffness: Option<At<toml::Value>>,
     pub tangential_damping: Option<At<f64>>,
+    pub yield_pressure: Option<At<f64>>,
     pub normal: Option<At<Vec<f64>>>,
 }
 

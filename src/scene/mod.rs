@@ -158,6 +158,8 @@ pub struct ContactSpec {
     pub tangential_stiffness: TangentialStiffnessSpec,
     /// Damping ratio of the tangential spring (0: none): c_t = 2 ratio sqrt(k_t m_t).
     pub tangential_damping: f64,
+    /// The `thornton` law's yield pressure p_y, Pa, when written (otherwise 1.6 times the smaller `yield_stress`).
+    pub yield_pressure: Option<f64>,
     /// The scene's unit normal (body 1 -> body 2), if it gave one (`normal_given` normalised).
     pub normal: Option<Vector3<f64>>,
     /// The scene's `normal` as written.

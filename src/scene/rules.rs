@@ -129,9 +129,11 @@ pub fn check_world(scene: &super::WorldScene) -> Checked {
         }
     }
     check_contact(&scene.contact)?;
+    check_world_law(&scene.contact)?;
     for (k, pair) in scene.pairs.iter().enumerate() {
         let (i, j) = (pair.bodies[0], pair.bodies[1]);
         check_contact(&pair.contact).map_err(|error| scene.rename(i, j, error))?;
+        check_world_law(&pair.contact).map_err(|error| scene.rename(i, j, error))?;
         if !scene.interacts(i, j) {
             return fail(format!("pair.{k}.bodies"), "these two bodies never touch (both immovable, or both flat)");
         }
@@ -281,6 +283,19 @@ fn check_body(i: usize, body: &Body) -> Checked {
     Ok(())
 }
 
+/// The laws a world's contacts cannot take yet: `thornton`, whose force remembers the deepest point of its contact
+/// (one impact of two bodies carries it in its state; a world's islands do not yet).
+fn check_world_law(contact: &super::ContactSpec) -> Checked {
+    if contact.law.family() == Family::Plastic {
+        return fail(
+            "contact.law",
+            "`thornton` runs one impact of two bodies (no `[world]`, no `[[pair]]`); a world's contacts cannot take it \
+             yet: use `hertz` or a damped law there",
+        );
+    }
+    Ok(())
+}
+
 fn check_contact(contact: &super::ContactSpec) -> Checked {
     let law = contact.law;
     let name = law.name();
@@ -289,8 +304,27 @@ fn check_contact(contact: &super::ContactSpec) -> Checked {
         DampingSpec::Parameter(c) => number("contact.damping", c, Allowed::NonNegative)?,
         DampingSpec::None => {}
     }
+    if let Some(pressure) = contact.yield_pressure {
+        number("contact.yield_pressure", pressure, Allowed::PositiveOrInfinite)?;
+        if law.family() != Family::Plastic {
+            return fail(
+                "contact.yield_pressure",
+                format!("`{name}` does not yield: `yield_pressure` belongs to law = \"thornton\""),
+            );
+        }
+    }
     match (law.family(), contact.damping) {
-        (Family::Elastic, DampingSpec::None) => {}
+        (Family::Elastic | Family::Plastic, DampingSpec::None) => {}
+        (Family::Plastic, DampingSpec::Parameter(_)) => fail(
+            "contact.damping",
+            "`thornton` takes no damping: its loss is the plastic dent, set by `yield_pressure` (or the bodies' \
+             `yield_stress`)",
+        )?,
+        (Family::Plastic, DampingSpec::Restitution(_)) => fail(
+            "contact.restitution",
+            "`thornton` takes no `restitution`: its e follows from the impact speed and `yield_pressure` (or the \
+             bodies' `yield_stress`)",
+        )?,
         (Family::Elastic, DampingSpec::Parameter(_)) => {
             fail("contact.damping", "the elastic law `hertz` takes no damping")?
         }
@@ -322,7 +356,7 @@ fn check_contact(contact: &super::ContactSpec) -> Checked {
     }
     let exponent = contact.exponent_given;
     let family = law.family();
-    if matches!(family, Family::Tsuji | Family::Viscoelastic) && exponent.is_some() {
+    if matches!(family, Family::Tsuji | Family::Viscoelastic | Family::Plastic) && exponent.is_some() {
         return fail("contact.exponent", format!("`{name}` fixes the exponent at 3/2: leave `exponent` out"));
     }
     if family == Family::Linear {

@@ -444,7 +444,8 @@ fn pair(src: &Source, k: usize, raw: &At<RawPair>, contact: &RawContact, count: 
         separation,
         friction,
         tangential_stiffness,
-        tangential_damping
+        tangential_damping,
+        yield_pressure
     );
     // A pair that names `damping` drops `[contact]`'s `restitution`, and the other way round: it gives its own. A
     // pair that names its own `law` takes neither from `[contact]` (another law's damping means something else).
@@ -648,6 +649,7 @@ fn contact_spec(
     };
     let tangential_damping =
         raw.tangential_damping.as_ref().map_or(0.0, |c| number(src, &key("tangential_damping"), c));
+    let yield_pressure = raw.yield_pressure.as_ref().map(|p| number(src, &key("yield_pressure"), p));
     let normal_given = raw.normal.as_ref().map(|n| vector(src, &key("normal"), n)).transpose()?;
     Ok(ContactSpec {
         law,
@@ -659,6 +661,7 @@ fn contact_spec(
         friction,
         tangential_stiffness,
         tangential_damping,
+        yield_pressure,
         normal: None,
         normal_given,
     })

@@ -23,8 +23,16 @@ use toml::{Table, Value};
 const BODY_NUMBERS: [&str; 8] =
     ["radius", "mass", "density", "young", "poisson", "yield_stress", "inertia", "incidence_deg"];
 const BODY_VECTORS: [&str; 3] = ["velocity", "position", "angular_velocity"];
-const CONTACT_NUMBERS: [&str; 7] =
-    ["restitution", "damping", "stiffness", "exponent", "friction", "tangential_stiffness", "tangential_damping"];
+const CONTACT_NUMBERS: [&str; 8] = [
+    "restitution",
+    "damping",
+    "stiffness",
+    "exponent",
+    "friction",
+    "tangential_stiffness",
+    "tangential_damping",
+    "yield_pressure",
+];
 const CONTACT_VECTORS: [&str; 1] = ["normal"];
 const SOLVER_NUMBERS: [&str; 2] = ["rtol", "atol"];
 
@@ -32,7 +40,7 @@ const SOLVER_NUMBERS: [&str; 2] = ["rtol", "atol"];
 pub const VALID_KEYS: &str = "bodies.I.radius, bodies.I.mass, bodies.I.density, bodies.I.young, bodies.I.poisson, \
      bodies.I.yield_stress, bodies.I.inertia, bodies.I.velocity.J, bodies.I.position.J, bodies.I.angular_velocity.J, bodies.I.incidence_deg, \
      contact.restitution, contact.damping, contact.stiffness, contact.exponent, contact.friction, \
-     contact.tangential_stiffness, contact.tangential_damping, contact.normal.J, solver.rtol, solver.atol \
+     contact.tangential_stiffness, contact.tangential_damping, contact.yield_pressure, contact.normal.J, solver.rtol, solver.atol \
      (I = 0 or 1, the body; J = 0, 1 or 2, the component)";
 
 /// A number in the scene that a sweep sets.
@@ -328,6 +336,7 @@ impl SceneKey {
                         contact.tangential_stiffness = TangentialStiffnessSpec::Value(value)
                     }
                     ("tangential_damping", None) => contact.tangential_damping = value,
+                    ("yield_pressure", None) => contact.yield_pressure = Some(value),
                     ("normal", Some(j)) => contact.normal_given.get_or_insert_with(Vector3::x)[j] = value,
                     _ => return Err(format!("`{self}` cannot be set")),
                 }

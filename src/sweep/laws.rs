@@ -4,7 +4,9 @@
 //! - `contact.law` becomes the law.
 //! - `hertz` takes neither `restitution` nor `damping`: both are removed (so it is the elastic reference; varying
 //!   either then gives rows whose status says why `hertz` cannot take them).
-//! - Exponent: `kelvin-voigt` (1), `tsuji` and `brilliantov` (3/2) fix it, so `exponent` is removed. A numeric
+//! - `thornton` takes neither either (its loss is plastic): both are removed; its `yield_pressure` (or the bodies'
+//!   `yield_stress`) stays, and every other law drops `yield_pressure`.
+//! - Exponent: `kelvin-voigt` (1), `tsuji`, `brilliantov` and `thornton` (3/2) fix it, so `exponent` is removed. A numeric
 //!   `stiffness` is in N/m^n for the exponent it was written with (the file's `exponent`, or its law's default: 1
 //!   for `kelvin-voigt`, 3/2 otherwise): a law that fixes another exponent cannot take it, and the row says so
 //!   (unless `contact.stiffness` is varied, whose values then hold for every law). A law with a free exponent keeps
@@ -24,7 +26,7 @@ use toml::{Table, Value};
 fn fixed_exponent(law: LawKind) -> Option<f64> {
     match law.family() {
         Family::Linear => Some(1.0),
-        Family::Tsuji | Family::Viscoelastic => Some(1.5),
+        Family::Tsuji | Family::Viscoelastic | Family::Plastic => Some(1.5),
         Family::Elastic | Family::Hysteresis => None,
     }
 }
@@ -75,7 +77,10 @@ pub fn apply(scene: &mut Table, law: LawKind, varied: &[SceneKey]) -> Result<(),
         }
     }
 
-    if law.family() == Family::Elastic {
+    if law.family() != Family::Plastic {
+        contact.remove("yield_pressure");
+    }
+    if matches!(law.family(), Family::Elastic | Family::Plastic) {
         contact.remove("restitution");
         contact.remove("damping");
         return Ok(());

@@ -44,7 +44,14 @@ impl Case {
             Case::Tsuji { e, separation } => (LawKind::Tsuji, 1.5, reference::tsuji_damping(e), separation),
         };
         Request {
-            law: ContactLaw { kind, stiffness: 1.0, exponent: n, damping, tsuji_scale: 1.0 },
+            law: ContactLaw {
+                kind,
+                stiffness: 1.0,
+                exponent: n,
+                damping,
+                tsuji_scale: 1.0,
+                yield_penetration: f64::INFINITY,
+            },
             scales: Scales::new(1.0, 1.0, n, 1.0),
             separation,
             tolerance,

@@ -1,0 +1,156 @@
+//! The elastic–perfectly plastic law (`thornton`) against Thornton's closed form (J. Appl. Mech. 64, 383 (1997)) and
+//! hand calculations written here: the yield speed from the materials, e at four speeds, e = 1 below the yield
+//! speed, the permanent dent, the energy kept by the dent, and an oblique rough impact whose normal part is the
+//! same. Expected numbers never come from the program.
+
+mod common;
+use common::{assert_close, run};
+use std::f64::consts::PI;
+
+/// Steel: E = 210 GPa, nu = 0.3, rho = 7850 kg/m^3; a 10 mm ball.
+const YOUNG: f64 = 210e9;
+const POISSON: f64 = 0.3;
+const RADIUS: f64 = 0.005;
+const DENSITY: f64 = 7850.0;
+/// p_y = 1.6 GPa (1.6 Y for Y = 1 GPa).
+const YIELD_PRESSURE: f64 = 1.6e9;
+
+/// A steel ball at `speed` on a rigid wall (young = inf), with the `[contact]` lines given.
+fn on_rigid_wall(speed: f64, ball: &str, contact: &str) -> String {
+    format!(
+        "[[bodies]]\nradius = {RADIUS}\ndensity = {DENSITY}\nyoung = {YOUNG}\npoisson = {POISSON}\n\
+         velocity = [{speed:?}, 0.0, 0.0]\n{ball}\n\n\
+         [[bodies]]\nradius = inf\nmass = inf\nyoung = inf\nvelocity = [0.0, 0.0, 0.0]\n\n[contact]\n{contact}\n"
+    )
+}
+
+/// The hand calculation for the ball on the rigid wall: (m*, E*, R*, d_y, V_y) in SI.
+/// E* = E / (1 - nu²) (the wall adds no compliance), R* = r, m* = m = (4/3) pi r³ rho,
+/// d_y = (pi p_y / (2 E*))² R*, and (1/2) m* V_y² = (8/15) E* sqrt(R*) d_y^(5/2).
+fn hand() -> (f64, f64, f64, f64, f64) {
+    let modulus = YOUNG / (1.0 - POISSON * POISSON);
+    let mass = 4.0 / 3.0 * PI * RADIUS.powi(3) * DENSITY;
+    let d_y = (PI * YIELD_PRESSURE / (2.0 * modulus)).powi(2) * RADIUS;
+    let v_y = (2.0 * 8.0 / 15.0 * modulus * RADIUS.sqrt() * d_y.powf(2.5) / mass).sqrt();
+    (mass, modulus, RADIUS, d_y, v_y)
+}
+
+/// Thornton's closed form (the physics reference, §9), written out here: x = V_y / V_i,
+/// e = sqrt(6 sqrt(3)/5) sqrt(1 - x²/6) [x / (x + 2 sqrt(6/5 - x²/5))]^(1/4).
+fn closed_form(ratio: f64) -> f64 {
+    let x = 1.0 / ratio;
+    (6.0 * 3f64.sqrt() / 5.0).sqrt()
+        * (1.0 - x * x / 6.0).sqrt()
+        * (x / (x + 2.0 * (6.0 / 5.0 - x * x / 5.0).sqrt())).powf(0.25)
+}
+
+const THORNTON: &str = "law = \"thornton\"\nyield_pressure = 1.6e9";
+
+#[test]
+fn the_yield_speed_is_the_hand_calculation_and_about_34_mm_per_s() {
+    let (_, _, _, _, v_y) = hand();
+    // The physics reference: a 10 mm steel ball (p_y = 1.6 GPa) on a rigid wall yields at about 0.034 m/s.
+    assert!((v_y - 0.034).abs() < 5e-4, "hand V_y = {v_y}");
+    let report = run(&on_rigid_wall(1.0, "", THORNTON));
+    assert_close("V_y", report.law.yield_speed.unwrap(), v_y, 1e-12);
+    assert_eq!(report.law.yield_pressure, Some(YIELD_PRESSURE));
+}
+
+#[test]
+fn e_follows_thorntons_closed_form_at_four_speeds() {
+    let (_, _, _, _, v_y) = hand();
+    // Thornton's table (4 digits) and the closed form; the simulation to 1e-6 of the closed form.
+    for (ratio, published) in [(2.0, 0.9306), (5.0, 0.7733), (10.0, 0.6586), (100.0, 0.3743)] {
+        let exact = closed_form(ratio);
+        assert!((exact - published).abs() < 5e-5, "closed form {exact} against the table's {published}");
+        let report = run(&on_rigid_wall(ratio * v_y, "", THORNTON));
+        let c = &report.contact;
+        assert_close(&format!("e at {ratio} V_y"), c.restitution_velocity_ratio.unwrap(), exact, 1e-6);
+        // Poisson's and Stronge's e are Newton's for a direct impact.
+        assert_close("impulse ratio", c.restitution_impulse_ratio.unwrap(), exact, 1e-6);
+        assert_close("energy ratio", c.restitution_energy.unwrap(), exact, 1e-6);
+    }
+}
+
+#[test]
+fn below_the_yield_speed_the_contact_is_hertz_and_e_is_one() {
+    let (mass, modulus, radius, _, v_y) = hand();
+    for ratio in [0.01, 0.5, 0.99] {
+        let speed = ratio * v_y;
+        let report = run(&on_rigid_wall(speed, "", THORNTON));
+        let c = &report.contact;
+        assert_close("e", c.restitution_velocity_ratio.unwrap(), 1.0, 1e-9);
+        assert!(c.permanent_dent.unwrap() < 1e-9 * c.max_penetration, "dent {:?}", c.permanent_dent);
+        // Hertz: d_max = (15 m* v0² / (16 E* sqrt(R*)))^(2/5).
+        let d_max = (15.0 * mass * speed * speed / (16.0 * modulus * radius.sqrt())).powf(0.4);
+        assert_close("d_max", c.max_penetration, d_max, 1e-8);
+    }
+}
+
+#[test]
+fn the_dent_and_the_energy_it_keeps_are_thorntons() {
+    let (mass, modulus, radius, d_y, v_y) = hand();
+    let speed = 20.0 * v_y;
+    let report = run(&on_rigid_wall(speed, "", THORNTON));
+    // By hand: K = (4/3) E* sqrt(R*); loading Hertz to d_y, then F = F_y + pi p_y R* (d - d_y); the deepest point
+    // from the energy (1/2) m v² = (2/5) K d_y^(5/2) + F_y x + (1/2) pi p_y R* x²; Thornton's unloading radius
+    // R_p = (4 E* / (3 F*)) ((2 F* + F_y) / (2 pi p_y))^(3/2), and the relief (3 F* / (4 E* sqrt(R_p)))^(2/3).
+    let k = 4.0 / 3.0 * modulus * radius.sqrt();
+    let f_y = k * d_y.powf(1.5);
+    let slope = PI * YIELD_PRESSURE * radius;
+    let left = 0.5 * mass * speed * speed - 0.4 * k * d_y.powf(2.5);
+    let x = (-f_y + (f_y * f_y + 2.0 * slope * left).sqrt()) / slope;
+    let (d_max, f_max) = (d_y + x, f_y + slope * x);
+    let r_p = 4.0 * modulus / (3.0 * f_max) * ((2.0 * f_max + f_y) / (2.0 * PI * YIELD_PRESSURE)).powf(1.5);
+    let relief = (3.0 * f_max / (4.0 * modulus * r_p.sqrt())).powf(2.0 / 3.0);
+    let c = &report.contact;
+    assert_close("d_max", c.max_penetration, d_max, 1e-8);
+    assert_close("F_max", c.max_force, f_max, 1e-8);
+    assert_close("dent", c.permanent_dent.unwrap(), d_max - relief, 1e-6);
+    // The unloading gives back (2/5) F* relief: e² = that over (1/2) m v².
+    let e = (0.4 * f_max * relief / (0.5 * mass * speed * speed)).sqrt();
+    assert_close("e by the unloading's energy", c.restitution_velocity_ratio.unwrap(), e, 1e-6);
+    let energy = &report.energy;
+    assert_close("dissipated", energy.dissipated.unwrap(), 0.5 * mass * speed * speed * (1.0 - e * e), 1e-6);
+    assert!(energy.elastic_left_at_separation.unwrap().abs() < 1e-9 * energy.kinetic_before);
+}
+
+#[test]
+fn two_unequal_balls_and_the_yield_stress_give_the_same_law() {
+    // Two steel balls, radii 5 and 10 mm: m* = m1 m2/(m1 + m2), R* = r1 r2/(r1 + r2), E* = E / (2 (1 - nu²)).
+    // p_y = 1.6 × the smaller yield stress (0.8 GPa here): 1.28 GPa.
+    let (r1, r2) = (0.005, 0.010);
+    let mass = |r: f64| 4.0 / 3.0 * PI * r.powi(3) * DENSITY;
+    let m = mass(r1) * mass(r2) / (mass(r1) + mass(r2));
+    let radius = r1 * r2 / (r1 + r2);
+    let modulus = YOUNG / (2.0 * (1.0 - POISSON * POISSON));
+    let p_y = 1.6 * 0.8e9;
+    let d_y = (PI * p_y / (2.0 * modulus)).powi(2) * radius;
+    let v_y = (2.0 * 8.0 / 15.0 * modulus * radius.sqrt() * d_y.powf(2.5) / m).sqrt();
+    let speed = 7.0 * v_y;
+    let scene = format!(
+        "[[bodies]]\nradius = {r1}\ndensity = {DENSITY}\nyoung = {YOUNG}\npoisson = {POISSON}\nyield_stress = 1e9\n\
+         velocity = [{:?}, 0.0, 0.0]\n\n\
+         [[bodies]]\nradius = {r2}\ndensity = {DENSITY}\nyoung = {YOUNG}\npoisson = {POISSON}\nyield_stress = 0.8e9\n\
+         velocity = [{:?}, 0.0, 0.0]\n\n[contact]\nlaw = \"thornton\"\n",
+        0.25 * speed,
+        -0.75 * speed
+    );
+    let report = run(&scene);
+    assert_close("p_y", report.law.yield_pressure.unwrap(), p_y, 1e-15);
+    assert_close("V_y", report.law.yield_speed.unwrap(), v_y, 1e-12);
+    assert_close("e", report.contact.restitution_velocity_ratio.unwrap(), closed_form(7.0), 1e-6);
+}
+
+#[test]
+fn a_rough_oblique_impact_has_the_same_normal_restitution() {
+    // With friction the normal motion of a sphere on a flat is unchanged (the tangential force lies in the plane):
+    // e is the closed form's at the normal approach speed.
+    let (_, _, _, _, v_y) = hand();
+    let normal = 10.0 * v_y;
+    let text = on_rigid_wall(normal, "", &format!("{THORNTON}\nfriction = 0.3\ntangential_stiffness = 1e7"))
+        .replace(&format!("velocity = [{normal:?}, 0.0, 0.0]"), &format!("velocity = [{normal:?}, {:?}, 0.0]", normal));
+    let report = run(&text);
+    assert!(report.oblique.is_some(), "an oblique impact");
+    assert_close("e", report.contact.restitution_velocity_ratio.unwrap(), closed_form(10.0), 1e-6);
+}
