@@ -29,6 +29,7 @@ fn contact_for(law: &str) -> String {
         "hertz" => "law = \"hertz\"".into(),
         "kelvin-voigt" => "law = \"kelvin-voigt\"\nstiffness = 1e7\nrestitution = 0.8".into(),
         "brilliantov" => "law = \"brilliantov\"\ndamping = 1e-6".into(),
+        "thornton" => "law = \"thornton\"\nyield_pressure = 1.6e9".into(),
         other => format!("law = \"{other}\"\nrestitution = 0.8"),
     }
 }
@@ -92,7 +93,7 @@ fn exponent_form(number: &str) -> bool {
 #[test]
 fn every_law_renders_readable_numbers() {
     let laws = LawKind::names();
-    assert_eq!(laws.len(), 14, "docs/laws.md lists 14 laws");
+    assert_eq!(laws.len(), 15, "docs/laws.md lists 15 laws");
     for law in laws {
         let text = rendered(&steel_pair(&contact_for(law), None));
         assert!(text.contains(&format!("law: {law}")), "{law}: the law is named\n{text}");
@@ -155,6 +156,13 @@ fn only_what_the_law_has_is_printed() {
                 assert_eq!(damping, 1, "{text}");
                 assert_eq!(nominal, None, "{text}");
                 assert_eq!(row(&text, "law:", "material time A"), "1.00000 µs", "A = 1e-6 s as given");
+            }
+            // Plastic: no damping, no nominal e; its yield pressure and speed, and what the dent took.
+            "thornton" => {
+                assert_eq!(damping, 0, "thornton has no damping:\n{text}");
+                assert_eq!(nominal, None, "thornton:\n{text}");
+                assert_eq!(row(&text, "law:", "yield pressure p_y"), "1.60000 GPa", "p_y as given");
+                assert!(value(&section(&text, "energy"), "dissipated in the plastic dent").is_some(), "{text}");
             }
             _ => {
                 assert_eq!(damping, 1, "{law} has one damping parameter:\n{text}");
