@@ -86,3 +86,31 @@ fn brilliantov_separation_criterion_matters_a_little() {
     let gap = e("force") - e("penetration");
     assert!((gap - 7.1e-4).abs() < 0.05e-4, "gap {gap}");
 }
+
+/// Schwager & Pöschel's series at small b (PRE 57, 650 (1998); PRE 78, 051304 (2008)): with their exact
+/// coefficients C1 = sqrt(pi) Gamma(3/5) / (2^(1/5) 5^(2/5) Gamma(21/10)) and C2 = (3/5) C1², the simulated e differs
+/// from 1 - C1 b + C2 b² by a term of order b³: the residual falls by 2.5³ for each 2.5-fold smaller b, and its
+/// coefficient (about 0.52, docs/references.md) stays put.
+#[test]
+fn brilliantov_departs_from_the_two_term_series_at_third_order() {
+    let c1 = std::f64::consts::PI.sqrt() * libm::tgamma(0.6) / (2f64.powf(0.2) * 5f64.powf(0.4) * libm::tgamma(2.1));
+    assert!((c1 - 1.15344).abs() < 1e-5, "C1 = {c1} against the published 1.15344");
+    let c2 = 0.6 * c1 * c1;
+    assert!((c2 - 0.79826).abs() < 1e-5, "C2 = {c2} against the published 0.79826");
+    let (mass, speed, stiffness): (f64, f64, f64) = (0.05, 2.0, 5e8);
+    let residual = |b: f64| {
+        let a = b / (1.5 * (stiffness / mass).powf(0.4) * speed.powf(0.2));
+        let report = common::run(&format!(
+            "[[bodies]]\nradius = 1.0\nmass = {mass}\nvelocity = [{speed}, 0, 0]\n\n[[bodies]]\nradius = inf\n\
+             mass = inf\nvelocity = [0, 0, 0]\n\n[contact]\nlaw = \"brilliantov\"\nstiffness = {stiffness}\n\
+             damping = {a}\n\n[solver]\nrtol = 1e-13\natol = 1e-14\n"
+        ));
+        let e = report.contact.restitution_velocity_ratio.unwrap();
+        (1.0 - c1 * b + c2 * b * b - e) / (b * b * b)
+    };
+    let coefficients: Vec<f64> = [0.0016, 0.004, 0.01].into_iter().map(residual).collect();
+    for c in &coefficients {
+        assert!((0.45..0.6).contains(c), "third-order coefficient {c} (all: {coefficients:?})");
+    }
+    assert!((coefficients[0] - coefficients[2]).abs() < 0.03, "the coefficient drifts: {coefficients:?}");
+}
