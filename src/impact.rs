@@ -170,6 +170,7 @@ fn run<const N: usize, M: ContactModel<N>>(
         below_limit: 0.0,
         switches: 0,
         resume: usize::MAX,
+        passed: None,
     };
     stepper.note(0.0, start);
 
@@ -183,7 +184,10 @@ fn run<const N: usize, M: ContactModel<N>>(
     // Whether to watch for the slip coming to rest (a frictional contact that starts slipping).
     let slipping = model.slip_along_start(&start).is_some();
 
-    let yielding = |y: &State<N>| model.yield_margin(y).unwrap_or(1.0);
+    // The onset of yield, watched until it is passed (once located, the margin sits at zero to rounding: watched
+    // further, every restart would find it again).
+    let yielded = std::cell::Cell::new(false);
+    let yielding = |y: &State<N>| if yielded.get() { -1.0 } else { model.yield_margin(y).unwrap_or(1.0) };
 
     // Event lists: the phase's own events first, then the slip's rest (watched, not terminal), then the onset of yield
     // (a step boundary on the kink of a yielding law's force), then (for a frictional model only) the stick–slip
@@ -195,6 +199,7 @@ fn run<const N: usize, M: ContactModel<N>>(
     }
     if model.yield_margin(&start).is_some_and(|margin| margin > 0.0) {
         phases.resume = compression.len();
+        phases.passed = Some(&yielded);
         compression.push(event(&yielding, true));
     }
     if frictional {
@@ -358,7 +363,7 @@ fn uniform(end: f64, count: usize) -> Vec<f64> {
 }
 
 /// Book-keeping across the runs of one impact: the stick–slip history (scaled times).
-struct Phases {
+struct Phases<'a> {
     /// When the present stretch below the Coulomb limit (the spring's sticking mode) began, if the contact is in it.
     below_limit_since: Option<f64>,
     /// Time spent below the limit in finished stretches.
@@ -366,6 +371,8 @@ struct Phases {
     switches: u32,
     /// The terminal event after which the phase simply goes on (the onset of yield); `usize::MAX` for none.
     resume: usize,
+    /// Set when that event is passed (its function then stops watching).
+    passed: Option<&'a std::cell::Cell<bool>>,
 }
 
 /// How a phase ended (the run's end, with the crossings of all its stretches).
@@ -376,7 +383,7 @@ struct PhaseEnd<const N: usize> {
     crossings: Vec<Crossing<N>>,
 }
 
-impl Phases {
+impl Phases<'_> {
     /// Runs one phase from `(t, y)` until one of its terminal events other than the stick–slip switch (the last
     /// event when `switching`), switching the model's mode at each located switch on the way.
     fn run<const N: usize, M: ContactModel<N>>(
@@ -394,7 +401,10 @@ impl Phases {
             let end = stepper.run(time, state, TIME_LIMIT, events)?;
             crossings.extend(end.crossings);
             if end.ending == Ending::Event(self.resume) {
-                // A step boundary at the event, and on.
+                // A step boundary at the event, and on, without it.
+                if let Some(passed) = self.passed {
+                    passed.set(true);
+                }
                 (time, state) = (end.time, end.state);
                 continue;
             }

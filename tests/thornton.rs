@@ -154,3 +154,17 @@ fn a_rough_oblique_impact_has_the_same_normal_restitution() {
     assert!(report.oblique.is_some(), "an oblique impact");
     assert_close("e", report.contact.restitution_velocity_ratio.unwrap(), closed_form(10.0), 1e-6);
 }
+
+/// Over four decades of speed, densely (the located onset of yield at every phase of the step pattern), every
+/// impact ends and follows the closed form: e = 1 to V_y, Thornton's e above it.
+#[test]
+fn e_follows_the_closed_form_over_four_decades_of_speed() {
+    let (_, _, _, _, v_y) = hand();
+    for i in 0..81 {
+        let ratio = 10f64.powf(-1.0 + 4.0 * f64::from(i) / 80.0);
+        let report = run(&on_rigid_wall(ratio * v_y, "", THORNTON));
+        let exact = if ratio <= 1.0 { 1.0 } else { closed_form(ratio) };
+        let e = report.contact.restitution_velocity_ratio.unwrap_or(f64::NAN);
+        assert!((e - exact).abs() <= 1e-6 * exact, "at {ratio} V_y: e = {e}, closed form {exact}");
+    }
+}
