@@ -299,3 +299,43 @@ fn the_terminal_report_opens_with_the_verdicts() {
     // A verdict that is not `holds` is explained under its row.
     assert!(first.contains("elastic marginal: the peak contact pressure reaches"), "{first}");
 }
+
+#[test]
+fn a_spinning_ball_turns_its_surface_through_the_contact() {
+    // A 1 kg ball of radius 1 m spinning at 100 rad/s, thrown head-on at 1 m/s against a smooth wall, K = 1e8 N/m^1.5:
+    // d_max = (5 m v0² / (4 K))^(2/5) = 0.689 mm, t_c = 2.9433 d_max / v0 = 2.03 ms (docs/references.md), so the
+    // surface turns through R ω t_c = 0.203 m, more than the contact radius sqrt(R d_max) = 26 mm.
+    let (omega, stiffness, v0): (f64, f64, f64) = (100.0, 1e8, 1.0);
+    let report = run(&format!(
+        "[[bodies]]\nradius = 1.0\nmass = 1.0\nvelocity = [{v0:?}, 0.0, 0.0]\nangular_velocity = [0.0, 0.0, {omega:?}]\n\n\
+         [[bodies]]\nradius = inf\nmass = inf\nvelocity = [0.0, 0.0, 0.0]\n\n\
+         [contact]\nlaw = \"hertz\"\nstiffness = {stiffness:e}\n"
+    ));
+    let max_penetration = (5.0 * v0 * v0 / (4.0 * stiffness)).powf(0.4);
+    let duration = HERTZ_TIME * max_penetration / v0;
+    assert!(max_penetration.sqrt() < omega * duration);
+    assert_verdict("particles", &report.idealisation.particles, omega * duration, 1.0, Judgement::Marginal);
+    assert_eq!(verdict(&report.idealisation.particles, "particles").measure, "R ω t_c / R");
+}
+
+#[test]
+fn a_contact_that_never_ends_has_no_duration_to_judge() {
+    // An overdamped Kelvin–Voigt contact (zeta = c / (2 sqrt(k m)) = 2) creeps back to zero penetration and never
+    // separates: what needs t_c or e is null, what the compression measured is judged.
+    let report = on_wall(1.0, 1.0, "law = \"kelvin-voigt\"\nstiffness = 1e6\nexponent = 1.0\ndamping = 4000");
+    assert!(!report.contact.separated);
+    let ideal = &report.idealisation;
+    for (key, verdict) in [
+        ("instantaneous", &ideal.instantaneous),
+        ("isolated", &ideal.isolated),
+        ("quasi_static", &ideal.quasi_static),
+        ("constant_e", &ideal.constant_e),
+    ] {
+        assert!(verdict.is_none(), "{key}");
+    }
+    // a = sqrt(R d_max) against R = 1 m (a wall: R* = R).
+    let a = report.contact.max_penetration.sqrt();
+    assert_verdict("particles", &ideal.particles, a, 1.0, Judgement::Holds);
+    assert_contract(&serde_json::to_value(&report).unwrap(), "never separated");
+    assert!(render(&report).contains("the bodies did not separate"));
+}

@@ -156,12 +156,13 @@ fn idealisation(report: &Report) -> Option<Section> {
         .map(|(key, verdict)| match verdict {
             Some(v) => [
                 v.measure.to_string(),
+                // (A value below NOISE of its scale is rounding: a slope of 1e-15 is 0.)
                 format!(
                     "{} vs {}",
-                    engineering_digits(v.value, v.unit, 3),
+                    engineering_digits(denoise(v.value, v.compared_with), v.unit, 3),
                     engineering_digits(v.compared_with, v.unit, 3)
                 ),
-                ratio(v.ratio),
+                ratio(denoise(v.ratio, 1.0)),
                 v.verdict.name().to_string(),
             ],
             None => [why_not_judged(key, report.contact.separated).into(), String::new(), "n/a".into(), String::new()],
