@@ -22,7 +22,7 @@
 //! the simulated `e` is reported beside the target.
 
 use crate::body::Body;
-use crate::impact::{SimulationError, simulate};
+use crate::impact::{Options, SimulationError, simulate_with};
 use crate::law::damping::{damping_for_restitution, hysteresis_chi};
 use crate::law::{Family, LawKind, Separation};
 use crate::reference::{self, SeparationCriterion, brilliantov_c1};
@@ -498,7 +498,9 @@ impl Simulations<'_> {
     /// The simulated e (velocity ratio) with `damping`; `None` if the bodies do not separate.
     fn restitution(&mut self, damping: f64) -> Result<Option<f64>, CalibrationError> {
         self.count += 1;
-        let report = simulate(&with_damping(self.scene, damping), crate::history::Recording::Off)?.report;
+        // (Only e is read: no verdicts on the idealisation, whose trial would triple the runs.)
+        let options = Options { idealisation: false, ..Options::default() };
+        let report = simulate_with(&with_damping(self.scene, damping), options)?.report;
         Ok(report.contact.restitution_velocity_ratio)
     }
 }

@@ -11,6 +11,7 @@ use crate::dynamics::normal::NormalContact;
 use crate::dynamics::pair::PairContact;
 use crate::fast::Quantities;
 use crate::history::{History, Recording};
+use crate::idealisation::{SPEED_STEP, SpeedTrial};
 use crate::integrate::{
     Counters, Crossing, Direction, Ending, Event, IntegrationError, Scheme, State, Stepper, Tolerances,
 };
@@ -18,7 +19,7 @@ use crate::outcome::{Outcome, SETTLED, TIME_LIMIT, stiffness_causes};
 use crate::report::Report;
 use crate::report::accuracy::ReferenceDetail;
 use crate::scene::SetupError;
-use crate::scene::{Method, Scene};
+use crate::scene::{DampingSpec, Method, Scene};
 use crate::setup::{Motion, Setup};
 use std::time::Instant;
 
@@ -53,12 +54,18 @@ pub struct Options {
     /// columns shows). What it leaves out is NaN in the outcome and the report: a run's own report asks for all.
     /// The general path computes everything whatever this says.
     pub quantities: Quantities,
+    /// Whether to judge the idealisation (the report's `idealisation`): two more runs of the contact, at 0.9 and 1.1
+    /// times the speed, for `constant_e`. Off, every verdict is null (a sweep's row, a calibration's step).
+    pub idealisation: bool,
 }
 
 /// Simulates the scene's impact with the full report; `recording` says whether (and how) to keep the contact
 /// history.
 pub fn simulate(scene: &Scene, recording: Recording) -> Result<Simulation, SimulationError> {
-    simulate_with(scene, Options { recording, reference: ReferenceDetail::Full, quantities: Quantities::ALL })
+    simulate_with(
+        scene,
+        Options { recording, reference: ReferenceDetail::Full, quantities: Quantities::ALL, idealisation: true },
+    )
 }
 
 /// Simulates the scene's impact, computing what `options` ask for.
@@ -78,14 +85,33 @@ pub fn simulate_prepared(
     clock: Option<Instant>,
 ) -> Result<Simulation, SimulationError> {
     let (outcome, history) = through_phases(scene, setup, options.recording, options.quantities)?;
-    let report = crate::report::build(
-        scene,
-        setup,
-        &outcome,
-        options.reference,
-        clock.map_or(f64::NAN, |clock| clock.elapsed().as_secs_f64()),
-    );
+    // (The wall time is this impact's: the trial's two runs come after it.)
+    let wall_time = clock.map_or(f64::NAN, |clock| clock.elapsed().as_secs_f64());
+    let trial = options.idealisation.then(|| speed_trial(scene, setup));
+    let report = crate::report::build(scene, setup, &outcome, options.reference, wall_time, trial);
     Ok(Simulation { report, history })
+}
+
+/// The e of the same contact with every velocity and spin scaled by 1 ∓ [`SPEED_STEP`] (the incidence and the
+/// slip's proportions kept), on the path the scene takes (the fast path where it covers the scene), for the
+/// `constant_e` verdict. The law keeps its damping parameter: a nominal e was mapped at the scene's speed, and
+/// re-mapping it at the new one would hold e constant by construction. The runs give outcomes, not reports, so they
+/// never ask for a trial of their own.
+fn speed_trial(scene: &Scene, setup: &Setup) -> SpeedTrial {
+    let at = |factor: f64| {
+        let mut scaled = scene.clone();
+        for body in &mut scaled.bodies {
+            body.velocity *= factor;
+            body.angular_velocity *= factor;
+        }
+        if let DampingSpec::Restitution(_) = scaled.contact.damping {
+            scaled.contact.damping = DampingSpec::Parameter(setup.law.damping);
+        }
+        let setup = Setup::new(&scaled).ok()?;
+        let (outcome, _) = through_phases(&scaled, &setup, Recording::Off, Quantities::MOTION).ok()?;
+        outcome.separated.then(|| -outcome.end.rate / setup.approach_speed)
+    };
+    SpeedTrial { slower: at(1.0 - SPEED_STEP), faster: at(1.0 + SPEED_STEP) }
 }
 
 /// The impact's [`Outcome`] alone, on the path [`simulate_prepared`] takes, without a history or a report: what

@@ -11,6 +11,7 @@ pub mod fast;
 pub mod files;
 pub mod geometry;
 pub mod history;
+pub mod idealisation;
 pub mod impact;
 pub mod instantaneous;
 pub mod integrate;

@@ -65,7 +65,9 @@ fn as_one_impact(scene: &WorldScene) -> Result<Option<WorldSimulation>, WorldErr
     if crate::setup::Setup::new(&pair).is_err() {
         return Ok(None);
     }
-    let simulation = crate::impact::simulate(&pair, crate::history::Recording::Off).map_err(|error| match error {
+    // (A world report has no verdicts on the idealisation: not yet.)
+    let options = crate::impact::Options { idealisation: false, ..crate::impact::Options::default() };
+    let simulation = crate::impact::simulate_with(&pair, options).map_err(|error| match error {
         crate::impact::SimulationError::Setup(error) => WorldError::Setup(scene.rename(0, 1, error)),
         crate::impact::SimulationError::Integration(error) => WorldError::Integration(error),
         crate::impact::SimulationError::Compression(why) => {

@@ -10,6 +10,7 @@
 //! - times of the contact are measured from first contact; the scene time of first contact is given once.
 
 use super::units::{DIGITS, engineering, engineering_digits, plain, plain_digits, prefix_for, short};
+use crate::idealisation::Judgement;
 use crate::law::{Family, LawKind};
 use crate::report::{InstantaneousReport, Report, Vec3};
 use std::fmt::Write;
@@ -91,6 +92,7 @@ impl Section {
 pub fn render(report: &Report) -> String {
     let scales = Scales::of(report);
     let sections: Vec<Section> = [
+        idealisation(report),
         Some(law(report)),
         Some(impact(report)),
         Some(contact(report, &scales)),
@@ -139,6 +141,67 @@ pub(super) fn layout(title: &str, sections: &[Section], notes: &[String]) -> Str
         let _ = writeln!(text, "note: {note}");
     }
     text
+}
+
+/// The verdicts on the idealisation, first: one row per assumption (what is measured, its value against its scale,
+/// the ratio, the verdict), and under a verdict that is not `holds` its meaning. `None` when the run did not judge
+/// the idealisation (every verdict null).
+fn idealisation(report: &Report) -> Option<Section> {
+    let entries = report.idealisation.entries();
+    if entries.iter().all(|(_, verdict)| verdict.is_none()) {
+        return None;
+    }
+    let cells: Vec<_> = entries
+        .iter()
+        .map(|(key, verdict)| match verdict {
+            Some(v) => [
+                v.measure.to_string(),
+                // (A value below NOISE of its scale is rounding: a slope of 1e-15 is 0.)
+                format!(
+                    "{} vs {}",
+                    engineering_digits(denoise(v.value, v.compared_with), v.unit, 3),
+                    engineering_digits(v.compared_with, v.unit, 3)
+                ),
+                ratio(denoise(v.ratio, 1.0)),
+                v.verdict.name().to_string(),
+            ],
+            None => [why_not_judged(key, report.contact.separated).into(), String::new(), "n/a".into(), String::new()],
+        })
+        .collect();
+    let header = ["measured".to_string(), "value vs compared with".into(), "ratio".into(), "verdict".into()];
+    let widths: Vec<usize> =
+        (0..3).map(|i| cells.iter().chain([&header]).map(|c| c[i].chars().count()).max().unwrap_or(0)).collect();
+    let line = |c: &[String; 4]| {
+        format!("{:<w0$}  {:<w1$}  {:>w2$}  {}", c[0], c[1], c[2], c[3], w0 = widths[0], w1 = widths[1], w2 = widths[2])
+    };
+    let mut section = Section::new("the idealisation on trial (docs/idealisation.md)");
+    section.row("assumption", line(&header));
+    for ((key, verdict), cell) in entries.iter().zip(&cells) {
+        section.row(*key, line(cell));
+        if let Some(v) = verdict.filter(|v| v.verdict != Judgement::Holds) {
+            section.heading(format!("  {key} {}: {}", v.verdict.name(), v.meaning));
+        }
+    }
+    Some(section)
+}
+
+/// Why an assumption has no verdict (docs/idealisation.md#the-eight-verdicts).
+fn why_not_judged(key: &str, separated: bool) -> &'static str {
+    match key {
+        "elastic" => "no body has a finite yield_stress",
+        "instantaneous" | "isolated" | "quasi_static" | "constant_e" | "smooth" if !separated => {
+            "the bodies did not separate"
+        }
+        "quasi_static" => "no body with young and a density",
+        "constant_e" => "e = 0, or a run at 0.9 or 1.1 v0 did not separate",
+        _ => "does not apply",
+    }
+}
+
+/// A verdict's ratio, to two digits: plain from 0.01 to 1000, in exponent form outside.
+fn ratio(value: f64) -> String {
+    let size = value.abs();
+    if size == 0.0 || (1e-2..1e3).contains(&size) { plain_digits(value, 2) } else { format!("{value:.1e}") }
 }
 
 /// The law: its formula, parameters and separation criterion. Only what the law has: no damping for Hertz, no

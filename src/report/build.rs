@@ -7,6 +7,7 @@ use super::{
     SolverReport, Vec3,
 };
 use crate::body::Body;
+use crate::idealisation::{self, Idealisation, SpeedTrial};
 use crate::instantaneous::{Instantaneous, direct_impact, rigid_body_impact};
 use crate::integrate::Ending;
 use crate::outcome::{Outcome, TIME_LIMIT, stiffness_causes};
@@ -14,8 +15,16 @@ use crate::scene::{DampingSpec, Scene};
 use crate::setup::{Motion, Setup};
 use nalgebra::Vector3;
 
-/// The report of one impact.
-pub fn build(scene: &Scene, setup: &Setup, outcome: &Outcome, detail: ReferenceDetail, wall_time: f64) -> Report {
+/// The report of one impact; with `trial` (the e of the same contact at 0.9 and 1.1 times the speed), its verdicts on
+/// the idealisation, read from the report's own numbers.
+pub fn build(
+    scene: &Scene,
+    setup: &Setup,
+    outcome: &Outcome,
+    detail: ReferenceDetail,
+    wall_time: f64,
+    trial: Option<SpeedTrial>,
+) -> Report {
     let [a, b] = &scene.bodies;
     let n = setup.normal;
     let (max, end) = (&outcome.max_compression, &outcome.end);
@@ -117,7 +126,7 @@ pub fn build(scene: &Scene, setup: &Setup, outcome: &Outcome, detail: ReferenceD
             outcome.switches
         ));
     }
-    Report {
+    let mut report = Report {
         title: scene.title.clone(),
         law: LawReport {
             name: setup.law.kind.name(),
@@ -165,6 +174,7 @@ pub fn build(scene: &Scene, setup: &Setup, outcome: &Outcome, detail: ReferenceD
         instantaneous: when(e_velocity).map(compare),
         instantaneous_nominal: nominal.map(compare),
         reference: if fixed_normal { accuracy::reference(scene, setup, measured, detail) } else { None },
+        idealisation: Idealisation::default(),
         solver: SolverReport {
             method: outcome.method,
             rtol: scene.solver.tolerances.rtol,
@@ -175,6 +185,41 @@ pub fn build(scene: &Scene, setup: &Setup, outcome: &Outcome, detail: ReferenceD
             wall_time_s: wall_time,
         },
         notes,
+    };
+    if let Some(trial) = trial {
+        report.idealisation = idealisation::judge(&scene.bodies, &measured_by(&report, scene.contact.friction, trial));
+    }
+    report
+}
+
+/// What the verdicts on the idealisation read: the report's own numbers.
+fn measured_by(report: &Report, friction: f64, speed_trial: SpeedTrial) -> idealisation::Measured {
+    let c = &report.contact;
+    let vector = |v: &Vec3| Vector3::from(*v);
+    let pair = |of: &dyn Fn(&BodyReport) -> Vec3| report.bodies.each_ref().map(|b| vector(&of(b)));
+    let after = |of: &dyn Fn(&BodyReport) -> Option<Vec3>| {
+        let [a, b] = report.bodies.each_ref().map(of);
+        Some([vector(&a?), vector(&b?)])
+    };
+    idealisation::Measured {
+        duration: c.duration,
+        max_penetration: c.max_penetration,
+        max_force: c.max_force,
+        deformation_impulse: c.deformation_impulse,
+        restitution_impulse: c.restitution_impulse,
+        restitution: c.restitution_velocity_ratio,
+        normal: vector(&report.normal),
+        velocities_before: pair(&|b| b.velocity_before),
+        velocities_after: after(&|b| b.velocity_after),
+        spins_before: pair(&|b| b.angular_velocity_before),
+        spins_after: after(&|b| b.angular_velocity_after),
+        friction,
+        friction_work: report.oblique.as_ref().and_then(|o| o.friction_work),
+        kinetic_before: report.energy.kinetic_before,
+        approach_speed: report.approach_speed,
+        max_velocity_difference: report.instantaneous.as_ref().and_then(|i| i.max_velocity_difference),
+        speed_trial,
+        yielding: report.law.yield_pressure.zip(report.law.yield_speed),
     }
 }
 

@@ -7,6 +7,7 @@ pub mod world;
 
 pub use build::build;
 
+use crate::idealisation::Idealisation;
 use serde::{Serialize, Serializer};
 
 /// A 3-vector as written in the report.
@@ -39,6 +40,9 @@ pub struct Report {
     pub instantaneous_nominal: Option<InstantaneousReport>,
     /// Exact values for this law and their relative errors; null when no exact reference exists (an addition).
     pub reference: Option<ReferenceReport>,
+    /// A verdict on each assumption of the instantaneous impact (docs/idealisation.md); every key null where the
+    /// run was not asked for them ([`crate::impact::Options::idealisation`]: a sweep's row, a calibration's step).
+    pub idealisation: Idealisation,
     pub solver: SolverReport,
     /// Plain-language remarks (e.g. why the bodies did not separate); an addition.
     pub notes: Vec<String>,

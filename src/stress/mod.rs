@@ -26,8 +26,7 @@
 pub mod world;
 
 use crate::draw::Draw;
-use crate::history::Recording;
-use crate::impact::simulate;
+use crate::impact::{Options, simulate_with};
 use crate::law::damping::check_restitution;
 use crate::law::{Family, LawKind};
 use crate::outcome::TIME_LIMIT;
@@ -448,7 +447,8 @@ pub fn check_text(text: &str) -> Checked {
             return (class, Vec::new(), Vec::new());
         }
     };
-    let report = match simulate(&scene, Recording::Off) {
+    // (The invariants checked here are the impact's: no verdicts on the idealisation, whose trial triples the runs.)
+    let report = match simulate_with(&scene, Options { idealisation: false, ..Options::default() }) {
         Ok(simulation) => simulation.report,
         // A compression that cannot end within the step budget (a creeping, stiff contact) is told as such.
         Err(crate::impact::SimulationError::Compression(why)) if why.contains("budget") => {

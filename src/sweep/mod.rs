@@ -148,7 +148,12 @@ impl Sweep {
     /// What a row's run computes for `columns`: no history; of the exact reference at most the restitution (the
     /// quadratures of the others are not computed); nothing the columns do not show.
     fn row_options(columns: &Columns) -> Options {
-        Options { recording: Recording::Off, reference: columns.reference(), quantities: columns.quantities() }
+        Options {
+            recording: Recording::Off,
+            reference: columns.reference(),
+            quantities: columns.quantities(),
+            idealisation: false,
+        }
     }
 
     /// The result columns written.

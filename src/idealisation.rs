@@ -1,0 +1,434 @@
+//! The idealisation on trial (docs/idealisation.md): for each assumption of the instantaneous impact, the number that
+//! measures it in this impact, the scale it is compared with, and a verdict.
+//!
+//! The verdicts read what the report measured ([`Measured`], gathered by `report::build` from the report it has just
+//! built) and the scene's bodies; they never re-derive the simulation. The one measure that needs more than one run,
+//! `constant_e`, reads the e of the same contact at 0.9 and 1.1 times the speed ([`SpeedTrial`]), which the impact
+//! driver measures from two outcomes (not reports), so that a trial never asks for a trial of its own.
+
+use crate::body::Body;
+use crate::geometry::effective_radius;
+use nalgebra::Vector3;
+use serde::Serialize;
+
+/// Standard gravity, m/s² (the `isolated` verdict: what it would add to a contact that feels it).
+pub const STANDARD_GRAVITY: f64 = 9.80665;
+
+/// The relative change of every velocity in the two runs of the `constant_e` trial (0.9 and 1.1 times).
+pub const SPEED_STEP: f64 = 0.1;
+
+/// The slope d ln e / d ln v0 that `constant_e` is compared with: over a doubling of the speed (a few bounces) it
+/// changes e by 2^0.1 - 1 = 7 %.
+pub const SLOPE_SCALE: f64 = 0.1;
+
+/// The yield criterion: plastic flow begins under a Hertz contact whose peak pressure reaches this multiple of the
+/// yield stress (Johnson, Contact Mechanics, ch. 11; the Tresca and von Mises criteria give 1.60 and 1.61).
+pub const YIELD_PRESSURE_FACTOR: f64 = 1.6;
+
+/// The verdict on each assumption; `None` where it does not apply, or where it was not asked for (a sweep's row, a
+/// calibration's step: every key null).
+#[derive(Debug, Clone, PartialEq, Default, Serialize)]
+pub struct Idealisation {
+    /// The contact takes no time: the bodies' relative travel during it against the smaller radius.
+    pub instantaneous: Option<Verdict>,
+    /// No other force acts during the contact: standard gravity's impulse against the contact's.
+    pub isolated: Option<Verdict>,
+    /// The bodies keep their shape: penetration, contact radius and the surface's turn against the smaller radius.
+    pub particles: Option<Verdict>,
+    /// The materials stay elastic: the peak Hertz pressure against 1.6 times the smaller yield stress.
+    pub elastic: Option<Verdict>,
+    /// The contact is quasi-static: the slowest body's elastic-wave transit against the contact time.
+    pub quasi_static: Option<Verdict>,
+    /// e does not depend on the speed: d ln e / d ln v0 from runs at 0.9 and 1.1 times every velocity.
+    pub constant_e: Option<Verdict>,
+    /// The contact is smooth: the tangential impulse (or friction's work) against the normal one (the energy).
+    pub smooth: Option<Verdict>,
+    /// The impact is central: the normal's lever arm about each mass centre against the radius of gyration.
+    pub central: Option<Verdict>,
+}
+
+impl Idealisation {
+    /// The verdicts in the order of the report, with their keys.
+    pub fn entries(&self) -> [(&'static str, Option<&Verdict>); 8] {
+        [
+            ("instantaneous", self.instantaneous.as_ref()),
+            ("isolated", self.isolated.as_ref()),
+            ("particles", self.particles.as_ref()),
+            ("elastic", self.elastic.as_ref()),
+            ("quasi_static", self.quasi_static.as_ref()),
+            ("constant_e", self.constant_e.as_ref()),
+            ("smooth", self.smooth.as_ref()),
+            ("central", self.central.as_ref()),
+        ]
+    }
+}
+
+/// One assumption measured: `ratio = value / compared_with`, and a large `ratio` means it fails (`constant_e`'s
+/// carries the slope's sign; its verdict reads the size).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Verdict {
+    pub value: f64,
+    pub compared_with: f64,
+    pub ratio: f64,
+    pub verdict: Judgement,
+    /// One sentence: what was measured and what it does to the idealised impact.
+    pub meaning: String,
+    /// What `value` and `compared_with` are, for a view ("a / R"); not in the JSON.
+    #[serde(skip)]
+    pub measure: &'static str,
+    /// Their unit ("m", "" for a number); not in the JSON.
+    #[serde(skip)]
+    pub unit: &'static str,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Judgement {
+    Holds,
+    Marginal,
+    Fails,
+}
+
+impl Judgement {
+    pub fn name(self) -> &'static str {
+        match self {
+            Judgement::Holds => "holds",
+            Judgement::Marginal => "marginal",
+            Judgement::Fails => "fails",
+        }
+    }
+}
+
+/// Where a ratio's verdict changes: holds below `holds_below`, fails from `fails_from` (docs/idealisation.md gives
+/// each pair's reasons).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Limits {
+    pub holds_below: f64,
+    pub fails_from: f64,
+}
+
+impl Limits {
+    pub fn judge(self, ratio: f64) -> Judgement {
+        let size = ratio.abs();
+        if size < self.holds_below {
+            Judgement::Holds
+        } else if size < self.fails_from {
+            Judgement::Marginal
+        } else {
+            Judgement::Fails
+        }
+    }
+}
+
+/// A correction of relative size `ratio` to the idealised impact: a per cent is within the scatter of measured
+/// impacts, ten per cent is not (`instantaneous`, `isolated`, `smooth`, `central`).
+pub const CORRECTION: Limits = Limits { holds_below: 1e-2, fails_from: 1e-1 };
+/// A length against the body's size (`particles`) or a transit against the contact time (`quasi_static`): Hertz's
+/// small-strain and quasi-static errors grow as the ratio squared (a/R = 0.1: 1 %), or faster.
+pub const SHAPE: Limits = Limits { holds_below: 0.1, fails_from: 0.3 };
+/// The peak pressure against the yield pressure: yield begins at 1; at 2^(2/5) times the yield pressure (Hertz's
+/// elastic p0, which grows as v0^(2/5)) the speed is twice the yield speed, and Thornton's e has fallen to 0.93.
+pub const YIELD: Limits = Limits { holds_below: 1.0, fails_from: 1.319_507_910_772_894 };
+/// The slope against [`SLOPE_SCALE`]: |d ln e / d ln v0| below 0.01 (e within 0.7 % over a doubling of the speed)
+/// holds, from 0.1 (7 %) fails.
+pub const SLOPE: Limits = Limits { holds_below: 0.1, fails_from: 1.0 };
+
+/// The e of the same contact with every velocity and spin scaled by `1 - SPEED_STEP` and `1 + SPEED_STEP`, the law's
+/// damping parameter kept (a nominal e is not re-mapped at the new speed); `None` where that run did not separate or
+/// could not run.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SpeedTrial {
+    pub slower: Option<f64>,
+    pub faster: Option<f64>,
+}
+
+/// What the report measured that the verdicts read (SI; vectors in scene axes).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Measured {
+    /// t_c, s; `None` when the bodies did not separate.
+    pub duration: Option<f64>,
+    /// d_max, m.
+    pub max_penetration: f64,
+    /// F_max, N.
+    pub max_force: f64,
+    /// Normal impulse over compression, N s.
+    pub deformation_impulse: f64,
+    /// Normal impulse over restitution, N s; `None` when the bodies did not separate.
+    pub restitution_impulse: Option<f64>,
+    /// The simulated e (velocity ratio).
+    pub restitution: Option<f64>,
+    /// The contact normal at first contact.
+    pub normal: Vector3<f64>,
+    pub velocities_before: [Vector3<f64>; 2],
+    pub velocities_after: Option<[Vector3<f64>; 2]>,
+    pub spins_before: [Vector3<f64>; 2],
+    pub spins_after: Option<[Vector3<f64>; 2]>,
+    /// Coulomb mu of the contact.
+    pub friction: f64,
+    /// Work of friction, J.
+    pub friction_work: Option<f64>,
+    /// J.
+    pub kinetic_before: f64,
+    /// v0, m/s.
+    pub approach_speed: f64,
+    /// Largest |simulated - instantaneous| velocity component after, m/s (the instantaneous impact with the
+    /// simulated e).
+    pub max_velocity_difference: Option<f64>,
+    pub speed_trial: SpeedTrial,
+    /// For a yielding law (`thornton`): its yield pressure p_y (Pa) and yield speed V_y (m/s).
+    pub yielding: Option<(f64, f64)>,
+}
+
+/// The verdicts on the idealisation of one impact between `bodies`, from what it measured.
+pub fn judge(bodies: &[Body; 2], measured: &Measured) -> Idealisation {
+    Idealisation {
+        instantaneous: instantaneous(bodies, measured),
+        isolated: isolated(bodies, measured),
+        particles: particles(bodies, measured),
+        elastic: elastic(bodies, measured),
+        quasi_static: quasi_static(bodies, measured),
+        constant_e: constant_e(measured),
+        smooth: smooth(bodies, measured),
+        central: central(bodies),
+    }
+}
+
+/// A verdict on `value` against `compared_with`; `None` for a measure that is not a finite number.
+fn verdict(
+    value: f64,
+    compared_with: f64,
+    limits: Limits,
+    (measure, unit): (&'static str, &'static str),
+    meaning: impl FnOnce(f64) -> String,
+) -> Option<Verdict> {
+    let ratio = value / compared_with;
+    ratio.is_finite().then(|| Verdict {
+        value,
+        compared_with,
+        ratio,
+        verdict: limits.judge(ratio),
+        meaning: meaning(ratio),
+        measure,
+        unit,
+    })
+}
+
+/// The smaller finite radius of the two bodies (a wall's is infinite).
+fn smaller_radius(bodies: &[Body; 2]) -> Option<f64> {
+    let radius = bodies[0].radius.min(bodies[1].radius);
+    radius.is_finite().then_some(radius)
+}
+
+/// "; the simulated velocities after differ from ... by ... m/s", when the report has a difference that shows (a
+/// direct impact matches the instantaneous impact with the simulated e to rounding).
+fn difference(measured: &Measured) -> String {
+    measured.max_velocity_difference.filter(|dv| *dv > 1e-6 * measured.approach_speed).map_or(String::new(), |dv| {
+        format!("; the simulated velocities after differ from the instantaneous impact's by up to {dv:.3e} m/s")
+    })
+}
+
+/// Relative travel of the centres during the contact, max(|v2 - v1| before, after) t_c, against the smaller radius:
+/// the one length of a two-body scene the idealisation's single instant and place can be measured against. Relative,
+/// so that the verdict does not change with the observer's frame.
+fn instantaneous(bodies: &[Body; 2], measured: &Measured) -> Option<Verdict> {
+    let duration = measured.duration?;
+    let radius = smaller_radius(bodies)?;
+    let [before, after] = [Some(measured.velocities_before), measured.velocities_after]
+        .map(|v| v.map_or(0.0, |[v1, v2]| (v2 - v1).norm()));
+    let travel = before.max(after) * duration;
+    verdict(travel, radius, CORRECTION, ("relative travel / radius", "m"), |ratio| {
+        format!(
+            "the bodies travel {ratio:.3e} of the smaller radius relative to each other during the {duration:.3e} s \
+             contact, which the idealisation makes one instant at one place: a third body or a field acting \
+             meanwhile would meet them in between{}",
+            // (With friction, the difference from the smooth instantaneous impact is mostly friction's: `smooth`.)
+            if measured.friction == 0.0 { difference(measured) } else { String::new() }
+        )
+    })
+}
+
+/// Standard gravity's impulse on the heavier movable body during the contact, m g t_c, against the contact's normal
+/// impulse: a one-impact scene has no gravity, so this is what it would add to a contact that feels it (a body
+/// against a support or a wall; two bodies in free fall together do not feel it).
+fn isolated(bodies: &[Body; 2], measured: &Measured) -> Option<Verdict> {
+    let duration = measured.duration?;
+    let impulse = measured.deformation_impulse + measured.restitution_impulse?;
+    let mass = bodies.iter().map(|b| b.mass).filter(|m| m.is_finite()).fold(0.0, f64::max);
+    let gravity = mass * STANDARD_GRAVITY * duration;
+    verdict(gravity, impulse, CORRECTION, ("m g t_c / contact impulse", "N s"), |ratio| {
+        format!(
+            "the scene has no gravity; standard gravity on the heavier body, pressed through the contact by a support \
+             or a wall, would add {ratio:.3e} of the contact impulse and change the rebound by about as much (two \
+             bodies falling freely together would not feel it)"
+        )
+    })
+}
+
+/// The worst of d_max, the contact radius a = sqrt(R* d_max) and the arc R ω t_c the fastest-spinning body's surface
+/// turns through, each against the smaller finite radius R.
+fn particles(bodies: &[Body; 2], measured: &Measured) -> Option<Verdict> {
+    let radius = smaller_radius(bodies)?;
+    let penetration = measured.max_penetration;
+    let contact_radius = (effective_radius(&bodies[0], &bodies[1])? * penetration).sqrt();
+    let spin = |spins: &[Vector3<f64>; 2]| {
+        (0..2).filter(|&i| bodies[i].radius.is_finite()).map(|i| spins[i].norm()).fold(0.0, f64::max)
+    };
+    let fastest = spin(&measured.spins_before).max(measured.spins_after.as_ref().map_or(0.0, spin));
+    let turn = measured.duration.map_or(0.0, |t| radius * fastest * t);
+    let deformed = "the idealisation's rigid bodies with a point contact, and Hertz's small-strain contact, are off by \
+                    about the square of this fraction";
+    let turned = "the bodies turn by this many radians while in contact: the contact point of a body that is not a \
+                  sphere, and its lever arm, would move as much";
+    let candidates = [
+        (penetration, "d_max / R", "the maximum penetration", deformed),
+        (contact_radius, "a / R", "the contact radius a = sqrt(R* d_max)", deformed),
+        (turn, "R ω t_c / R", "the arc a surface turns through during the contact", turned),
+    ];
+    let (value, measure, what, consequence) =
+        candidates.into_iter().fold(candidates[0], |worst, c| if c.0 > worst.0 { c } else { worst });
+    verdict(value, radius, SHAPE, (measure, "m"), |ratio| {
+        format!("{what} is {ratio:.3e} of the smaller radius (the worst of d_max, a and R ω t_c): {consequence}")
+    })
+}
+
+/// The peak Hertz pressure p0 = 3 F_max / (2 π a²), a = sqrt(R* d_max), against 1.6 times the smaller yield stress.
+fn elastic(bodies: &[Body; 2], measured: &Measured) -> Option<Verdict> {
+    if let Some((pressure, speed)) = measured.yielding {
+        return yielding_law(pressure, speed, measured);
+    }
+    let yield_stress = bodies.iter().filter_map(|b| b.yield_stress).fold(f64::INFINITY, f64::min);
+    if !yield_stress.is_finite() {
+        return None;
+    }
+    let area = effective_radius(&bodies[0], &bodies[1])? * measured.max_penetration;
+    let pressure = 3.0 * measured.max_force / (2.0 * std::f64::consts::PI * area);
+    verdict(pressure, YIELD_PRESSURE_FACTOR * yield_stress, YIELD, ("p0 / 1.6 Y", "Pa"), |ratio| {
+        if ratio < 1.0 {
+            format!(
+                "the peak contact pressure stays at {ratio:.3} of the pressure at which the weaker material begins \
+                 to yield (1.6 Y): no plastic flow, the elastic law holds"
+            )
+        } else {
+            format!(
+                "the peak contact pressure reaches {ratio:.3} times the pressure at which the weaker material begins \
+                 to yield (1.6 Y): it flows plastically, dissipating energy an elastic law does not (an e below the \
+                 simulated one, falling with speed, as an elastic–plastic law such as Thornton's gives)"
+            )
+        }
+    })
+}
+
+/// The `elastic` verdict of a law that yields itself (`thornton`): the peak pressure an elastic (Hertz) contact would
+/// reach at this speed, p_y (v0 / V_y)^(2/5) (Hertz's p0 grows as v0^(2/5) and is p_y at V_y), against p_y — the
+/// contact is not elastic above V_y, and the simulation already says what that costs.
+fn yielding_law(pressure: f64, speed: f64, measured: &Measured) -> Option<Verdict> {
+    let elastic_pressure = pressure * (measured.approach_speed / speed).powf(0.4);
+    let e = measured.restitution;
+    verdict(elastic_pressure, pressure, YIELD, ("elastic p0 / p_y", "Pa"), |ratio| {
+        if ratio < 1.0 {
+            format!(
+                "below the yield speed ({speed:.4e} m/s) the contact stays elastic: its peak pressure is {ratio:.3} of \
+                 the yield pressure, e = 1"
+            )
+        } else {
+            let e = e.map_or_else(|| "no rebound".to_string(), |e| format!("e = {e:.6}"));
+            format!(
+                "the contact yields: an elastic one would press at {ratio:.3} times the yield pressure; the law \
+                 follows the plastic flow, and the dent it leaves costs the rebound: {e} where an elastic contact \
+                 gives 1"
+            )
+        }
+    })
+}
+
+/// The longest elastic-wave transit 2R/c, c = sqrt(E/ρ), of a body with a finite modulus and density, against the
+/// contact time: a contact many transits long loads the body quasi-statically, as Hertz assumes.
+fn quasi_static(bodies: &[Body; 2], measured: &Measured) -> Option<Verdict> {
+    let duration = measured.duration?;
+    let transit = |body: &Body| {
+        let young = body.young.filter(|e| e.is_finite())?;
+        let volume = 4.0 / 3.0 * std::f64::consts::PI * body.radius.powi(3);
+        let density = body.density.unwrap_or(body.mass / volume);
+        (density.is_finite() && body.radius.is_finite()).then(|| 2.0 * body.radius / (young / density).sqrt())
+    };
+    let slowest =
+        bodies.iter().filter_map(transit).fold(None, |worst: Option<f64>, t| Some(worst.map_or(t, |w| w.max(t))))?;
+    verdict(slowest, duration, SHAPE, ("2R/c / t_c", "s"), |ratio| {
+        format!(
+            "an elastic wave crosses the body in {ratio:.3e} of the contact time: below a tenth the body is loaded \
+             quasi-statically as Hertz assumes; near one, waves carry energy away (Hunter 1957) and vibrations \
+             remain after the impact"
+        )
+    })
+}
+
+/// d ln e / d ln v0 by the central difference of the two trial runs, against [`SLOPE_SCALE`].
+fn constant_e(measured: &Measured) -> Option<Verdict> {
+    let (slower, faster) = (measured.speed_trial.slower?, measured.speed_trial.faster?);
+    if slower <= 0.0 || faster <= 0.0 || measured.restitution? <= 0.0 {
+        return None;
+    }
+    let slope = (faster / slower).ln() / ((1.0 + SPEED_STEP) / (1.0 - SPEED_STEP)).ln();
+    verdict(slope, SLOPE_SCALE, SLOPE, ("d ln e / d ln v0", ""), |_| {
+        let change = 100.0 * (2f64.powf(slope) - 1.0);
+        format!(
+            "e is {slower:.6} at 0.9 and {faster:.6} at 1.1 times the speed: a slope of {slope:.3e}, so doubling the \
+             speed changes e by {change:.2} % — the idealisation's one e serves {}",
+            if slope.abs() < SLOPE_SCALE * SLOPE.holds_below { "all nearby speeds" } else { "this speed only" }
+        )
+    })
+}
+
+/// The tangential impulse against the normal one, or friction's work against the kinetic energy before, the larger;
+/// a frictionless contact is smooth (0).
+fn smooth(bodies: &[Body; 2], measured: &Measured) -> Option<Verdict> {
+    let normal_impulse = measured.deformation_impulse + measured.restitution_impulse.unwrap_or(0.0);
+    if measured.friction == 0.0 {
+        return verdict(0.0, normal_impulse, CORRECTION, ("J_t / J_n", "N s"), |_| {
+            "the contact is frictionless: no tangential impulse, as the idealisation's smooth impact assumes".into()
+        });
+    }
+    let after = measured.velocities_after?;
+    let n = measured.normal;
+    // The tangential impulse from a movable body's change of momentum across the first contact's normal.
+    let i = if bodies[0].is_immovable() { 1 } else { 0 };
+    let change = after[i] - measured.velocities_before[i];
+    let tangential = bodies[i].mass * (change - n * change.dot(&n)).norm();
+    let work = measured.friction_work.unwrap_or(0.0).abs();
+    let by_impulse = tangential / normal_impulse;
+    let by_work = work / measured.kinetic_before;
+    let mu = measured.friction;
+    if by_impulse >= by_work {
+        verdict(tangential, normal_impulse, CORRECTION, ("J_t / J_n", "N s"), |ratio| {
+            format!(
+                "friction (mu = {mu}) gives a tangential impulse of {ratio:.3e} of the normal one, which the smooth \
+                 idealisation leaves out (oblique.rigid_body includes it){}",
+                difference(measured)
+            )
+        })
+    } else {
+        verdict(work, measured.kinetic_before, CORRECTION, ("friction work / kinetic energy", "J"), |ratio| {
+            format!(
+                "friction (mu = {mu}) dissipates {ratio:.3e} of the kinetic energy, which the smooth idealisation \
+                 leaves out (oblique.rigid_body includes it){}",
+                difference(measured)
+            )
+        })
+    }
+}
+
+/// The lever arm b of the normal about each mass centre against the smallest radius of gyration k = sqrt(I/m): a
+/// sphere's normal passes through its centre (b = 0), so every impact of spheres and walls is central.
+fn central(bodies: &[Body; 2]) -> Option<Verdict> {
+    let gyration = bodies
+        .iter()
+        .filter(|b| b.mass.is_finite() && b.inertia.is_finite())
+        .map(|b| (b.inertia / b.mass).sqrt())
+        .fold(f64::INFINITY, f64::min);
+    let scale = if gyration.is_finite() && gyration > 0.0 { gyration } else { smaller_radius(bodies)? };
+    verdict(0.0, scale, CORRECTION, ("b / k", "m"), |_| {
+        "the normal passes through both mass centres (spheres and walls): the impact is central, the effective \
+         mass along the normal is m* and the normal force does not spin the bodies"
+            .into()
+    })
+}
