@@ -58,6 +58,7 @@ pub fn run(args: &GalleryArgs) -> anyhow::Result<()> {
         }
     }
     effective_restitution(&args.out)?;
+    restitution_against_speed(&args.out)?;
     oblique_forces(&args.out)?;
     incidence(&args.out)?;
     worlds(&args.out)
@@ -119,6 +120,54 @@ fn incidence(folder: &Path) -> anyhow::Result<()> {
     figure.title = "Chung & Ooi test 4: Al2O3 sphere on a rigid wall, 3.9 m/s, mu = 0.092, e = 0.98".into();
     let plot = sweep_figure::SweepPlot::Incidence(figure);
     let written = sweep_figure::stage(&plot, &folder.join("chung_ooi_test4.png"))?.commit()?;
+    println!("wrote {}", written.display());
+    Ok(())
+}
+
+/// Two materials whose e is not a constant: a hardened steel ball yielding on a steel block (Thornton's law) and an
+/// ice-like viscoelastic sphere on a rigid wall (Brilliantov's), each swept over the approach speed, with the one e
+/// the idealisation would use — the steel ball's at 1 m/s — drawn across the speeds.
+const SPEED_SCENES: [(&str, &str, &str); 2] = [
+    (
+        "models/yielding-steel-ball.toml",
+        include_str!("../../models/yielding-steel-ball.toml"),
+        "thornton: 10 mm steel ball on steel, Y = 1 GPa",
+    ),
+    (
+        "models/viscoelastic-sphere-on-wall.toml",
+        include_str!("../../models/viscoelastic-sphere-on-wall.toml"),
+        "brilliantov: 10 mm ice-like sphere on a wall, A = 1 µs",
+    ),
+];
+const SPEED_VARY: &str = "bodies.0.velocity.0=0.01:30:49";
+
+fn restitution_against_speed(folder: &Path) -> anyhow::Result<()> {
+    let mut curves = Vec::new();
+    for (path, text, label) in SPEED_SCENES {
+        let grid = Grid::new(vec![Axis::parse(SPEED_VARY, Spacing::Geometric)?])?;
+        let sweep = Sweep::new(Path::new(path), text.to_string(), grid, sweeps::parse_laws(&[])?)?;
+        let indices: Vec<usize> = (0..sweep.rows()).collect();
+        let rows = sweep.run(&indices, None, |_| {})?;
+        let csv = table::render(&sweep.keys(), sweep.columns(), &rows, None);
+        let mut figure = sweeps::figure::from_csv(&csv)?;
+        for curve in &mut figure.curves {
+            curve.label = label.into();
+        }
+        curves.push(figure);
+    }
+    let (path, text, _) = SPEED_SCENES[0];
+    let steel = simulate(&Scene::parse(text, Path::new(path))?, Recording::Off)?.report;
+    let e = steel.contact.restitution_velocity_ratio.ok_or_else(|| anyhow!("{path}: the ball did not separate"))?;
+    let mut figure = curves.remove(0);
+    let constant = sweep_figure::Curve {
+        label: format!("the idealisation: one e = {e:.3}, the steel ball's at 1 m/s"),
+        points: figure.curves[0].points.iter().map(|p| p.map(|(x, _)| (x, e))).collect(),
+    };
+    figure.curves.extend(curves.into_iter().flat_map(|f| f.curves));
+    figure.curves.push(constant);
+    figure.title = "e against impact speed: yield and viscoelasticity".into();
+    let plot = sweep_figure::SweepPlot::Restitution(figure);
+    let written = sweep_figure::stage(&plot, &folder.join("restitution_speed.png"))?.commit()?;
     println!("wrote {}", written.display());
     Ok(())
 }
