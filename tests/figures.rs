@@ -318,6 +318,7 @@ fn the_gallery_reports_only_the_figures_it_leaves() {
         "demo_force_time.png",
         "demo_velocities.png",
         "effective_restitution.png",
+        "restitution_speed.png",
         "kelvin_voigt_force_penetration.png",
         "chung_ooi_20deg_force_time.png",
         "chung_ooi_test4.png",
