@@ -1137,8 +1137,11 @@ fn a_yield_stress_that_is_not_positive_is_rejected() {
     assert_rejected("yield_stress_not_positive", &text, "bodies.0.yield_stress", At::Line("yield_stress"), &[]);
 }
 
+/// A world's contact under `thornton` needs a yield pressure (or a yield stress) like one impact's: refused naming the
+/// key, renamed to the pair that names the law.
 #[test]
-fn thornton_in_a_world_is_refused_naming_the_law() {
+fn thornton_in_a_world_without_a_yield_pressure_is_refused() {
     let text = edit(&edit(WORLD, "law = \"hunt-crossley\"", "law = \"thornton\""), "restitution = 0.7", "");
-    assert_rejected("thornton_in_a_world", &text, "pair.0.law", At::Whole("law = \"thornton\""), &["thornton"]);
+    let test = "thornton_in_a_world_without_a_yield_pressure";
+    assert_rejected(test, &text, "pair.0.yield_pressure", At::Nowhere, &["yield_stress"]);
 }

@@ -168,3 +168,48 @@ fn e_follows_the_closed_form_over_four_decades_of_speed() {
         assert!((e - exact).abs() <= 1e-6 * exact, "at {ratio} V_y: e = {e}, closed form {exact}");
     }
 }
+
+/// A world of contacts that yield, one after another (no gravity, gaps between the bodies): a steel ball strikes a
+/// second at rest, which strikes a steel block. Each contact is an isolated impact, so its e is Thornton's closed
+/// form at its own approach speed, with its own yield speed by hand (m*, E*, R* of its pair).
+#[test]
+fn each_contact_of_a_world_yields_as_one_impact() {
+    let (young, poisson, p_y) = (YOUNG, POISSON, YIELD_PRESSURE);
+    let mass = 4.0 / 3.0 * PI * RADIUS.powi(3) * DENSITY;
+    let speed = 2.0;
+    let scene = format!(
+        "[world]\ngravity = [0.0, 0.0, 0.0]\nend_time = 0.05\n\n\
+         [[bodies]]\nradius = {RADIUS}\ndensity = {DENSITY}\nyoung = {young}\npoisson = {poisson}\n\
+         position = [0.0, 0.0, 0.0]\nvelocity = [{speed:?}, 0.0, 0.0]\n\n\
+         [[bodies]]\nradius = {RADIUS}\ndensity = {DENSITY}\nyoung = {young}\npoisson = {poisson}\n\
+         position = [0.02, 0.0, 0.0]\nvelocity = [0.0, 0.0, 0.0]\n\n\
+         [[bodies]]\nradius = inf\nmass = inf\nyoung = {young}\npoisson = {poisson}\nposition = [0.04, 0.0, 0.0]\n\
+         normal = [-1.0, 0.0, 0.0]\nvelocity = [0.0, 0.0, 0.0]\n\n\
+         [contact]\nlaw = \"thornton\"\nyield_pressure = {p_y:e}\n"
+    );
+    let parsed = impact::setup::parse_any(&scene, std::path::Path::new("world.toml")).expect("a valid world");
+    let impact::scene::Parsed::World(world) = parsed else { panic!("a world scene") };
+    let report = impact::world_run::simulate(&world).expect("the world runs").report;
+    // V_y of a pair: (1/2) m* V_y² = (8/15) E* sqrt(R*) d_y^(5/2), d_y = (pi p_y / (2 E*))² R*.
+    let yield_speed = |m: f64, e_star: f64, r_star: f64| {
+        let d_y = (PI * p_y / (2.0 * e_star)).powi(2) * r_star;
+        (16.0 / 15.0 * e_star * r_star.sqrt() * d_y.powf(2.5) / m).sqrt()
+    };
+    let steel_on_steel = young / (2.0 * (1.0 - poisson * poisson));
+    let balls = yield_speed(mass / 2.0, steel_on_steel, RADIUS / 2.0);
+    let block = yield_speed(mass, steel_on_steel, RADIUS);
+    let contacts = &report.contacts;
+    assert!(contacts.len() >= 2, "{} contacts", contacts.len());
+    let first = &contacts[0];
+    assert_eq!(first.bodies, [0, 1]);
+    assert_close("first approach", first.approach_speed, speed, 1e-12);
+    assert_close("first e", first.restitution_velocity_ratio.unwrap(), closed_form(speed / balls), 1e-6);
+    // The struck ball leaves at (1 + e) v / 2 (momentum of equal masses) and strikes the block.
+    let second = contacts.iter().find(|c| c.bodies == [1, 2]).expect("the second ball meets the block");
+    let e1 = closed_form(speed / balls);
+    assert_close("second approach", second.approach_speed, (1.0 + e1) * speed / 2.0, 1e-6);
+    let e2 = closed_form(second.approach_speed / block);
+    assert_close("second e", second.restitution_velocity_ratio.unwrap(), e2, 1e-6);
+    // Each leaves a dent: the penetration at which its force returned to zero.
+    assert!(first.penetration_at_separation.unwrap() > 0.0 && second.penetration_at_separation.unwrap() > 0.0);
+}

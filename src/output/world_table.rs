@@ -144,11 +144,12 @@ fn energy(report: &WorldReport) -> Section {
     }
     section.row("kinetic energy after", engineering(e.kinetic_after, "J"));
     let friction: f64 = report.contacts.iter().map(|c| c.friction_work).sum();
+    let loss = if report.contacts.iter().any(|c| c.law == "thornton") { "damping and dents" } else { "damping" };
     if report.contacts.iter().any(|c| c.regime != "smooth") {
-        section.row("dissipated (damping and friction)", engineering(e.dissipated, "J"));
+        section.row(format!("dissipated ({loss} and friction)"), engineering(e.dissipated, "J"));
         section.row("  of which by friction", engineering(friction, "J"));
     } else {
-        section.row("dissipated by damping", engineering(e.dissipated, "J"));
+        section.row(format!("dissipated by {loss}"), engineering(e.dissipated, "J"));
     }
     if e.elastic_stored_at_end != 0.0 {
         section.row("elastic energy stored at the end", engineering(e.elastic_stored_at_end, "J"));

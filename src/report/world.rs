@@ -199,6 +199,8 @@ pub fn build(scene: &WorldScene, outcome: &WorldOutcome, wall_time: f64) -> Worl
     let nominal = |record: &ContactRecord| {
         let (spec, _) = scene.contact_of(record.bodies[0], record.bodies[1]);
         match spec.damping {
+            // A yielding law has no nominal e: its e follows from each contact's speed.
+            DampingSpec::None if record.law.yields() => None,
             DampingSpec::None => Some(1.0),
             DampingSpec::Restitution(e) => Some(e),
             DampingSpec::Parameter(_) => None,

@@ -129,11 +129,9 @@ pub fn check_world(scene: &super::WorldScene) -> Checked {
         }
     }
     check_contact(&scene.contact)?;
-    check_world_law(&scene.contact)?;
     for (k, pair) in scene.pairs.iter().enumerate() {
         let (i, j) = (pair.bodies[0], pair.bodies[1]);
         check_contact(&pair.contact).map_err(|error| scene.rename(i, j, error))?;
-        check_world_law(&pair.contact).map_err(|error| scene.rename(i, j, error))?;
         if !scene.interacts(i, j) {
             return fail(format!("pair.{k}.bodies"), "these two bodies never touch (both immovable, or both flat)");
         }
@@ -279,19 +277,6 @@ fn check_body(i: usize, body: &Body) -> Checked {
         if !(nu > -1.0 && nu <= 0.5) {
             return fail(key("poisson"), format!("expected a number in (-1, 0.5], got {}", shown(nu)));
         }
-    }
-    Ok(())
-}
-
-/// The laws a world's contacts cannot take yet: `thornton`, whose force remembers the deepest point of its contact
-/// (one impact of two bodies carries it in its state; a world's islands do not yet).
-fn check_world_law(contact: &super::ContactSpec) -> Checked {
-    if contact.law.family() == Family::Plastic {
-        return fail(
-            "contact.law",
-            "`thornton` runs one impact of two bodies (no `[world]`, no `[[pair]]`); a world's contacts cannot take it \
-             yet: use `hertz` or a damped law there",
-        );
     }
     Ok(())
 }

@@ -153,7 +153,10 @@ impl WorldScene {
         } else if let Some(rest) = error.key.strip_prefix("bodies.1.") {
             format!("bodies.{j}.{rest}")
         } else if let (Some(leaf), Some(k)) = (error.key.strip_prefix("contact."), pair) {
-            if self.pairs[k].written.contains(&leaf) { format!("pair.{k}.{leaf}") } else { error.key.clone() }
+            let written = &self.pairs[k].written;
+            // A key missing for the pair's own law belongs beside that law.
+            let own_law = leaf == "yield_pressure" && written.contains(&"law");
+            if written.contains(&leaf) || own_law { format!("pair.{k}.{leaf}") } else { error.key.clone() }
         } else {
             error.key.clone()
         };

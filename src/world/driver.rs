@@ -538,7 +538,8 @@ impl<'a> World<'a> {
             at_stop: None,
             overlapping,
         });
-        let on_force = spec.separation == Separation::Force && law.kind.can_turn_tensile();
+        // A yielding contact ends where its force returns to zero, at its dent.
+        let on_force = (spec.separation == Separation::Force && law.kind.can_turn_tensile()) || law.yields();
         self.active.push(ActiveContact {
             record: index,
             pair: [i, j],
@@ -548,6 +549,9 @@ impl<'a> World<'a> {
             impulse: 0.0,
             work: 0.0,
             dissipated: 0.0,
+            // A contact pressed on an overlap has been loaded that deep (an undented surface otherwise: each contact
+            // of a yielding law starts from one).
+            deepest: overlap.max(0.0),
             friction,
             mode,
             slip_direction,
@@ -750,6 +754,8 @@ impl<'a> World<'a> {
         for (c, &active) in live.iter().enumerate() {
             let contact = &mut self.active[active];
             (contact.impulse, contact.work, contact.dissipated) = island.integrals(c, y);
+            let d = island.contact_state(c, y).penetration.max(0.0);
+            contact.deepest = if contact.law.yields() { island.deepest(c, d, y) } else { 0.0 };
             (contact.spring, contact.tangential_work, _) = island.tangential_integrals(c, y);
         }
         self.immovable_work += island.immovable_work(y);
@@ -999,7 +1005,13 @@ impl<'a> World<'a> {
         for &c in contacts {
             let contact = &self.active[c];
             let (penetration, rate) = self.standing(c);
-            endings.push((contact.record, rate, contact.law.elastic_energy(penetration.max(0.0))));
+            let d = penetration.max(0.0);
+            let elastic = if contact.law.yields() {
+                contact.law.elastic_energy_after(d, contact.deepest.max(d))
+            } else {
+                contact.law.elastic_energy(d)
+            };
+            endings.push((contact.record, rate, elastic));
             for k in contact.pair {
                 if !group.contains(&k) {
                     group.push(k);
@@ -1063,7 +1075,7 @@ impl<'a> World<'a> {
     /// Records contact `c`'s force at state `y` (scene time `at`) if it is the largest so far.
     fn note_peak(&mut self, island: &Island, c: usize, y: &DVector<f64>, at: f64) {
         let state = island.contact_state(c, y);
-        let (elastic, dissipative) = island.force(c, &state);
+        let (elastic, dissipative) = island.force(c, &state, y);
         let force = elastic + dissipative;
         let record = &mut self.records[island.contacts[c].record];
         if record.peak_force.is_none_or(|(_, peak)| force > peak) {
@@ -1143,13 +1155,12 @@ impl<'a> World<'a> {
                 self.note_peak(&island, c, &y, time);
             }
             for (c, contact) in self.active.iter().enumerate() {
-                let state = island.contact_state(c, &y);
                 let (_, tangential_work, tangential_elastic) = island.tangential_integrals(c, &y);
                 self.records[contact.record].at_stop = Some(Stop {
                     impulse: contact.impulse,
                     work: contact.work,
                     dissipated: contact.dissipated,
-                    elastic: contact.law.elastic_energy(state.penetration.max(0.0)),
+                    elastic: island.elastic_energy(c, &y),
                     tangential_work,
                     tangential_elastic,
                 });
@@ -1200,6 +1211,6 @@ impl<'a> World<'a> {
 /// Contact `c` of `island` at state `y`: its record's index, penetration and force.
 fn sample(island: &Island, c: usize, y: &DVector<f64>) -> ContactSample {
     let state = island.contact_state(c, y);
-    let (elastic, dissipative) = island.force(c, &state);
+    let (elastic, dissipative) = island.force(c, &state, y);
     ContactSample { index: island.contacts[c].record, penetration: state.penetration, force: elastic + dissipative }
 }

@@ -74,6 +74,8 @@ pub struct ActiveContact {
     pub work: f64,
     /// ∫ F_dissipative d' dt so far, J.
     pub dissipated: f64,
+    /// The deepest penetration so far, m, which a yielding law's force remembers (0 for the other laws).
+    pub deepest: f64,
     /// The tangential contact, resolved at first touch; `None` for a smooth one.
     pub friction: Option<Friction>,
     /// Sticking or sliding: constant within a segment (a switch ends it).
@@ -232,7 +234,12 @@ impl<'a> Island<'a> {
             let at = self.contact_base + 3 * c;
             y[at] = contact.impulse / u.impulse;
             y[at + 1] = contact.work / u.energy;
-            y[at + 2] = contact.dissipated / (u.energy * self.dissipation_units[c]);
+            // A yielding law has no damping: the slot carries its deepest penetration instead.
+            y[at + 2] = if contact.law.yields() {
+                contact.deepest / u.length
+            } else {
+                contact.dissipated / (u.energy * self.dissipation_units[c])
+            };
         }
         if self.frictional {
             for (m, &k) in self.members.iter().enumerate() {
@@ -381,7 +388,7 @@ impl<'a> Island<'a> {
         let u = &self.units;
         let state = self.contact_state(c, y);
         let (law, kinematics, spring) = self.tangential_state(c, &state, y)?;
-        let (elastic, dissipative) = self.force(c, &state);
+        let (elastic, dissipative) = self.force(c, &state, y);
         let normal_force = (elastic + dissipative) / u.force;
         let mode = self.contacts[c].mode;
         let rate = if mode == Mode::Slip { self.force_rate(c, y) * u.time / u.force } else { 0.0 };
@@ -411,7 +418,7 @@ impl<'a> Island<'a> {
         let u = &self.units;
         let at = self.tangential_base + 4 * c;
         let state = self.contact_state(c, y);
-        let (elastic, dissipative) = self.force(c, &state);
+        let (elastic, dissipative) = self.force(c, &state, y);
         let spring = self.spring(c, &state.normal, y);
         let kt = law.stiffness_at(state.penetration / u.length);
         let stored = spring.norm().min(law.friction * ((elastic + dissipative) / u.force).max(0.0));
@@ -447,13 +454,26 @@ impl<'a> Island<'a> {
         self.pair_state(contact.pair[0], contact.pair[1], &contact.meeting, y)
     }
 
-    /// Contact `c`'s normal force split into its elastic and dissipative parts, N, at its kinematics `state`.
-    pub fn force(&self, c: usize, state: &ContactState) -> (f64, f64) {
+    /// Contact `c`'s normal force split into its elastic and dissipative parts, N, at its kinematics `state` (of the
+    /// island's state `y`, which a yielding law's memory is read from).
+    pub fn force(&self, c: usize, state: &ContactState, y: &DVector<f64>) -> (f64, f64) {
         let d = state.penetration;
         let edge = EDGE * self.units.length;
         let d = if d > -edge { d.max(0.0) } else { d };
-        let parts = self.contacts[c].law.split_force(d, state.rate);
+        let law = &self.contacts[c].law;
+        let parts = if law.yields() {
+            law.split_force_after(d, state.rate, self.deepest(c, d, y))
+        } else {
+            law.split_force(d, state.rate)
+        };
         (parts.elastic, parts.dissipative)
+    }
+
+    /// Contact `c`'s deepest penetration so far, m, at penetration `d` (m) and state `y`: for a yielding law its state,
+    /// or `d` where that is deeper (the state grows only at it: [`crate::dynamics::normal::deepening`]).
+    pub fn deepest(&self, c: usize, d: f64, y: &DVector<f64>) -> f64 {
+        let at = self.contact_base + 3 * c;
+        (y[at + 2] * self.units.length).max(d)
     }
 
     /// Body `k`'s acceleration at state `y` (m/s²): gravity and the forces of its own contacts (none for a body
@@ -464,7 +484,7 @@ impl<'a> Island<'a> {
         let mut a = self.scene.world.gravity;
         for &c in &self.touching[m] {
             let state = self.contact_state(c, y);
-            let (elastic, dissipative) = self.force(c, &state);
+            let (elastic, dissipative) = self.force(c, &state, y);
             let mut on_j = state.normal * ((elastic + dissipative) / body.mass);
             if let Some((_, tangential)) =
                 self.tangential(c, &state, (elastic + dissipative) / self.units.force, 0.0, y)
@@ -491,7 +511,11 @@ impl<'a> Island<'a> {
         };
         let second = -relative_acceleration.dot(&state.normal) - u.dot(&turning);
         let d = state.penetration.max(0.0);
-        let (by_penetration, by_rate) = contact.law.force_gradient(d, state.rate);
+        let (by_penetration, by_rate) = if contact.law.yields() {
+            contact.law.force_gradient_after(d, state.rate, self.deepest(c, d, y))
+        } else {
+            contact.law.force_gradient(d, state.rate)
+        };
         by_penetration * state.rate + by_rate * second
     }
 
@@ -500,7 +524,11 @@ impl<'a> Island<'a> {
     pub fn separation_value(&self, c: usize, y: &DVector<f64>) -> f64 {
         let state = self.contact_state(c, y);
         let contact = &self.contacts[c];
-        if contact.on_force {
+        if contact.law.yields() {
+            // Where its force returns to zero: at the dent.
+            let deepest = self.deepest(c, state.penetration, y);
+            contact.law.separation_function_after(state.penetration, state.rate, deepest) / self.units.length
+        } else if contact.on_force {
             contact.law.separation_function(state.penetration, state.rate)
         } else {
             state.penetration / self.units.length
@@ -586,11 +614,26 @@ impl<'a> Island<'a> {
         energy
     }
 
-    /// Contact `c`'s integrals at state `y` (SI): normal impulse, normal work, dissipated energy.
+    /// Contact `c`'s integrals at state `y` (SI): normal impulse, normal work, dissipated energy (for a yielding
+    /// law, the work less what its unloading would give back: the dent's).
     pub fn integrals(&self, c: usize, y: &DVector<f64>) -> (f64, f64, f64) {
         let u = &self.units;
         let at = self.contact_base + 3 * c;
-        (y[at] * u.impulse, y[at + 1] * u.energy, y[at + 2] * u.energy * self.dissipation_units[c])
+        let (impulse, work) = (y[at] * u.impulse, y[at + 1] * u.energy);
+        let law = &self.contacts[c].law;
+        if law.yields() {
+            let d = self.contact_state(c, y).penetration.max(0.0);
+            return (impulse, work, work - law.elastic_energy_after(d, self.deepest(c, d, y)));
+        }
+        (impulse, work, y[at + 2] * u.energy * self.dissipation_units[c])
+    }
+
+    /// The energy contact `c`'s spring holds at state `y`, J: the law's elastic energy at its penetration (what a
+    /// yielding law's unloading would give back).
+    pub fn elastic_energy(&self, c: usize, y: &DVector<f64>) -> f64 {
+        let d = self.contact_state(c, y).penetration.max(0.0);
+        let law = &self.contacts[c].law;
+        if law.yields() { law.elastic_energy_after(d, self.deepest(c, d, y)) } else { law.elastic_energy(d) }
     }
 
     /// The slot of body `k` among the members, if it is one.
@@ -612,7 +655,7 @@ impl ModelOf<Dyn> for Island<'_> {
         let mut immovable_power = 0.0;
         for c in 0..self.contacts.len() {
             let state = self.contact_state(c, y);
-            let (elastic, dissipative) = self.force(c, &state);
+            let (elastic, dissipative) = self.force(c, &state, y);
             let force = (elastic + dissipative) / u.force;
             let rate = state.rate / u.speed;
             let on_j = state.normal * force;
@@ -632,7 +675,11 @@ impl ModelOf<Dyn> for Island<'_> {
             let at = self.contact_base + 3 * c;
             dy[at] = force;
             dy[at + 1] = force * rate;
-            dy[at + 2] = dissipative / u.force * rate / self.dissipation_units[c];
+            dy[at + 2] = if self.contacts[c].law.yields() {
+                crate::dynamics::normal::deepening(state.penetration / u.length, y[at + 2], rate)
+            } else {
+                dissipative / u.force * rate / self.dissipation_units[c]
+            };
             if self.tangentials[c].is_none() {
                 continue;
             }
