@@ -7,6 +7,7 @@ pub mod calibrate;
 pub mod cli;
 pub mod draw;
 pub mod dynamics;
+pub mod eccentric;
 pub mod fast;
 pub mod files;
 pub mod geometry;
