@@ -162,8 +162,11 @@ pub struct Calibration {
 /// Why a calibration cannot be done.
 #[derive(Debug, thiserror::Error)]
 pub enum CalibrationError {
-    /// `hertz` has nothing to calibrate.
-    #[error("the elastic law `hertz` has no damping to calibrate (its e is always 1): choose a damped law")]
+    /// `hertz` and `thornton` have nothing to calibrate.
+    #[error(
+        "the law has no damping to calibrate (`hertz`'s e is always 1; `thornton`'s follows from the speed and the \
+         yield pressure): choose a damped law"
+    )]
     NoDamping,
     /// The target e is outside (0, 1] or otherwise unusable.
     #[error("{0}")]
@@ -299,7 +302,7 @@ fn default_scene_note(law: LawKind, contact: &Contact, speed_given: bool, dampin
 
 /// The target must be a finite e in (0, 1]; e = 0 is reachable by no damping that still lets the bodies part.
 fn check_target(law: LawKind, target: f64) -> Result<(), CalibrationError> {
-    if law.family() == Family::Elastic {
+    if matches!(law.family(), Family::Elastic | Family::Plastic) {
         return Err(CalibrationError::NoDamping);
     }
     if target == 0.0 {

@@ -536,6 +536,20 @@ fn check_size(contact: &ContactSpec, bodies: [&Body; 2], law: &ContactLaw, scale
     let smallest = bodies.iter().map(|body| body.radius).fold(f64::INFINITY, f64::min);
     let n = law.exponent;
     let elastic = ((n + 1.0) / 2.0).powf(1.0 / (n + 1.0)) * scales.length;
+    // A yielding contact goes deeper than an elastic one: its deepest point by energy (Thornton's loading curve).
+    let plastic = || crate::reference::thornton(law.yield_penetration / scales.length).max_penetration * scales.length;
+    if law.yields() && elastic < smallest && !(plastic() < smallest) {
+        let plastic = plastic();
+        return fail(
+            "contact.yield_pressure",
+            format!(
+                "the contact yields too far for the bodies: at {} m/s its plastic penetration would be {plastic:e} m, \
+                 beyond the smaller radius {smallest:e} m (a yield pressure this low has the bodies pass through each \
+                 other)",
+                scales.speed
+            ),
+        );
+    }
     if elastic < smallest {
         return Ok(());
     }

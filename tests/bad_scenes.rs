@@ -1145,3 +1145,13 @@ fn thornton_in_a_world_without_a_yield_pressure_is_refused() {
     let test = "thornton_in_a_world_without_a_yield_pressure";
     assert_rejected(test, &text, "pair.0.yield_pressure", At::Nowhere, &["yield_stress"]);
 }
+
+/// A yield pressure so low that the plastic penetration (by energy, Thornton's loading line) would pass the radius:
+/// refused naming the key, like a contact too soft for its bodies. (1 Pa under two steel balls at 1 m/s: the line's
+/// slope pi p_y R* = 0.016 N/m takes the ball's 33 mJ over metres.)
+#[test]
+fn a_yield_pressure_too_low_for_the_bodies_is_refused() {
+    let text = scene(LEFT_BALL, RIGHT_BALL, &edit(THORNTON, "yield_pressure = 1.6e9", "yield_pressure = 1.0"));
+    let test = "yield_pressure_too_low";
+    assert_rejected(test, &text, "contact.yield_pressure", At::Whole("yield_pressure = 1.0"), &["radius"]);
+}
