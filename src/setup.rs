@@ -538,7 +538,9 @@ fn check_size(contact: &ContactSpec, bodies: [&Body; 2], law: &ContactLaw, scale
     let elastic = ((n + 1.0) / 2.0).powf(1.0 / (n + 1.0)) * scales.length;
     // A yielding contact goes deeper than an elastic one: its deepest point by energy (Thornton's loading curve).
     let plastic = || crate::reference::thornton(law.yield_penetration / scales.length).max_penetration * scales.length;
-    if law.yields() && elastic < smallest && !(plastic() < smallest) {
+    // (A plastic penetration that is not a number is refused too.)
+    let too_deep = |depth: f64| depth.partial_cmp(&smallest) != Some(std::cmp::Ordering::Less);
+    if law.yields() && elastic < smallest && too_deep(plastic()) {
         let plastic = plastic();
         return fail(
             "contact.yield_pressure",
