@@ -230,3 +230,46 @@ fn the_map_needs_exactly_two_varied_keys_and_one_law() {
     assert_eq!(output.status.code(), Some(2), "{}", describe(&output));
     assert!(stderr(&output).contains(".png or .svg"), "{}", describe(&output));
 }
+
+#[test]
+fn the_map_of_a_sweep_in_shards_is_drawn_by_merge() {
+    let scratch = Scratch::new("map-merge");
+    let scene = scratch.scene("ball.toml", SCENE);
+    let ratios: Vec<String> = impact::idealisation::SEVERITY.iter().map(|key| format!("{key}_ratio")).collect();
+    let columns = format!("approach_speed,first_failure,first_marginal,{}", ratios.join(","));
+    for shard in ["1/2", "2/2"] {
+        let out = format!("s{}.csv", &shard[..1]);
+        let output = impact(
+            scratch.path(),
+            &[
+                "sweep",
+                &scene,
+                "--vary",
+                "bodies.0.velocity.0=0.1,1",
+                "--vary",
+                "bodies.0.radius=0.01,0.1",
+                "--columns",
+                &columns,
+                "--shard",
+                shard,
+                "--out",
+                &out,
+            ],
+        );
+        assert_success(&output);
+    }
+    assert_success(&impact(scratch.path(), &["merge", "all.csv", "s1.csv", "s2.csv", "--map", "map.svg"]));
+    assert!(scratch.read("map.svg").contains("class=\"cells\""));
+    // Shards without the verdicts: the map says which column it misses.
+    for shard in ["1/2", "2/2"] {
+        let out = format!("p{}.csv", &shard[..1]);
+        let args = ["sweep", &scene, "--vary", "bodies.0.velocity.0=0.1,1", "--vary", "bodies.0.radius=0.01,0.1"];
+        let mut args = args.to_vec();
+        args.extend(["--shard", shard, "--out", &out]);
+        assert_success(&impact(scratch.path(), &args));
+    }
+    let output = impact(scratch.path(), &["merge", "plain.csv", "p1.csv", "p2.csv", "--map", "plain.png"]);
+    assert_eq!(output.status.code(), Some(2), "{}", describe(&output));
+    assert!(stderr(&output).contains("first_failure"), "{}", describe(&output));
+    assert!(!scratch.exists("plain.csv") && !scratch.exists("plain.png"));
+}

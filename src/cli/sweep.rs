@@ -95,7 +95,12 @@ pub fn run(args: &SweepArgs) -> anyhow::Result<()> {
         .into());
     }
     if args.map.is_some() && shard.is_some() {
-        return Err(BadInput("--map draws the whole sweep: leave it out of the shards".into()).into());
+        return Err(BadInput(
+            "--map draws the whole sweep: leave it out of the shards (write their verdict columns with --columns) and \
+             give it to `impact merge`"
+                .into(),
+        )
+        .into());
     }
     let spacing = if args.log { Spacing::Geometric } else { Spacing::Linear };
     let text = std::fs::read_to_string(&args.scene)
@@ -291,7 +296,7 @@ pub(super) fn check_names(csv: &Path, option: &str, plot: Option<&Path>) -> anyh
 }
 
 /// Checks the name of the idealisation map (`--map`) before any work: a `.png` or `.svg` file.
-fn check_map_name(map: Option<&Path>) -> anyhow::Result<()> {
+pub(super) fn check_map_name(map: Option<&Path>) -> anyhow::Result<()> {
     match map {
         Some(map) if sweep_figure::format_of(map).is_none() || files::file_name_problem(map).is_some() => {
             Err(BadInput(format!("--map {}: the figure's name must end in .png or .svg", map.display())).into())
@@ -316,7 +321,7 @@ pub(super) fn figure_output(text: &str, path: &Path, destination: &Destination) 
 }
 
 /// The sweep's idealisation map, drawn from its CSV `text` as [`figure_output`] draws its figure.
-fn map_output(text: &str, path: &Path, destination: &Destination) -> anyhow::Result<OutputFile> {
+pub(super) fn map_output(text: &str, path: &Path, destination: &Destination) -> anyhow::Result<OutputFile> {
     let map = sweeps::map::from_csv(text).map_err(bad)?;
     stage_output(&sweep_figure::SweepPlot::Map(map), path, destination)
 }
