@@ -25,8 +25,8 @@ pub const SLOPE_SCALE: f64 = 0.1;
 /// yield stress (Johnson, Contact Mechanics, ch. 11; the Tresca and von Mises criteria give 1.60 and 1.61).
 pub const YIELD_PRESSURE_FACTOR: f64 = 1.6;
 
-/// The verdict on each assumption; `None` where it does not apply, or where it was not asked for (a sweep's row, a
-/// calibration's step: every key null).
+/// The verdict on each assumption; `None` where it does not apply, or where it was not asked for (a sweep's row
+/// without a verdict column, a calibration's step: every key null).
 #[derive(Debug, Clone, PartialEq, Default, Serialize)]
 pub struct Idealisation {
     /// The contact takes no time: the bodies' relative travel during it against the smaller radius.
@@ -60,6 +60,26 @@ impl Idealisation {
             ("smooth", self.smooth.as_ref()),
             ("central", self.central.as_ref()),
         ]
+    }
+}
+
+/// The assumptions in the order of severity that names a row's first failure (a sweep's `first_failure` and
+/// `first_marginal` columns, the idealisation map's colours; docs/idealisation.md#the-order-of-severity): first those
+/// whose failure breaks the rigid-body picture itself (elastic waves, deformed bodies), then the single instant
+/// (the contact lasts, other forces act meanwhile), last those a corrected coefficient or an extended rigid-body
+/// theory absorbs (yield lowers e, e changes with speed, friction, an eccentric impact).
+pub const SEVERITY: [&str; 8] =
+    ["quasi_static", "particles", "instantaneous", "isolated", "elastic", "constant_e", "smooth", "central"];
+
+impl Idealisation {
+    /// The verdict on the assumption `key` (one of [`SEVERITY`]'s), if measured.
+    pub fn get(&self, key: &str) -> Option<&Verdict> {
+        self.entries().into_iter().find(|(name, _)| *name == key).and_then(|(_, verdict)| verdict)
+    }
+
+    /// The first assumption in the order of [`SEVERITY`] whose verdict is `judgement`, if any.
+    pub fn first(&self, judgement: Judgement) -> Option<&'static str> {
+        SEVERITY.into_iter().find(|key| self.get(key).is_some_and(|v| v.verdict == judgement))
     }
 }
 
@@ -132,6 +152,17 @@ pub const YIELD: Limits = Limits { holds_below: 1.0, fails_from: 1.319_507_910_7
 /// The slope against [`SLOPE_SCALE`]: |d ln e / d ln v0| below 0.01 (e within 0.7 % over a doubling of the speed)
 /// holds, from 0.1 (7 %) fails.
 pub const SLOPE: Limits = Limits { holds_below: 0.1, fails_from: 1.0 };
+
+/// The limits the verdict on the assumption `key` is judged by (docs/idealisation.md#thresholds-and-why).
+pub fn limits(key: &str) -> Option<Limits> {
+    match key {
+        "instantaneous" | "isolated" | "smooth" | "central" => Some(CORRECTION),
+        "particles" | "quasi_static" => Some(SHAPE),
+        "elastic" => Some(YIELD),
+        "constant_e" => Some(SLOPE),
+        _ => None,
+    }
+}
 
 /// The e of the same contact with every velocity and spin scaled by `1 - SPEED_STEP` and `1 + SPEED_STEP`, the law's
 /// damping parameter kept (a nominal e is not re-mapped at the new speed); `None` where that run did not separate or

@@ -55,7 +55,8 @@ pub struct Options {
     /// The general path computes everything whatever this says.
     pub quantities: Quantities,
     /// Whether to judge the idealisation (the report's `idealisation`): two more runs of the contact, at 0.9 and 1.1
-    /// times the speed, for `constant_e`. Off, every verdict is null (a sweep's row, a calibration's step).
+    /// times the speed, for `constant_e`. Off, every verdict is null (a sweep's row that writes no verdict column, a
+    /// calibration's step).
     pub idealisation: bool,
 }
 

@@ -3,7 +3,7 @@
 
 use super::BadInput;
 use super::paths::{Origin, Paths};
-use super::sweep::{bad, check_names, check_plot_columns, figure_output};
+use super::sweep::{bad, check_map_name, check_names, check_plot_columns, figure_output, map_output};
 use crate::files::OutputFile;
 use crate::sweep::merge::{ShardFile, merge};
 use clap::Args;
@@ -20,10 +20,16 @@ pub struct MergeArgs {
     /// FILE.svg (the extension picks the format).
     #[arg(long, value_name = "FILE.png")]
     pub plot: Option<PathBuf>,
+    /// Also draw the idealisation map (as `impact sweep --map`) into FILE.png or FILE.svg: the shards must have been
+    /// written with its columns (--columns approach_speed,first_failure,first_marginal,instantaneous_ratio,...; see
+    /// docs/idealisation.md#the-idealisation-map).
+    #[arg(long, value_name = "FILE.png")]
+    pub map: Option<PathBuf>,
 }
 
 pub fn run(args: &MergeArgs) -> anyhow::Result<()> {
     check_names(&args.out, "OUT", args.plot.as_deref())?;
+    check_map_name(args.map.as_deref())?;
     let mut paths = Paths::default();
     for path in &args.shards {
         paths.input(format!("the shard {} being merged", path.display()), path);
@@ -31,6 +37,10 @@ pub fn run(args: &MergeArgs) -> anyhow::Result<()> {
     let out = paths.output(format!("OUT {}", args.out.display()), Origin::CommandLine, &args.out)?;
     let plot = match &args.plot {
         Some(path) => Some((path, paths.output(format!("--plot {}", path.display()), Origin::CommandLine, path)?)),
+        None => None,
+    };
+    let map = match &args.map {
+        Some(path) => Some((path, paths.output(format!("--map {}", path.display()), Origin::CommandLine, path)?)),
         None => None,
     };
     let mut shards = Vec::new();
@@ -48,6 +58,10 @@ pub fn run(args: &MergeArgs) -> anyhow::Result<()> {
         Some((path, destination)) => Some(figure_output(&merged.text(), path, destination)?),
         None => None,
     };
+    let drawn_map = match &map {
+        Some((path, destination)) => Some(map_output(&merged.text(), path, destination)?),
+        None => None,
+    };
     let mut csv = OutputFile::create(&out)?;
     csv.write_bytes(merged.header.as_bytes())?;
     csv.write_bytes(b"\n")?;
@@ -57,7 +71,7 @@ pub fn run(args: &MergeArgs) -> anyhow::Result<()> {
     }
     csv.finish()?;
     eprintln!("wrote {} ({} rows from {} shards)", out.shown(), merged.rows.len(), shards.len());
-    if let Some(figure) = figure {
+    for figure in [figure, drawn_map].into_iter().flatten() {
         let name = figure.shown().to_string();
         figure.finish()?;
         eprintln!("wrote {name}");

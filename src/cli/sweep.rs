@@ -36,10 +36,11 @@ pub struct SweepArgs {
     /// without it, the scene's own law.
     #[arg(long, value_name = "LAW,LAW,...", value_delimiter = ',')]
     pub law: Vec<String>,
-    /// Write only these result columns (comma-separated, in this order; see docs/report.md for the 40 names) after
-    /// index, status, law and the varied keys. Each row then computes only what they show: e alone
-    /// (restitution_velocity_ratio) skips the contact's times, its force peak, the dissipated energy and the exact
-    /// reference. Default: all of them.
+    /// Write only these result columns (comma-separated, in this order; see docs/report.md for the 41 names and the
+    /// 18 verdict columns) after index, status, law and the varied keys. Each row then computes only what they show:
+    /// e alone (restitution_velocity_ratio) skips the contact's times, its force peak, the dissipated energy and the
+    /// exact reference; only a verdict column (first_failure, elastic_ratio, ...) makes a row judge the idealisation.
+    /// Default: the 41 result columns, without the verdicts.
     #[arg(long, value_name = "NAME,NAME,...", value_delimiter = ',')]
     pub columns: Vec<String>,
     /// The CSV file to write (written completely or not at all); `-` writes it to stdout.
@@ -51,6 +52,12 @@ pub struct SweepArgs {
     /// --plot` is the one that takes a folder.
     #[arg(long, value_name = "FILE.png")]
     pub plot: Option<PathBuf>,
+    /// The idealisation map, into FILE.png or FILE.svg: over the two varied keys (exactly two --vary: x, then y),
+    /// each cell coloured by the first assumption of the instantaneous impact that fails there, with the line where
+    /// each one starts to fail (docs/idealisation.md#the-idealisation-map). Adds the verdict columns to the CSV: each
+    /// row then judges the idealisation (two more runs of its contact).
+    #[arg(long, value_name = "FILE.png")]
+    pub map: Option<PathBuf>,
     /// Compute only shard I of N (1 <= I <= N): the rows whose index is I-1 modulo N, for a job array; join the
     /// shard files with `impact merge`.
     #[arg(long, value_name = "I/N")]
@@ -80,9 +87,18 @@ pub fn run(args: &SweepArgs) -> anyhow::Result<()> {
         return Err(BadInput(format!("--threads must be between 1 and {MAX_THREADS}, got {threads}")).into());
     }
     check_names(&args.out, "--out", args.plot.as_deref())?;
+    check_map_name(args.map.as_deref())?;
     if args.plot.is_some() && shard.is_some() {
         return Err(BadInput(
             "--plot draws the whole sweep: leave it out of the shards and give it to `impact merge`".into(),
+        )
+        .into());
+    }
+    if args.map.is_some() && shard.is_some() {
+        return Err(BadInput(
+            "--map draws the whole sweep: leave it out of the shards (write their verdict columns with --columns) and \
+             give it to `impact merge`"
+                .into(),
         )
         .into());
     }
@@ -95,6 +111,9 @@ pub fn run(args: &SweepArgs) -> anyhow::Result<()> {
     let laws = sweeps::parse_laws(&args.law).map_err(bad)?;
     let axes = args.vary.iter().map(|spec| Axis::parse(spec, spacing)).collect::<Result<Vec<_>, _>>().map_err(bad)?;
     let grid = Grid::new(axes).map_err(bad)?;
+    if args.map.is_some() {
+        sweeps::map::check(grid.axes.len(), laws.len()).map_err(bad)?;
+    }
     let mut paths = Paths::default();
     paths.input(format!("the scene file {} being read", args.scene.display()), &args.scene);
     let out = paths.output(format!("--out {}", args.out.display()), Origin::CommandLine, &args.out)?;
@@ -102,9 +121,19 @@ pub fn run(args: &SweepArgs) -> anyhow::Result<()> {
         Some(path) => Some((path, paths.output(format!("--plot {}", path.display()), Origin::CommandLine, path)?)),
         None => None,
     };
+    let map = match &args.map {
+        Some(path) => Some((path, paths.output(format!("--map {}", path.display()), Origin::CommandLine, path)?)),
+        None => None,
+    };
     let mut sweep = Sweep::new(&args.scene, text, grid, laws).map_err(bad)?;
     if !args.columns.is_empty() {
         sweep.select(table::Columns::parse(&args.columns).map_err(bad)?);
+    }
+    if map.is_some() {
+        // The map reads the verdicts from the CSV: they are added to its columns (and computed for its rows only).
+        let mut columns = sweep.columns().clone();
+        columns.add(&sweeps::map::columns());
+        sweep.select(columns);
     }
     let header = table::header(&sweep.keys(), sweep.columns());
     if args.plot.is_some() {
@@ -122,7 +151,7 @@ pub fn run(args: &SweepArgs) -> anyhow::Result<()> {
     // Rows stream into the output (a temporary file for a regular file) in index order as they are computed; the
     // figure needs the whole table, so only then is the CSV kept in memory too.
     let mut csv = OutputFile::create(&out)?;
-    let mut kept = plot.as_ref().map(|_| String::new());
+    let mut kept = (plot.is_some() || map.is_some()).then(String::new);
     let mut put = |text: &str| {
         if let Some(kept) = &mut kept {
             kept.push_str(text);
@@ -151,15 +180,16 @@ pub fn run(args: &SweepArgs) -> anyhow::Result<()> {
         (Some((path, destination)), Some(text)) => Some(figure_output(text, path, destination)?),
         _ => None,
     };
-    csv.finish()?;
-    let plotted = match figure {
-        Some(figure) => {
-            let name = figure.shown().to_string();
-            figure.finish()?;
-            Some(name)
-        }
-        None => None,
+    let drawn_map = match (&map, &kept) {
+        (Some((path, destination)), Some(text)) => Some(map_output(text, path, destination)?),
+        _ => None,
     };
+    csv.finish()?;
+    let mut plotted = Vec::new();
+    for figure in [figure, drawn_map].into_iter().flatten() {
+        plotted.push(figure.shown().to_string());
+        figure.finish()?;
+    }
 
     let part = shard.map(|s| format!(", shard {s} of {total} rows")).unwrap_or_default();
     let Tally { rows, ok, stuck, first } = tally;
@@ -168,7 +198,7 @@ pub fn run(args: &SweepArgs) -> anyhow::Result<()> {
         out.shown(),
         rows - ok - stuck
     );
-    if let Some(name) = plotted {
+    for name in plotted {
         eprintln!("wrote {name}");
     }
     if let Some(first) = first
@@ -181,9 +211,12 @@ pub fn run(args: &SweepArgs) -> anyhow::Result<()> {
 
 /// The sweep of a world scene (docs/world.md#sweeps): its rows stream into `--out` in index order.
 fn world(args: &SweepArgs, text: &str, spacing: Spacing) -> anyhow::Result<()> {
-    for (given, option) in
-        [(!args.law.is_empty(), "--law"), (args.shard.is_some(), "--shard"), (args.plot.is_some(), "--plot")]
-    {
+    for (given, option) in [
+        (!args.law.is_empty(), "--law"),
+        (args.shard.is_some(), "--shard"),
+        (args.plot.is_some(), "--plot"),
+        (args.map.is_some(), "--map"),
+    ] {
         if given {
             return Err(BadInput(format!("{option} is not taken by a sweep of a world scene (yet)")).into());
         }
@@ -262,6 +295,16 @@ pub(super) fn check_names(csv: &Path, option: &str, plot: Option<&Path>) -> anyh
     Ok(())
 }
 
+/// Checks the name of the idealisation map (`--map`) before any work: a `.png` or `.svg` file.
+pub(super) fn check_map_name(map: Option<&Path>) -> anyhow::Result<()> {
+    match map {
+        Some(map) if sweep_figure::format_of(map).is_none() || files::file_name_problem(map).is_some() => {
+            Err(BadInput(format!("--map {}: the figure's name must end in .png or .svg", map.display())).into())
+        }
+        _ => Ok(()),
+    }
+}
+
 /// Whether a sweep's CSV whose header line is `header` has the columns its figure reads; the error (bad input)
 /// names the first missing one, followed by `hint`.
 pub(super) fn check_plot_columns(header: &str, hint: &str) -> anyhow::Result<()> {
@@ -274,11 +317,25 @@ pub(super) fn check_plot_columns(header: &str, hint: &str) -> anyhow::Result<()>
 /// The sweep's figure, drawn from its CSV `text` in a staging folder beside `path` and copied to `destination`;
 /// unfinished, so that the caller shows it only with its CSV.
 pub(super) fn figure_output(text: &str, path: &Path, destination: &Destination) -> anyhow::Result<OutputFile> {
-    let figure = sweeps::figure::plot_from_csv(text).map_err(bad)?;
+    stage_output(&sweeps::figure::plot_from_csv(text).map_err(bad)?, path, destination)
+}
+
+/// The sweep's idealisation map, drawn from its CSV `text` as [`figure_output`] draws its figure.
+pub(super) fn map_output(text: &str, path: &Path, destination: &Destination) -> anyhow::Result<OutputFile> {
+    let map = sweeps::map::from_csv(text).map_err(bad)?;
+    stage_output(&sweep_figure::SweepPlot::Map(map), path, destination)
+}
+
+/// A figure staged beside `path` and copied to `destination`, unfinished.
+fn stage_output(
+    figure: &sweep_figure::SweepPlot,
+    path: &Path,
+    destination: &Destination,
+) -> anyhow::Result<OutputFile> {
     let folder = path.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));
     let staging = Staging::inside(folder)?;
     // The staged file keeps the figure's name: its extension picks the format.
     let name = path.file_name().unwrap_or_default();
-    let staged = sweep_figure::stage(&figure, &staging.path().join(name))?.commit()?;
+    let staged = sweep_figure::stage(figure, &staging.path().join(name))?.commit()?;
     Ok(staging.publish(&staged, destination)?)
 }

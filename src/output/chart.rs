@@ -167,6 +167,9 @@ pub enum Mark {
     Points { points: Vec<(f64, f64)>, marker: Marker },
     /// A closed polygon, filled with `fill` at `opacity` (0 to 1), no outline.
     Area { points: Vec<(f64, f64)>, fill: Colour, opacity: f64 },
+    /// Rectangles, each given by two opposite corners, filled with `fill` without anti-aliasing (neighbours meet
+    /// without a seam), no outline: the cells of a map.
+    Tiles { tiles: Vec<[(f64, f64); 2]>, fill: Colour },
     /// A band over the plot's whole height between two x values.
     Span { from: f64, to: f64, fill: Colour, opacity: f64 },
     /// A horizontal reference line across the plot at y.
@@ -207,22 +210,29 @@ impl Layer {
 }
 
 /// An axis: its label (with units), its data range, linear or logarithmic (a log axis is widened to whole decades,
-/// every one of them labelled 10^k).
+/// every one of them labelled 10^k, unless it is [`Axis::exact`]).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Axis {
     pub label: String,
     pub low: f64,
     pub high: f64,
     pub log: bool,
+    /// A log axis spans exactly [low, high] (a map's cells fill the plot), not whole decades.
+    pub exact: bool,
 }
 
 impl Axis {
     pub fn linear(label: impl Into<String>, low: f64, high: f64) -> Axis {
-        Axis { label: label.into(), low, high, log: false }
+        Axis { label: label.into(), low, high, log: false, exact: false }
     }
 
     pub fn log(label: impl Into<String>, low: f64, high: f64) -> Axis {
-        Axis { label: label.into(), low, high, log: true }
+        Axis { label: label.into(), low, high, log: true, exact: false }
+    }
+
+    /// This axis spanning exactly its range.
+    pub fn exact(self) -> Axis {
+        Axis { exact: true, ..self }
     }
 
     /// The range drawn: finite and non-empty; whole decades on a log axis.
@@ -233,6 +243,9 @@ impl Axis {
             } else {
                 (0.1, 1.0)
             };
+            if self.exact && high > low {
+                return (low, high);
+            }
             let first = (low.log10() + 1e-9).floor();
             let last = (high.log10() - 1e-9).ceil().max(first + 1.0);
             (10f64.powf(first), 10f64.powf(last))
@@ -367,12 +380,15 @@ fn linear_ticks(low: f64, high: f64, most: f64) -> Ticks {
 
 /// Decade ticks over [low, high] (whole decades), each labelled 10^k (every second one past 12 decades), with
 /// minor ticks at 2..9 times each decade.
+/// (An exact axis's ends need not be decades: the decades and minor ticks inside it.)
 fn log_ticks(low: f64, high: f64) -> Ticks {
-    let first = low.log10().round() as i32;
-    let last = high.log10().round() as i32;
+    let first = (low.log10() - 1e-9).ceil() as i32;
+    let last = (high.log10() + 1e-9).floor() as i32;
     let every = if last - first > 12 { 2 } else { 1 };
     let major = (first..=last).filter(|k| (k - first) % every == 0).map(|k| (10f64.powi(k), Label::Power(k))).collect();
-    let minor = (first..last).flat_map(|k| (2..=9).map(move |m| f64::from(m) * 10f64.powi(k))).collect();
+    let inside = |v: &f64| *v >= low * (1.0 - 1e-9) && *v <= high * (1.0 + 1e-9);
+    let minor =
+        (first - 1..=last).flat_map(|k| (2..=9).map(move |m| f64::from(m) * 10f64.powi(k))).filter(inside).collect();
     Ticks { major, minor }
 }
 
@@ -561,7 +577,7 @@ impl Chart {
                     let (top, bottom) = (y - ASCENT * NOTE_SIZE, y + (1.2 - ASCENT) * NOTE_SIZE);
                     trace(&[(left, top), (left + width, top), (left + width, bottom), (left, bottom), (left, top)]);
                 }
-                Mark::Area { .. } | Mark::Span { .. } => {}
+                Mark::Area { .. } | Mark::Span { .. } | Mark::Tiles { .. } => {}
             }
         }
         points.retain(|&(x, y)| x >= frame.left && x <= frame.right && y >= frame.top && y <= frame.bottom);
@@ -752,6 +768,26 @@ impl Chart {
                         polyline(points),
                         fill.hex(),
                         number(*opacity)
+                    );
+                }
+                Mark::Tiles { tiles, fill } => {
+                    let mut path = String::with_capacity(48 * tiles.len());
+                    for [a, b] in tiles {
+                        let ((x0, y0), (x1, y1)) = (self.pixel(frame, *a), self.pixel(frame, *b));
+                        let _ = write!(
+                            path,
+                            "M{} {}H{}V{}H{}Z",
+                            number(x0),
+                            number(y0),
+                            number(x1),
+                            number(y1),
+                            number(x0)
+                        );
+                    }
+                    let _ = write!(
+                        svg,
+                        "<path {clip} d=\"{path}\" fill=\"{}\" stroke=\"none\" shape-rendering=\"crispEdges\"/>",
+                        fill.hex()
                     );
                 }
                 Mark::Span { from, to, fill, opacity } => {
@@ -977,6 +1013,18 @@ fn entry(svg: &mut String, entry: &Entry, x: f64, y: f64) {
         Mark::HLine { stroke, .. } | Mark::VLine { stroke, .. } => svg.push_str(&line(stroke)),
         Mark::Points { marker, .. } => svg.push_str(&marker.svg(x + SYMBOL / 2.0, y)),
         Mark::Note { .. } => {}
+        Mark::Tiles { fill, .. } => {
+            let _ = write!(
+                svg,
+                "<rect class=\"legend-symbol\" x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" fill=\"{}\" stroke=\"#808080\" \
+                 stroke-width=\"0.6\"/>",
+                number(x + 2.0),
+                number(y - 0.45 * LEGEND_SIZE),
+                number(SYMBOL - 4.0),
+                number(0.9 * LEGEND_SIZE),
+                fill.hex()
+            );
+        }
         Mark::Area { fill, opacity, .. } | Mark::Span { fill, opacity, .. } => {
             let _ = write!(
                 svg,

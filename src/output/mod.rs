@@ -6,6 +6,7 @@ pub mod csv;
 pub mod figures;
 pub mod incidence_figure;
 pub mod json;
+pub mod map_figure;
 pub mod render;
 pub mod sweep_figure;
 pub mod table;

@@ -7,6 +7,7 @@
 use super::chart::{self, Axis, Chart, Colour, Layer, Mark, Marker, Stroke};
 use super::figures::caption;
 use super::incidence_figure::{self, IncidenceFigure};
+use super::map_figure::{self, IdealisationMap};
 use super::render;
 use anyhow::{Context, anyhow};
 use std::path::{Path, PathBuf};
@@ -18,11 +19,13 @@ pub const SIZE: (u32, u32) = (chart::WIDTH as u32, chart::HEIGHT as u32);
 const MARKED: usize = 25;
 
 /// The figure a sweep draws: effective e ([`SweepFigure`]), or the oblique-impact panels of a sweep over the angle
-/// of incidence ([`IncidenceFigure`]).
+/// of incidence ([`IncidenceFigure`]), or the idealisation map of a sweep over two keys (`--map`,
+/// [`IdealisationMap`]).
 #[derive(Debug, Clone, PartialEq)]
 pub enum SweepPlot {
     Restitution(SweepFigure),
     Incidence(IncidenceFigure),
+    Map(IdealisationMap),
 }
 
 impl SweepPlot {
@@ -31,6 +34,7 @@ impl SweepPlot {
         match self {
             SweepPlot::Restitution(figure) => svg(figure),
             SweepPlot::Incidence(figure) => incidence_figure::svg(figure),
+            SweepPlot::Map(map) => map_figure::svg(map),
         }
     }
 }

@@ -103,7 +103,7 @@ pub fn from_csv(text: &str) -> Result<SweepFigure, SweepError> {
 }
 
 /// The unit of a varied scene key's number (empty for a pure number).
-fn unit_of(key: &str) -> &'static str {
+pub(super) fn unit_of(key: &str) -> &'static str {
     let field = key.split('.').rfind(|part| !part.bytes().all(|b| b.is_ascii_digit())).unwrap_or_default();
     match field {
         "radius" | "position" => "m",

@@ -12,6 +12,7 @@ pub mod figure;
 pub mod grid;
 pub mod key;
 pub mod laws;
+pub mod map;
 pub mod merge;
 pub mod shard;
 pub mod table;
@@ -146,13 +147,14 @@ impl Sweep {
     }
 
     /// What a row's run computes for `columns`: no history; of the exact reference at most the restitution (the
-    /// quadratures of the others are not computed); nothing the columns do not show.
+    /// quadratures of the others are not computed); the verdicts on the idealisation only if a column shows one
+    /// (their trial costs two more runs of the contact); nothing the columns do not show.
     fn row_options(columns: &Columns) -> Options {
         Options {
             recording: Recording::Off,
             reference: columns.reference(),
             quantities: columns.quantities(),
-            idealisation: false,
+            idealisation: columns.verdicts(),
         }
     }
 
@@ -238,7 +240,7 @@ impl Sweep {
                 Ok(simulation) => {
                     let report = &simulation.report;
                     let status = if report.contact.separated { Status::Ok } else { Status::NotSeparated };
-                    Ok((status, columns.pick(&table::results(report))))
+                    Ok((status, columns.pick(report)))
                 }
                 Err(error) => Err(error.to_string()),
             }

@@ -7,6 +7,9 @@
 //! it: every result cell is empty). Numbers are written in their shortest round-trip form (`0.3`, `2.5e-5`), so
 //! identical runs give identical bytes; a cell holding a comma or a quote is quoted as RFC 4180 says.
 //!
+//! The verdicts on the idealisation ([`VERDICT_COLUMNS`]) are not among the default columns: a row computes them
+//! (two more runs of its contact) only when `--columns` names one of them or `--map` draws them.
+//!
 //! A shard's file (`--shard I/N`) starts with one comment line, `# impact sweep: shard I/N of R rows, sweep ID`
 //! (ID: a fingerprint of the scene text, the grid and the laws), so that `impact merge` can check that its shards
 //! come from one sweep and that none is missing. The whole sweep's file has no comment line.
@@ -14,6 +17,7 @@
 use super::SweepError;
 use super::shard::Shard;
 use crate::fast::Quantities;
+use crate::idealisation::{Idealisation, Judgement};
 use crate::report::Report;
 use crate::report::accuracy::ReferenceDetail;
 use crate::text::{MESSAGE_CHARS, cut};
@@ -65,11 +69,43 @@ pub const RESULT_COLUMNS: [&str; 41] = [
     "rigid_spin_after_2",
 ];
 
+/// The verdicts on the idealisation (docs/idealisation.md), after the result columns when asked for: the first
+/// assumption in the order of severity ([`crate::idealisation::SEVERITY`]) that fails, and the first that is
+/// marginal (`none` where there is none; empty where no verdict was measured), then each assumption's `ratio` (the
+/// report's `idealisation.KEY.ratio`; empty where null) and `verdict` (`holds`, `marginal`, `fails`; empty where
+/// null), in the report's order.
+pub const VERDICT_COLUMNS: [&str; 18] = [
+    "first_failure",
+    "first_marginal",
+    "instantaneous_ratio",
+    "instantaneous_verdict",
+    "isolated_ratio",
+    "isolated_verdict",
+    "particles_ratio",
+    "particles_verdict",
+    "elastic_ratio",
+    "elastic_verdict",
+    "quasi_static_ratio",
+    "quasi_static_verdict",
+    "constant_e_ratio",
+    "constant_e_verdict",
+    "smooth_ratio",
+    "smooth_verdict",
+    "central_ratio",
+    "central_verdict",
+];
+
+/// The name of column `index` of [`RESULT_COLUMNS`] followed by [`VERDICT_COLUMNS`].
+fn column_name(index: usize) -> &'static str {
+    RESULT_COLUMNS.get(index).copied().unwrap_or_else(|| VERDICT_COLUMNS[index - RESULT_COLUMNS.len()])
+}
+
 /// The result columns a sweep writes: every one of [`RESULT_COLUMNS`] (the default), or those `--columns` names, in
-/// its order. A row computes only what its columns show ([`Columns::quantities`], [`Columns::reference`]).
+/// its order (verdict columns among them). A row computes only what its columns show ([`Columns::quantities`],
+/// [`Columns::reference`], [`Columns::verdicts`]).
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct Columns {
-    /// Indices into [`RESULT_COLUMNS`].
+    /// Indices into [`RESULT_COLUMNS`] followed by [`VERDICT_COLUMNS`].
     chosen: Vec<usize>,
 }
 
@@ -95,7 +131,7 @@ impl Columns {
         let mut chosen = Vec::with_capacity(names.len());
         for name in names {
             let name = name.trim();
-            let Some(index) = RESULT_COLUMNS.iter().position(|&c| c == name) else {
+            let Some(index) = RESULT_COLUMNS.iter().chain(&VERDICT_COLUMNS).position(|&c| c == name) else {
                 let fixed = ["index", "status", "law"].contains(&name) || name.contains('.');
                 return Err(SweepError::Usage(if fixed {
                     format!(
@@ -105,9 +141,10 @@ impl Columns {
                     )
                 } else {
                     format!(
-                        "--columns: unknown column `{}`; expected some of {}",
+                        "--columns: unknown column `{}`; expected some of {}, or of the verdicts {}",
                         cut(name, MESSAGE_CHARS),
-                        RESULT_COLUMNS.join(", ")
+                        RESULT_COLUMNS.join(", "),
+                        VERDICT_COLUMNS.join(", ")
                     )
                 }));
             };
@@ -124,7 +161,23 @@ impl Columns {
 
     /// The names, in the order written.
     pub fn names(&self) -> impl Iterator<Item = &'static str> + '_ {
-        self.chosen.iter().map(|&i| RESULT_COLUMNS[i])
+        self.chosen.iter().map(|&i| column_name(i))
+    }
+
+    /// Appends those of `names` (result or verdict columns) not chosen yet, in their order: the columns a figure
+    /// reads (`--map`).
+    pub fn add(&mut self, names: &[&str]) {
+        for name in names {
+            let index = RESULT_COLUMNS.iter().chain(&VERDICT_COLUMNS).position(|c| c == name);
+            if let Some(index) = index.filter(|i| !self.chosen.contains(i)) {
+                self.chosen.push(index);
+            }
+        }
+    }
+
+    /// Whether a row judges the idealisation: a verdict column is written.
+    pub fn verdicts(&self) -> bool {
+        self.chosen.iter().any(|&i| i >= RESULT_COLUMNS.len())
     }
 
     pub fn len(&self) -> usize {
@@ -141,9 +194,10 @@ impl Columns {
 
     /// What a row's run must compute besides the motion and the impulses.
     pub fn quantities(&self) -> Quantities {
+        // (The verdicts read the contact's duration and its peak force.)
         Quantities {
-            time: self.shows(&TIME_COLUMNS),
-            peak: self.shows(&PEAK_COLUMNS),
+            time: self.shows(&TIME_COLUMNS) || self.verdicts(),
+            peak: self.shows(&PEAK_COLUMNS) || self.verdicts(),
             dissipation: self.shows(&DISSIPATION_COLUMNS),
         }
     }
@@ -153,13 +207,21 @@ impl Columns {
         if self.shows(&[REFERENCE_COLUMN]) { ReferenceDetail::Restitution } else { ReferenceDetail::Off }
     }
 
-    /// The chosen cells of a report's [`results`], in the chosen order.
-    pub fn pick(&self, all: &[Cell]) -> Vec<Cell> {
+    /// The chosen cells of a report: of its [`results`], and of its [`verdicts`] when one is chosen, in the chosen
+    /// order.
+    pub fn pick(&self, report: &Report) -> Vec<Cell> {
+        let all = results(report);
         // (Every column in its own order, the default: one copy rather than a lookup a cell.)
         if self.chosen.len() == all.len() && self.chosen.iter().enumerate().all(|(k, &i)| k == i) {
             return all.to_vec();
         }
-        self.chosen.iter().map(|&i| all[i]).collect()
+        let judged = self.verdicts().then(|| verdicts(&report.idealisation));
+        let cell = |i: usize| match (all.get(i), &judged) {
+            (Some(cell), _) => *cell,
+            (None, Some(judged)) => judged[i - all.len()],
+            (None, None) => Cell::Empty,
+        };
+        self.chosen.iter().map(|&i| cell(i)).collect()
     }
 }
 
@@ -168,6 +230,8 @@ impl Columns {
 pub enum Cell {
     Number(f64),
     Count(u64),
+    /// A name (a verdict, an assumption's key).
+    Text(&'static str),
     /// Null in the report (e.g. `duration` when the bodies did not separate).
     Empty,
 }
@@ -276,6 +340,26 @@ pub fn results(report: &Report) -> [Cell; RESULT_COLUMNS.len()] {
     let (first, rest) = cells.split_at_mut(CENTRAL);
     first.copy_from_slice(&central);
     rest.copy_from_slice(&turned);
+    cells
+}
+
+/// The verdict cells of a report's idealisation, in [`VERDICT_COLUMNS`] order: all empty where nothing was judged
+/// (every verdict null).
+pub fn verdicts(idealisation: &Idealisation) -> [Cell; VERDICT_COLUMNS.len()] {
+    let mut cells = [Cell::Empty; VERDICT_COLUMNS.len()];
+    let entries = idealisation.entries();
+    if entries.iter().all(|(_, verdict)| verdict.is_none()) {
+        return cells;
+    }
+    let first = |judgement| Cell::Text(idealisation.first(judgement).unwrap_or("none"));
+    cells[0] = first(Judgement::Fails);
+    cells[1] = first(Judgement::Marginal);
+    for (k, (_, verdict)) in entries.iter().enumerate() {
+        if let Some(verdict) = verdict {
+            cells[2 + 2 * k] = Cell::Number(verdict.ratio);
+            cells[3 + 2 * k] = Cell::Text(verdict.verdict.name());
+        }
+    }
     cells
 }
 
@@ -457,6 +541,7 @@ pub fn line(row: &Row) -> String {
         match cell {
             Cell::Number(x) => push_number(&mut text, *x),
             Cell::Count(n) => text.push_str(integer.format(*n)),
+            Cell::Text(name) => push_quoted(&mut text, name),
             Cell::Empty => {}
         }
     }
