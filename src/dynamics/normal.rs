@@ -198,8 +198,7 @@ impl ContactModel<SIZE> for NormalContact<'_> {
     }
 
     fn yield_margin(&self, y: &State<SIZE>) -> Option<f64> {
-        let onset = self.law.yield_penetration / self.scales.length;
-        (self.law.yields() && onset.is_finite()).then(|| onset - y[index::PENETRATION])
+        self.law.yield_onset().map(|onset| onset / self.scales.length - y[index::PENETRATION])
     }
 
     fn snapshot(&self, t: f64, y: &State<SIZE>) -> Snapshot {

@@ -161,6 +161,12 @@ impl<'a> PairContact<'a> {
         [spin(0, index::SPIN_1), spin(1, index::SPIN_2)]
     }
 
+    /// A yielding law's deepest penetration so far, m, at scaled penetration `d`: its state, or `d` where that is
+    /// deeper (the state grows only at it: [`super::normal::deepening`]).
+    fn deepest(&self, y: &State<SIZE>, d: f64) -> f64 {
+        y[index::DEEPEST].max(d) * self.scales.length
+    }
+
     fn evaluate(&self, y: &State<SIZE>) -> Evaluation {
         let s = &self.scales;
         let relative_velocity = self.relative_velocity + vector(y, index::IMPULSE) * self.impulse_gain;
@@ -170,7 +176,7 @@ impl<'a> PairContact<'a> {
         // The located edge of the contact sees the force from inside (Kelvin–Voigt's jump), as in the normal model.
         let d = if k.penetration > -EDGE { k.penetration.max(0.0) } else { k.penetration };
         // A yielding law's memory (the penetration where that is deeper: the state grows only at it).
-        let deepest = y[index::DEEPEST].max(d) * s.length;
+        let deepest = self.deepest(y, d);
         let parts = self.law.split_force_after(d * s.length, k.rate * s.speed, deepest);
         let (elastic, dissipative) = (parts.elastic / s.force, parts.dissipative / s.force);
         let normal_force = elastic + dissipative;
@@ -281,7 +287,7 @@ impl ContactModel<SIZE> for PairContact<'_> {
         let s = &self.scales;
         let k = self.evaluate(y).kinematics;
         if self.law.yields() {
-            let deepest = y[index::DEEPEST].max(k.penetration) * s.length;
+            let deepest = self.deepest(y, k.penetration);
             self.law.separation_function_after(k.penetration * s.length, k.rate * s.speed, deepest) / s.length
         } else {
             self.law.separation_function(k.penetration * s.length, k.rate * s.speed)
@@ -311,8 +317,8 @@ impl ContactModel<SIZE> for PairContact<'_> {
     }
 
     fn yield_margin(&self, y: &State<SIZE>) -> Option<f64> {
-        let onset = self.law.yield_penetration / self.scales.length;
-        (self.law.yields() && onset.is_finite()).then(|| onset - self.evaluate(y).kinematics.penetration)
+        let onset = self.law.yield_onset()?;
+        Some(onset / self.scales.length - self.evaluate(y).kinematics.penetration)
     }
 
     fn snapshot(&self, t: f64, y: &State<SIZE>) -> Snapshot {
@@ -342,7 +348,7 @@ impl ContactModel<SIZE> for PairContact<'_> {
         let tangential_elastic = if kt > 0.0 { stored * stored / (2.0 * kt) } else { 0.0 };
         let normal_work = y[index::NORMAL_WORK] * s.energy;
         let (elastic_energy, dissipated_normal) = if self.law.yields() {
-            let deepest = y[index::DEEPEST].max(k.penetration) * s.length;
+            let deepest = self.deepest(y, k.penetration);
             let elastic = self.law.elastic_energy_after(k.penetration * s.length, deepest);
             // What the normal force took and the unloading will not give back: the dent's work.
             (elastic, normal_work - elastic)

@@ -162,6 +162,12 @@ impl ContactLaw {
         if x > 0.0 { stiffness * x * x.sqrt() } else { 0.0 }
     }
 
+    /// The penetration d_y (m) at which a yielding contact starts to yield; `None` for the other laws and for a
+    /// yielding law whose bodies never yield (an infinite yield pressure).
+    pub fn yield_onset(&self) -> Option<f64> {
+        (self.yields() && self.yield_penetration.is_finite()).then_some(self.yield_penetration)
+    }
+
     /// The depth of the permanent dent after a deepest penetration `deepest` (m): where a yielding contact's force
     /// returns to zero (0 for an unyielded contact and for every other law).
     pub fn dent(&self, deepest: f64) -> f64 {
