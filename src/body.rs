@@ -3,7 +3,7 @@
 //! Walls and immovable bodies are the infinite limits (`mass = inf`, `radius = inf`), not special cases:
 //! every formula below is written so that an infinite value drops out (1/inf = 0).
 
-use nalgebra::Vector3;
+use nalgebra::{Matrix3, UnitQuaternion, Vector3};
 
 /// One body, as the scene describes it (SI units).
 #[derive(Debug, Clone, PartialEq)]
@@ -25,8 +25,17 @@ pub struct Body {
     /// Moment of inertia about any axis through the centre, kg m²: the scene's `inertia`, or (2/5) m r² for a solid
     /// sphere; infinite for an immovable body and for a flat body (a wall translates but does not rotate).
     pub inertia: f64,
-    /// The scene's `inertia`, when given (otherwise `inertia` is the solid sphere's).
+    /// The scene's `inertia`, when given as one number (otherwise `inertia` is the solid sphere's, or the mean of
+    /// `inertia_tensor`'s principal moments).
     pub inertia_given: Option<f64>,
+    /// The scene's `inertia` when given as three principal moments or a 3×3 tensor: kg m², about the mass centre, in
+    /// scene axes at t = 0 (symmetric positive definite: the rules check it).
+    pub inertia_tensor: Option<Matrix3<f64>>,
+    /// The centre of the body's contact sphere relative to its mass centre, m, in scene axes at t = 0 (zero: the
+    /// contact sphere is centred on the mass centre). `position` stays the mass centre.
+    pub contact_offset: Vector3<f64>,
+    /// A point of the body fixed in space, m (scene coordinates): the body can only turn about it.
+    pub pivot: Option<Vector3<f64>>,
     /// Young's modulus in Pa (`f64::INFINITY` for a rigid body); needed only for Hertz stiffness.
     pub young: Option<f64>,
     /// Poisson's ratio; needed only for Hertz stiffness.
@@ -44,7 +53,26 @@ impl Body {
         if let Some(density) = self.density {
             self.mass = density * 4.0 / 3.0 * std::f64::consts::PI * self.radius.powi(3);
         }
-        self.inertia = self.inertia_given.unwrap_or_else(|| Body::solid_sphere_inertia(self.mass, self.radius));
+        self.inertia = match (self.inertia_tensor, self.inertia_given) {
+            (Some(tensor), _) => tensor.trace() / 3.0,
+            (None, Some(inertia)) => inertia,
+            (None, None) => Body::solid_sphere_inertia(self.mass, self.radius),
+        };
+    }
+
+    /// Whether the body is a rigid body that a sphere's model does not describe: its contact sphere off its mass
+    /// centre, a pivot, or an inertia that is not the same about every axis. Such a body runs through the rigid-body
+    /// model (`dynamics::rigid`), whose contact point moves with the body's orientation.
+    pub fn is_eccentric(&self) -> bool {
+        let anisotropic =
+            self.inertia_tensor.is_some_and(|t| (t - Matrix3::identity() * (t.trace() / 3.0)).norm() > 0.0);
+        self.contact_offset != Vector3::zeros() || self.pivot.is_some() || anisotropic
+    }
+
+    /// The inertia tensor about the mass centre in scene axes at t = 0, kg m²: the scene's tensor or moments, or the
+    /// scalar `inertia` on every axis (infinite for a body that does not rotate).
+    pub fn inertia_matrix(&self) -> Matrix3<f64> {
+        self.inertia_tensor.unwrap_or_else(|| Matrix3::identity() * self.inertia)
     }
 
     /// 1/m in 1/kg: zero for an immovable body.
@@ -78,15 +106,34 @@ impl Body {
         self.inertia.is_finite()
     }
 
-    /// Kinetic energy (translation and rotation) in J for a velocity and angular velocity; 0 for an immovable body.
+    /// Kinetic energy (translation and rotation) in J for a velocity and angular velocity, in the body's orientation
+    /// at t = 0; 0 for an immovable body.
     pub fn kinetic_energy(&self, velocity: &Vector3<f64>, angular_velocity: &Vector3<f64>) -> f64 {
+        self.kinetic_energy_turned(velocity, angular_velocity, &UnitQuaternion::identity())
+    }
+
+    /// Kinetic energy in J with the body turned by `rotation` from its orientation at t = 0 (its inertia tensor turns
+    /// with it: `(1/2) ω·R I Rᵀ ω`); 0 for an immovable body.
+    pub fn kinetic_energy_turned(
+        &self,
+        velocity: &Vector3<f64>,
+        angular_velocity: &Vector3<f64>,
+        rotation: &UnitQuaternion<f64>,
+    ) -> f64 {
         if self.is_immovable() {
             return 0.0;
         }
         let translation = 0.5 * self.mass * velocity.norm_squared();
         let spin = angular_velocity.norm_squared();
         // A flat body cannot spin in a scene (validation forbids it); 0 * inf is avoided.
-        let rotation = if spin == 0.0 { 0.0 } else { 0.5 * self.inertia * spin };
+        let rotation = match self.inertia_tensor {
+            _ if spin == 0.0 => 0.0,
+            Some(tensor) => {
+                let local = rotation.inverse_transform_vector(angular_velocity);
+                0.5 * local.dot(&(tensor * local))
+            }
+            None => 0.5 * self.inertia * spin,
+        };
         translation + rotation
     }
 

@@ -64,7 +64,7 @@ impl RigidBody {
 
     /// The body's velocity and spin after the impulse `impulse` (N s) at `point`, and the impulse its pivot passes
     /// to it (zero for a free body).
-    fn after(&self, impulse: &Vector3<f64>, point: &Vector3<f64>) -> (Vector3<f64>, Vector3<f64>, Vector3<f64>) {
+    pub fn after(&self, impulse: &Vector3<f64>, point: &Vector3<f64>) -> (Vector3<f64>, Vector3<f64>, Vector3<f64>) {
         if self.mass.is_infinite() {
             return (self.velocity, self.spin, Vector3::zeros());
         }

@@ -141,11 +141,14 @@ impl Limits {
 }
 
 /// A correction of relative size `ratio` to the idealised impact: a per cent is within the scatter of measured
-/// impacts, ten per cent is not (`instantaneous`, `isolated`, `smooth`, `central`).
+/// impacts, ten per cent is not (`instantaneous`, `isolated`, `smooth`).
 pub const CORRECTION: Limits = Limits { holds_below: 1e-2, fails_from: 1e-1 };
 /// A length against the body's size (`particles`) or a transit against the contact time (`quasi_static`): Hertz's
 /// small-strain and quasi-static errors grow as the ratio squared (a/R = 0.1: 1 %), or faster.
 pub const SHAPE: Limits = Limits { holds_below: 0.1, fails_from: 0.3 };
+/// The normal's lever arm against the radius of gyration (`central`): a free body's effective mass is
+/// M / (1 + (b/k)²), so b/k = 0.1 changes it by 1 % and b/k = sqrt(0.1) by 10 %, [`CORRECTION`]'s sizes.
+pub const LEVER: Limits = Limits { holds_below: 0.1, fails_from: 0.316_227_766_016_837_94 };
 /// The peak pressure against the yield pressure: yield begins at 1; at 2^(2/5) times the yield pressure (Hertz's
 /// elastic p0, which grows as v0^(2/5)) the speed is twice the yield speed, and Thornton's e has fallen to 0.93.
 pub const YIELD: Limits = Limits { holds_below: 1.0, fails_from: 1.319_507_910_772_894 };
@@ -156,7 +159,8 @@ pub const SLOPE: Limits = Limits { holds_below: 0.1, fails_from: 1.0 };
 /// The limits the verdict on the assumption `key` is judged by (docs/idealisation.md#thresholds-and-why).
 pub fn limits(key: &str) -> Option<Limits> {
     match key {
-        "instantaneous" | "isolated" | "smooth" | "central" => Some(CORRECTION),
+        "instantaneous" | "isolated" | "smooth" => Some(CORRECTION),
+        "central" => Some(LEVER),
         "particles" | "quasi_static" => Some(SHAPE),
         "elastic" => Some(YIELD),
         "constant_e" => Some(SLOPE),
@@ -208,6 +212,22 @@ pub struct Measured {
     pub speed_trial: SpeedTrial,
     /// For a yielding law (`thornton`): its yield pressure p_y (Pa) and yield speed V_y (m/s).
     pub yielding: Option<(f64, f64)>,
+    /// Each turning body's lever at first contact (`None` for a body that does not turn).
+    pub levers: [Option<Lever>; 2],
+}
+
+/// How a body meets the normal force at first contact.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Lever {
+    /// The normal's lever arm b about the body's origin (its mass centre, or its pivot), m.
+    pub arm: f64,
+    /// The radius of gyration k about the axis of the normal's moment through that origin, sqrt(I_axis / M), m.
+    pub gyration: f64,
+    /// The effective mass at the contact along the normal, kg, and the body's mass M, kg.
+    pub effective_mass: f64,
+    pub mass: f64,
+    /// Whether the body turns about a pivot.
+    pub pivoted: bool,
 }
 
 /// The verdicts on the idealisation of one impact between `bodies`, from what it measured.
@@ -220,7 +240,7 @@ pub fn judge(bodies: &[Body; 2], measured: &Measured) -> Idealisation {
         quasi_static: quasi_static(bodies, measured),
         constant_e: constant_e(measured),
         smooth: smooth(bodies, measured),
-        central: central(bodies),
+        central: central(bodies, measured),
     }
 }
 
@@ -448,18 +468,42 @@ fn smooth(bodies: &[Body; 2], measured: &Measured) -> Option<Verdict> {
     }
 }
 
-/// The lever arm b of the normal about each mass centre against the smallest radius of gyration k = sqrt(I/m): a
-/// sphere's normal passes through its centre (b = 0), so every impact of spheres and walls is central.
-fn central(bodies: &[Body; 2]) -> Option<Verdict> {
-    let gyration = bodies
+/// The lever arm b of the normal about each body's origin (mass centre, or pivot) against the radius of gyration k
+/// about the axis of its moment: a free body's effective mass at the contact is M / (1 + (b/k)²), so b/k is the
+/// square root of the correction to the particles' m* ([`LEVER`]). A sphere's normal passes through its centre
+/// (b = 0), so every impact of spheres and walls is central. A pivoted body is judged about its pivot: struck
+/// where b = k it meets the normal with its whole mass, elsewhere with I_O/b².
+fn central(bodies: &[Body; 2], measured: &Measured) -> Option<Verdict> {
+    let worst = measured
+        .levers
         .iter()
-        .filter(|b| b.mass.is_finite() && b.inertia.is_finite())
-        .map(|b| (b.inertia / b.mass).sqrt())
-        .fold(f64::INFINITY, f64::min);
-    let scale = if gyration.is_finite() && gyration > 0.0 { gyration } else { smaller_radius(bodies)? };
-    verdict(0.0, scale, CORRECTION, ("b / k", "m"), |_| {
-        "the normal passes through both mass centres (spheres and walls): the impact is central, the effective \
-         mass along the normal is m* and the normal force does not spin the bodies"
-            .into()
+        .enumerate()
+        .filter_map(|(i, lever)| lever.map(|l| (i, l)))
+        .filter(|(_, l)| l.gyration > 0.0)
+        .max_by(|(_, x), (_, y)| (x.arm / x.gyration).total_cmp(&(y.arm / y.gyration)));
+    let Some((i, lever)) = worst.filter(|(_, l)| l.arm > 0.0 || l.pivoted) else {
+        let gyration = bodies
+            .iter()
+            .filter(|b| b.mass.is_finite() && b.inertia.is_finite())
+            .map(|b| (b.inertia / b.mass).sqrt())
+            .fold(f64::INFINITY, f64::min);
+        let scale = if gyration.is_finite() && gyration > 0.0 { gyration } else { smaller_radius(bodies)? };
+        return verdict(0.0, scale, LEVER, ("b / k", "m"), |_| {
+            "the normal passes through both mass centres (spheres and walls): the impact is central, the effective \
+             mass along the normal is m* and the normal force does not spin the bodies"
+                .into()
+        });
+    };
+    let name = &bodies[i].name;
+    let origin = if lever.pivoted { "pivot" } else { "mass centre" };
+    verdict(lever.arm, lever.gyration, LEVER, ("b / k", "m"), |ratio| {
+        format!(
+            "the normal passes {:.3e} m from {name}'s {origin} ({ratio:.3e} of its radius of gyration): {name} meets \
+             the contact with an effective mass of {:.4e} kg, not its {:.4e} kg, and the blow turns it{}",
+            lever.arm,
+            lever.effective_mass,
+            lever.mass,
+            difference(measured)
+        )
     })
 }

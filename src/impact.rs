@@ -9,6 +9,7 @@
 use crate::dynamics::ContactModel;
 use crate::dynamics::normal::NormalContact;
 use crate::dynamics::pair::PairContact;
+use crate::dynamics::rigid::RigidContact;
 use crate::fast::Quantities;
 use crate::history::{History, Recording};
 use crate::idealisation::{SPEED_STEP, SpeedTrial};
@@ -174,6 +175,7 @@ fn through_phases(
     match setup.motion {
         Motion::Normal => run(&normal, scene, setup.contact_time, recording),
         Motion::Full => run(&PairContact::new(&scene.bodies, &setup), scene, setup.contact_time, recording),
+        Motion::Rigid => run(&RigidContact::new(&scene.bodies, &setup), scene, setup.contact_time, recording),
     }
 }
 

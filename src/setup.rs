@@ -51,6 +51,10 @@ pub struct Setup {
     /// R (v0² / (|v| (|v| + |v_t|))) with R = r1 + r2, m — a graze shallower than the contact's penetration scale
     /// ends by the bodies sliding off each other, not by the force. `None` for a wall, or without motion across.
     pub graze_depth: Option<f64>,
+    /// Each body's effective mass at the contact along the first normal, kg: `1/m_eff = 1/M + (r × n)·I⁻¹(r × n)`
+    /// with `r` from the mass centre to the contact sphere's centre, or about the pivot without the `1/M`
+    /// (docs/references.md#eccentric-impact); the mass itself for a sphere, infinite for an immovable body.
+    pub effective_masses: [f64; 2],
 }
 
 /// Which equations of motion an impact needs.
@@ -63,6 +67,9 @@ pub enum Motion {
     /// Positions, velocities and spins in 3-D: the normal turns with the line of centres, friction changes the
     /// tangential motion and the spins.
     Full,
+    /// Rigid bodies struck off their centre or turning about a pivot: each body's orientation is integrated, and its
+    /// contact sphere's centre moves with it (`dynamics::rigid`). Smooth contacts only.
+    Rigid,
 }
 
 /// Coulomb friction with a tangential spring (Mindlin) and optional tangential damping (docs/oblique.md).
@@ -108,24 +115,55 @@ impl Setup {
             return fail("bodies.1.radius", "both bodies are flat (radius = inf): one must be a sphere");
         }
         check_finite_motion(&scene.bodies)?;
-        let (contact_time, normal, positions) = placement(scene)?;
-        let approach_speed = (a.velocity - b.velocity).dot(&normal);
+        let eccentric = a.is_eccentric() || b.is_eccentric();
+        let (contact_time, normal, positions) = if eccentric { eccentric_placement(scene)? } else { placement(scene)? };
+        // The contact spheres' centres move with the bodies' turning (the same as the mass centres for spheres).
+        let sphere_velocity = |body: &Body| body.velocity + body.angular_velocity.cross(&body.contact_offset);
+        let approach_speed = (sphere_velocity(a) - sphere_velocity(b)).dot(&normal);
         if approach_speed <= 0.0 || !approach_speed.is_finite() {
             return fail(no_approach_key(scene), no_approach(scene, &normal, approach_speed));
         }
+        let inverse_masses = inverse_effective_masses(&scene.bodies, &positions, &normal);
+        let effective_mass = if eccentric {
+            let total = inverse_masses[0] + inverse_masses[1];
+            if !(total > 0.0 && total.is_finite()) {
+                let key = if a.pivot.is_some() { "bodies.0.pivot" } else { "bodies.1.pivot" };
+                return fail(
+                    key,
+                    format!(
+                        "the effective masses at the contact ({:e} and {:e} kg) leave no motion along the normal: a \
+                         pivot on the line of the normal holds its body as if it were immovable",
+                        1.0 / inverse_masses[0],
+                        1.0 / inverse_masses[1]
+                    ),
+                );
+            }
+            1.0 / total
+        } else {
+            effective_mass
+        };
         let law = resolve_law(&scene.contact, [a, b], effective_mass, approach_speed)?;
         let scales = check_law(&scene.contact, [a, b], &law, effective_mass, approach_speed)?;
         let tangential_velocity = {
             let relative = b.velocity - a.velocity;
             relative - normal * relative.dot(&normal)
         };
-        let initial_slip = contact_point_slip(&scene.bodies, &normal);
+        let initial_slip = if eccentric { Vector3::zeros() } else { contact_point_slip(&scene.bodies, &normal) };
         let friction = friction(scene, effective_mass)?;
         let coupled = friction.is_some() && initial_slip.norm() > ACROSS_TOLERANCE * approach_speed;
         let turning = !a.is_flat() && !b.is_flat() && tangential_velocity.norm() > ACROSS_TOLERANCE * approach_speed;
-        let motion = if coupled || turning { Motion::Full } else { Motion::Normal };
-        let graze_depth =
-            if turning { Some(graze(scene, &normal, approach_speed, &tangential_velocity)?) } else { None };
+        let motion = if eccentric {
+            Motion::Rigid
+        } else if coupled || turning {
+            Motion::Full
+        } else {
+            Motion::Normal
+        };
+        let graze_depth = if turning && !eccentric {
+            Some(graze(scene, &normal, approach_speed, &tangential_velocity)?)
+        } else {
+            None
+        };
         Ok(Setup {
             contact_time,
             normal,
@@ -139,6 +177,7 @@ impl Setup {
             initial_slip,
             motion,
             graze_depth,
+            effective_masses: inverse_masses.map(|w| 1.0 / w),
         })
     }
 
@@ -442,6 +481,92 @@ fn mindlin_coefficient(a: &Body, b: &Body) -> Result<f64, SetupError> {
 
 /// When (s) and along which normal the bodies first touch, and where they are then (m).
 type Placement = (f64, Vector3<f64>, [Vector3<f64>; 2]);
+
+/// Each body's inverse effective mass along `normal` at its contact sphere's centre (on the line of the normal
+/// force), 1/kg, with the mass centres at `positions`: 1/M for a body that does not turn (0 for an immovable one).
+pub fn inverse_effective_masses(bodies: &[Body; 2], positions: &[Vector3<f64>; 2], normal: &Vector3<f64>) -> [f64; 2] {
+    let inverse = |i: usize| {
+        let body = &bodies[i];
+        if !body.rotates() || !body.is_eccentric() {
+            return body.inverse_mass();
+        }
+        rigid_body(body, positions[i]).inverse_effective_mass(&(positions[i] + body.contact_offset), normal)
+    };
+    [inverse(0), inverse(1)]
+}
+
+/// A scene body as the instantaneous eccentric impact takes it, its mass centre at `centre` (m).
+pub fn rigid_body(body: &Body, centre: Vector3<f64>) -> crate::eccentric::RigidBody {
+    crate::eccentric::RigidBody {
+        mass: body.mass,
+        inertia: body.inertia_matrix(),
+        centre,
+        velocity: body.velocity,
+        spin: body.angular_velocity,
+        pivot: body.pivot,
+    }
+}
+
+/// The first contact of a scene with an eccentric or pivoted body: the contact spheres' centres fly straight (the
+/// rules below see to it), so [`placement`] places them, and each mass centre sits its `contact_offset` behind its
+/// sphere's centre. Without positions, body 1's mass centre is at the origin.
+fn eccentric_placement(scene: &Scene) -> Result<Placement, SetupError> {
+    let placed = scene.bodies.iter().all(|body| body.position.is_some());
+    for (i, body) in scene.bodies.iter().enumerate() {
+        let Some(pivot) = body.pivot else { continue };
+        if !placed {
+            return fail(
+                format!("bodies.{i}.pivot"),
+                "a pivot is a point in scene coordinates: give `position` for both bodies",
+            );
+        }
+        let arm = body.position.unwrap_or_default() - pivot;
+        let turning = body.angular_velocity.cross(&arm);
+        let size = body.velocity.norm().max(turning.norm());
+        if (body.velocity - turning).norm() > 1e-9 * size {
+            return fail(
+                format!("bodies.{i}.velocity"),
+                format!(
+                    "a body turning about its pivot moves with angular_velocity × (position - pivot) = {:?} m/s, \
+                     not {:?} m/s",
+                    turning.as_slice(),
+                    body.velocity.as_slice()
+                ),
+            );
+        }
+    }
+    let mut spheres = scene.clone();
+    for body in &mut spheres.bodies {
+        if let Some(position) = &mut body.position {
+            *position += body.contact_offset;
+        }
+    }
+    let (time, normal, mut positions) = placement(&spheres)?;
+    for (i, body) in scene.bodies.iter().enumerate() {
+        if !body.is_flat() {
+            positions[i] -= body.contact_offset;
+        }
+        if time > 0.0 && body.is_eccentric() && body.angular_velocity != Vector3::zeros() {
+            return fail(
+                format!("bodies.{i}.angular_velocity"),
+                "an eccentric or pivoted body that spins must start at its first contact: its contact sphere would \
+                 not fly straight to it (give the positions at first contact, or no spin)",
+            );
+        }
+    }
+    if !placed && !scene.bodies[0].is_flat() {
+        let shift = scene.bodies[0].contact_offset;
+        positions = positions.map(|x| x + shift);
+    }
+    if scene.contact.friction > 0.0 {
+        return fail(
+            "contact.friction",
+            "friction on an eccentric or pivoted body is not simulated yet: the rigid-body model is smooth \
+             (friction = 0)",
+        );
+    }
+    Ok((time, normal, positions))
+}
 
 /// The first contact of the scene's bodies.
 fn placement(scene: &Scene) -> Result<Placement, SetupError> {

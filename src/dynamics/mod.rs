@@ -13,9 +13,10 @@
 pub mod contact;
 pub mod normal;
 pub mod pair;
+pub mod rigid;
 
 use crate::integrate::{Model, State};
-use nalgebra::Vector3;
+use nalgebra::{UnitQuaternion, Vector3};
 
 use crate::scales::Scales;
 
@@ -56,6 +57,11 @@ pub struct Snapshot {
     pub elastic_energy: f64,
     /// Energy stored in the tangential spring, |T|²/(2 kt), J.
     pub tangential_elastic_energy: f64,
+    /// How far each body has turned since first contact: the identity in the spheres' models, whose contact does not
+    /// depend on a sphere's orientation; the integrated orientation in the rigid-body model.
+    pub orientations: [UnitQuaternion<f64>; 2],
+    /// The impulse each body's pivot has passed to it since first contact, N s (zero for a free body).
+    pub pivot_impulses: [Vector3<f64>; 2],
 }
 
 /// What the phase driver needs of a model: its scaled state's meaning, the event functions, and SI snapshots.

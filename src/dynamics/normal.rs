@@ -133,6 +133,8 @@ impl<'a> NormalContact<'a> {
             work_of_immovable_bodies,
             elastic_energy,
             tangential_elastic_energy: 0.0,
+            orientations: [nalgebra::UnitQuaternion::identity(); 2],
+            pivot_impulses: [nalgebra::Vector3::zeros(); 2],
         }
     }
 }

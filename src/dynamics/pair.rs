@@ -376,6 +376,8 @@ impl ContactModel<SIZE> for PairContact<'_> {
             work_of_immovable_bodies: y[index::IMMOVABLE_WORK] * s.energy,
             elastic_energy,
             tangential_elastic_energy: tangential_elastic * s.energy,
+            orientations: [nalgebra::UnitQuaternion::identity(); 2],
+            pivot_impulses: [nalgebra::Vector3::zeros(); 2],
         }
     }
 }

@@ -3,10 +3,11 @@
 
 use super::accuracy::{self, Measured, ReferenceDetail};
 use super::{
-    BodyReport, ContactReport, EnergyReport, InstantaneousReport, LawReport, ObliqueReport, Report, RigidBodyReport,
-    SolverReport, Vec3,
+    BodyReport, ContactReport, EccentricReport, EnergyReport, InstantaneousReport, LawReport, ObliqueReport, Report,
+    RigidBodyReport, SolverReport, Vec3,
 };
 use crate::body::Body;
+use crate::dynamics::Snapshot;
 use crate::idealisation::{self, Idealisation, SpeedTrial};
 use crate::instantaneous::{Instantaneous, direct_impact, rigid_body_impact};
 use crate::integrate::Ending;
@@ -37,8 +38,14 @@ pub fn build(
     let e_velocity = -end.rate / setup.approach_speed;
     // V0 read off a movable body's simulated velocity (its error is the impulse integral's).
     let moving = if a.is_immovable() { 1 } else { 0 };
-    let common_normal_velocity = max.velocities[moving].dot(&max.normal);
-    let kinetic = |i: usize, body: &Body| body.kinetic_energy(&end.velocities[i], &end.spins[i]);
+    // The contact sphere's centre moves with a turning body (the mass centre of a sphere).
+    let sphere_velocity = |snapshot: &Snapshot, i: usize| {
+        let offset = snapshot.orientations[i] * scene.bodies[i].contact_offset;
+        snapshot.velocities[i] + snapshot.spins[i].cross(&offset)
+    };
+    let common_normal_velocity = sphere_velocity(max, moving).dot(&max.normal);
+    let kinetic =
+        |i: usize, body: &Body| body.kinetic_energy_turned(&end.velocities[i], &end.spins[i], &end.orientations[i]);
     let kinetic_before =
         a.kinetic_energy(&a.velocity, &a.angular_velocity) + b.kinetic_energy(&b.velocity, &b.angular_velocity);
     let friction_work = 0.0 - (end.tangential_work + end.tangential_elastic_energy);
@@ -60,8 +67,15 @@ pub fn build(
         DampingSpec::Restitution(e) => Some(e),
         DampingSpec::Parameter(_) => None,
     };
-    let after = done.then_some(&end.velocities);
-    let compare = |e: f64| instantaneous_report(&direct_impact(&scene.bodies, &n, setup.effective_mass, e), after);
+    let after = done.then_some((&end.velocities, &end.spins));
+    let rigid = setup.motion == Motion::Rigid;
+    let compare = |e: f64| {
+        if rigid {
+            eccentric_report(scene, setup, e, after)
+        } else {
+            instantaneous_report(&direct_impact(&scene.bodies, &n, setup.effective_mass, e), after.map(|(v, _)| v))
+        }
+    };
     let body = |i: usize, body: &Body| BodyReport {
         name: body.name.clone(),
         mass: body.mass,
@@ -76,6 +90,8 @@ pub fn build(
         angle_from_tangent_after_deg: done.then(|| angle_from_tangent(&end.velocities[i], &n)).flatten(),
         position_at_first_contact: vec3(&setup.positions[i]),
         position_at_separation: done.then(|| vec3(&end.positions[i])),
+        effective_mass_at_contact: setup.effective_masses[i],
+        pivot_impulse: body.pivot.and(done.then(|| vec3(&end.pivot_impulses[i]))),
     };
     let measured = Measured {
         restitution: when(e_velocity),
@@ -87,12 +103,22 @@ pub fn build(
     };
     // The exact references describe the relative motion along a fixed normal: a turning line of centres couples it
     // to the tangential motion, and they no longer apply.
-    let fixed_normal = setup.motion == Motion::Normal || a.is_flat() || b.is_flat();
+    let fixed_normal = !rigid && (setup.motion == Motion::Normal || a.is_flat() || b.is_flat());
     let mut notes = Vec::new();
     if !done {
         notes.push(outcome.note.clone().unwrap_or_else(|| stuck_note(outcome, scene.contact.friction > 0.0)));
     }
-    let oblique = oblique(scene, setup, outcome, e_velocity, friction_work);
+    let oblique = if rigid { None } else { oblique(scene, setup, outcome, e_velocity, friction_work) };
+    if rigid {
+        let turned = |i: usize| end.orientations[i].angle().to_degrees();
+        notes.push(format!(
+            "rigid bodies struck off their centre or turning about a pivot: the contact spheres move with the bodies, \
+             which turned by {:.3e} and {:.3e} degrees during the contact; the exact references of a fixed normal and \
+             one effective mass do not apply (the instantaneous impact is the eccentric one)",
+            turned(0),
+            turned(1)
+        ));
+    }
     if let Some(turn) = oblique.as_ref().and_then(|o| o.normal_turn_deg).filter(|_| !fixed_normal) {
         notes.push(format!(
             "the line of centres turned by {turn:.3e} degrees during the contact: the exact references of a fixed \
@@ -187,13 +213,19 @@ pub fn build(
         notes,
     };
     if let Some(trial) = trial {
-        report.idealisation = idealisation::judge(&scene.bodies, &measured_by(&report, scene.contact.friction, trial));
+        let measured = measured_by(&report, scene.contact.friction, trial, levers(scene, setup));
+        report.idealisation = idealisation::judge(&scene.bodies, &measured);
     }
     report
 }
 
 /// What the verdicts on the idealisation read: the report's own numbers.
-fn measured_by(report: &Report, friction: f64, speed_trial: SpeedTrial) -> idealisation::Measured {
+fn measured_by(
+    report: &Report,
+    friction: f64,
+    speed_trial: SpeedTrial,
+    levers: [Option<idealisation::Lever>; 2],
+) -> idealisation::Measured {
     let c = &report.contact;
     let vector = |v: &Vec3| Vector3::from(*v);
     let pair = |of: &dyn Fn(&BodyReport) -> Vec3| report.bodies.each_ref().map(|b| vector(&of(b)));
@@ -220,7 +252,36 @@ fn measured_by(report: &Report, friction: f64, speed_trial: SpeedTrial) -> ideal
         max_velocity_difference: report.instantaneous.as_ref().and_then(|i| i.max_velocity_difference),
         speed_trial,
         yielding: report.law.yield_pressure.zip(report.law.yield_speed),
+        levers,
     }
+}
+
+/// How each turning body meets the normal at first contact: the normal's lever arm about its origin (mass centre or
+/// pivot) and its radius of gyration about the axis of that moment.
+fn levers(scene: &Scene, setup: &Setup) -> [Option<idealisation::Lever>; 2] {
+    [0, 1].map(|i| {
+        let body = &scene.bodies[i];
+        if !body.rotates() || body.is_immovable() {
+            return None;
+        }
+        let rigid = crate::setup::rigid_body(body, setup.positions[i]);
+        let origin = body.pivot.unwrap_or(setup.positions[i]);
+        let moment = (setup.positions[i] + body.contact_offset - origin).cross(&setup.normal);
+        let arm = moment.norm();
+        let inertia = rigid.inertia_about_pivot();
+        let about = if arm > 0.0 {
+            moment.dot(&(inertia * moment)) / (arm * arm)
+        } else {
+            inertia.symmetric_eigenvalues().min()
+        };
+        Some(idealisation::Lever {
+            arm,
+            gyration: (about / body.mass).sqrt(),
+            effective_mass: setup.effective_masses[i],
+            mass: body.mass,
+            pivoted: body.pivot.is_some(),
+        })
+    })
 }
 
 /// The oblique section: null for a direct central impact without spin.
@@ -329,6 +390,58 @@ fn stuck_note(outcome: &Outcome, frictional: bool) -> String {
     )
 }
 
+/// Both bodies' velocities or spins.
+type Pair = [Vector3<f64>; 2];
+
+/// The instantaneous eccentric impact with restitution `e` (docs/references.md#eccentric-impact), beside the
+/// simulated velocities and spins after when the bodies parted.
+fn eccentric_report(
+    scene: &Scene,
+    setup: &Setup,
+    e: f64,
+    simulated: Option<(&Pair, &Pair)>,
+) -> InstantaneousReport {
+    let bodies = &scene.bodies;
+    let n = setup.normal;
+    let rigid = [0, 1].map(|i| crate::setup::rigid_body(&bodies[i], setup.positions[i]));
+    // A point on the line of the normal force: a contact sphere's centre.
+    let sphere = if bodies[0].is_flat() { 1 } else { 0 };
+    let point = setup.positions[sphere] + bodies[sphere].contact_offset;
+    let inverse = crate::setup::inverse_effective_masses(bodies, &setup.positions, &n);
+    let approach = setup.approach_speed;
+    let impulse = (1.0 + e) * approach * setup.effective_mass;
+    let after = |i: usize, j: f64| -> (Vector3<f64>, Vector3<f64>, Vector3<f64>) {
+        let body = &bodies[i];
+        if !body.rotates() {
+            return (body.velocity + n * (j * body.inverse_mass()), body.angular_velocity, Vector3::zeros());
+        }
+        rigid[i].after(&(n * j), &point)
+    };
+    let (v1, w1, p1) = after(0, -impulse);
+    let (v2, w2, p2) = after(1, impulse);
+    let velocity_after = [v1, v2];
+    let spins_after = [w1, w2];
+    let largest = |simulated: &[Vector3<f64>; 2], ideal: &[Vector3<f64>; 2]| {
+        (0..2).map(|i| (simulated[i] - ideal[i]).amax()).fold(0.0, f64::max)
+    };
+    // The contact points share one normal velocity when the deformation impulse m* v0 has passed.
+    let u1 = (bodies[0].velocity + bodies[0].angular_velocity.cross(&bodies[0].contact_offset)).dot(&n);
+    InstantaneousReport {
+        restitution: e,
+        common_normal_velocity: u1 - approach * setup.effective_mass * inverse[0],
+        velocity_after: [vec3(&v1), vec3(&v2)],
+        energy_lost: 0.5 * setup.effective_mass * (1.0 - e * e) * approach * approach,
+        max_velocity_difference: simulated.map(|(v, _)| largest(v, &velocity_after)),
+        eccentric: Some(EccentricReport {
+            effective_masses: setup.effective_masses,
+            impulse,
+            angular_velocity_after: [vec3(&w1), vec3(&w2)],
+            pivot_impulse: [vec3(&p1), vec3(&p2)],
+            max_angular_velocity_difference: simulated.map(|(_, w)| largest(w, &spins_after)),
+        }),
+    }
+}
+
 fn instantaneous_report(ideal: &Instantaneous, simulated: Option<&[Vector3<f64>; 2]>) -> InstantaneousReport {
     let difference =
         simulated.map(|after| (0..2).map(|i| (after[i] - ideal.velocity_after[i]).amax()).fold(0.0, f64::max));
@@ -338,6 +451,7 @@ fn instantaneous_report(ideal: &Instantaneous, simulated: Option<&[Vector3<f64>;
         velocity_after: [vec3(&ideal.velocity_after[0]), vec3(&ideal.velocity_after[1])],
         energy_lost: ideal.energy_lost,
         max_velocity_difference: difference,
+        eccentric: None,
     }
 }
 

@@ -126,6 +126,13 @@ pub struct BodyReport {
     /// Centre (a wall: the point of its plane under the sphere) at first contact and at separation, m (additions).
     pub position_at_first_contact: Vec3,
     pub position_at_separation: Option<Vec3>,
+    /// The body's effective mass at the contact along the normal at first contact, kg: its mass for a sphere,
+    /// `1/m_eff = 1/M + (r × n)·I⁻¹(r × n)` for a body struck off its centre, `I_O/b²`-like about a pivot; "inf"
+    /// for an immovable body.
+    #[serde(serialize_with = "maybe_infinite")]
+    pub effective_mass_at_contact: f64,
+    /// The impulse the body's pivot passed to it during the contact, N s; null without a pivot (or before separation).
+    pub pivot_impulse: Option<Vec3>,
 }
 
 /// Energies in J; kinetic energies count finite bodies only and include rotation. The balance
@@ -212,6 +219,25 @@ pub struct InstantaneousReport {
     pub energy_lost: f64,
     /// Largest |simulated - instantaneous| velocity component after the impact, m/s; null if not separated.
     pub max_velocity_difference: Option<f64>,
+    /// The eccentric solution, where a body is struck off its centre or turns about a pivot; null otherwise.
+    pub eccentric: Option<EccentricReport>,
+}
+
+/// The instantaneous impact of rigid bodies struck off their centre (docs/references.md#eccentric-impact).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct EccentricReport {
+    /// Each body's effective mass at the contact along the normal, kg ("inf": immovable, or held by its pivot).
+    #[serde(serialize_with = "both_maybe_infinite")]
+    pub effective_masses: [f64; 2],
+    /// The normal impulse on body 2, N s.
+    pub impulse: f64,
+    /// Angular velocities after, [body 1, body 2], rad/s.
+    pub angular_velocity_after: [Vec3; 2],
+    /// The impulse each body's pivot passes to it, N s (zero for a free body).
+    pub pivot_impulse: [Vec3; 2],
+    /// Largest |simulated - instantaneous| angular velocity component after the impact, rad/s; null if not
+    /// separated.
+    pub max_angular_velocity_difference: Option<f64>,
 }
 
 /// Exact values of this contact from closed forms or quadrature (docs/references.md), and the simulation's relative
@@ -260,4 +286,18 @@ pub struct SolverReport {
 /// Writes an infinite input back as the string "inf" (docs/report.md).
 pub(crate) fn maybe_infinite<S: Serializer>(value: &f64, serializer: S) -> Result<S::Ok, S::Error> {
     if value.is_infinite() && *value > 0.0 { serializer.serialize_str("inf") } else { serializer.serialize_f64(*value) }
+}
+
+/// Two numbers, each as [`maybe_infinite`] writes it.
+fn both_maybe_infinite<S: Serializer>(values: &[f64; 2], serializer: S) -> Result<S::Ok, S::Error> {
+    use serde::ser::SerializeTuple;
+    let mut pair = serializer.serialize_tuple(2)?;
+    for value in values {
+        if value.is_infinite() && *value > 0.0 {
+            pair.serialize_element("inf")?
+        } else {
+            pair.serialize_element(value)?
+        }
+    }
+    pair.end()
 }

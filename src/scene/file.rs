@@ -57,7 +57,10 @@ pub struct RawBody {
     pub velocity: Option<At<Vec<f64>>>,
     pub position: Option<At<Vec<f64>>>,
     pub angular_velocity: Option<At<Vec<f64>>>,
-    pub inertia: Option<At<f64>>,
+    /// A number, three principal moments, or a 3×3 tensor.
+    pub inertia: Option<At<toml::Value>>,
+    pub contact_offset: Option<At<Vec<f64>>>,
+    pub pivot: Option<At<Vec<f64>>>,
     pub young: Option<At<f64>>,
     pub poisson: Option<At<f64>>,
     pub yield_stress: Option<At<f64>>,

@@ -8,7 +8,7 @@ use super::{DampingSpec, Scene, SetupError, StiffnessSpec, TangentialStiffnessSp
 use crate::body::Body;
 use crate::law::Family;
 use crate::law::damping::{MapError, check_restitution};
-use nalgebra::Vector3;
+use nalgebra::{Matrix3, Vector3};
 
 type Checked = Result<(), SetupError>;
 
@@ -92,6 +92,53 @@ fn vector(key: impl std::fmt::Display + Copy, v: &Vector3<f64>) -> Checked {
     Ok(())
 }
 
+/// An inertia tensor a rigid body can have: finite, symmetric, positive definite, and its principal moments each at
+/// most the sum of the other two (a mass distribution's: I_xx = ∫(y² + z²) dm ≤ I_yy + I_zz).
+fn inertia_tensor(key: impl std::fmt::Display + Copy, tensor: &Matrix3<f64>) -> Checked {
+    if let Some(x) = tensor.iter().find(|x| !x.is_finite()) {
+        return fail(key, format!("every entry must be a finite number (kg m²), got {}", shown(*x)));
+    }
+    let size = tensor.abs().max();
+    for (i, j) in [(0, 1), (0, 2), (1, 2)] {
+        if (tensor[(i, j)] - tensor[(j, i)]).abs() > 1e-12 * size {
+            return fail(
+                key,
+                format!(
+                    "an inertia tensor is symmetric: entry [{i}][{j}] = {} but [{j}][{i}] = {}",
+                    shown(tensor[(i, j)]),
+                    shown(tensor[(j, i)])
+                ),
+            );
+        }
+    }
+    let moments = tensor.symmetric_eigenvalues();
+    let smallest = moments.min();
+    if smallest.is_nan() || smallest <= 0.0 || tensor.cholesky().is_none() {
+        return fail(
+            key,
+            format!(
+                "an inertia tensor is positive definite: its principal moments are {}, {}, {} kg m² (each must be > 0)",
+                shown(moments[0]),
+                shown(moments[1]),
+                shown(moments[2])
+            ),
+        );
+    }
+    let sum = moments.sum();
+    if let Some(m) = moments.iter().find(|&&m| m > (sum - m) * (1.0 + 1e-12)) {
+        return fail(
+            key,
+            format!(
+                "no mass distribution has the principal moment {} kg m² larger than the other two together ({}): \
+                 each principal moment is at most the sum of the other two",
+                shown(*m),
+                shown(sum - m)
+            ),
+        );
+    }
+    Ok(())
+}
+
 /// The scene's value rules, in the order a reader meets the keys (body 1, body 2, contact, solver).
 pub fn check(scene: &Scene) -> Checked {
     for (i, body) in scene.bodies.iter().enumerate() {
@@ -118,6 +165,18 @@ fn check_solver(solver: &super::SolverSpec) -> Checked {
 pub fn check_world(scene: &super::WorldScene) -> Checked {
     for (i, body) in scene.bodies.iter().enumerate() {
         check_body(i, body)?;
+        let eccentric = [
+            ("contact_offset", body.contact_offset != Vector3::zeros()),
+            ("pivot", body.pivot.is_some()),
+            ("inertia", body.inertia_tensor.is_some()),
+        ];
+        if let Some((key, _)) = eccentric.iter().find(|(_, given)| *given) {
+            return fail(
+                BodyKey(i, key),
+                "eccentric and pivoted rigid bodies (contact_offset, pivot, an inertia tensor) run in a scene of two \
+                 bodies; a world (more bodies, [world] or [[pair]]) takes spheres and walls only",
+            );
+        }
         if let Some(face) = scene.faces[i] {
             vector(BodyKey(i, "normal"), &face)?;
             if face.norm() == 0.0 {
@@ -264,6 +323,32 @@ fn check_body(i: usize, body: &Body) -> Checked {
         };
         if let Some(why) = why {
             return fail(key("inertia"), format!("{why}: leave `inertia` out"));
+        }
+    }
+    if let Some(tensor) = &body.inertia_tensor {
+        inertia_tensor(key("inertia"), tensor)?;
+        if body.mass.is_infinite() || body.radius.is_infinite() {
+            let why =
+                if body.mass.is_infinite() { "an immovable body (mass = inf)" } else { "a flat body (radius = inf)" };
+            return fail(key("inertia"), format!("{why} does not rotate: leave `inertia` out"));
+        }
+    }
+    if body.contact_offset != Vector3::zeros() {
+        vector(key("contact_offset"), &body.contact_offset)?;
+        if body.radius.is_infinite() {
+            return fail(
+                key("contact_offset"),
+                "a flat body (radius = inf) has no contact sphere to offset: leave `contact_offset` out",
+            );
+        }
+    }
+    if let Some(pivot) = &body.pivot {
+        vector(key("pivot"), pivot)?;
+        if body.mass.is_infinite() {
+            return fail(key("pivot"), "an immovable body (mass = inf) is fixed already: leave `pivot` out");
+        }
+        if body.radius.is_infinite() {
+            return fail(key("pivot"), "a flat body (radius = inf) does not rotate: leave `pivot` out");
         }
     }
     if let Some(young) = body.young {

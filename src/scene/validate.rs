@@ -14,7 +14,7 @@ use crate::body::Body;
 use crate::integrate::Tolerances;
 use crate::law::{LawKind, Separation};
 use crate::{files, text};
-use nalgebra::Vector3;
+use nalgebra::{Matrix3, Vector3};
 use std::collections::HashMap;
 use std::ops::Range;
 use std::path::Path;
@@ -158,6 +158,39 @@ fn vector(src: &Source, key: &str, value: &At<Vec<f64>>) -> Checked<Vector3<f64>
         ));
     }
     Ok(Vector3::new(items[0], items[1], items[2]))
+}
+
+/// A body's `inertia` as written: one number (the same about every axis), three principal moments `[Ixx, Iyy, Izz]`
+/// along the scene axes, or a 3×3 tensor (rows); its values are the rules' business.
+fn inertia(src: &Source, key: &str, value: &At<toml::Value>) -> Checked<(Option<f64>, Option<Matrix3<f64>>)> {
+    let span = value.span();
+    src.note(key, &span);
+    let scalar = |v: &toml::Value| v.as_float().or_else(|| v.as_integer().map(|i| i as f64));
+    let expected = "expected a number (kg m²), three principal moments [Ixx, Iyy, Izz], or a 3×3 tensor \
+                    [[Ixx, Ixy, Ixz], [Iyx, Iyy, Iyz], [Izx, Izy, Izz]]";
+    let wrong = |got: &str| src.error(key, Some(&span), format!("{expected}, got {}", cut(got)));
+    match value.get_ref() {
+        toml::Value::Array(items) if items.len() == 3 && items.iter().all(|v| scalar(v).is_some()) => {
+            let m: Vec<f64> = items.iter().filter_map(scalar).collect();
+            Ok((None, Some(Matrix3::from_diagonal(&Vector3::new(m[0], m[1], m[2])))))
+        }
+        toml::Value::Array(rows) if rows.len() == 3 => {
+            let mut tensor = Matrix3::zeros();
+            for (i, row) in rows.iter().enumerate() {
+                let Some(row) = row.as_array().filter(|r| r.len() == 3 && r.iter().all(|v| scalar(v).is_some())) else {
+                    return Err(wrong(&value.get_ref().to_string()));
+                };
+                for (j, v) in row.iter().enumerate() {
+                    tensor[(i, j)] = scalar(v).unwrap_or(f64::NAN);
+                }
+            }
+            Ok((None, Some(tensor)))
+        }
+        other => match scalar(other) {
+            Some(number) => Ok((Some(number), None)),
+            None => Err(wrong(&other.to_string())),
+        },
+    }
 }
 
 /// A scene as read from its text: its form converted and every value rule checked, with the line of every key
@@ -541,7 +574,13 @@ fn body(src: &Source, i: usize, raw: &At<RawBody>) -> Checked<Body> {
         .map(|w| vector(src, &key("angular_velocity"), w))
         .transpose()?
         .unwrap_or_default();
-    let inertia_given = raw.inertia.as_ref().map(|i| number(src, &key("inertia"), i));
+    let (inertia_given, inertia_tensor) = match &raw.inertia {
+        None => (None, None),
+        Some(value) => inertia(src, &key("inertia"), value)?,
+    };
+    let contact_offset =
+        raw.contact_offset.as_ref().map(|c| vector(src, &key("contact_offset"), c)).transpose()?.unwrap_or_default();
+    let pivot = raw.pivot.as_ref().map(|p| vector(src, &key("pivot"), p)).transpose()?;
     let young = raw.young.as_ref().map(|e| number(src, &key("young"), e));
     let poisson = raw.poisson.as_ref().map(|nu| number(src, &key("poisson"), nu));
     let yield_stress = raw.yield_stress.as_ref().map(|y| number(src, &key("yield_stress"), y));
@@ -556,6 +595,9 @@ fn body(src: &Source, i: usize, raw: &At<RawBody>) -> Checked<Body> {
         angular_velocity,
         inertia: f64::NAN,
         inertia_given,
+        inertia_tensor,
+        contact_offset,
+        pivot,
         young,
         poisson,
         yield_stress,

@@ -22,7 +22,7 @@ use toml::{Table, Value};
 
 const BODY_NUMBERS: [&str; 8] =
     ["radius", "mass", "density", "young", "poisson", "yield_stress", "inertia", "incidence_deg"];
-const BODY_VECTORS: [&str; 3] = ["velocity", "position", "angular_velocity"];
+const BODY_VECTORS: [&str; 5] = ["velocity", "position", "angular_velocity", "contact_offset", "pivot"];
 const CONTACT_NUMBERS: [&str; 8] = [
     "restitution",
     "damping",
@@ -38,7 +38,8 @@ const SOLVER_NUMBERS: [&str; 2] = ["rtol", "atol"];
 
 /// The keys a sweep accepts, for error messages.
 pub const VALID_KEYS: &str = "bodies.I.radius, bodies.I.mass, bodies.I.density, bodies.I.young, bodies.I.poisson, \
-     bodies.I.yield_stress, bodies.I.inertia, bodies.I.velocity.J, bodies.I.position.J, bodies.I.angular_velocity.J, bodies.I.incidence_deg, \
+     bodies.I.yield_stress, bodies.I.inertia, bodies.I.velocity.J, bodies.I.position.J, bodies.I.angular_velocity.J, \
+     bodies.I.contact_offset.J, bodies.I.pivot.J, bodies.I.incidence_deg, \
      contact.restitution, contact.damping, contact.stiffness, contact.exponent, contact.friction, \
      contact.tangential_stiffness, contact.tangential_damping, contact.yield_pressure, contact.normal.J, solver.rtol, solver.atol \
      (I = 0 or 1, the body; J = 0, 1 or 2, the component)";
@@ -219,7 +220,7 @@ impl SceneKey {
     fn default_vector(&self) -> Option<[f64; 3]> {
         match self.field {
             "normal" => Some([1.0, 0.0, 0.0]),
-            "angular_velocity" => Some([0.0, 0.0, 0.0]),
+            "angular_velocity" | "contact_offset" => Some([0.0, 0.0, 0.0]),
             _ => None,
         }
     }
@@ -314,7 +315,12 @@ impl SceneKey {
                     ("young", None) => body.young = Some(value),
                     ("poisson", None) => body.poisson = Some(value),
                     ("yield_stress", None) => body.yield_stress = Some(value),
-                    ("inertia", None) => body.inertia_given = Some(value),
+                    ("inertia", None) => (body.inertia_given, body.inertia_tensor) = (Some(value), None),
+                    ("contact_offset", Some(j)) => body.contact_offset[j] = value,
+                    ("pivot", Some(j)) => match &mut body.pivot {
+                        Some(pivot) => pivot[j] = value,
+                        None => return Err(format!("the scene has no `{}`", self.parent())),
+                    },
                     ("velocity", Some(j)) => body.velocity[j] = value,
                     ("angular_velocity", Some(j)) => body.angular_velocity[j] = value,
                     ("position", Some(j)) => match &mut body.position {
