@@ -92,6 +92,21 @@ pub fn cases() -> Vec<Case> {
             run: brilliantov_series,
         },
         Case {
+            name: "hung-rod",
+            about: "Beer & Johnston's hung rod struck at its lower end, e = 0.8 (models/hung-rod.toml)",
+            run: hung_rod,
+        },
+        Case {
+            name: "percussion-rod",
+            about: "the hung rod struck at its centre of percussion: no impulse from the pivot along the blow",
+            run: percussion_rod,
+        },
+        Case {
+            name: "struck-rod",
+            about: "a free rod struck at its end by a ball of a quarter of its mass, elastic (models/struck-rod.toml)",
+            run: struck_rod,
+        },
+        Case {
             name: "cradle-3",
             about: "three touching Hertzian balls struck by one (Herrmann & Schmälzle 1981)",
             run: cradle_3,
@@ -200,6 +215,78 @@ fn after(report: &Report, body: usize) -> Result<[f64; 3], String> {
 fn textbook(m1: f64, m2: f64, u1: f64, u2: f64, e: f64) -> (f64, f64, f64) {
     let total = m1 + m2;
     (u1 - (1.0 + e) * m2 * (u1 - u2) / total, u2 + (1.0 + e) * m1 * (u1 - u2) / total, (m1 * u1 + m2 * u2) / total)
+}
+
+/// Beer & Johnston's rod (8 kg, 1.2 m, hung at its top) struck `depth` below its pivot by a 2 kg ball at 5 m/s with
+/// e: the rod's moment of inertia about the pivot I_O = M L²/3 and effective mass I_O / depth², the impulse
+/// J = (1 + e) v m_b m_eff / (m_b + m_eff), the ball's velocity after v - J/m_b, the rod's spin J depth / I_O, and
+/// the pivot's impulse along the blow M ω' L/2 - J: (m_eff, ball after, spin after, pivot impulse).
+fn hung_rod_by_hand(depth: f64, e: f64) -> (f64, f64, f64, f64) {
+    let (mass, length, ball, speed) = (8.0, 1.2, 2.0, 5.0);
+    let about_pivot = mass * length * length / 3.0;
+    let effective = about_pivot / (depth * depth);
+    let impulse = (1.0 + e) * speed * ball * effective / (ball + effective);
+    let spin = impulse * depth / about_pivot;
+    (effective, speed - impulse / ball, spin, mass * spin * length / 2.0 - impulse)
+}
+
+const HUNG_ROD: &str = "Beer & Johnston, Vector Mechanics for Engineers, sample problem 17.9, by hand \
+                        (docs/references.md#eccentric-impact)";
+
+/// The compliant rod turns by about 1e-4 rad during the blow; its geometry changes by the square of that.
+const ROD: f64 = 1e-6;
+
+fn hung_rod(case: &'static str) -> Result<Vec<Row>, String> {
+    let report = impact(include_str!("../models/hung-rod.toml"))?;
+    let (effective, ball, spin, pivot) = hung_rod_by_hand(1.2, 0.8);
+    let rod = &report.bodies[1];
+    let pivot_impulse = rod.pivot_impulse.ok_or("the bodies did not separate")?;
+    let spin_after = rod.angular_velocity_after.ok_or("the bodies did not separate")?;
+    Ok(vec![
+        row(case, "rod's effective mass, kg", rod.effective_mass_at_contact, effective, HUNG_ROD, 1e-12),
+        row(case, "ball velocity after, m/s", after(&report, 0)?[0], ball, HUNG_ROD, ROD),
+        row(case, "rod's spin after, rad/s", spin_after[2], spin, HUNG_ROD, ROD),
+        row(case, "pivot impulse along the blow, N s", pivot_impulse[0], pivot, HUNG_ROD, ROD),
+        row(case, "rod's spin after, rad/s", spin_after[2], 3.21, "the textbook's answer (3 digits)", 2e-3),
+        row(case, "ball velocity after, m/s", after(&report, 0)?[0], -0.143, "the textbook's answer (3 digits)", 2e-3),
+    ])
+}
+
+fn percussion_rod(case: &'static str) -> Result<Vec<Row>, String> {
+    let report = impact(include_str!("../models/percussion-rod.toml"))?;
+    // The centre of percussion: 2L/3 = 0.8 m below the pivot, where the pivot takes nothing along the blow.
+    let (effective, ball, spin, _) = hung_rod_by_hand(0.8, 0.8);
+    let rod = &report.bodies[1];
+    let pivot_impulse = rod.pivot_impulse.ok_or("the bodies did not separate")?;
+    let spin_after = rod.angular_velocity_after.ok_or("the bodies did not separate")?;
+    let blow = report.contact.deformation_impulse + report.contact.restitution_impulse.unwrap_or(0.0);
+    let source = "the centre of percussion I_O/(M d) = 2L/3, by hand (docs/references.md#eccentric-impact)";
+    Ok(vec![
+        row(case, "rod's effective mass, kg", rod.effective_mass_at_contact, effective, source, 1e-12),
+        row(case, "ball velocity after, m/s", after(&report, 0)?[0], ball, source, ROD),
+        row(case, "rod's spin after, rad/s", spin_after[2], spin, source, ROD),
+        // Zero has no relative error: the row measures the pivot's share of the blow against zero, as 1 + share.
+        row(case, "1 + pivot impulse along the blow / blow", 1.0 + pivot_impulse[0] / blow, 1.0, source, ROD),
+    ])
+}
+
+fn struck_rod(case: &'static str) -> Result<Vec<Row>, String> {
+    let report = impact(include_str!("../models/struck-rod.toml"))?;
+    // A uniform rod (M = 2 kg, L = 0.6 m) struck at its end: 1/m_eff = 1/M + (L/2)²/(M L²/12) = 4/M, the ball's
+    // 0.5 kg. An elastic blow between equal effective masses passes J = m_b v = 1.5 N s: the ball stops, the rod's
+    // centre leaves at J/M = 0.75 m/s and it turns at J (L/2) / (M L²/12) = 7.5 rad/s.
+    let source = "a free rod struck at its end, m_eff = M/4, by hand (docs/references.md#eccentric-impact)";
+    let rod = &report.bodies[1];
+    let spin_after = rod.angular_velocity_after.ok_or("the bodies did not separate")?;
+    let energy = &report.energy;
+    let kinetic_after = energy.kinetic_after.ok_or("the bodies did not separate")?;
+    Ok(vec![
+        row(case, "rod's effective mass, kg", rod.effective_mass_at_contact, 0.5, source, 1e-12),
+        row(case, "rod's centre velocity after, m/s", after(&report, 1)?[0], 0.75, source, ROD),
+        row(case, "rod's spin after, rad/s", spin_after[2], 7.5, source, ROD),
+        row(case, "1 + ball velocity after / 3 m/s", 1.0 + after(&report, 0)?[0] / 3.0, 1.0, source, ROD),
+        row(case, "kinetic energy after, J", kinetic_after, energy.kinetic_before, "energy conserved (elastic)", 1e-9),
+    ])
 }
 
 const LECTURE: &str =

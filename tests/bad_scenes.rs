@@ -1155,3 +1155,100 @@ fn a_yield_pressure_too_low_for_the_bodies_is_refused() {
     let test = "yield_pressure_too_low";
     assert_rejected(test, &text, "contact.yield_pressure", At::Whole("yield_pressure = 1.0"), &["radius"]);
 }
+
+// ---------------------------------------------------------------------------------------------------------------
+// Rigid bodies struck off their centre (docs/rigid.md)
+
+/// A rod (body 2) hung at the origin with its rounded lower end, struck by the left ball: valid as it stands.
+const HUNG_ROD: &str = r#"name = "rod"
+mass = 8.0
+radius = 0.01
+inertia = [0.96, 0.0001, 0.96]
+position = [0.0, -0.6, 0.0]
+contact_offset = [0.0, -0.6, 0.0]
+pivot = [0.0, 0.0, 0.0]
+velocity = [0.0, 0.0, 0.0]
+young = 2.1e11
+poisson = 0.3"#;
+
+/// The left ball placed to strike the rod's end.
+fn striker() -> String {
+    with(LEFT_BALL, "position = [-0.05, -1.2, 0.0]")
+}
+
+#[test]
+fn the_hung_rod_scene_is_valid() {
+    let scratch = Scratch::new("the_hung_rod_scene_is_valid");
+    let path = scratch.path().join("rod.toml");
+    fs::write(&path, scene(&striker(), HUNG_ROD, HUNT_CROSSLEY)).unwrap();
+    let output = impact(scratch.path(), &["run", path.to_str().unwrap()]);
+    assert_eq!(output.status.code(), Some(0), "{}", String::from_utf8_lossy(&output.stderr));
+}
+
+#[test]
+fn an_inertia_tensor_that_is_not_symmetric_positive_definite_is_rejected() {
+    let cases = [
+        ("not_symmetric", "inertia = [[0.96, 0.1, 0.0], [0.0, 0.0001, 0.0], [0.0, 0.0, 0.96]]", "symmetric"),
+        ("not_positive", "inertia = [0.96, -0.0001, 0.96]", "positive definite"),
+        ("indefinite", "inertia = [[1.0, 2.0, 0.0], [2.0, 1.0, 0.0], [0.0, 0.0, 1.0]]", "positive definite"),
+        ("no_mass_distribution", "inertia = [0.1, 0.1, 0.5]", "sum of the other two"),
+        ("not_finite", "inertia = [0.96, inf, 0.96]", "finite"),
+    ];
+    for (name, bad, mentions) in cases {
+        let text = scene(&striker(), &edit(HUNG_ROD, "inertia = [0.96, 0.0001, 0.96]", bad), HUNT_CROSSLEY);
+        assert_rejected(&format!("inertia_{name}"), &text, "bodies.1.inertia", At::Whole(bad), &[mentions]);
+    }
+    let bad = "inertia = [[0.96, 0.0], [0.0, 0.96]]";
+    let text = scene(&striker(), &edit(HUNG_ROD, "inertia = [0.96, 0.0001, 0.96]", bad), HUNT_CROSSLEY);
+    assert_rejected("inertia_two_by_two", &text, "bodies.1.inertia", At::Whole(bad), &["3×3 tensor"]);
+}
+
+#[test]
+fn a_pivot_on_an_immovable_body_is_rejected() {
+    let wall = "radius = inf\nmass = inf\nvelocity = [0.0, 0.0, 0.0]\npivot = [0.0, 0.0, 0.0]";
+    let text = scene(LEFT_BALL, wall, HUNT_CROSSLEY);
+    assert_rejected("pivot_on_a_wall", &text, "bodies.1.pivot", At::Line("pivot"), &["immovable"]);
+    let fixed = "radius = 0.01\nmass = inf\nvelocity = [0.0, 0.0, 0.0]\npivot = [0.0, 0.0, 0.0]";
+    let text = scene(LEFT_BALL, fixed, HUNT_CROSSLEY);
+    assert_rejected("pivot_on_a_fixed_sphere", &text, "bodies.1.pivot", At::Line("pivot"), &["immovable"]);
+}
+
+#[test]
+fn a_contact_offset_on_a_wall_is_rejected() {
+    let wall = "radius = inf\nmass = 10.0\nvelocity = [0.0, 0.0, 0.0]\ncontact_offset = [0.0, 0.1, 0.0]";
+    let text = scene(LEFT_BALL, wall, HUNT_CROSSLEY);
+    assert_rejected("offset_on_a_wall", &text, "bodies.1.contact_offset", At::Line("contact_offset"), &["flat"]);
+}
+
+#[test]
+fn a_pivoted_body_must_move_as_its_turning_and_have_positions() {
+    let moving = edit(HUNG_ROD, "velocity = [0.0, 0.0, 0.0]", "velocity = [1.0, 0.0, 0.0]");
+    let text = scene(&striker(), &moving, HUNT_CROSSLEY);
+    assert_rejected("pivoted_body_moving", &text, "bodies.1.velocity", At::Nth("velocity", 2), &["pivot"]);
+    let unplaced = edit(HUNG_ROD, "position = [0.0, -0.6, 0.0]", "");
+    let text = scene(LEFT_BALL, &unplaced, HUNT_CROSSLEY);
+    assert_rejected("pivot_without_positions", &text, "bodies.1.pivot", At::Line("pivot"), &["position"]);
+}
+
+#[test]
+fn an_eccentric_body_spinning_before_contact_is_rejected() {
+    let spinning = with(&edit(HUNG_ROD, "pivot = [0.0, 0.0, 0.0]", ""), "angular_velocity = [0.0, 0.0, 1.0]");
+    let text = scene(&striker(), &spinning, HUNT_CROSSLEY);
+    let test = "eccentric_body_spinning_in_flight";
+    assert_rejected(test, &text, "bodies.1.angular_velocity", At::Line("angular_velocity"), &["first contact"]);
+}
+
+#[test]
+fn friction_on_an_eccentric_body_is_rejected_as_not_simulated_yet() {
+    let text = scene(&striker(), HUNG_ROD, &with(HUNT_CROSSLEY, "friction = 0.3"));
+    assert_rejected("eccentric_friction", &text, "contact.friction", At::Line("friction"), &["not simulated yet"]);
+}
+
+#[test]
+fn an_eccentric_body_in_a_world_is_rejected() {
+    let third = "[[bodies]]\nradius = 0.01\nmass = 0.0329\nvelocity = [0.0, 0.0, 0.0]\nposition = [1.0, 1.0, 0.0]\n\
+                 young = 2.1e11\npoisson = 0.3\n";
+    let text = format!("{}\n{third}", scene(&striker(), HUNG_ROD, HUNT_CROSSLEY));
+    let text = text.replacen("[contact]", &format!("{third}\n[contact]"), 1).replacen(&format!("\n{third}"), "", 1);
+    assert_rejected("eccentric_in_a_world", &text, "bodies.1.contact_offset", At::Line("contact_offset"), &["world"]);
+}

@@ -391,6 +391,19 @@ fn bodies(report: &Report, scales: &Scales) -> Section {
         section.row("  velocity before", velocity(&body.velocity_before));
         section.row("  at maximum compression", velocity(&body.velocity_at_max_compression));
         section.row("  after", body.velocity_after.as_ref().map_or_else(|| "—".into(), velocity));
+        if eccentric(report) {
+            section.row("  effective mass at the contact", engineering(body.effective_mass_at_contact, "kg"));
+            if body.inertia.is_finite() {
+                section.row("  spin before", spin(&body.angular_velocity_before, scales));
+                section.row(
+                    "  spin after",
+                    body.angular_velocity_after.as_ref().map_or_else(|| "—".into(), |w| spin(w, scales)),
+                );
+            }
+            if let Some(pivot) = &body.pivot_impulse {
+                section.row("  impulse from the pivot", impulse(pivot, scales));
+            }
+        }
         if report.oblique.is_some() {
             let degrees = |value: f64| format!("{} deg", plain_digits(value, DIGITS));
             section.row("  angle from the tangent plane, before", maybe(body.angle_from_tangent_before_deg, degrees));
@@ -421,9 +434,40 @@ fn instantaneous(with: String, ideal: &InstantaneousReport, report: &Report, sca
     for (body, after) in report.bodies.iter().zip(&ideal.velocity_after).filter(|(body, _)| body.mass.is_finite()) {
         section.row(format!("velocity after, {}", body.name), velocity(after, scales));
     }
+    if let Some(eccentric) = &ideal.eccentric {
+        let movable = report.bodies.iter().enumerate().filter(|(_, body)| body.mass.is_finite());
+        for (i, body) in movable {
+            section.row(format!("effective mass, {}", body.name), engineering(eccentric.effective_masses[i], "kg"));
+            section.row(format!("spin after, {}", body.name), spin(&eccentric.angular_velocity_after[i], scales));
+            if body.pivot_impulse.is_some() || eccentric.pivot_impulse[i] != [0.0; 3] {
+                section.row(
+                    format!("impulse from the pivot, {}", body.name),
+                    impulse(&eccentric.pivot_impulse[i], scales),
+                );
+            }
+        }
+    }
     section.row("kinetic energy lost", engineering(denoise(ideal.energy_lost, scales.energy), "J"));
     section.row("largest difference from simulation", maybe(ideal.max_velocity_difference, |d| difference(d, "m/s")));
+    if let Some(eccentric) = &ideal.eccentric {
+        let spins = eccentric.max_angular_velocity_difference;
+        section.row("largest spin difference", maybe(spins, |d| difference(d, "rad/s")));
+    }
     section
+}
+
+/// Whether the report is of rigid bodies struck off their centre (its instantaneous impact is the eccentric one).
+fn eccentric(report: &Report) -> bool {
+    [&report.instantaneous, &report.instantaneous_nominal]
+        .iter()
+        .any(|ideal| ideal.as_ref().is_some_and(|i| i.eccentric.is_some()))
+        || report.bodies.iter().any(|body| body.effective_mass_at_contact != body.mass)
+}
+
+/// An impulse vector in N s, six digits, components below the noise at the impact's scale 0.
+fn impulse(j: &Vec3, scales: &Scales) -> String {
+    let parts = j.map(|c| plain_digits(denoise(c, scales.impulse), DIGITS));
+    format!("[{}, {}, {}] N s", parts[0], parts[1], parts[2])
 }
 
 /// The exact values for this contact and the simulation's relative error against each.

@@ -395,12 +395,7 @@ type Pair = [Vector3<f64>; 2];
 
 /// The instantaneous eccentric impact with restitution `e` (docs/references.md#eccentric-impact), beside the
 /// simulated velocities and spins after when the bodies parted.
-fn eccentric_report(
-    scene: &Scene,
-    setup: &Setup,
-    e: f64,
-    simulated: Option<(&Pair, &Pair)>,
-) -> InstantaneousReport {
+fn eccentric_report(scene: &Scene, setup: &Setup, e: f64, simulated: Option<(&Pair, &Pair)>) -> InstantaneousReport {
     let bodies = &scene.bodies;
     let n = setup.normal;
     let rigid = [0, 1].map(|i| crate::setup::rigid_body(&bodies[i], setup.positions[i]));
