@@ -176,8 +176,8 @@ pub enum CalibrationError {
     ApproachSpeed(f64),
     /// The law's e depends on quantities only a scene supplies.
     #[error(
-        "`{0}` needs a scene: its e depends on the impact speed, the stiffness and the masses (see \
-         docs/laws.md#brilliantov-viscoelastic-spheres), so give a scene"
+        "`{0}` needs a scene: its e depends on the impact speed, the stiffness and the masses (docs/laws.md), \
+         so give a scene"
     )]
     NeedsScene(&'static str),
     /// The scene cannot carry the asked law.
@@ -207,7 +207,7 @@ pub fn calibrate(request: &Request) -> Result<Calibration, CalibrationError> {
     {
         return Err(CalibrationError::ApproachSpeed(speed));
     }
-    if law.family() == Family::Viscoelastic && request.scene.is_none() && target < 1.0 {
+    if matches!(law.family(), Family::Viscoelastic | Family::Dashpot) && request.scene.is_none() && target < 1.0 {
         return Err(CalibrationError::NeedsScene(law.name()));
     }
     let scene = match &request.scene {
@@ -270,7 +270,14 @@ fn published_map(law: LawKind, target: f64, contact: &Contact, has_scene: bool) 
             (zeta, reference::kelvin_voigt(zeta, contact.separation)?.restitution)
         }
         Family::Tsuji => (damping / 5f64.sqrt(), reference::tsuji(damping, contact.separation)?.restitution),
-        Family::Elastic | Family::Viscoelastic | Family::Plastic => return None,
+        Family::Elastic
+        | Family::Viscoelastic
+        | Family::Plastic
+        | Family::Dashpot
+        | Family::Impedance
+        | Family::Ramp => {
+            return None;
+        }
     };
     let damping = (has_scene || law.family() != Family::Linear).then_some(damping);
     Some(PublishedMap { map: law.info().map, damping, dimensionless, restitution })
@@ -425,6 +432,10 @@ pub fn default_scene(law: LawKind, approach_speed: f64, separation: Separation) 
             tangential_stiffness: crate::scene::TangentialStiffnessSpec::Mindlin,
             tangential_damping: 0.0,
             yield_pressure: None,
+            solref: None,
+            solimp: None,
+            cmax: None,
+            dmax: None,
             normal: None,
             normal_given: None,
         },
@@ -446,6 +457,8 @@ struct Contact {
     approach_speed: f64,
     effective_mass: f64,
     stiffness: f64,
+    /// L = (m* v0² / K)^(1/(n+1)), m: the contact's penetration scale.
+    length: f64,
     separation: Separation,
 }
 
@@ -457,8 +470,15 @@ impl Contact {
             approach_speed: setup.approach_speed,
             effective_mass: setup.effective_mass,
             stiffness: setup.law.stiffness,
+            length: setup.scales.length,
             separation: scene.contact.separation,
         })
+    }
+
+    /// A dashpot's c per unit of the damping ratio at the contact's scales, 2 m* v0 / L, N s/m: c = 2 zeta sqrt(k m*)
+    /// for a linear spring (L = v0 sqrt(m*/k)), and the spring's stiffness at the penetration scale for another.
+    fn critical_dashpot(&self) -> f64 {
+        2.0 * self.effective_mass * self.approach_speed / self.length
     }
 
     /// sqrt(k m*), N s/m: c = 2 zeta sqrt(k m*) for Kelvin–Voigt.
@@ -474,7 +494,8 @@ impl Contact {
             Family::Tsuji => damping / 5f64.sqrt(),
             // b = (3/2) A (K/m*)^(2/5) v0^(1/5) (docs/references.md).
             Family::Viscoelastic => damping * self.brilliantov_b_per_a(),
-            Family::Elastic | Family::Plastic => 0.0,
+            Family::Dashpot => damping / self.critical_dashpot(),
+            Family::Elastic | Family::Plastic | Family::Impedance | Family::Ramp => 0.0,
         }
     }
 
@@ -490,7 +511,8 @@ fn dimensionless_symbol(law: LawKind) -> &'static str {
         Family::Linear => "zeta = c / (2 sqrt(k m*))",
         Family::Tsuji => "zeta = a / sqrt(5)",
         Family::Viscoelastic => "b = (3/2) A (K/m*)^(2/5) v0^(1/5)",
-        Family::Elastic | Family::Plastic => "-",
+        Family::Dashpot => "zeta = c L / (2 m* v0), L = (m* v0² / K)^(1/(n+1))",
+        Family::Elastic | Family::Plastic | Family::Impedance | Family::Ramp => "-",
     }
 }
 
@@ -578,8 +600,21 @@ fn solve(
                 )],
             })
         }
-        Family::Viscoelastic => brilliantov(target, contact, simulations),
-        Family::Elastic | Family::Plastic => Err(CalibrationError::NoDamping),
+        Family::Viscoelastic => {
+            // First guess from the series e = 1 - C1 b + ... (docs/references.md).
+            let b_per_a = contact.brilliantov_b_per_a();
+            let search = Search { law: "brilliantov", symbol: "A", unit: "s", per_damping: b_per_a, limit: "b" };
+            by_simulation(target, (1.0 - target) / brilliantov_c1() / b_per_a, &search, simulations)
+        }
+        // A constant dashpot: first guess from Kelvin–Voigt's map with the spring's stiffness at the penetration
+        // scale (K L^(n-1)), then the simulated e itself.
+        Family::Dashpot => {
+            let per_c = 1.0 / contact.critical_dashpot();
+            let guess = reference::kelvin_voigt_zeta(target) * contact.critical_dashpot();
+            let search = Search { law: "hertz-dashpot", symbol: "c", unit: "N s/m", per_damping: per_c, limit: "zeta" };
+            by_simulation(target, guess, &search, simulations)
+        }
+        Family::Elastic | Family::Plastic | Family::Impedance | Family::Ramp => Err(CalibrationError::NoDamping),
     }
 }
 
@@ -607,7 +642,24 @@ fn closed_form_root(e_of: impl Fn(f64) -> f64, start: f64, target: f64) -> (f64,
 /// whose simulation the integrator gives up on (it turns stiff in the long creep of a heavily damped contact),
 /// counts as [`NO_RESTITUTION`]: below every e (more damping never makes the bodies part again), and never taken
 /// for a match however small the target.
-fn brilliantov(target: f64, contact: &Contact, simulations: &mut Simulations) -> Result<Found, CalibrationError> {
+/// What a root-find on the simulated e searches: the law, its damping's symbol and unit, and the dimensionless
+/// measure of the damping per unit of it (`limit` names it) that bounds the search at [`MAX_BRILLIANTOV_B`].
+struct Search {
+    law: &'static str,
+    symbol: &'static str,
+    unit: &'static str,
+    per_damping: f64,
+    limit: &'static str,
+}
+
+/// The damping whose simulated e is `target`, from a first `guess`: grown or shrunk by 4 until bracketed, then
+/// Illinois with a bisection safeguard on the simulated velocity ratio.
+fn by_simulation(
+    target: f64,
+    guess: f64,
+    search: &Search,
+    simulations: &mut Simulations,
+) -> Result<Found, CalibrationError> {
     let mut evaluations = 0;
     let mut failure: Option<(f64, String)> = None;
     let mut residual = |a: f64| -> Result<f64, CalibrationError> {
@@ -623,18 +675,16 @@ fn brilliantov(target: f64, contact: &Contact, simulations: &mut Simulations) ->
             Err(error) => Err(error),
         }
     };
-    // First guess from the series e = 1 - C1 b + ... (docs/references.md), then grow or shrink by 4 until bracketed.
-    let b_per_a = contact.brilliantov_b_per_a();
-    let guess = (1.0 - target) / brilliantov_c1() / b_per_a;
+    let Search { law, symbol, unit, per_damping, limit } = *search;
     let f_guess = residual(guess)?;
     let mut bracket = Bracket { lo: 0.0, f_lo: 1.0 - target, hi: guess, f_hi: f_guess };
     if f_guess > 0.0 {
         bracket = Bracket { lo: guess, f_lo: f_guess, hi: guess, f_hi: f_guess };
         while bracket.f_hi > 0.0 {
-            if bracket.hi * b_per_a > MAX_BRILLIANTOV_B {
+            if bracket.hi * per_damping > MAX_BRILLIANTOV_B {
                 return Err(CalibrationError::Unattainable(format!(
-                    "no damping A up to b = {MAX_BRILLIANTOV_B:e} brings the simulated e of `brilliantov` down to \
-                     {} in this scene (e = {} at A = {} s)",
+                    "no damping {symbol} up to {limit} = {MAX_BRILLIANTOV_B:e} brings the simulated e of `{law}` down \
+                     to {} in this scene (e = {} at {symbol} = {} {unit})",
                     readable(target),
                     readable(bracket.f_hi + target),
                     readable(bracket.hi)
@@ -666,8 +716,8 @@ fn brilliantov(target: f64, contact: &Contact, simulations: &mut Simulations) ->
             _ => format!("e = {}", readable(root.bracket.f_hi + target)),
         };
         return Err(CalibrationError::Unattainable(format!(
-            "the simulated e of `brilliantov` in this scene cannot be made {}: the smallest e reached is {} at \
-             A = {} s, and at A = {} s {beyond}",
+            "the simulated e of `{law}` in this scene cannot be made {}: the smallest e reached is {} at \
+             {symbol} = {} {unit}, and at {symbol} = {} {unit} {beyond}",
             readable(target),
             readable(root.bracket.f_lo + target),
             readable(lo),
@@ -679,8 +729,8 @@ fn brilliantov(target: f64, contact: &Contact, simulations: &mut Simulations) ->
         method: Method::RootFindOnSimulation,
         iterations: evaluations,
         notes: vec![format!(
-            "A root-found ({evaluations} simulations, Illinois with a bisection safeguard) on the simulated velocity \
-             ratio of the scene; |e - E| = {:.1e} there",
+            "{symbol} root-found ({evaluations} simulations, Illinois with a bisection safeguard) on the simulated \
+             velocity ratio of the scene; |e - E| = {:.1e} there",
             root.residual.abs()
         )],
     })

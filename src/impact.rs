@@ -213,10 +213,12 @@ fn run<const N: usize, M: ContactModel<N>>(
     // Whether to watch for the slip coming to rest (a frictional contact that starts slipping).
     let slipping = model.slip_along_start(&start).is_some();
 
-    // The onset of yield, watched until it is passed (once located, the margin sits at zero to rounding: watched
-    // further, every restart would find it again).
-    let yielded = std::cell::Cell::new(false);
-    let yielding = |y: &State<N>| if yielded.get() { -1.0 } else { model.yield_margin(y).unwrap_or(1.0) };
+    // The kinks of the law's force, each a step boundary: in compression the next one above the penetration, in
+    // restitution the next one below; once located, the next is watched (the margin of a located kink sits at zero
+    // to rounding: watched further, every restart would find it again).
+    let passed = std::cell::Cell::new(0usize);
+    let rising = model.kinks(true);
+    let next_above = |y: &State<N>| rising.as_slice().get(passed.get()).map_or(1.0, |kink| kink - model.penetration(y));
 
     // Event lists: the phase's own events first, then the slip's rest (watched, not terminal), then the onset of yield
     // (a step boundary on the kink of a yielding law's force), then (for a frictional model only) the stick–slip
@@ -226,16 +228,22 @@ fn run<const N: usize, M: ContactModel<N>>(
     if slipping {
         compression.push(event(&slip, false));
     }
-    if model.yield_margin(&start).is_some_and(|margin| margin > 0.0) {
+    if rising.count > 0 {
         phases.resume = compression.len();
-        phases.passed = Some(&yielded);
-        compression.push(event(&yielding, true));
+        phases.passed = Some(&passed);
+        compression.push(event(&next_above, true));
     }
     if frictional {
         compression.push(event(&switch, true));
     }
     let compressed = phases.run(&mut stepper, model, 0.0, start, &compression, frictional)?;
     phases.resume = usize::MAX;
+    // The kinks the restitution passes on its way down: those below the deepest point, descending.
+    let deepest = model.penetration(&compressed.state);
+    let falling = model.kinks(false);
+    let below: Vec<f64> = falling.as_slice().iter().rev().copied().filter(|kink| *kink < deepest).collect();
+    passed.set(0);
+    let next_below = |y: &State<N>| below.get(passed.get()).map_or(1.0, |kink| model.penetration(y) - kink);
     if compressed.ending != Ending::Event(0) {
         return Err(SimulationError::Compression(match compressed.ending {
             Ending::GaveUp(reason) if frictional => {
@@ -259,6 +267,11 @@ fn run<const N: usize, M: ContactModel<N>>(
     let slip_in_restitution = restitution.len();
     if slipping {
         restitution.push(event(&slip, false));
+    }
+    if !below.is_empty() {
+        phases.resume = restitution.len();
+        phases.passed = Some(&passed);
+        restitution.push(event(&next_below, true));
     }
     if frictional {
         restitution.push(event(&switch, true));
@@ -398,10 +411,10 @@ struct Phases<'a> {
     /// Time spent below the limit in finished stretches.
     below_limit: f64,
     switches: u32,
-    /// The terminal event after which the phase simply goes on (the onset of yield); `usize::MAX` for none.
+    /// The terminal event after which the phase simply goes on (a kink of the force); `usize::MAX` for none.
     resume: usize,
-    /// Set when that event is passed (its function then stops watching).
-    passed: Option<&'a std::cell::Cell<bool>>,
+    /// How many of those events are passed (its function then watches the next).
+    passed: Option<&'a std::cell::Cell<usize>>,
 }
 
 /// How a phase ended (the run's end, with the crossings of all its stretches).
@@ -432,7 +445,7 @@ impl Phases<'_> {
             if end.ending == Ending::Event(self.resume) {
                 // A step boundary at the event, and on, without it.
                 if let Some(passed) = self.passed {
-                    passed.set(true);
+                    passed.set(passed.get() + 1);
                 }
                 (time, state) = (end.time, end.state);
                 continue;

@@ -10,7 +10,7 @@
 use crate::body::Body;
 use crate::geometry::{self, PlacementProblem};
 use crate::law::damping::{MapError, damping_for_restitution};
-use crate::law::{ContactLaw, Family, Separation};
+use crate::law::{ContactLaw, Family, LawKind, NO_SOLIMP, Separation};
 use crate::scales::Scales;
 use crate::scene::{ContactSpec, DampingSpec, Parsed, Scene, SceneError, StiffnessSpec, TangentialStiffnessSpec};
 use nalgebra::Vector3;
@@ -244,15 +244,34 @@ pub fn resolve_law(
     map_speed: f64,
 ) -> Result<ContactLaw, SetupError> {
     let [a, b] = bodies;
+    let kind = contact.law;
+    if kind.family() == Family::Impedance {
+        return Ok(mujoco_law(contact, effective_mass));
+    }
     let stiffness = match contact.stiffness {
         StiffnessSpec::Value(k) => k,
         StiffnessSpec::Hertz => hertz_stiffness(a, b)?,
     };
-    let kind = contact.law;
     let exponent = contact.exponent;
     let damping = match contact.damping {
+        DampingSpec::None if kind.family() == Family::Ramp => contact.cmax.unwrap_or(0.0),
         DampingSpec::None => 0.0,
         DampingSpec::Parameter(value) => value,
+        // K d + c d' is Kelvin–Voigt: its exact map; another exponent's e depends on the speed and has none.
+        DampingSpec::Restitution(e) if kind.family() == Family::Dashpot => {
+            if exponent != 1.0 {
+                return fail(
+                    "contact.restitution",
+                    format!(
+                        "`hertz-dashpot` with exponent {exponent} has no map from e (its e depends on the approach \
+                         speed): give `damping` c in N s/m (`impact calibrate SCENE --law hertz-dashpot --restitution \
+                         E` finds the c that gives E in this scene), or exponent = 1"
+                    ),
+                );
+            }
+            damping_for_restitution(LawKind::KelvinVoigt, e, stiffness, effective_mass, map_speed)
+                .map_err(|_| SetupError { key: "contact.restitution".into(), message: "no map at e = 0".into() })?
+        }
         DampingSpec::Restitution(e) => {
             damping_for_restitution(kind, e, stiffness, effective_mass, map_speed).or_else(|error| {
                 let why = match error {
@@ -269,7 +288,31 @@ pub fn resolve_law(
     let tsuji_scale = if kind.family() == Family::Tsuji { (effective_mass * stiffness).sqrt() } else { 0.0 };
     let yield_penetration =
         if kind.family() == Family::Plastic { yield_penetration(contact, bodies, stiffness)? } else { f64::INFINITY };
-    Ok(ContactLaw { kind, stiffness, exponent, damping, tsuji_scale, yield_penetration })
+    let ramp = if kind.family() == Family::Ramp { contact.dmax.unwrap_or(f64::INFINITY) } else { f64::INFINITY };
+    Ok(ContactLaw { kind, stiffness, exponent, damping, tsuji_scale, yield_penetration, solimp: NO_SOLIMP, ramp })
+}
+
+/// The `mujoco` law of `contact` for a contact of effective mass `effective_mass` (kg): MuJoCo's per-unit-mass
+/// spring k and damper b from `solref` — [timeconst, dampratio]: b = 2/(d_max timeconst), k = 1/(d_max² timeconst²
+/// dampratio²); [-stiffness, -damping]: b = damping/d_max, k = stiffness/d_max² — times m*, so that the force is
+/// m* d(d) (k d(d) d + b d'). MuJoCo's `refsafe` (timeconst at least twice its time step) belongs to a fixed step, not
+/// to this continuous-time law.
+pub fn mujoco_law(contact: &ContactSpec, effective_mass: f64) -> ContactLaw {
+    let solimp = contact.solimp.unwrap_or(NO_SOLIMP);
+    let high = solimp[1];
+    let [a, b] = contact.solref.unwrap_or([0.02, 1.0]);
+    let (stiffness, damping) =
+        if a > 0.0 { (1.0 / (high * high * a * a * b * b), 2.0 / (high * a)) } else { (-a / (high * high), -b / high) };
+    ContactLaw {
+        kind: contact.law,
+        stiffness: stiffness * effective_mass,
+        exponent: 1.0,
+        damping: damping * effective_mass,
+        tsuji_scale: 0.0,
+        yield_penetration: f64::INFINITY,
+        solimp,
+        ramp: f64::INFINITY,
+    }
 }
 
 /// The `thornton` law's yield pressure p_y, Pa: the contact's `yield_pressure`, or 1.6 times the smaller
@@ -309,8 +352,10 @@ fn yield_penetration(contact: &ContactSpec, bodies: [&Body; 2], stiffness: f64) 
 
 /// The scene key the damping comes from.
 fn damping_key(contact: &ContactSpec) -> &'static str {
-    match contact.damping {
-        DampingSpec::Restitution(_) => "contact.restitution",
+    match (contact.law.family(), contact.damping) {
+        (Family::Impedance, _) => "contact.solref",
+        (Family::Ramp, _) => "contact.cmax",
+        (_, DampingSpec::Restitution(_)) => "contact.restitution",
         _ => "contact.damping",
     }
 }
@@ -712,6 +757,7 @@ fn check_size(contact: &ContactSpec, bodies: [&Body; 2], law: &ContactLaw, scale
 fn check_creep(law: &ContactLaw, effective_mass: f64, key: &str) -> Result<(), SetupError> {
     let zeta = match law.kind.family() {
         Family::Linear => law.damping / (2.0 * (law.stiffness * effective_mass).sqrt()),
+        Family::Dashpot if law.exponent == 1.0 => law.damping / (2.0 * (law.stiffness * effective_mass).sqrt()),
         Family::Tsuji => law.damping / 5f64.sqrt(),
         _ => return Ok(()),
     };

@@ -1252,3 +1252,62 @@ fn an_eccentric_body_in_a_world_is_rejected() {
     let text = text.replacen("[contact]", &format!("{third}\n[contact]"), 1).replacen(&format!("\n{third}"), "", 1);
     assert_rejected("eccentric_in_a_world", &text, "bodies.1.contact_offset", At::Line("contact_offset"), &["world"]);
 }
+
+// ---------------------------------------------------------------------------------------------------------------
+// The simulators' laws: `mujoco`, `adams-impact`, `hertz-dashpot`
+
+#[test]
+fn mujoco_without_solref_or_with_mixed_signs_is_rejected() {
+    let text = scene(LEFT_BALL, RIGHT_BALL, "law = \"mujoco\"");
+    assert_rejected("mujoco_without_solref", &text, "contact.solref", At::Line("[contact]"), &["timeconst"]);
+    let bad = "solref = [0.02, -1.0]";
+    let text = scene(LEFT_BALL, RIGHT_BALL, &format!("law = \"mujoco\"\n{bad}"));
+    assert_rejected("mujoco_mixed_solref", &text, "contact.solref", At::Whole(bad), &["-stiffness"]);
+    let bad = "solref = [0.02]";
+    let text = scene(LEFT_BALL, RIGHT_BALL, &format!("law = \"mujoco\"\n{bad}"));
+    assert_rejected("mujoco_short_solref", &text, "contact.solref", At::Whole(bad), &["2 numbers"]);
+}
+
+#[test]
+fn solimp_outside_mujocos_own_ranges_is_rejected() {
+    for (i, (bad, mentions)) in [
+        ("solimp = [1.2, 0.95, 0.001, 0.5, 2.0]", "dmin"),
+        ("solimp = [0.9, 0.0, 0.001, 0.5, 2.0]", "dmax"),
+        ("solimp = [0.9, 0.95, 0.0, 0.5, 2.0]", "width"),
+        ("solimp = [0.9, 0.95, 0.001, 1.0, 2.0]", "midpoint"),
+        ("solimp = [0.9, 0.95, 0.001, 0.5, 0.5]", "power"),
+        ("solimp = [0.9, 0.95, 0.001, 0.5]", "5 numbers"),
+    ]
+    .into_iter()
+    .enumerate()
+    {
+        let text = scene(LEFT_BALL, RIGHT_BALL, &format!("law = \"mujoco\"\nsolref = [0.02, 1.0]\n{bad}"));
+        assert_rejected(&format!("solimp_out_of_range_{i}"), &text, "contact.solimp", At::Whole(bad), &[mentions]);
+    }
+}
+
+#[test]
+fn the_simulators_keys_belong_to_their_laws() {
+    let text = scene(LEFT_BALL, RIGHT_BALL, &with(HUNT_CROSSLEY, "solref = [0.02, 1.0]"));
+    assert_rejected("solref_for_hunt_crossley", &text, "contact.solref", At::Line("solref"), &["mujoco"]);
+    let text = scene(LEFT_BALL, RIGHT_BALL, &with(HUNT_CROSSLEY, "cmax = 100.0"));
+    assert_rejected("cmax_for_hunt_crossley", &text, "contact.cmax", At::Line("cmax"), &["adams-impact"]);
+    let text = scene(LEFT_BALL, RIGHT_BALL, "law = \"mujoco\"\nsolref = [0.02, 1.0]\nrestitution = 0.8");
+    assert_rejected("mujoco_with_restitution", &text, "contact.restitution", At::Line("restitution"), &["solref"]);
+}
+
+#[test]
+fn adams_impact_needs_cmax_and_a_positive_dmax() {
+    let text = scene(LEFT_BALL, RIGHT_BALL, "law = \"adams-impact\"\ndmax = 1e-4");
+    assert_rejected("adams_without_cmax", &text, "contact.cmax", At::Line("[contact]"), &["N s/m"]);
+    let bad = "dmax = 0.0";
+    let text = scene(LEFT_BALL, RIGHT_BALL, &format!("law = \"adams-impact\"\ncmax = 100.0\n{bad}"));
+    assert_rejected("adams_zero_dmax", &text, "contact.dmax", At::Whole(bad), &[]);
+}
+
+#[test]
+fn hertz_dashpot_restitution_needs_exponent_one() {
+    let text = scene(LEFT_BALL, RIGHT_BALL, "law = \"hertz-dashpot\"\nrestitution = 0.8");
+    let test = "hertz_dashpot_restitution_at_three_halves";
+    assert_rejected(test, &text, "contact.restitution", At::Line("restitution"), &["calibrate"]);
+}

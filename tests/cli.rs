@@ -339,12 +339,12 @@ fn run_prints_a_readable_report_with_the_restitution_coefficients() {
 }
 
 #[test]
-fn models_lists_all_fifteen_laws() {
-    let scratch = Scratch::new("models_lists_all_fifteen_laws");
+fn models_lists_all_eighteen_laws() {
+    let scratch = Scratch::new("models_lists_all_eighteen_laws");
     let output = impact(scratch.path(), &["models"]);
     assert_success(&output);
     let text = stdout(&output);
-    // The law names of the table in docs/laws.md#the-fifteen-laws.
+    // The law names of the table in docs/laws.md#the-eighteen-laws.
     let laws = [
         "hertz",
         "kelvin-voigt",
@@ -361,6 +361,9 @@ fn models_lists_all_fifteen_laws() {
         "tsuji",
         "brilliantov",
         "thornton",
+        "hertz-dashpot",
+        "mujoco",
+        "adams-impact",
     ];
     let missing: Vec<&str> = laws.into_iter().filter(|law| !has_word(&text, law)).collect();
     assert!(missing.is_empty(), "`impact models` does not list {missing:?}:\n{text}");

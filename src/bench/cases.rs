@@ -78,7 +78,16 @@ impl Case {
         };
         let tsuji_scale = if kind == LawKind::Tsuji { 1.0 } else { 0.0 };
         (
-            ContactLaw { kind, stiffness: 1.0, exponent: n, damping, tsuji_scale, yield_penetration: f64::INFINITY },
+            ContactLaw {
+                kind,
+                stiffness: 1.0,
+                exponent: n,
+                damping,
+                tsuji_scale,
+                yield_penetration: f64::INFINITY,
+                solimp: crate::law::NO_SOLIMP,
+                ramp: f64::INFINITY,
+            },
             separation,
         )
     }

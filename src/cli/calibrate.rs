@@ -48,7 +48,8 @@ Methods (the first that applies):
   hysteresis family        exact relation chi(E), alpha = chi / v0  (v0 = 1 m/s without a scene)
   kelvin-voigt, tsuji      exact relation with separation = penetration; root-find on the exact
                            closed form with separation = force (kelvin-voigt's c needs a scene)
-  brilliantov              bracketed root-find on the simulation of SCENE (required)
+  brilliantov,             bracketed root-find on the simulation of SCENE (required): their e
+  hertz-dashpot            depends on the speed, the mass and the stiffness
 Every result is checked by one simulation, and shown beside what the law's own published map gives.
 
 Examples:

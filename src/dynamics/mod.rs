@@ -103,11 +103,9 @@ pub trait ContactModel<const N: usize>: Model<N> {
     fn slip_along_start(&self, _y: &State<N>) -> Option<f64> {
         None
     }
-    /// For a yielding law, the scaled penetration still to go before the contact yields, (d_y - d)/L, whose fall
-    /// through zero is the kink of the force (the driver makes it a step boundary); `None` for the other laws.
-    fn yield_margin(&self, _y: &State<N>) -> Option<f64> {
-        None
-    }
+    /// The scaled penetrations (d/L, ascending) where the law's force is not smooth in this phase
+    /// ([`crate::law::ContactLaw::kinks`]): the driver makes each crossing a step boundary.
+    fn kinks(&self, compressing: bool) -> crate::law::Kinks;
     /// The contact and the bodies at scaled time `t` and state `y`, in SI units.
     fn snapshot(&self, t: f64, y: &State<N>) -> Snapshot;
 }

@@ -162,6 +162,10 @@ impl ContactModel<SIZE> for NormalContact<'_> {
         &self.scales
     }
 
+    fn tolerance_factor(&self) -> f64 {
+        self.law.tolerance_factor()
+    }
+
     fn start(&self) -> State<SIZE> {
         NormalContact::initial_state()
     }
@@ -199,8 +203,8 @@ impl ContactModel<SIZE> for NormalContact<'_> {
         }
     }
 
-    fn yield_margin(&self, y: &State<SIZE>) -> Option<f64> {
-        self.law.yield_onset().map(|onset| onset / self.scales.length - y[index::PENETRATION])
+    fn kinks(&self, compressing: bool) -> crate::law::Kinks {
+        self.law.kinks(compressing).scaled(self.scales.length)
     }
 
     fn snapshot(&self, t: f64, y: &State<SIZE>) -> Snapshot {

@@ -249,7 +249,7 @@ impl ContactModel<SIZE> for PairContact<'_> {
     /// normal and tangential works), whose errors add; at a tenth of the scene's tolerances every energy of the
     /// stress run's million cases closes to 1e-9, for about a quarter more steps.
     fn tolerance_factor(&self) -> f64 {
-        0.1
+        0.1 * self.law.tolerance_factor()
     }
 
     fn start(&self) -> State<SIZE> {
@@ -316,9 +316,8 @@ impl ContactModel<SIZE> for PairContact<'_> {
         (self.slip_direction != Vector3::zeros()).then(|| self.evaluate(y).kinematics.slip.dot(&self.slip_direction))
     }
 
-    fn yield_margin(&self, y: &State<SIZE>) -> Option<f64> {
-        let onset = self.law.yield_onset()?;
-        Some(onset / self.scales.length - self.evaluate(y).kinematics.penetration)
+    fn kinks(&self, compressing: bool) -> crate::law::Kinks {
+        self.law.kinks(compressing).scaled(self.scales.length)
     }
 
     fn snapshot(&self, t: f64, y: &State<SIZE>) -> Snapshot {

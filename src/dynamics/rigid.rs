@@ -324,7 +324,7 @@ impl ContactModel<SIZE> for RigidContact<'_> {
 
     /// A tenth, as the 3-D spheres' model: the energies sum many separately integrated states.
     fn tolerance_factor(&self) -> f64 {
-        0.1
+        0.1 * self.law.tolerance_factor()
     }
 
     fn start(&self) -> State<SIZE> {
@@ -363,9 +363,8 @@ impl ContactModel<SIZE> for RigidContact<'_> {
         }
     }
 
-    fn yield_margin(&self, y: &State<SIZE>) -> Option<f64> {
-        let onset = self.law.yield_onset()?;
-        Some(onset / self.scales.length - self.evaluate(y).penetration)
+    fn kinks(&self, compressing: bool) -> crate::law::Kinks {
+        self.law.kinks(compressing).scaled(self.scales.length)
     }
 
     fn snapshot(&self, t: f64, y: &State<SIZE>) -> Snapshot {

@@ -181,7 +181,10 @@ pub enum FastError {
 /// Whether [`simulate_normal`] handles this law: every family but Brilliantov's viscoelastic law and Thornton's
 /// elastic–plastic one (whose force remembers its deepest point).
 pub fn covers(law: &ContactLaw) -> bool {
-    !matches!(law.kind.family(), Family::Viscoelastic | Family::Plastic)
+    !matches!(
+        law.kind.family(),
+        Family::Viscoelastic | Family::Plastic | Family::Dashpot | Family::Impedance | Family::Ramp
+    )
 }
 
 /// Integrates one normal impact from first contact to separation.
@@ -844,6 +847,8 @@ mod tests {
             damping: 0.5,
             tsuji_scale: 0.0,
             yield_penetration: f64::INFINITY,
+            solimp: crate::law::NO_SOLIMP,
+            ramp: f64::INFINITY,
         };
         let system = Regularised::new(&law, &Scales::new(1.0, 1.0, 1.5, 1.0)).unwrap();
         let mut e = Expansion::default();

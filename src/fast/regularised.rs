@@ -194,7 +194,8 @@ impl Regularised {
     /// belong to the law's stiffness and exponent.
     pub fn new(law: &ContactLaw, scales: &Scales) -> Result<Regularised, FastError> {
         let family = law.kind.family();
-        if matches!(family, Family::Viscoelastic | Family::Plastic) {
+        if matches!(family, Family::Viscoelastic | Family::Plastic | Family::Dashpot | Family::Impedance | Family::Ramp)
+        {
             return Err(FastError::NotCovered(law.kind.name()));
         }
         let n = law.exponent;
@@ -263,7 +264,9 @@ impl Regularised {
                     elastic_factor: 0.4,
                 }
             }
-            Family::Viscoelastic | Family::Plastic => unreachable!("rejected above"),
+            Family::Viscoelastic | Family::Plastic | Family::Dashpot | Family::Impedance | Family::Ramp => {
+                unreachable!("rejected above")
+            }
         })
     }
 

@@ -18,6 +18,9 @@ pub enum LawKind {
     Tsuji,
     Brilliantov,
     Thornton,
+    HertzDashpot,
+    Mujoco,
+    AdamsImpact,
 }
 
 /// Laws that share one force expression and so one set of exact results.
@@ -36,6 +39,15 @@ pub enum Family {
     /// Hertz up to the yield penetration, then the plastic line tangent to it; unloading Hertzian from the dent
     /// with the enlarged radius of the deepest point reached (Thornton 1997). The force remembers that point.
     Plastic,
+    /// F = K d^n + c d': a constant dashpot beside a power-law spring (the DEM codes' Hertz with a viscous
+    /// damper). Its e depends on the approach speed unless n = 1.
+    Dashpot,
+    /// F = m* d(d) (k d(d) d + b d'), never pulling: MuJoCo's soft contact in its continuous-time limit, the
+    /// impedance d(d) of `solimp` scaling a per-unit-mass spring and damper (k, b from `solref`).
+    Impedance,
+    /// F = K d^n + STEP(d, 0, 0, d_max, c_max) d', never pulling: ADAMS' IMPACT function, whose damping rises
+    /// from zero as a cubic step over the first d_max of penetration.
+    Ramp,
 }
 
 /// One row of the law table: what `impact models` prints.
@@ -57,7 +69,7 @@ pub struct LawInfo {
 const HYSTERESIS_FORCE: &str = "K d^n (1 + alpha d'), alpha = chi / v0";
 
 /// The law table. Order is the order of docs/laws.md.
-pub const LAWS: [LawInfo; 15] = [
+pub const LAWS: [LawInfo; 18] = [
     LawInfo {
         kind: LawKind::Hertz,
         name: "hertz",
@@ -193,6 +205,33 @@ pub const LAWS: [LawInfo; 15] = [
         damping_units: "none: give yield_pressure p_y in Pa",
         source: "Thornton, J. Appl. Mech. 64 (1997)",
     },
+    LawInfo {
+        kind: LawKind::HertzDashpot,
+        name: "hertz-dashpot",
+        family: Family::Dashpot,
+        formula: "K d^n + c d'",
+        map: "n = 1: the Kelvin–Voigt map; otherwise none (e depends on speed): impact calibrate finds c",
+        damping_units: "c in N s/m",
+        source: "the DEM codes' Hertz with a viscous dashpot (LAMMPS damping velocity / mass_velocity)",
+    },
+    LawInfo {
+        kind: LawKind::Mujoco,
+        name: "mujoco",
+        family: Family::Impedance,
+        formula: "m* d(d) (k d(d) d + b d'), never pulling; k, b from solref, d(d) from solimp",
+        map: "none: give solref = [timeconst, dampratio] or [-stiffness, -damping] (per unit mass)",
+        damping_units: "b m* in N s/m (from solref)",
+        source: "MuJoCo (Todorov 2014; the solref/solimp reference of its documentation)",
+    },
+    LawInfo {
+        kind: LawKind::AdamsImpact,
+        name: "adams-impact",
+        family: Family::Ramp,
+        formula: "K d^n + STEP(d, 0, 0, d_max, c_max) d', never pulling",
+        map: "none: give cmax (N s/m) and dmax (m)",
+        damping_units: "c_max in N s/m",
+        source: "MSC ADAMS, the IMPACT function",
+    },
 ];
 
 impl LawKind {
@@ -225,7 +264,10 @@ impl LawKind {
     /// Whether the force can turn tensile before the penetration returns to zero (docs/laws.md), so that the
     /// separation criterion matters.
     pub fn can_turn_tensile(self) -> bool {
-        matches!(self.family(), Family::Linear | Family::Tsuji | Family::Viscoelastic)
+        matches!(
+            self.family(),
+            Family::Linear | Family::Tsuji | Family::Viscoelastic | Family::Dashpot | Family::Impedance
+        )
     }
 }
 

@@ -59,6 +59,7 @@ pub fn damping_for_restitution(
         Family::Hysteresis => Ok(hysteresis_chi(kind, e)? / approach_speed),
         Family::Linear => Ok(2.0 * kelvin_voigt_zeta(e) * (stiffness * effective_mass).sqrt()),
         Family::Tsuji => Ok(tsuji_damping(e)),
+        Family::Dashpot | Family::Impedance | Family::Ramp => Err(MapError::NoMap),
     }
 }
 
@@ -67,7 +68,7 @@ pub fn check_restitution(kind: LawKind, e: f64) -> Result<(), MapError> {
     match kind.family() {
         Family::Hysteresis => hysteresis_chi(kind, e).map(|_| ()),
         Family::Elastic if e != 1.0 => Err(MapError::NoMap),
-        Family::Viscoelastic | Family::Plastic => Err(MapError::NoMap),
+        Family::Viscoelastic | Family::Plastic | Family::Impedance | Family::Ramp => Err(MapError::NoMap),
         _ => Ok(()),
     }
 }

@@ -26,7 +26,36 @@ pub struct ContactLaw {
     /// d_y, m: the penetration at which a `thornton` contact starts to yield (infinite for every other law, and for
     /// bodies that never yield).
     pub yield_penetration: f64,
+    /// MuJoCo's `solimp` [d_min, d_max, width (m), midpoint, power] for the `mujoco` law: the impedance d(d) rises
+    /// from d_min at first touch to d_max at a penetration of `width` ([`ContactLaw::impedance`]); unused by the
+    /// other laws ([`NO_SOLIMP`]).
+    pub solimp: [f64; 5],
+    /// ADAMS' penetration at full damping d_max, m, for `adams-impact` (infinite, unused, for the other laws).
+    pub ramp: f64,
 }
+
+/// Up to two penetrations where a law's force is not smooth (see [`ContactLaw::kinks`]): the first `count` of `at`,
+/// ascending.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Kinks {
+    pub at: [f64; 2],
+    pub count: usize,
+}
+
+impl Kinks {
+    /// The kinks, ascending.
+    pub fn as_slice(&self) -> &[f64] {
+        &self.at[..self.count]
+    }
+
+    /// The same kinks in units of `length`.
+    pub fn scaled(self, length: f64) -> Kinks {
+        Kinks { at: self.at.map(|d| d / length), count: self.count }
+    }
+}
+
+/// MuJoCo's default `solimp`, [0.9, 0.95, 0.001, 0.5, 2]: what a law that is not `mujoco` carries, unused.
+pub const NO_SOLIMP: [f64; 5] = [0.9, 0.95, 0.001, 0.5, 2.0];
 
 /// `d^n` for a penetration `d >= 0`: the common exponents by square roots and products (Hertz's 3/2 as `d sqrt(d)`,
 /// several times cheaper than `powf`, which the general path would otherwise call at every stage of every step), any
@@ -48,6 +77,25 @@ pub fn power(d: f64, n: f64) -> f64 {
         d * d
     } else {
         d.powf(n)
+    }
+}
+
+/// A force that never pulls: its parts as they are while they push, and the damping cut to cancel the spring where
+/// they would pull (the cut is the damper's: what the spring then loses is dissipated).
+#[inline]
+fn never_pulling(elastic: f64, dissipative: f64) -> ForceParts {
+    ForceParts { elastic, dissipative: dissipative.max(-elastic) }
+}
+
+/// ADAMS' cubic STEP from 0 at s = 0 to 1 at s = 1, s²(3 - 2s), and its derivative 6 s (1 - s); 0 below, 1 above.
+#[inline]
+fn cubic_step(s: f64) -> (f64, f64) {
+    if s <= 0.0 {
+        (0.0, 0.0)
+    } else if s >= 1.0 {
+        (1.0, 0.0)
+    } else {
+        (s * s * (3.0 - 2.0 * s), 6.0 * s * (1.0 - s))
     }
 }
 
@@ -98,7 +146,68 @@ impl ContactLaw {
             }
             // Loading from an undented surface; a remembered deepest point is `split_force_after`'s.
             Family::Plastic => ForceParts { elastic: self.loading(d), dissipative: 0.0 },
+            // F = K d^n + c d'
+            Family::Dashpot => ForceParts { elastic: k * power(d, self.exponent), dissipative: c * rate },
+            // F = d(d) (k d(d) d + c d') with k, c already times m* (MuJoCo per unit mass), never pulling.
+            Family::Impedance => {
+                let (impedance, _) = self.impedance(d);
+                never_pulling(impedance * impedance * k * d, impedance * c * rate)
+            }
+            // F = K d^n + c_max S(d/d_max) d', S the cubic step, never pulling.
+            Family::Ramp => {
+                let (step, _) = cubic_step(d / self.ramp);
+                never_pulling(k * power(d, self.exponent), c * step * rate)
+            }
         }
+    }
+
+    /// MuJoCo's impedance at penetration `d >= 0` (m) and its derivative (1/m), from `solimp` [d_min, d_max, width,
+    /// midpoint, power]: with x = d / width, d_min + (d_max - d_min) y(x), y = x^p / m^(p-1) up to the midpoint m and
+    /// 1 - (1 - x)^p / (1 - m)^(p-1) beyond it, d_max from x = 1 on (MuJoCo's `getimpedance`).
+    pub fn impedance(&self, d: f64) -> (f64, f64) {
+        let [low, high, width, middle, p] = self.solimp;
+        let x = d.abs() / width;
+        if x >= 1.0 {
+            return (high, 0.0);
+        }
+        let (y, slope) = if x <= middle {
+            (x.powf(p) / middle.powf(p - 1.0), p * x.powf(p - 1.0) / middle.powf(p - 1.0))
+        } else {
+            let (rest, q) = (1.0 - x, 1.0 - middle);
+            (1.0 - rest.powf(p) / q.powf(p - 1.0), p * rest.powf(p - 1.0) / q.powf(p - 1.0))
+        };
+        (low + (high - low) * y, (high - low) * slope / width)
+    }
+
+    /// ∫₀^d d(s)² s ds (m²) for the impedance of `solimp`, in closed form (piecewise powers): the `mujoco` law's
+    /// elastic energy is k times it.
+    fn impedance_moment(&self, d: f64) -> f64 {
+        let [low, high, width, m, p] = self.solimp;
+        let spread = high - low;
+        let x = (d / width).min(1.0);
+        // I1 = ∫₀^x y(u) u du, I2 = ∫₀^x y(u)² u du, y the sigmoid of `impedance`.
+        let below = |x: f64| {
+            (
+                x.powf(p + 2.0) / ((p + 2.0) * m.powf(p - 1.0)),
+                x.powf(2.0 * p + 2.0) / ((2.0 * p + 2.0) * m.powf(2.0 * p - 2.0)),
+            )
+        };
+        let (i1, i2) = if x <= m {
+            below(x)
+        } else {
+            let q = 1.0 - m;
+            // ∫ (1 - u)^r u du from m to x = G(q) - G(1 - x), G(t) = t^(r+1)/(r+1) - t^(r+2)/(r+2).
+            let g = |t: f64, r: f64| t.powf(r + 1.0) / (r + 1.0) - t.powf(r + 2.0) / (r + 2.0);
+            let (a1, a2) = below(m);
+            let square = (x * x - m * m) / 2.0;
+            let one = (g(q, p) - g(1.0 - x, p)) / q.powf(p - 1.0);
+            let two = (g(q, 2.0 * p) - g(1.0 - x, 2.0 * p)) / q.powf(2.0 * p - 2.0);
+            (a1 + square - one, a2 + square - 2.0 * one + two)
+        };
+        let beyond = if d > width { (d * d - width * width) / 2.0 } else { 0.0 };
+        low * low * d * d / 2.0
+            + width * width * (2.0 * low * spread * i1 + spread * spread * i2)
+            + (2.0 * low * spread + spread * spread) * beyond
     }
 
     /// Whether the force depends on the deepest penetration reached so far (the `thornton` law), which a model
@@ -162,6 +271,29 @@ impl ContactLaw {
         if x > 0.0 { stiffness * x * x.sqrt() } else { 0.0 }
     }
 
+    /// The penetrations (m, ascending) where the force is continuous but not smooth along a phase (`compressing`:
+    /// the loading, else the unloading), which a driver makes step boundaries so that no step of a high-order
+    /// integrator straddles them: a yielding law's onset of yield (loading only: it unloads on a smooth curve); the
+    /// `mujoco` impedance's midpoint and width (its second derivative jumps there; its first too at the width for
+    /// power 1); `adams-impact`'s d_max, where its cubic step ends.
+    pub fn kinks(&self, compressing: bool) -> Kinks {
+        let at = match self.kind.family() {
+            Family::Plastic if compressing => self.yield_onset().map_or([f64::NAN; 2], |d| [d, f64::NAN]),
+            Family::Impedance => [self.solimp[3] * self.solimp[2], self.solimp[2]],
+            Family::Ramp if self.ramp.is_finite() => [self.ramp, f64::NAN],
+            _ => [f64::NAN; 2],
+        };
+        Kinks { count: at.iter().filter(|d| d.is_finite()).count(), at }
+    }
+
+    /// The fraction of a scene's tolerances a model integrates this law at: a hundredth for `adams-impact`, whose
+    /// cubic damping step the step-size control underestimates near first touch and separation (measured in the
+    /// stress run: e off by up to 1e-9 at the default rtol 1e-10, 1e-12 at a hundredth of it, against an
+    /// independent fixed-step integration); 1 for every other law.
+    pub fn tolerance_factor(&self) -> f64 {
+        if self.kind.family() == Family::Ramp { 0.01 } else { 1.0 }
+    }
+
     /// The penetration d_y (m) at which a yielding contact starts to yield; `None` for the other laws and for a
     /// yielding law whose bodies never yield (an infinite yield pressure).
     pub fn yield_onset(&self) -> Option<f64> {
@@ -198,6 +330,12 @@ impl ContactLaw {
             Family::Linear => k * d + c * rate,
             Family::Tsuji => k * d * d.abs().sqrt().sqrt() + c * self.tsuji_scale * rate,
             Family::Viscoelastic => k * (d + 1.5 * c * rate),
+            Family::Dashpot => k * d * power(d.abs(), self.exponent - 1.0) + c * rate,
+            // The force over d(d), continued to d < 0 with d(|d|): k d(d) d + c d'.
+            Family::Impedance => k * self.impedance(d).0 * d + c * rate,
+            // The damping vanishes at first touch, so the force can push again after a zero: the contact ends where
+            // the penetration returns to zero.
+            Family::Ramp => d,
         }
     }
 
@@ -220,10 +358,28 @@ impl ContactLaw {
         }
         let (k, c) = (self.stiffness, self.damping);
         match self.kind.family() {
-            Family::Elastic | Family::Hysteresis | Family::Plastic => 0.0,
+            Family::Elastic | Family::Hysteresis | Family::Plastic | Family::Ramp => 0.0,
             Family::Linear => -c * rate / k,
             Family::Tsuji => (-c * self.tsuji_scale * rate / k).powf(0.8),
             Family::Viscoelastic => -1.5 * c * rate,
+            Family::Dashpot => (-c * rate / k).powf(1.0 / self.exponent),
+            Family::Impedance => {
+                // d(d) d = -c d' / k: beyond the width d = d_max; inside it, by bisection (d(d) d increases).
+                let target = -c * rate / k;
+                let [_, high, width, _, _] = self.solimp;
+                if target >= high * width {
+                    return target / high;
+                }
+                let (mut low, mut top) = (0.0, width);
+                for _ in 0..200 {
+                    let middle = 0.5 * (low + top);
+                    if middle <= low || middle >= top {
+                        break;
+                    }
+                    if self.impedance(middle).0 * middle < target { low = middle } else { top = middle }
+                }
+                0.5 * (low + top)
+            }
         }
     }
 
@@ -232,6 +388,9 @@ impl ContactLaw {
     pub fn elastic_energy(&self, d: f64) -> f64 {
         if d <= 0.0 {
             return 0.0;
+        }
+        if self.kind.family() == Family::Impedance {
+            return self.stiffness * self.impedance_moment(d);
         }
         let n = self.exponent;
         self.stiffness * power(d, n + 1.0) / (n + 1.0)
@@ -258,8 +417,15 @@ impl ContactLaw {
     pub fn force_gradient(&self, d: f64, rate: f64) -> (f64, f64) {
         let (k, c, n) = (self.stiffness, self.damping, self.exponent);
         let family = self.kind.family();
-        if d < 0.0 || (d == 0.0 && family != Family::Linear) {
+        if d < 0.0 || (d == 0.0 && !matches!(family, Family::Linear | Family::Dashpot | Family::Impedance)) {
             return (0.0, 0.0);
+        }
+        // A force that never pulls is flat where it is cut to zero.
+        if matches!(family, Family::Impedance | Family::Ramp) && self.force(d, rate) <= 0.0 && d > 0.0 {
+            let parts = self.split_force(d, rate);
+            if parts.dissipative <= -parts.elastic {
+                return (0.0, 0.0);
+            }
         }
         match family {
             Family::Elastic => (k * n * power(d, n - 1.0), 0.0),
@@ -278,6 +444,17 @@ impl ContactLaw {
                 (1.5 * k * root + 0.75 * k * c / root * rate, 1.5 * k * c * root)
             }
             Family::Plastic => (self.plastic_stiffness(d, d), 0.0),
+            Family::Dashpot if d == 0.0 => (if n == 1.0 { k } else { 0.0 }, c),
+            Family::Dashpot => (k * n * power(d, n - 1.0), c),
+            Family::Impedance => {
+                let (impedance, slope) = self.impedance(d);
+                let by_penetration = 2.0 * impedance * slope * k * d + impedance * impedance * k + slope * c * rate;
+                (by_penetration, impedance * c)
+            }
+            Family::Ramp => {
+                let (step, slope) = cubic_step(d / self.ramp);
+                (k * n * power(d, n - 1.0) + c * slope / self.ramp * rate, c * step)
+            }
         }
     }
 

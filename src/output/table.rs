@@ -224,6 +224,9 @@ fn law(report: &Report) -> Section {
         Some(Family::Hysteresis) => Some(("damping alpha", "s/m")),
         Some(Family::Tsuji) => Some(("damping a", "")),
         Some(Family::Viscoelastic) => Some(("material time A", "s")),
+        Some(Family::Dashpot) => Some(("damping c", "N s/m")),
+        Some(Family::Impedance) => Some(("damping m* b", "N s/m")),
+        Some(Family::Ramp) => Some(("full damping c_max", "N s/m")),
         None => Some(("damping", "")),
     };
     if let Some((label, unit)) = damping {

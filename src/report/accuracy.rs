@@ -51,6 +51,12 @@ fn exact_restitution(setup: &Setup, separation: Separation) -> Option<(f64, &'st
             let zeta = law.damping / (2.0 * (law.stiffness * setup.effective_mass).sqrt());
             Some((reference::kelvin_voigt(zeta, separation)?.restitution, "Kelvin–Voigt closed form"))
         }
+        // K d + c d': Kelvin–Voigt's closed form; other exponents have none.
+        Family::Dashpot if law.exponent == 1.0 => {
+            let zeta = law.damping / (2.0 * (law.stiffness * setup.effective_mass).sqrt());
+            Some((reference::kelvin_voigt(zeta, separation)?.restitution, "Kelvin–Voigt closed form (n = 1)"))
+        }
+        Family::Dashpot | Family::Impedance | Family::Ramp => None,
         Family::Tsuji => Some((
             reference::kelvin_voigt(law.damping / 5f64.sqrt(), separation)?.restitution,
             "Tsuji law mapped to a linear oscillator",
@@ -92,6 +98,14 @@ fn exact(setup: &Setup, separation: Separation) -> Option<(ContactReference, &'s
                 "Kelvin–Voigt closed forms (docs/references.md#kelvin-voigt)",
             ))
         }
+        Family::Dashpot if law.exponent == 1.0 => {
+            let zeta = law.damping / (2.0 * (law.stiffness * setup.effective_mass).sqrt());
+            Some((
+                reference::kelvin_voigt(zeta, separation)?,
+                "Kelvin–Voigt closed forms, n = 1 (docs/references.md#kelvin-voigt)",
+            ))
+        }
+        Family::Dashpot | Family::Impedance | Family::Ramp => None,
         Family::Tsuji => Some((
             reference::tsuji(law.damping, separation)?,
             "Tsuji law mapped to a linear oscillator (docs/references.md#tsuji)",

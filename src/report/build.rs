@@ -11,6 +11,7 @@ use crate::dynamics::Snapshot;
 use crate::idealisation::{self, Idealisation, SpeedTrial};
 use crate::instantaneous::{Instantaneous, direct_impact, rigid_body_impact};
 use crate::integrate::Ending;
+use crate::law::Family;
 use crate::outcome::{Outcome, TIME_LIMIT, stiffness_causes};
 use crate::scene::{DampingSpec, Scene};
 use crate::setup::{Motion, Setup};
@@ -63,6 +64,8 @@ pub fn build(
     let nominal = match scene.contact.damping {
         // A yielding law has no nominal e: its e follows from the impact speed.
         DampingSpec::None if setup.law.yields() => None,
+        // The simulators' laws take their damping from their own keys (solref, cmax): no nominal e either.
+        DampingSpec::None if matches!(setup.law.kind.family(), Family::Impedance | Family::Ramp) => None,
         DampingSpec::None => Some(1.0),
         DampingSpec::Restitution(e) => Some(e),
         DampingSpec::Parameter(_) => None,

@@ -44,6 +44,10 @@ pub struct RawPair {
     pub tangential_stiffness: Option<At<toml::Value>>,
     pub tangential_damping: Option<At<f64>>,
     pub yield_pressure: Option<At<f64>>,
+    pub solref: Option<At<Vec<f64>>>,
+    pub solimp: Option<At<Vec<f64>>>,
+    pub cmax: Option<At<f64>>,
+    pub dmax: Option<At<f64>>,
     pub normal: Option<At<Vec<f64>>>,
 }
 
@@ -81,6 +85,10 @@ pub struct RawContact {
     pub tangential_stiffness: Option<At<toml::Value>>,
     pub tangential_damping: Option<At<f64>>,
     pub yield_pressure: Option<At<f64>>,
+    pub solref: Option<At<Vec<f64>>>,
+    pub solimp: Option<At<Vec<f64>>>,
+    pub cmax: Option<At<f64>>,
+    pub dmax: Option<At<f64>>,
     pub normal: Option<At<Vec<f64>>>,
 }
 

@@ -160,6 +160,15 @@ pub struct ContactSpec {
     pub tangential_damping: f64,
     /// The `thornton` law's yield pressure p_y, Pa, when written (otherwise 1.6 times the smaller `yield_stress`).
     pub yield_pressure: Option<f64>,
+    /// The `mujoco` law's `solref`: [timeconst (s), dampratio], or [-stiffness (1/s²), -damping (1/s)] per unit mass.
+    pub solref: Option<[f64; 2]>,
+    /// The `mujoco` law's `solimp` [dmin, dmax, width (m), midpoint, power], when written (MuJoCo's default
+    /// [0.9, 0.95, 0.001, 0.5, 2] otherwise).
+    pub solimp: Option<[f64; 5]>,
+    /// The `adams-impact` law's full damping c_max, N s/m.
+    pub cmax: Option<f64>,
+    /// The `adams-impact` law's penetration at full damping d_max, m.
+    pub dmax: Option<f64>,
     /// The scene's unit normal (body 1 -> body 2), if it gave one (`normal_given` normalised).
     pub normal: Option<Vector3<f64>>,
     /// The scene's `normal` as written.
@@ -183,7 +192,7 @@ impl ContactSpec {
     /// Re-derives the exponent and the unit normal from the written values.
     pub fn resolve(&mut self) {
         self.exponent = match self.law.family() {
-            crate::law::Family::Linear => 1.0,
+            crate::law::Family::Linear | crate::law::Family::Impedance => 1.0,
             _ => self.exponent_given.unwrap_or(1.5),
         };
         self.normal = self.normal_given.map(|n| n / n.norm());

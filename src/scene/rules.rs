@@ -139,6 +139,82 @@ fn inertia_tensor(key: impl std::fmt::Display + Copy, tensor: &Matrix3<f64>) -> 
     Ok(())
 }
 
+/// The keys of the simulators' laws: `solref` and `solimp` for `mujoco` (in MuJoCo's own ranges), `cmax` and `dmax`
+/// for `adams-impact`; each refused for another law.
+fn check_simulator_keys(contact: &super::ContactSpec) -> Checked {
+    let family = contact.law.family();
+    let name = contact.law.name();
+    let foreign = |key: &str, owner: &str| {
+        fail(format!("contact.{key}"), format!("`{name}` does not take `{key}`: it belongs to law = \"{owner}\""))
+    };
+    match contact.solref {
+        Some(_) if family != Family::Impedance => foreign("solref", "mujoco")?,
+        None if family == Family::Impedance => fail(
+            "contact.solref",
+            "missing: `mujoco` needs solref = [timeconst, dampratio] (s, both > 0) or [-stiffness, -damping] (per unit \
+             mass: 1/s², 1/s)",
+        )?,
+        Some([a, b]) => {
+            for (i, x) in [a, b].into_iter().enumerate() {
+                if !x.is_finite() {
+                    return fail("contact.solref", format!("entry {i} must be a finite number, got {}", shown(x)));
+                }
+            }
+            let standard = a > 0.0 && b > 0.0;
+            let direct = a < 0.0 && b <= 0.0;
+            if !standard && !direct {
+                return fail(
+                    "contact.solref",
+                    format!(
+                        "expected both entries > 0 ([timeconst, dampratio]) or the first < 0 and the second <= 0 \
+                         ([-stiffness, -damping]), got [{}, {}]",
+                        shown(a),
+                        shown(b)
+                    ),
+                );
+            }
+        }
+        None => {}
+    }
+    match contact.solimp {
+        Some(_) if family != Family::Impedance => foreign("solimp", "mujoco")?,
+        Some([low, high, width, middle, power]) => {
+            let ranges: [(&str, f64, bool, &str); 5] = [
+                ("dmin", low, (1e-4..=0.9999).contains(&low), "in [0.0001, 0.9999]"),
+                ("dmax", high, (1e-4..=0.9999).contains(&high), "in [0.0001, 0.9999]"),
+                ("width", width, width > 0.0 && width.is_finite(), "a finite width > 0 in m"),
+                ("midpoint", middle, middle > 0.0 && middle < 1.0, "in (0, 1)"),
+                ("power", power, (1.0..1e6).contains(&power), "at least 1"),
+            ];
+            if let Some((what, value, _, range)) = ranges.iter().find(|(_, _, ok, _)| !ok) {
+                return fail(
+                    "contact.solimp",
+                    format!(
+                        "{what} (entry {}) must be {range} (MuJoCo's range), got {}",
+                        ranges.iter().position(|r| r.0 == *what).unwrap_or(0),
+                        shown(*value)
+                    ),
+                );
+            }
+        }
+        None => {}
+    }
+    for (key, value, rule) in [("cmax", contact.cmax, Allowed::NonNegative), ("dmax", contact.dmax, Allowed::Positive)]
+    {
+        match value {
+            Some(_) if family != Family::Ramp => foreign(key, "adams-impact")?,
+            Some(x) => number(format!("contact.{key}"), x, rule)?,
+            None if family == Family::Ramp => fail(
+                format!("contact.{key}"),
+                "missing: `adams-impact` needs `cmax` (full damping, N s/m) and `dmax` (the penetration at which it is \
+                 reached, m)",
+            )?,
+            None => {}
+        }
+    }
+    Ok(())
+}
+
 /// The scene's value rules, in the order a reader meets the keys (body 1, body 2, contact, solver).
 pub fn check(scene: &Scene) -> Checked {
     for (i, body) in scene.bodies.iter().enumerate() {
@@ -383,8 +459,26 @@ fn check_contact(contact: &super::ContactSpec) -> Checked {
             );
         }
     }
+    check_simulator_keys(contact)?;
     match (law.family(), contact.damping) {
-        (Family::Elastic | Family::Plastic, DampingSpec::None) => {}
+        (Family::Elastic | Family::Plastic | Family::Impedance | Family::Ramp, DampingSpec::None) => {}
+        (Family::Impedance, DampingSpec::Restitution(_)) => fail(
+            "contact.restitution",
+            "`mujoco` takes its damping from `solref`, as MuJoCo does: give solref = [timeconst, dampratio] (`impact \
+             translate SCENE --to mujoco` finds the one for an e)",
+        )?,
+        (Family::Impedance, DampingSpec::Parameter(_)) => fail(
+            "contact.damping",
+            "`mujoco` takes its damping from `solref` = [timeconst, dampratio] or [-stiffness, -damping]",
+        )?,
+        (Family::Ramp, DampingSpec::Restitution(_)) => fail(
+            "contact.restitution",
+            "`adams-impact` takes its damping from `cmax` (N s/m) and `dmax` (m), as ADAMS does",
+        )?,
+        (Family::Ramp, DampingSpec::Parameter(_)) => fail(
+            "contact.damping",
+            "`adams-impact` takes its damping from `cmax` (N s/m) and `dmax` (m), as ADAMS does",
+        )?,
         (Family::Plastic, DampingSpec::Parameter(_)) => fail(
             "contact.damping",
             "`thornton` takes no damping: its loss is the plastic dent, set by `yield_pressure` (or the bodies' \
@@ -428,6 +522,17 @@ fn check_contact(contact: &super::ContactSpec) -> Checked {
     let family = law.family();
     if matches!(family, Family::Tsuji | Family::Viscoelastic | Family::Plastic) && exponent.is_some() {
         return fail("contact.exponent", format!("`{name}` fixes the exponent at 3/2: leave `exponent` out"));
+    }
+    if family == Family::Impedance {
+        if exponent.is_some() {
+            return fail(
+                "contact.exponent",
+                "`mujoco` is linear in the penetration (its `solref` spring): leave `exponent` out",
+            );
+        }
+        if let StiffnessSpec::Value(_) = contact.stiffness {
+            return fail("contact.stiffness", "`mujoco` takes its stiffness from `solref`: leave `stiffness` out");
+        }
     }
     if family == Family::Linear {
         if contact.stiffness == StiffnessSpec::Hertz {

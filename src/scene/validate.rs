@@ -160,6 +160,16 @@ fn vector(src: &Source, key: &str, value: &At<Vec<f64>>) -> Checked<Vector3<f64>
     Ok(Vector3::new(items[0], items[1], items[2]))
 }
 
+/// A list of exactly `N` numbers as written (its values are the rules' business), its line recorded; `form` says what
+/// the list holds.
+fn numbers<const N: usize>(src: &Source, key: &str, value: &At<Vec<f64>>, form: &str) -> Checked<[f64; N]> {
+    let span = value.span();
+    src.note(key, &span);
+    let items = value.get_ref();
+    <[f64; N]>::try_from(items.as_slice())
+        .map_err(|_| src.error(key, Some(&span), format!("expected {form} ({N} numbers), got {} numbers", items.len())))
+}
+
 /// A body's `inertia` as written: one number (the same about every axis), three principal moments `[Ixx, Iyy, Izz]`
 /// along the scene axes, or a 3×3 tensor (rows); its values are the rules' business.
 fn inertia(src: &Source, key: &str, value: &At<toml::Value>) -> Checked<(Option<f64>, Option<Matrix3<f64>>)> {
@@ -478,7 +488,11 @@ fn pair(src: &Source, k: usize, raw: &At<RawPair>, contact: &RawContact, count: 
         friction,
         tangential_stiffness,
         tangential_damping,
-        yield_pressure
+        yield_pressure,
+        solref,
+        solimp,
+        cmax,
+        dmax
     );
     // A pair that names `damping` drops `[contact]`'s `restitution`, and the other way round: it gives its own. A
     // pair that names its own `law` takes neither from `[contact]` (another law's damping means something else).
@@ -692,6 +706,18 @@ fn contact_spec(
     let tangential_damping =
         raw.tangential_damping.as_ref().map_or(0.0, |c| number(src, &key("tangential_damping"), c));
     let yield_pressure = raw.yield_pressure.as_ref().map(|p| number(src, &key("yield_pressure"), p));
+    let solref = raw
+        .solref
+        .as_ref()
+        .map(|v| numbers::<2>(src, &key("solref"), v, "[timeconst, dampratio] or [-stiffness, -damping]"))
+        .transpose()?;
+    let solimp = raw
+        .solimp
+        .as_ref()
+        .map(|v| numbers::<5>(src, &key("solimp"), v, "[dmin, dmax, width, midpoint, power]"))
+        .transpose()?;
+    let cmax = raw.cmax.as_ref().map(|c| number(src, &key("cmax"), c));
+    let dmax = raw.dmax.as_ref().map(|d| number(src, &key("dmax"), d));
     let normal_given = raw.normal.as_ref().map(|n| vector(src, &key("normal"), n)).transpose()?;
     Ok(ContactSpec {
         law,
@@ -704,6 +730,10 @@ fn contact_spec(
         tangential_stiffness,
         tangential_damping,
         yield_pressure,
+        solref,
+        solimp,
+        cmax,
+        dmax,
         normal: None,
         normal_given,
     })

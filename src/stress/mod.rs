@@ -114,11 +114,17 @@ fn vector(v: &Vector3<f64>) -> String {
 pub fn scene_text(seed: u64, index: u64, quick: bool) -> String {
     let mut r = Draw::new(seed, index);
     // The fourteen laws that do not yield, drawn as before Thornton's law came; one case in fifteen then takes it
-    // instead, decided from a stream of its own, so that every other case is the scene it always was.
-    let laws: Vec<LawKind> =
-        crate::law::catalogue::LAWS.iter().map(|row| row.kind).filter(|k| k.family() != Family::Plastic).collect();
+    // instead, decided from a stream of its own, so that every other case is the scene it always was. One in ten
+    // then takes a simulator's law (`hertz-dashpot`, `mujoco`, `adams-impact`), again from a stream of its own.
+    let laws: Vec<LawKind> = crate::law::catalogue::LAWS.iter().map(|row| row.kind).filter(|k| original(*k)).collect();
     let law = laws[((r.unit() * laws.len() as f64) as usize).min(laws.len() - 1)];
     let law = if Draw::new(seed ^ 0x7e1d_5a7e, index).chance(1.0 / 15.0) { LawKind::Thornton } else { law };
+    let mut simulators = Draw::new(seed ^ 0x5_1a_7e_0f, index);
+    let law = if simulators.chance(0.1) {
+        simulators.pick(&[LawKind::HertzDashpot, LawKind::Mujoco, LawKind::AdamsImpact])
+    } else {
+        law
+    };
     let family = law.family();
     let force_separation = r.chance(0.5);
     let pairing = match r.unit() {
@@ -151,17 +157,17 @@ pub fn scene_text(seed: u64, index: u64, quick: bool) -> String {
     };
 
     // Stiffness and exponent; the penetration scale L of the contact, and radii well above it.
-    let hertz_stiffness = family != Family::Linear && r.chance(0.2);
+    let hertz_stiffness = family != Family::Linear && r.chance(0.2) && family != Family::Impedance;
     let exponent = match family {
-        Family::Linear => 1.0,
+        Family::Linear | Family::Impedance => 1.0,
         Family::Tsuji | Family::Viscoelastic | Family::Plastic => 1.5,
         _ if hertz_stiffness || r.chance(0.4) => 1.5,
         _ => r.uniform(1.0, 2.5),
     };
-    let write_exponent = matches!(family, Family::Elastic | Family::Hysteresis) && !hertz_stiffness && r.chance(0.7);
+    let free_exponent = matches!(family, Family::Elastic | Family::Hysteresis | Family::Dashpot | Family::Ramp);
+    let write_exponent = free_exponent && !hertz_stiffness && r.chance(0.7);
     // An exponent not written is the scene's default, 3/2, whatever was drawn (the radii follow the scene's L).
-    let exponent =
-        if matches!(family, Family::Elastic | Family::Hysteresis) && !write_exponent { 1.5 } else { exponent };
+    let exponent = if free_exponent && !write_exponent { 1.5 } else { exponent };
     let flat = |i: usize| {
         pairing == Pairing::Wall { moving: false } && anchor == Some(i)
             || pairing == Pairing::Wall { moving: true } && anchor == Some(i)
@@ -254,7 +260,9 @@ pub fn scene_text(seed: u64, index: u64, quick: bool) -> String {
     let draw =
         DampingDraw { law, stiffness, effective_mass, approach, length, effective_radius, quick, force_separation };
     write_damping(&mut r, &mut contact, &draw);
-    if hertz_stiffness {
+    if family == Family::Impedance {
+        // `solref` carries the stiffness: written by `write_damping`.
+    } else if hertz_stiffness {
         contact.push_str("stiffness = \"hertz\"\n");
     } else {
         let _ = writeln!(contact, "stiffness = {}", number(stiffness));
@@ -362,6 +370,10 @@ fn write_damping(r: &mut Draw, out: &mut String, draw: &DampingDraw) {
     if family == Family::Elastic {
         return;
     }
+    if matches!(family, Family::Dashpot | Family::Impedance | Family::Ramp) {
+        write_simulator_law(r, out, draw);
+        return;
+    }
     if family == Family::Plastic {
         // A yield penetration d_y from 1e-3 L (impacts at ~ 5000 V_y) to 3 L (no yield), as its yield pressure
         // p_y = 3 K sqrt(d_y) / (2 pi R*) (from d_y = (pi p_y / (2 E*))² R*, K = (4/3) E* sqrt(R*)).
@@ -397,6 +409,42 @@ fn write_damping(r: &mut Draw, out: &mut String, draw: &DampingDraw) {
         _ => ratio * length / (1.5 * approach),
     };
     let _ = writeln!(out, "damping = {}", number(damping));
+}
+
+/// Whether a law is one of the fourteen the stress run drew before the yielding and the simulators' laws came.
+fn original(law: LawKind) -> bool {
+    !matches!(law.family(), Family::Plastic | Family::Dashpot | Family::Impedance | Family::Ramp)
+}
+
+/// The keys of a simulator's law, its damping drawn as a damping-to-elastic force ratio at the contact's scales
+/// (1e-6 to 10; 1e-6 to 1 in a quick run): `hertz-dashpot`'s c; `mujoco`'s solref in its direct form — the drawn
+/// stiffness per unit mass, so that the penetration scale is the drawn one — and a solimp over MuJoCo's ranges (a
+/// width from 1e-2 to 10 penetration scales); `adams-impact`'s c_max and a d_max of 1e-3 to 10 penetration scales.
+fn write_simulator_law(r: &mut Draw, out: &mut String, draw: &DampingDraw) {
+    let DampingDraw { law, stiffness, effective_mass, approach, length, quick, .. } = *draw;
+    let ratio = if quick { r.log(1e-6, 1.0) } else { r.log(1e-6, 10.0) };
+    // The force scale F0 = m* v0² / L over the approach speed: a damper of that size matches the spring.
+    let damper = effective_mass * approach / length;
+    match law.family() {
+        Family::Dashpot => {
+            let _ = writeln!(out, "damping = {}", number(ratio * damper));
+        }
+        Family::Ramp => {
+            let _ = writeln!(out, "cmax = {}", number(ratio * damper));
+            let _ = writeln!(out, "dmax = {}", number(length * r.log(1e-3, 10.0)));
+        }
+        _ => {
+            let high = r.uniform(0.1, 0.99);
+            let solimp =
+                [r.uniform(0.1, 0.99), high, length * r.log(1e-2, 10.0), r.uniform(0.1, 0.9), r.uniform(1.0, 4.0)];
+            // MuJoCo's direct form: k = stiffness / d_max², b = damping / d_max, per unit mass.
+            let k = stiffness / effective_mass * high * high;
+            let b = ratio * damper / effective_mass * high;
+            let _ = writeln!(out, "solref = [{}, {}]", number(-k), number(-b));
+            let items: Vec<String> = solimp.iter().map(|x| number(*x)).collect();
+            let _ = writeln!(out, "solimp = [{}]", items.join(", "));
+        }
+    }
 }
 
 // -------------------------------------------------------------------------------------------------------------
@@ -592,7 +640,8 @@ fn expected_contact(scene: &Scene, report: &Report) -> Option<(f64, f64)> {
         Family::Linear => reference::kelvin_voigt(kelvin_voigt_zeta(report), separation),
         Family::Tsuji => reference::tsuji(law.damping, separation),
         Family::Elastic => Some(reference::hertz_elastic(law.exponent)),
-        Family::Viscoelastic => None,
+        Family::Dashpot if law.exponent == 1.0 => reference::kelvin_voigt(kelvin_voigt_zeta(report), separation),
+        Family::Viscoelastic | Family::Dashpot | Family::Impedance | Family::Ramp => None,
         Family::Plastic => Some(reference::thornton(scaled_yield(report))),
     }?;
     exact.duration.is_finite().then_some((exact.duration, exact.restitution))
@@ -866,7 +915,8 @@ pub fn exact_energies(scene: &Scene, report: &Report) -> Option<(f64, f64)> {
         }
         Family::Linear => oscillator_energies(kelvin_voigt_zeta(report), 1.0, force)?,
         Family::Tsuji => oscillator_energies(law.damping / 2.0, 1.25, force)?,
-        Family::Viscoelastic => return None,
+        Family::Dashpot if law.exponent == 1.0 => oscillator_energies(kelvin_voigt_zeta(report), 1.0, force)?,
+        Family::Viscoelastic | Family::Dashpot | Family::Impedance | Family::Ramp => return None,
         // All that the unloading does not give back stays in the dent: m* v0² (1 - e²)/2, the exact e.
         Family::Plastic => {
             let e = reference::thornton(scaled_yield(report)).restitution;

@@ -32,7 +32,7 @@ pub fn scene_text(seed: u64, index: u64, quick: bool) -> String {
     // The fourteen laws that do not yield, drawn as before Thornton's law came; one world in fifteen then takes it
     // instead, with a yield pressure of 0.3 to 10 GPa, from a stream of its own (every other world is unchanged).
     let laws: Vec<LawKind> =
-        crate::law::catalogue::LAWS.iter().map(|row| row.kind).filter(|k| k.family() != Family::Plastic).collect();
+        crate::law::catalogue::LAWS.iter().map(|row| row.kind).filter(|k| super::original(*k)).collect();
     let law = laws[((r.unit() * laws.len() as f64) as usize).min(laws.len() - 1)];
     let mut plastic = Draw::new(seed ^ 0x7e1d_5a7e_0001, index);
     let law = if plastic.chance(1.0 / 15.0) { LawKind::Thornton } else { law };

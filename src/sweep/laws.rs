@@ -27,7 +27,8 @@ fn fixed_exponent(law: LawKind) -> Option<f64> {
     match law.family() {
         Family::Linear => Some(1.0),
         Family::Tsuji | Family::Viscoelastic | Family::Plastic => Some(1.5),
-        Family::Elastic | Family::Hysteresis => None,
+        Family::Elastic | Family::Hysteresis | Family::Dashpot | Family::Ramp => None,
+        Family::Impedance => Some(1.0),
     }
 }
 

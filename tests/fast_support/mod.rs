@@ -51,6 +51,8 @@ impl Case {
                 damping,
                 tsuji_scale: 1.0,
                 yield_penetration: f64::INFINITY,
+                solimp: impact::law::NO_SOLIMP,
+                ramp: f64::INFINITY,
             },
             scales: Scales::new(1.0, 1.0, n, 1.0),
             separation,
