@@ -26,30 +26,54 @@ pub const SLOPE_SCALE: f64 = 0.1;
 pub const YIELD_PRESSURE_FACTOR: f64 = 1.6;
 
 /// The verdict on each assumption; `None` where it does not apply, or where it was not asked for (a sweep's row
-/// without a verdict column, a calibration's step: every key null).
-#[derive(Debug, Clone, PartialEq, Default, Serialize)]
-pub struct Idealisation {
-    /// The contact takes no time: the bodies' relative travel during it against the smaller radius.
-    pub instantaneous: Option<Verdict>,
-    /// No other force acts during the contact: standard gravity's impulse against the contact's.
-    pub isolated: Option<Verdict>,
+/// without a verdict column, a calibration's step: every key null). A world report's summary holds the worst
+/// contact's verdict per assumption in the same keys (`Idealisation<Worst>`).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Idealisation<V = Verdict> {
+    /// The contact takes no time: the bodies' relative travel during it against the smaller radius (in a world: the
+    /// contact time against the flight to the next contact).
+    pub instantaneous: Option<V>,
+    /// No other force acts during the contact: gravity's impulse (and in a world the overlapping contacts') against
+    /// the contact's.
+    pub isolated: Option<V>,
     /// The bodies keep their shape: penetration, contact radius and the surface's turn against the smaller radius.
-    pub particles: Option<Verdict>,
+    pub particles: Option<V>,
     /// The materials stay elastic: the peak Hertz pressure against 1.6 times the smaller yield stress.
-    pub elastic: Option<Verdict>,
+    pub elastic: Option<V>,
     /// The contact is quasi-static: the slowest body's elastic-wave transit against the contact time.
-    pub quasi_static: Option<Verdict>,
-    /// e does not depend on the speed: d ln e / d ln v0 from runs at 0.9 and 1.1 times every velocity.
-    pub constant_e: Option<Verdict>,
+    pub quasi_static: Option<V>,
+    /// e does not depend on the speed: d ln e / d ln v0 from runs at 0.9 and 1.1 times every velocity (in a world:
+    /// from the pair's contacts at other speeds).
+    pub constant_e: Option<V>,
     /// The contact is smooth: the tangential impulse (or friction's work) against the normal one (the energy).
-    pub smooth: Option<Verdict>,
+    pub smooth: Option<V>,
     /// The impact is central: the normal's lever arm about each mass centre against the radius of gyration.
-    pub central: Option<Verdict>,
+    pub central: Option<V>,
 }
 
-impl Idealisation {
+impl<V> Default for Idealisation<V> {
+    fn default() -> Self {
+        Idealisation::from_fn(|_| None)
+    }
+}
+
+impl<V> Idealisation<V> {
+    /// Each key's value from `of(key)`, in the order of the report.
+    pub fn from_fn(mut of: impl FnMut(&'static str) -> Option<V>) -> Self {
+        Idealisation {
+            instantaneous: of("instantaneous"),
+            isolated: of("isolated"),
+            particles: of("particles"),
+            elastic: of("elastic"),
+            quasi_static: of("quasi_static"),
+            constant_e: of("constant_e"),
+            smooth: of("smooth"),
+            central: of("central"),
+        }
+    }
+
     /// The verdicts in the order of the report, with their keys.
-    pub fn entries(&self) -> [(&'static str, Option<&Verdict>); 8] {
+    pub fn entries(&self) -> [(&'static str, Option<&V>); 8] {
         [
             ("instantaneous", self.instantaneous.as_ref()),
             ("isolated", self.isolated.as_ref()),
@@ -71,16 +95,42 @@ impl Idealisation {
 pub const SEVERITY: [&str; 8] =
     ["quasi_static", "particles", "instantaneous", "isolated", "elastic", "constant_e", "smooth", "central"];
 
-impl Idealisation {
+impl<V> Idealisation<V> {
     /// The verdict on the assumption `key` (one of [`SEVERITY`]'s), if measured.
-    pub fn get(&self, key: &str) -> Option<&Verdict> {
+    pub fn get(&self, key: &str) -> Option<&V> {
         self.entries().into_iter().find(|(name, _)| *name == key).and_then(|(_, verdict)| verdict)
     }
+}
 
+impl Idealisation {
     /// The first assumption in the order of [`SEVERITY`] whose verdict is `judgement`, if any.
     pub fn first(&self, judgement: Judgement) -> Option<&'static str> {
         SEVERITY.into_iter().find(|key| self.get(key).is_some_and(|v| v.verdict == judgement))
     }
+}
+
+/// The worst verdict on one assumption over a world's contacts (docs/idealisation.md#in-a-world): the contact's index
+/// and its verdict, with how many contacts it fails in.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Worst {
+    /// The index of the contact (in the world report's `contacts`) whose ratio is the largest in size.
+    pub contact: usize,
+    /// How many contacts the assumption fails in.
+    pub failing: usize,
+    #[serde(flatten)]
+    pub verdict: Verdict,
+}
+
+/// Over each contact's verdicts (in the order of the contacts), the worst per assumption: the largest ratio in size
+/// (a tie keeps the earlier contact).
+pub fn worst(contacts: &[&Idealisation]) -> Idealisation<Worst> {
+    Idealisation::from_fn(|key| {
+        let judged = contacts.iter().enumerate().filter_map(|(k, each)| each.get(key).map(|v| (k, v)));
+        let failing = judged.clone().filter(|(_, v)| v.verdict == Judgement::Fails).count();
+        judged
+            .reduce(|worst, next| if next.1.ratio.abs() > worst.1.ratio.abs() { next } else { worst })
+            .map(|(contact, verdict)| Worst { contact, failing, verdict: verdict.clone() })
+    })
 }
 
 /// One assumption measured: `ratio = value / compared_with`, and a large `ratio` means it fails (`constant_e`'s
@@ -231,7 +281,7 @@ pub struct Lever {
 }
 
 /// The verdicts on the idealisation of one impact between `bodies`, from what it measured.
-pub fn judge(bodies: &[Body; 2], measured: &Measured) -> Idealisation {
+pub fn judge(bodies: [&Body; 2], measured: &Measured) -> Idealisation {
     Idealisation {
         instantaneous: instantaneous(bodies, measured),
         isolated: isolated(bodies, measured),
@@ -242,6 +292,138 @@ pub fn judge(bodies: &[Body; 2], measured: &Measured) -> Idealisation {
         smooth: smooth(bodies, measured),
         central: central(bodies, measured),
     }
+}
+
+/// What a world measured around one of its contacts, beyond the contact's own numbers (docs/idealisation.md#in-a-world).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Surroundings {
+    /// The time from the contact's end to the first touch of the next contact of either movable body, s; `None`
+    /// where there is none (or it began as this one ended): the one-impact measure stands in.
+    pub flight: Option<f64>,
+    /// The world's gravity, m/s².
+    pub gravity: Vector3<f64>,
+    /// Whether gravity presses the contact: a body is immovable, or is held by another contact meanwhile (two free
+    /// bodies fall together, and uniform gravity leaves their relative motion alone).
+    pub held: bool,
+    /// The other contacts on its movable bodies that overlapped it in time: (index, their impulse during the
+    /// overlap, N s, or their whole impulse where the run did not measure the overlap's).
+    pub others: Vec<(usize, f64)>,
+    /// Whether some of `others` are whole impulses (an upper bound), not the overlap's.
+    pub whole: bool,
+    /// The same pair's contacts at other approach speeds, for `constant_e`.
+    pub speeds: Neighbours,
+}
+
+/// The same pair's separated contacts (not pushed, e > 0) at the nearest approach speeds below and above this
+/// contact's: (index, approach speed m/s, e).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Neighbours {
+    pub slower: Option<(usize, f64, f64)>,
+    pub faster: Option<(usize, f64, f64)>,
+    /// Whether the law's damping parameter differs between the contacts compared (a nominal e mapped at each
+    /// contact's own speed: e is then constant by construction).
+    pub remapped: bool,
+}
+
+/// The verdicts on the idealisation of one contact of a world: its own numbers as for one impact, and the world's
+/// time scales and other forces around it.
+pub fn judge_in_world(bodies: [&Body; 2], measured: &Measured, around: &Surroundings) -> Idealisation {
+    Idealisation {
+        instantaneous: match around.flight {
+            Some(flight) => between_flights(measured, flight),
+            None => instantaneous(bodies, measured),
+        },
+        isolated: surrounded(bodies, measured, around),
+        particles: particles(bodies, measured),
+        elastic: elastic(bodies, measured),
+        quasi_static: quasi_static(bodies, measured),
+        constant_e: across_contacts(measured, &around.speeds),
+        smooth: smooth(bodies, measured),
+        central: central(bodies, measured),
+    }
+}
+
+/// The contact time against the flight to the next contact of either body: the idealisation makes the contact an
+/// instant between flights (a bouncing ball: t_c against 2 v / g).
+fn between_flights(measured: &Measured, flight: f64) -> Option<Verdict> {
+    let duration = measured.duration?;
+    verdict(duration, flight, CORRECTION, ("t_c / flight to the next contact", "s"), |ratio| {
+        format!(
+            "the contact lasts {ratio:.3e} of the {flight:.3e} s flight to the next contact of its bodies, which the \
+             idealisation makes an instant between flights: the bodies' motion during the contact (under gravity, or \
+             towards the next contact) is left out in proportion"
+        )
+    })
+}
+
+/// Gravity's impulse along the normal on the heavier movable body, m |g·n| t_c (where gravity presses the contact),
+/// plus the impulses of the other contacts on its bodies during it, against its own impulse.
+fn surrounded(bodies: [&Body; 2], measured: &Measured, around: &Surroundings) -> Option<Verdict> {
+    let duration = measured.duration?;
+    let impulse = measured.deformation_impulse + measured.restitution_impulse?;
+    let mass = bodies.iter().map(|b| b.mass).filter(|m| m.is_finite()).fold(0.0, f64::max);
+    let along = around.gravity.dot(&measured.normal).abs();
+    let gravity = if around.held { mass * along * duration } else { 0.0 };
+    let others: f64 = around.others.iter().map(|(_, j)| j.abs()).sum();
+    verdict(gravity + others, impulse, CORRECTION, ("other impulses / contact impulse", "N s"), |ratio| {
+        let pull = if around.gravity == Vector3::zeros() {
+            "the world has no gravity".to_string()
+        } else if !around.held {
+            "gravity moves both free bodies alike and leaves their relative motion alone".to_string()
+        } else {
+            format!("gravity along the normal ({along:.4} m/s²) gives {:.3e} of it", gravity / impulse)
+        };
+        let contacts = if around.others.is_empty() {
+            "no other contact acts on its bodies meanwhile".to_string()
+        } else {
+            let list: Vec<String> = around.others.iter().map(|(k, _)| k.to_string()).collect();
+            format!(
+                "contact{} {} on the same bodies give{} {:.3e} of it {}",
+                if list.len() > 1 { "s" } else { "" },
+                list.join(", "),
+                if list.len() > 1 { "" } else { "s" },
+                others / impulse,
+                if around.whole { "(whole impulses: an upper bound)" } else { "during the overlap" }
+            )
+        };
+        format!(
+            "other forces add {ratio:.3e} of the contact impulse while it lasts: {pull}; {contacts} — the \
+             idealisation's impact of two bodies alone, with one e, leaves them out"
+        )
+    })
+}
+
+/// d ln e / d ln v0 across the pair's contacts at other speeds: a central difference between the nearest slower and
+/// faster ones, or a one-sided one between this contact and the one there is.
+fn across_contacts(measured: &Measured, speeds: &Neighbours) -> Option<Verdict> {
+    let here = (usize::MAX, measured.approach_speed, measured.restitution.filter(|e| *e > 0.0)?);
+    let (low, high) = match (speeds.slower, speeds.faster) {
+        (Some(slower), Some(faster)) => (slower, faster),
+        (Some(slower), None) => (slower, here),
+        (None, Some(faster)) => (here, faster),
+        (None, None) => return None,
+    };
+    let slope = (high.2 / low.2).ln() / (high.1 / low.1).ln();
+    let name = |c: (usize, f64, f64)| {
+        let which = if c.0 == usize::MAX { "this contact".to_string() } else { format!("contact {}", c.0) };
+        format!("{:.6} at {:.4e} m/s in {which}", c.2, c.1)
+    };
+    verdict(slope, SLOPE_SCALE, SLOPE, ("d ln e / d ln v0", ""), |_| {
+        let change = 100.0 * (2f64.powf(slope) - 1.0);
+        format!(
+            "the pair's e is {} and {}: a slope of {slope:.3e}, so doubling the speed changes e by {change:.2} % — \
+             the idealisation's one e serves {}{}",
+            name(low),
+            name(high),
+            if slope.abs() < SLOPE_SCALE * SLOPE.holds_below { "all these speeds" } else { "one speed only" },
+            if speeds.remapped {
+                " (the law's damping was mapped at each contact's own speed, which holds e by construction: what \
+                 changes it is the world, gravity and other contacts during the contact)"
+            } else {
+                ""
+            }
+        )
+    })
 }
 
 /// A verdict on `value` against `compared_with`; `None` for a measure that is not a finite number.
@@ -265,7 +447,7 @@ fn verdict(
 }
 
 /// The smaller finite radius of the two bodies (a wall's is infinite).
-fn smaller_radius(bodies: &[Body; 2]) -> Option<f64> {
+fn smaller_radius(bodies: [&Body; 2]) -> Option<f64> {
     let radius = bodies[0].radius.min(bodies[1].radius);
     radius.is_finite().then_some(radius)
 }
@@ -281,7 +463,7 @@ fn difference(measured: &Measured) -> String {
 /// Relative travel of the centres during the contact, max(|v2 - v1| before, after) t_c, against the smaller radius:
 /// the one length of a two-body scene the idealisation's single instant and place can be measured against. Relative,
 /// so that the verdict does not change with the observer's frame.
-fn instantaneous(bodies: &[Body; 2], measured: &Measured) -> Option<Verdict> {
+fn instantaneous(bodies: [&Body; 2], measured: &Measured) -> Option<Verdict> {
     let duration = measured.duration?;
     let radius = smaller_radius(bodies)?;
     let [before, after] = [Some(measured.velocities_before), measured.velocities_after]
@@ -301,7 +483,7 @@ fn instantaneous(bodies: &[Body; 2], measured: &Measured) -> Option<Verdict> {
 /// Standard gravity's impulse on the heavier movable body during the contact, m g t_c, against the contact's normal
 /// impulse: a one-impact scene has no gravity, so this is what it would add to a contact that feels it (a body
 /// against a support or a wall; two bodies in free fall together do not feel it).
-fn isolated(bodies: &[Body; 2], measured: &Measured) -> Option<Verdict> {
+fn isolated(bodies: [&Body; 2], measured: &Measured) -> Option<Verdict> {
     let duration = measured.duration?;
     let impulse = measured.deformation_impulse + measured.restitution_impulse?;
     let mass = bodies.iter().map(|b| b.mass).filter(|m| m.is_finite()).fold(0.0, f64::max);
@@ -317,10 +499,10 @@ fn isolated(bodies: &[Body; 2], measured: &Measured) -> Option<Verdict> {
 
 /// The worst of d_max, the contact radius a = sqrt(R* d_max) and the arc R ω t_c the fastest-spinning body's surface
 /// turns through, each against the smaller finite radius R.
-fn particles(bodies: &[Body; 2], measured: &Measured) -> Option<Verdict> {
+fn particles(bodies: [&Body; 2], measured: &Measured) -> Option<Verdict> {
     let radius = smaller_radius(bodies)?;
     let penetration = measured.max_penetration;
-    let contact_radius = (effective_radius(&bodies[0], &bodies[1])? * penetration).sqrt();
+    let contact_radius = (effective_radius(bodies[0], bodies[1])? * penetration).sqrt();
     let spin = |spins: &[Vector3<f64>; 2]| {
         (0..2).filter(|&i| bodies[i].radius.is_finite()).map(|i| spins[i].norm()).fold(0.0, f64::max)
     };
@@ -343,7 +525,7 @@ fn particles(bodies: &[Body; 2], measured: &Measured) -> Option<Verdict> {
 }
 
 /// The peak Hertz pressure p0 = 3 F_max / (2 π a²), a = sqrt(R* d_max), against 1.6 times the smaller yield stress.
-fn elastic(bodies: &[Body; 2], measured: &Measured) -> Option<Verdict> {
+fn elastic(bodies: [&Body; 2], measured: &Measured) -> Option<Verdict> {
     if let Some((pressure, speed)) = measured.yielding {
         return yielding_law(pressure, speed, measured);
     }
@@ -351,7 +533,7 @@ fn elastic(bodies: &[Body; 2], measured: &Measured) -> Option<Verdict> {
     if !yield_stress.is_finite() {
         return None;
     }
-    let area = effective_radius(&bodies[0], &bodies[1])? * measured.max_penetration;
+    let area = effective_radius(bodies[0], bodies[1])? * measured.max_penetration;
     let pressure = 3.0 * measured.max_force / (2.0 * std::f64::consts::PI * area);
     verdict(pressure, YIELD_PRESSURE_FACTOR * yield_stress, YIELD, ("p0 / 1.6 Y", "Pa"), |ratio| {
         if ratio < 1.0 {
@@ -394,7 +576,7 @@ fn yielding_law(pressure: f64, speed: f64, measured: &Measured) -> Option<Verdic
 
 /// The longest elastic-wave transit 2R/c, c = sqrt(E/ρ), of a body with a finite modulus and density, against the
 /// contact time: a contact many transits long loads the body quasi-statically, as Hertz assumes.
-fn quasi_static(bodies: &[Body; 2], measured: &Measured) -> Option<Verdict> {
+fn quasi_static(bodies: [&Body; 2], measured: &Measured) -> Option<Verdict> {
     let duration = measured.duration?;
     let transit = |body: &Body| {
         let young = body.young.filter(|e| e.is_finite())?;
@@ -402,8 +584,10 @@ fn quasi_static(bodies: &[Body; 2], measured: &Measured) -> Option<Verdict> {
         let density = body.density.unwrap_or(body.mass / volume);
         (density.is_finite() && body.radius.is_finite()).then(|| 2.0 * body.radius / (young / density).sqrt())
     };
-    let slowest =
-        bodies.iter().filter_map(transit).fold(None, |worst: Option<f64>, t| Some(worst.map_or(t, |w| w.max(t))))?;
+    let slowest = bodies
+        .into_iter()
+        .filter_map(transit)
+        .fold(None, |worst: Option<f64>, t| Some(worst.map_or(t, |w| w.max(t))))?;
     verdict(slowest, duration, SHAPE, ("2R/c / t_c", "s"), |ratio| {
         format!(
             "an elastic wave crosses the body in {ratio:.3e} of the contact time: below a tenth the body is loaded \
@@ -432,7 +616,7 @@ fn constant_e(measured: &Measured) -> Option<Verdict> {
 
 /// The tangential impulse against the normal one, or friction's work against the kinetic energy before, the larger;
 /// a frictionless contact is smooth (0).
-fn smooth(bodies: &[Body; 2], measured: &Measured) -> Option<Verdict> {
+fn smooth(bodies: [&Body; 2], measured: &Measured) -> Option<Verdict> {
     let normal_impulse = measured.deformation_impulse + measured.restitution_impulse.unwrap_or(0.0);
     if measured.friction == 0.0 {
         return verdict(0.0, normal_impulse, CORRECTION, ("J_t / J_n", "N s"), |_| {
@@ -473,7 +657,7 @@ fn smooth(bodies: &[Body; 2], measured: &Measured) -> Option<Verdict> {
 /// square root of the correction to the particles' m* ([`LEVER`]). A sphere's normal passes through its centre
 /// (b = 0), so every impact of spheres and walls is central. A pivoted body is judged about its pivot: struck
 /// where b = k it meets the normal with its whole mass, elsewhere with I_O/b².
-fn central(bodies: &[Body; 2], measured: &Measured) -> Option<Verdict> {
+fn central(bodies: [&Body; 2], measured: &Measured) -> Option<Verdict> {
     let worst = measured
         .levers
         .iter()

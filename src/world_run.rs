@@ -65,8 +65,8 @@ fn as_one_impact(scene: &WorldScene) -> Result<Option<WorldSimulation>, WorldErr
     if crate::setup::Setup::new(&pair).is_err() {
         return Ok(None);
     }
-    // (A world report has no verdicts on the idealisation: not yet.)
-    let options = crate::impact::Options { idealisation: false, ..crate::impact::Options::default() };
+    // (With the verdicts on the idealisation: the report's contact takes the impact's `constant_e` trial.)
+    let options = crate::impact::Options { idealisation: true, ..crate::impact::Options::default() };
     let simulation = crate::impact::simulate_with(&pair, options).map_err(|error| match error {
         crate::impact::SimulationError::Setup(error) => WorldError::Setup(scene.rename(0, 1, error)),
         crate::impact::SimulationError::Integration(error) => WorldError::Integration(error),

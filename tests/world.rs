@@ -6,6 +6,7 @@
 mod common;
 
 use common::binary::{Scratch, impact};
+use common::hunt_crossley_e;
 use impact::report::world::WorldReport;
 use impact::scene::{Parsed, WorldScene};
 use impact::setup::parse_any;
@@ -131,18 +132,6 @@ fn an_elastic_ball_bounces_back_to_its_drop_height_every_time() {
     let first = &report.contacts[0];
     assert!(relative(first.approach_speed, (2.0 * 9.81 * 0.1f64).sqrt()) < 1e-12);
     assert!(report.energy.balance.abs() < 1e-9, "{:?}", report.energy);
-}
-
-/// The exact e of the Hunt–Crossley family at x = alpha v0: the root in (0, 1/x) of x (1 + e) = ln((1 + x)/(1 - e x))
-/// (docs/references.md#the-hunt-crossley-family), by bisection.
-fn hunt_crossley_e(x: f64) -> f64 {
-    let residual = |e: f64| x * (1.0 + e) - ((1.0 + x) / (1.0 - e * x)).ln();
-    let (mut low, mut high) = (1e-12, (1.0 / x).min(1.0) - 1e-15);
-    for _ in 0..200 {
-        let middle = 0.5 * (low + high);
-        if residual(middle) > 0.0 { low = middle } else { high = middle }
-    }
-    0.5 * (low + high)
 }
 
 /// With a damped contact mapped at each bounce's own speed (Hunt–Crossley, nominal 0.8: x = 1.5 (1 - 0.8) = 0.3 at

@@ -10,7 +10,7 @@
 //! - times of the contact are measured from first contact; the scene time of first contact is given once.
 
 use super::units::{DIGITS, engineering, engineering_digits, plain, plain_digits, prefix_for, short};
-use crate::idealisation::Judgement;
+use crate::idealisation::{Judgement, Verdict};
 use crate::law::{Family, LawKind};
 use crate::report::{InstantaneousReport, Report, Vec3};
 use std::fmt::Write;
@@ -147,39 +147,92 @@ pub(super) fn layout(title: &str, sections: &[Section], notes: &[String]) -> Str
 /// the ratio, the verdict), and under a verdict that is not `holds` its meaning. `None` when the run did not judge
 /// the idealisation (every verdict null).
 fn idealisation(report: &Report) -> Option<Section> {
-    let entries = report.idealisation.entries();
-    if entries.iter().all(|(_, verdict)| verdict.is_none()) {
+    let rows = report.idealisation.entries().map(|(key, verdict)| VerdictRow {
+        key,
+        verdict,
+        place: None,
+        named: None,
+        why_not: why_not_judged(key, report.contact.separated),
+    });
+    verdict_table("the idealisation on trial (docs/idealisation.md)", &rows)
+}
+
+/// One row of a table of verdicts: the assumption, its verdict (and where it was measured: a world's contact), or
+/// why it has none.
+pub(super) struct VerdictRow<'a> {
+    pub key: &'static str,
+    pub verdict: Option<&'a Verdict>,
+    pub place: Option<String>,
+    /// Where, in the line of a meaning ("contact 3").
+    pub named: Option<String>,
+    pub why_not: &'static str,
+}
+
+/// A table of verdicts titled `title`: per row what is measured, where (when a row says), its value against its
+/// scale, the ratio and the verdict, and under a verdict that is not `holds` its meaning. `None` when no row has a
+/// verdict.
+pub(super) fn verdict_table(title: &str, rows: &[VerdictRow]) -> Option<Section> {
+    if rows.iter().all(|row| row.verdict.is_none()) {
         return None;
     }
-    let cells: Vec<_> = entries
+    let placed = rows.iter().any(|row| row.place.is_some());
+    let cells: Vec<Vec<String>> = rows
         .iter()
-        .map(|(key, verdict)| match verdict {
-            Some(v) => [
-                v.measure.to_string(),
-                // (A value below NOISE of its scale is rounding: a slope of 1e-15 is 0.)
-                format!(
-                    "{} vs {}",
-                    engineering_digits(denoise(v.value, v.compared_with), v.unit, 3),
-                    engineering_digits(v.compared_with, v.unit, 3)
-                ),
-                ratio(denoise(v.ratio, 1.0)),
-                v.verdict.name().to_string(),
-            ],
-            None => [why_not_judged(key, report.contact.separated).into(), String::new(), "n/a".into(), String::new()],
+        .map(|row| {
+            let mut cells = match row.verdict {
+                Some(v) => vec![
+                    v.measure.to_string(),
+                    // (A value below NOISE of its scale is rounding: a slope of 1e-15 is 0.)
+                    format!(
+                        "{} vs {}",
+                        engineering_digits(denoise(v.value, v.compared_with), v.unit, 3),
+                        engineering_digits(v.compared_with, v.unit, 3)
+                    ),
+                    ratio(denoise(v.ratio, 1.0)),
+                    v.verdict.name().to_string(),
+                ],
+                None => vec![row.why_not.into(), String::new(), "n/a".into(), String::new()],
+            };
+            if placed {
+                cells.insert(
+                    1,
+                    if row.verdict.is_some() { row.place.clone().unwrap_or_default() } else { String::new() },
+                );
+            }
+            cells
         })
         .collect();
-    let header = ["measured".to_string(), "value vs compared with".into(), "ratio".into(), "verdict".into()];
-    let widths: Vec<usize> =
-        (0..3).map(|i| cells.iter().chain([&header]).map(|c| c[i].chars().count()).max().unwrap_or(0)).collect();
-    let line = |c: &[String; 4]| {
-        format!("{:<w0$}  {:<w1$}  {:>w2$}  {}", c[0], c[1], c[2], c[3], w0 = widths[0], w1 = widths[1], w2 = widths[2])
+    let mut header: Vec<String> =
+        ["measured", "value vs compared with", "ratio", "verdict"].into_iter().map(String::from).collect();
+    if placed {
+        header.insert(1, "worst".into());
+    }
+    let columns = header.len();
+    let widths: Vec<usize> = (0..columns - 1)
+        .map(|i| cells.iter().chain([&header]).map(|c| c[i].chars().count()).max().unwrap_or(0))
+        .collect();
+    let line = |c: &[String]| {
+        let mut text = String::new();
+        for (i, cell) in c.iter().enumerate() {
+            let pad = widths.get(i).map_or(0, |w| w.saturating_sub(cell.chars().count()));
+            // The ratio column (the one before the verdict) aligns right; the others left.
+            if i == columns - 2 {
+                text += &format!("{}{cell}  ", " ".repeat(pad));
+            } else if i == columns - 1 {
+                text += cell;
+            } else {
+                text += &format!("{cell}{}  ", " ".repeat(pad));
+            }
+        }
+        text
     };
-    let mut section = Section::new("the idealisation on trial (docs/idealisation.md)");
+    let mut section = Section::new(title);
     section.row("assumption", line(&header));
-    for ((key, verdict), cell) in entries.iter().zip(&cells) {
-        section.row(*key, line(cell));
-        if let Some(v) = verdict.filter(|v| v.verdict != Judgement::Holds) {
-            section.heading(format!("  {key} {}: {}", v.verdict.name(), v.meaning));
+    for (row, cell) in rows.iter().zip(&cells) {
+        section.row(row.key, line(cell));
+        if let Some(v) = row.verdict.filter(|v| v.verdict != Judgement::Holds) {
+            let place = row.named.as_ref().map_or(String::new(), |p| format!(", {p}"));
+            section.heading(format!("  {} {}{place}: {}", row.key, v.verdict.name(), v.meaning));
         }
     }
     Some(section)

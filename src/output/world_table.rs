@@ -2,7 +2,7 @@
 //! end, the energy balance, and the sequential instantaneous model beside the simulation. Every number comes from the
 //! [`WorldReport`].
 
-use super::table::{Section, layout};
+use super::table::{Section, VerdictRow, layout, verdict_table};
 use super::units::{engineering, plain, plain_digits, short};
 use crate::report::Vec3;
 use crate::report::world::{SequentialModel, WorldContact, WorldReport};
@@ -31,13 +31,42 @@ fn each_shown(section: &mut Section, count: usize, mut row: impl FnMut(&mut Sect
 
 /// The report as aligned text.
 pub fn render(report: &WorldReport) -> String {
-    let mut sections = vec![world(report)];
+    let mut sections: Vec<Section> = idealisation(report).into_iter().collect();
+    sections.push(world(report));
     sections.push(contacts(report));
     sections.push(bodies(report));
     sections.push(energy(report));
     sections.push(sequential(report));
     sections.push(solver(report));
     layout(&report.title, &sections, &report.notes)
+}
+
+/// The worst verdict over the contacts on each assumption, first (docs/idealisation.md#in-a-world): which contact,
+/// in how many it fails, and the meaning of a verdict that is not `holds`.
+fn idealisation(report: &WorldReport) -> Option<Section> {
+    let count = report.contacts.len();
+    let rows = report.idealisation.entries().map(|(key, worst)| VerdictRow {
+        key,
+        verdict: worst.map(|w| &w.verdict),
+        place: worst.map(|w| match w.failing {
+            0 => format!("contact {}", w.contact),
+            failing => format!("contact {} (fails in {failing} of {count})", w.contact),
+        }),
+        named: worst.map(|w| format!("contact {}", w.contact)),
+        why_not: why_not_judged(key),
+    });
+    verdict_table("the idealisation on trial, the worst contact of each (docs/idealisation.md#in-a-world)", &rows)
+}
+
+/// Why no contact of a world has a verdict on an assumption (docs/idealisation.md#in-a-world).
+fn why_not_judged(key: &str) -> &'static str {
+    match key {
+        "elastic" => "no body has a finite yield_stress",
+        "quasi_static" => "no body with young and a density, or no contact ended",
+        "constant_e" => "no pair has contacts at two approach speeds with an e",
+        "instantaneous" | "isolated" | "smooth" => "no contact ended",
+        _ => "does not apply",
+    }
 }
 
 fn vector(v: &Vec3, unit: &str) -> String {

@@ -217,13 +217,13 @@ pub fn build(
     };
     if let Some(trial) = trial {
         let measured = measured_by(&report, scene.contact.friction, trial, levers(scene, setup));
-        report.idealisation = idealisation::judge(&scene.bodies, &measured);
+        report.idealisation = idealisation::judge(scene.bodies.each_ref(), &measured);
     }
     report
 }
 
 /// What the verdicts on the idealisation read: the report's own numbers.
-fn measured_by(
+pub(super) fn measured_by(
     report: &Report,
     friction: f64,
     speed_trial: SpeedTrial,

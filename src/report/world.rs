@@ -3,6 +3,7 @@
 //! model beside the simulation. Built here, from the driver's outcome alone.
 
 use super::{Vec3, maybe_infinite};
+use crate::idealisation::{self, Idealisation, Measured, Neighbours, SpeedTrial, Surroundings, Worst};
 use crate::law::Separation;
 use crate::scene::{DampingSpec, WorldScene};
 use crate::world::record::{Compression, ContactRecord, WorldOutcome};
@@ -15,6 +16,9 @@ use serde::Serialize;
 pub struct WorldReport {
     pub title: String,
     pub world: WorldSection,
+    /// The worst verdict over the contacts on each assumption of the instantaneous impact, with its contact's index
+    /// (docs/idealisation.md#in-a-world); null where no contact was judged on it.
+    pub idealisation: Idealisation<Worst>,
     /// Every contact, in order of first touch.
     pub contacts: Vec<WorldContact>,
     pub bodies: Vec<WorldBody>,
@@ -104,6 +108,8 @@ pub struct WorldContact {
     pub angular_velocities_before: [Vec3; 2],
     /// [ω_i, ω_j] at separation, rad/s (an addition).
     pub angular_velocities_after: Option<[Vec3; 2]>,
+    /// The verdicts on the idealisation of this contact (docs/idealisation.md#in-a-world).
+    pub idealisation: Idealisation,
 }
 
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -179,7 +185,11 @@ fn vec3(v: &Vector3<f64>) -> Vec3 {
 
 /// The report of a world run.
 pub fn build(scene: &WorldScene, outcome: &WorldOutcome, wall_time: f64) -> WorldReport {
-    let contacts: Vec<WorldContact> = outcome.contacts.iter().map(contact).collect();
+    let mut contacts: Vec<WorldContact> = outcome.contacts.iter().map(contact).collect();
+    let verdicts = judge_all(scene, outcome, &contacts);
+    for (contact, verdicts) in contacts.iter_mut().zip(verdicts) {
+        contact.idealisation = verdicts;
+    }
     let bodies = scene
         .bodies
         .iter()
@@ -256,6 +266,7 @@ pub fn build(scene: &WorldScene, outcome: &WorldOutcome, wall_time: f64) -> Worl
             contacts: contacts.len(),
             damping_map: scene.world.damping_map.name(),
         },
+        idealisation: idealisation::worst(&contacts.iter().map(|c| &c.idealisation).collect::<Vec<_>>()),
         contacts,
         bodies,
         energy: energy(scene, outcome),
@@ -331,6 +342,140 @@ fn contact(record: &ContactRecord) -> WorldContact {
         slip_rest_time: record.slip_rest.map(|at| at - record.start_time),
         angular_velocities_before: [vec3(&record.spins_before[0]), vec3(&record.spins_before[1])],
         angular_velocities_after: end.map(|e| [vec3(&e.spins[0]), vec3(&e.spins[1])]),
+        idealisation: Idealisation::default(),
+    }
+}
+
+/// Each contact's verdicts on the idealisation: its own numbers (`contacts`, built from the records) and what the run
+/// measured around it — the flight to its bodies' next contact, gravity, the contacts overlapping it, the pair's
+/// contacts at other speeds. Arithmetic on the records, O(n log n) in the number of contacts: nothing runs again.
+fn judge_all(scene: &WorldScene, outcome: &WorldOutcome, contacts: &[WorldContact]) -> Vec<Idealisation> {
+    // Each body's contacts, in order of first touch (the records' order).
+    let mut of_body: Vec<Vec<usize>> = vec![Vec::new(); scene.bodies.len()];
+    // Each pair's contacts with an e, by approach speed: (speed, index, e).
+    let mut of_pair: std::collections::HashMap<[usize; 2], Vec<(f64, usize, f64)>> = Default::default();
+    for (k, (record, c)) in outcome.contacts.iter().zip(contacts).enumerate() {
+        let [i, j] = record.bodies;
+        of_body[i].push(k);
+        of_body[j].push(k);
+        if let Some(e) = c.restitution_velocity_ratio.filter(|e| *e > 0.0) {
+            of_pair.entry([i.min(j), i.max(j)]).or_default().push((c.approach_speed, k, e));
+        }
+    }
+    for speeds in of_pair.values_mut() {
+        speeds.sort_by(|a, b| a.0.total_cmp(&b.0));
+    }
+    (0..contacts.len())
+        .map(|k| {
+            let [i, j] = outcome.contacts[k].bodies;
+            let movable: Vec<usize> = [i, j].into_iter().filter(|&b| !scene.bodies[b].is_immovable()).collect();
+            let pair = of_pair.get(&[i.min(j), i.max(j)]).map_or(&[][..], |p| p.as_slice());
+            judge(scene, outcome, contacts, k, &movable, |b| &of_body[b], pair)
+        })
+        .collect()
+}
+
+/// Contact `k`'s verdicts, its `movable` bodies' contacts given by `of_body`, its pair's contacts with an e (by
+/// approach speed) in `pair`.
+fn judge<'a>(
+    scene: &WorldScene,
+    outcome: &WorldOutcome,
+    contacts: &[WorldContact],
+    k: usize,
+    movable: &[usize],
+    of_body: impl Fn(usize) -> &'a [usize],
+    pair: &[(f64, usize, f64)],
+) -> Idealisation {
+    let (record, c) = (&outcome.contacts[k], &contacts[k]);
+    let [i, j] = record.bodies;
+    let bodies = [&scene.bodies[i], &scene.bodies[j]];
+    // The first touch of a movable body of the pair after this contact ends (a body's contacts are in order of
+    // first touch).
+    let flight = c.end_time.and_then(|end| {
+        let next = movable
+            .iter()
+            .filter_map(|&b| {
+                let list = of_body(b);
+                let at = list.partition_point(|&m| outcome.contacts[m].start_time < end);
+                list[at..].iter().find(|&&m| m != k).map(|&m| outcome.contacts[m].start_time)
+            })
+            .fold(f64::INFINITY, f64::min);
+        Some(next - end).filter(|flight| flight.is_finite() && *flight > 0.0)
+    });
+    let shares = |other: &ContactRecord| other.bodies.iter().any(|b| movable.contains(b));
+    let mut whole = false;
+    let others: Vec<(usize, f64)> = record
+        .overlapping
+        .iter()
+        .filter(|&&m| shares(&outcome.contacts[m]))
+        .map(|&m| {
+            let during = record.overlap_impulses.get(&m).copied();
+            whole |= during.is_none();
+            let other = &outcome.contacts[m];
+            let total = other.end.map(|e| e.impulse).or(other.at_stop.map(|s| s.impulse)).unwrap_or(0.0);
+            (m, during.unwrap_or(total))
+        })
+        .collect();
+    let held = bodies.iter().any(|b| b.is_immovable()) || !others.is_empty();
+    // The pair's contacts with an e at the nearest approach speeds below and above this one's.
+    let here = c.approach_speed;
+    let below = pair.partition_point(|p| p.0 < here * (1.0 - 1e-9));
+    let above = pair.partition_point(|p| p.0 <= here * (1.0 + 1e-9));
+    let entry = |p: &(f64, usize, f64)| (p.1, p.0, p.2);
+    let mut speeds = Neighbours {
+        slower: below.checked_sub(1).map(|b| entry(&pair[b])),
+        faster: pair.get(above).map(entry),
+        remapped: false,
+    };
+    let damping = |m: usize| outcome.contacts[m].law.damping;
+    speeds.remapped = [speeds.slower, speeds.faster].iter().flatten().any(|s| damping(s.0) != record.law.damping);
+    let around = Surroundings { flight, gravity: scene.world.gravity, held, others, whole, speeds };
+    idealisation::judge_in_world(bodies, &measured(scene, record, c), &around)
+}
+
+/// What the verdicts read of one contact of a world: its report values, and the pair's kinetic energy at first touch.
+fn measured(scene: &WorldScene, record: &ContactRecord, c: &WorldContact) -> Measured {
+    let [i, j] = record.bodies;
+    let (a, b) = (&scene.bodies[i], &scene.bodies[j]);
+    let kinetic = |body: &crate::body::Body, k: usize| {
+        if body.is_immovable() {
+            0.0
+        } else {
+            body.kinetic_energy(&record.velocities_before[k], &record.spins_before[k])
+        }
+    };
+    let pair = |v: &[Vec3; 2]| [Vector3::from(v[0]), Vector3::from(v[1])];
+    // A yielding law (`thornton`): its yield pressure, and the yield speed its yield penetration gives this pair.
+    let yielding = record.law.yields().then(|| {
+        let (spec, _) = scene.contact_of(i, j);
+        let pressure = crate::setup::yield_pressure(spec, [a, b])?;
+        let mass = crate::geometry::effective_mass(a, b)?;
+        let length =
+            crate::scales::Scales::new(mass, record.law.stiffness, record.law.exponent, c.approach_speed).length;
+        let speed = crate::reference::thornton_yield_speed(record.law.yield_penetration / length) * c.approach_speed;
+        Some((pressure, speed))
+    });
+    Measured {
+        duration: c.duration,
+        max_penetration: c.max_penetration,
+        max_force: c.max_force,
+        deformation_impulse: c.deformation_impulse,
+        restitution_impulse: c.restitution_impulse,
+        restitution: c.restitution_velocity_ratio,
+        normal: record.normal,
+        velocities_before: record.velocities_before,
+        velocities_after: c.velocities_after.as_ref().map(pair),
+        spins_before: record.spins_before,
+        spins_after: c.angular_velocities_after.as_ref().map(pair),
+        friction: record.friction,
+        friction_work: Some(c.friction_work),
+        kinetic_before: kinetic(a, 0) + kinetic(b, 1),
+        approach_speed: c.approach_speed,
+        max_velocity_difference: None,
+        speed_trial: SpeedTrial { slower: None, faster: None },
+        yielding: yielding.flatten(),
+        // (A world refuses eccentric bodies: every body of a world is central.)
+        levers: [None, None],
     }
 }
 
@@ -446,7 +591,9 @@ pub fn from_impact(scene: &WorldScene, impact: &super::Report) -> WorldReport {
             };
             [spin(0), spin(1)]
         }),
+        idealisation: Idealisation::default(),
     };
+    let contact = WorldContact { idealisation: one_impact_verdicts(scene, impact), ..contact };
     let bodies = scene
         .bodies
         .iter()
@@ -490,6 +637,7 @@ pub fn from_impact(scene: &WorldScene, impact: &super::Report) -> WorldReport {
             contacts: 1,
             damping_map: scene.world.damping_map.name(),
         },
+        idealisation: idealisation::worst(&[&contact.idealisation]),
         contacts: vec![contact],
         bodies,
         energy: WorldEnergy {
@@ -516,4 +664,22 @@ pub fn from_impact(scene: &WorldScene, impact: &super::Report) -> WorldReport {
         },
         notes: impact.notes.clone(),
     }
+}
+
+/// The verdicts on the one contact of a world of two bodies without gravity, run as one impact: the world's measures
+/// (no gravity, no other contact, no next contact: the relative travel against the radius), and the impact's own
+/// `constant_e` trial (its two runs at 0.9 and 1.1 times the speed; the pair has no other contact to compare with).
+fn one_impact_verdicts(scene: &WorldScene, impact: &super::Report) -> Idealisation {
+    let bodies = [&scene.bodies[0], &scene.bodies[1]];
+    let measured = super::build::measured_by(impact, 0.0, SpeedTrial { slower: None, faster: None }, [None, None]);
+    let around = Surroundings {
+        flight: None,
+        gravity: Vector3::zeros(),
+        held: bodies.iter().any(|b| b.is_immovable()),
+        others: Vec::new(),
+        whole: false,
+        speeds: Neighbours::default(),
+    };
+    let verdicts = idealisation::judge_in_world(bodies, &measured, &around);
+    Idealisation { constant_e: impact.idealisation.constant_e.clone(), ..verdicts }
 }

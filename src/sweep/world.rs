@@ -29,7 +29,7 @@ const DEFAULT_COLUMNS: [&str; 7] = [
 ];
 
 /// The report's sections a column may start with.
-const SECTIONS: [&str; 7] = ["world", "contacts", "bodies", "energy", "sequential", "solver", "title"];
+const SECTIONS: [&str; 8] = ["world", "idealisation", "contacts", "bodies", "energy", "sequential", "solver", "title"];
 
 /// A world scene's sweep: the scene document, the varied keys and their values, the columns.
 #[derive(Debug, Clone)]

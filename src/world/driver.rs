@@ -121,6 +121,9 @@ struct World<'a> {
     units: Option<Units>,
     /// The damping-map speed of each pair's first contact (first-contact maps).
     first_speeds: std::collections::HashMap<[usize; 2], f64>,
+    /// For two overlapping contacts [later, earlier]: the earlier one's impulse when the later began, N s (what it gave
+    /// during their overlap is its impulse at the end of the overlap less this).
+    overlap_marks: std::collections::HashMap<[usize; 2], f64>,
     /// The pairs that touched without their gap ever opening since the last segment began: their contact would begin
     /// pushed (for contacts taken at a segment's end).
     pressed: BTreeSet<[usize; 2]>,
@@ -163,6 +166,7 @@ impl<'a> World<'a> {
             records: Vec::new(),
             units: None,
             first_speeds: Default::default(),
+            overlap_marks: Default::default(),
             pressed: BTreeSet::new(),
             ended: 0,
             immovable_work: 0.0,
@@ -516,6 +520,7 @@ impl<'a> World<'a> {
         for other in &self.active {
             overlapping.insert(other.record);
             self.records[other.record].overlapping.insert(index);
+            self.overlap_marks.insert([index, other.record], other.impulse);
         }
         self.records.push(ContactRecord {
             bodies: [i, j],
@@ -537,6 +542,7 @@ impl<'a> World<'a> {
             end: None,
             at_stop: None,
             overlapping,
+            overlap_impulses: Default::default(),
         });
         // A yielding contact ends where its force returns to zero, at its dent.
         let on_force = (spec.separation == Separation::Force && law.kind.can_turn_tensile()) || law.yields();
@@ -1092,6 +1098,9 @@ impl<'a> World<'a> {
     /// stored (J; `None`: none, or for a contact ended by its force the energy at its force's zero).
     fn end_contact(&mut self, c: usize, rate: f64, stored: Option<f64>) -> Result<(), WorldError> {
         let contact = self.active.remove(c);
+        for other in 0..self.active.len() {
+            self.close_overlap(&contact, other);
+        }
         let [i, j] = contact.pair;
         let record = &mut self.records[contact.record];
         let relative = self.states[j].position - self.states[i].position;
@@ -1133,8 +1142,28 @@ impl<'a> World<'a> {
         Ok(())
     }
 
+    /// Records what contact `ended` and the active contact `other` gave each other during their overlap, which ends
+    /// now (their integrals current): each one's impulse now less its impulse when the later of them began.
+    fn close_overlap(&mut self, ended: &ActiveContact, other: usize) {
+        let other = &self.active[other];
+        let (a, b) = (ended.record, other.record);
+        let mark = |later: usize, earlier: usize| self.overlap_marks.get(&[later, earlier]).copied().unwrap_or(0.0);
+        let (from_other, from_ended) = (other.impulse - mark(a, b), ended.impulse - mark(b, a));
+        self.records[a].overlap_impulses.insert(b, from_other);
+        self.records[b].overlap_impulses.insert(a, from_ended);
+        self.overlap_marks.remove(&[a, b]);
+        self.overlap_marks.remove(&[b, a]);
+    }
+
     /// The outcome, with the contacts still active when the run stopped closed at their current values.
     fn finish(mut self) -> WorldOutcome {
+        // (The overlaps of contacts still active close at the stop.)
+        for first in 0..self.active.len() {
+            let ended = self.active[first].clone();
+            for second in first + 1..self.active.len() {
+                self.close_overlap(&ended, second);
+            }
+        }
         let units = self.units.or_else(|| {
             self.active.first().map(|c| {
                 let (a, b) = (&self.scene.bodies[c.pair[0]], &self.scene.bodies[c.pair[1]]);

@@ -4,7 +4,7 @@ use super::flight::Kinematic;
 use crate::integrate::Counters;
 use crate::law::{ContactLaw, Separation};
 use nalgebra::Vector3;
-use std::collections::BTreeSet;
+use std::collections::{BTreeMap, BTreeSet};
 
 /// One contact as it happened.
 #[derive(Debug, Clone, PartialEq)]
@@ -51,6 +51,9 @@ pub struct ContactRecord {
     pub at_stop: Option<Stop>,
     /// Indices of the other contacts active at some time during this one.
     pub overlapping: BTreeSet<usize>,
+    /// The impulse (N s) each overlapping contact gave during its overlap with this one: its ∫ Fn dt from the later
+    /// of the two first touches to the earlier of the two ends (or the run's stop), keyed by its index.
+    pub overlap_impulses: BTreeMap<usize, f64>,
 }
 
 /// A contact still active when the run stopped, as it stood then (SI).

@@ -41,3 +41,15 @@ pub fn assert_close(what: &str, simulated: f64, exact: f64, tolerance: f64) {
         "{what}: simulated {simulated:.15e}, exact {exact:.15e}, relative error {error:.2e} > {tolerance:.0e}"
     );
 }
+
+/// The exact e of the Hunt–Crossley family at x = alpha v0: the root in (0, 1/x) of x (1 + e) = ln((1 + x)/(1 - e x))
+/// (docs/references.md#the-hunt-crossley-family), by bisection.
+pub fn hunt_crossley_e(x: f64) -> f64 {
+    let residual = |e: f64| x * (1.0 + e) - ((1.0 + x) / (1.0 - e * x)).ln();
+    let (mut low, mut high) = (1e-12, (1.0 / x).min(1.0) - 1e-15);
+    for _ in 0..200 {
+        let middle = 0.5 * (low + high);
+        if residual(middle) > 0.0 { low = middle } else { high = middle }
+    }
+    0.5 * (low + high)
+}
