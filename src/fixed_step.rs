@@ -162,8 +162,9 @@ impl Contact {
         let limit = TIME_LIMIT * scales.time;
         let max_steps = ((limit / dt).ceil().max(1.0) as u64).min(MAX_STEPS);
         let mut at = Point {
-            time: -phase * dt,
-            penetration: -phase * dt * v0,
+            // (0 - x, not -x: a phase of 0 starts at +0, as a history shows it.)
+            time: 0.0 - phase * dt,
+            penetration: 0.0 - phase * dt * v0,
             rate: v0,
             impulse: 0.0,
             work: 0.0,

@@ -254,6 +254,23 @@ fn the_report_shows_the_scheme_and_the_continuous_e() {
     assert!(json.contains("\"restitution_continuous\": 0.83"), "{json}");
 }
 
+/// A history of a fixed-step run is the scheme's step boundaries, from the touch to the step that ends the contact,
+/// with the forces the scheme computed: its largest is the report's peak force.
+#[test]
+fn the_history_is_the_schemes_steps() {
+    let text =
+        scene_text("law = \"hunt-crossley\"\nstiffness = 1e7\nrestitution = 0.8", "method = \"verlet\"\ndt = 1e-4");
+    let scene = Scene::parse(&text, Path::new("history.toml")).unwrap();
+    let simulation = impact::impact::simulate(&scene, impact::history::Recording::Steps).unwrap();
+    let history = simulation.history.expect("a history");
+    let report = simulation.report;
+    assert_eq!(history.samples.len() as u64, report.solver.steps + 1);
+    let largest = history.samples.iter().map(|s| s.force).fold(0.0, f64::max);
+    assert_eq!(largest, report.contact.max_force);
+    let last = history.samples.last().unwrap();
+    assert_eq!((last.time, last.force), (report.contact.duration.unwrap(), 0.0));
+}
+
 /// Every law runs through the scheme without a special case (Thornton's yielding law, Tsuji and Brilliantov under
 /// a force separation), giving an e near the accurate one at a fine step.
 #[test]
@@ -309,4 +326,25 @@ fn bad_steps_and_scenes_are_refused_naming_the_key() {
         assert!(message.contains(&format!("key `{key}`")) && message.contains("line "), "{name}: {message}");
         assert!(message.contains(words), "{name}: {message}");
     }
+}
+
+/// `solver.dt` is a sweep key: e against the step, each row the scheme's.
+#[test]
+fn a_sweep_varies_the_step() {
+    let scratch = Scratch::new("sweep");
+    let text = scene_text("law = \"kelvin-voigt\"\nstiffness = 1e4\ndamping = 25.0", "method = \"verlet\"\ndt = 1e-4");
+    let path = scratch.scene("kv.toml", &text);
+    let output = impact(scratch.path(), &["sweep", &path, "--vary", "solver.dt=1e-5:1e-3:3:log", "--out", "dt.csv"]);
+    assert_eq!(output.status.code(), Some(0), "{}", stderr(&output));
+    let csv = scratch.read("dt.csv");
+    let header: Vec<&str> = csv.lines().next().unwrap().split(',').collect();
+    let column = header.iter().position(|name| *name == "restitution_velocity_ratio").unwrap();
+    let e: Vec<f64> = csv.lines().skip(1).map(|row| row.split(',').nth(column).unwrap().parse().unwrap()).collect();
+    assert_eq!(e.len(), 3, "{csv}");
+    // Larger steps move e further from the accurate one (first order).
+    let accurate = run("law = \"kelvin-voigt\"\nstiffness = 1e4\ndamping = 25.0", "method = \"dop853\"")
+        .contact
+        .restitution_velocity_ratio
+        .unwrap();
+    assert!((e[0] - accurate).abs() < (e[2] - accurate).abs(), "{e:?} against {accurate}");
 }
