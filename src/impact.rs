@@ -11,12 +11,13 @@ use crate::dynamics::normal::NormalContact;
 use crate::dynamics::pair::PairContact;
 use crate::dynamics::rigid::RigidContact;
 use crate::fast::Quantities;
+use crate::fixed_step;
 use crate::history::{History, Recording};
 use crate::idealisation::{SPEED_STEP, SpeedTrial};
 use crate::integrate::{
     Counters, Crossing, Direction, Ending, Event, IntegrationError, Scheme, State, Stepper, Tolerances,
 };
-use crate::outcome::{Outcome, SETTLED, TIME_LIMIT, stiffness_causes};
+use crate::outcome::{FixedStepOutcome, Outcome, SETTLED, TIME_LIMIT, stiffness_causes};
 use crate::report::Report;
 use crate::report::accuracy::ReferenceDetail;
 use crate::scene::SetupError;
@@ -131,6 +132,9 @@ fn through_phases(
 ) -> Result<(Outcome, Option<History>), SimulationError> {
     let setup = *setup;
     let method = scene.solver.method;
+    if let Some(scheme) = fixed_scheme(method) {
+        return fixed_step_outcome(scheme, scene, &setup, recording);
+    }
     let covered = setup.motion == Motion::Normal && crate::fast::covers(&setup.law);
     if method == Method::Taylor && !covered {
         return Err(SimulationError::Setup(SetupError {
@@ -154,7 +158,7 @@ fn through_phases(
     let fast = match method {
         Method::Taylor => true,
         Method::Auto => covered && recording == Recording::Off,
-        Method::Dop853 | Method::Dopri5 => false,
+        Method::Dop853 | Method::Dopri5 | Method::Verlet | Method::SymplecticEuler => false,
     };
     let normal = NormalContact::new(&scene.bodies, &setup);
     if fast {
@@ -320,6 +324,7 @@ fn run<const N: usize, M: ContactModel<N>>(
         method: scheme.name(),
         restitution: None,
         note: None,
+        fixed_step: None,
     };
     let history = match recording {
         Recording::Off => None,
@@ -387,7 +392,130 @@ fn fast_outcome(
         method: "taylor",
         restitution: Some((fast.restitution_impulse * s.impulse, fast.restitution_work * s.energy)),
         note,
+        fixed_step: None,
     })
+}
+
+/// The fixed-step scheme a method names.
+fn fixed_scheme(method: Method) -> Option<fixed_step::Scheme> {
+    match method {
+        Method::Verlet => Some(fixed_step::Scheme::Verlet),
+        Method::SymplecticEuler => Some(fixed_step::Scheme::SymplecticEuler),
+        Method::Auto | Method::Dop853 | Method::Dopri5 | Method::Taylor => None,
+    }
+}
+
+/// The normal impact through a peer code's fixed-step scheme ([`crate::fixed_step`], the touch on a step
+/// boundary), as an [`Outcome`] of the normal model's snapshots, with the accurate path's e beside it. The accurate
+/// path runs first: its contact duration bounds the step (`solver.dt`).
+fn fixed_step_outcome(
+    scheme: fixed_step::Scheme,
+    scene: &Scene,
+    setup: &Setup,
+    recording: Recording,
+) -> Result<(Outcome, Option<History>), SimulationError> {
+    use crate::dynamics::normal::{SIZE, index};
+    let refuse = |key: &str, message: String| SimulationError::Setup(SetupError { key: key.into(), message });
+    if setup.motion != Motion::Normal {
+        // (Setup::new refuses it already, naming the same key.)
+        return Err(refuse("solver.method", format!("method = \"{}\" runs the normal contact only", scheme.name())));
+    }
+    let Some(dt) = scene.solver.dt else {
+        return Err(refuse("solver.dt", format!("method = \"{}\" needs its time step `dt` (s)", scheme.name())));
+    };
+    let mut accurate = scene.clone();
+    accurate.solver.method = Method::Auto;
+    accurate.solver.dt = None;
+    let (continuous, _) = through_phases(&accurate, setup, Recording::Off, Quantities::ALL)?;
+    let duration = continuous.end.time;
+    if dt > duration {
+        let how = if continuous.separated {
+            "by the accurate path"
+        } else {
+            "until the accurate path stopped: the bodies did not part"
+        };
+        return Err(refuse(
+            "solver.dt",
+            format!(
+                "dt = {dt:e} s is larger than the contact's duration {duration:.6e} s ({how}): a fixed-step scheme \
+                 needs steps inside the contact (DEM codes take dt below a tenth, usually a fiftieth, of it)"
+            ),
+        ));
+    }
+    let contact = fixed_step::Contact {
+        law: setup.law,
+        mass: setup.effective_mass,
+        speed: setup.approach_speed,
+        separation: scene.contact.separation,
+    };
+    let mut points = (recording != Recording::Off).then(Vec::new);
+    let run = contact.run(scheme, dt, 0.0, points.as_mut());
+    let model = NormalContact::new(&scene.bodies, setup);
+    let s = &setup.scales;
+    let law = &setup.law;
+    let state = |p: &fixed_step::Point| {
+        let mut y = State::<SIZE>::zeros();
+        y[index::PENETRATION] = p.penetration / s.length;
+        y[index::RATE] = p.rate / s.speed;
+        y[index::IMPULSE] = p.impulse / s.impulse;
+        y[index::WORK] = p.work / s.energy;
+        y[index::DISSIPATED] =
+            if law.yields() { p.deepest / s.length } else { p.dissipated / (s.energy * model.dissipation_scale) };
+        y
+    };
+    let snapshot = |p: &fixed_step::Point| {
+        let elastic = law.elastic_energy_after(p.penetration, p.deepest);
+        let mut snapshot = model.snapshot_with(p.time / s.time, &state(p), p.force, elastic);
+        if law.yields() {
+            snapshot.dissipated_normal = snapshot.normal_work - elastic;
+        }
+        snapshot
+    };
+    let ending = match run.ending {
+        fixed_step::Ending::Separated => Ending::Event(0),
+        fixed_step::Ending::Settled => Ending::Event(1),
+        fixed_step::Ending::TimeLimit => Ending::TimeLimit,
+        fixed_step::Ending::Diverged => Ending::GaveUp(format!(
+            "the {} scheme diverged: dt = {dt:e} s is beyond its stability limit for this contact",
+            scheme.name()
+        )),
+    };
+    let max_compression = run.max_compression.time / s.time;
+    let history = points.map(|points| {
+        let chosen: Vec<&fixed_step::Point> = match recording {
+            Recording::Uniform(count) if count >= 2 && points.len() > count => {
+                (0..count).map(|i| &points[(i * (points.len() - 1) + (count - 1) / 2) / (count - 1)]).collect()
+            }
+            _ => points.iter().collect(),
+        };
+        let states: Vec<(f64, State<SIZE>)> = chosen.iter().map(|p| (p.time / s.time, state(p))).collect();
+        let mut history = History::new(&states, &model, max_compression, setup.contact_time);
+        // The force the scheme computed there (Verlet's at the half-step velocity; zero once the contact is over),
+        // as the report's peak force is.
+        for (sample, point) in history.samples.iter_mut().zip(&chosen) {
+            sample.force = point.force;
+        }
+        history
+    });
+    let outcome = Outcome {
+        max_compression: snapshot(&run.max_compression),
+        end: snapshot(&run.end),
+        peak_force: run.peak_force,
+        separated: run.separated(),
+        ending,
+        below_limit_duration: 0.0,
+        slip_rest_time: None,
+        switches: 0,
+        counters: Counters { steps: run.steps, rejected_steps: 0, evaluations: run.evaluations },
+        method: scheme.name(),
+        restitution: None,
+        note: None,
+        fixed_step: Some(FixedStepOutcome {
+            dt,
+            restitution_continuous: continuous.separated.then(|| -continuous.end.rate / setup.approach_speed),
+        }),
+    };
+    Ok((outcome, history))
 }
 
 /// An event where `function` falls through zero.

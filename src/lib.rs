@@ -10,6 +10,7 @@ pub mod dynamics;
 pub mod eccentric;
 pub mod fast;
 pub mod files;
+pub mod fixed_step;
 pub mod geometry;
 pub mod history;
 pub mod idealisation;

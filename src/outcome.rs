@@ -50,4 +50,16 @@ pub struct Outcome {
     pub restitution: Option<(f64, f64)>,
     /// Why the path that ran did not separate the bodies, when it says more than `ending` (a note for the report).
     pub note: Option<String>,
+    /// What a fixed-step scheme (`[solver] method = "verlet"` or `"symplectic-euler"`) ran at, beside the accurate
+    /// answer; `None` on the accurate paths.
+    pub fixed_step: Option<FixedStepOutcome>,
+}
+
+/// A fixed-step scheme's run beside the accurate one.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FixedStepOutcome {
+    /// The step, s.
+    pub dt: f64,
+    /// The e of the same contact by the accurate adaptive path (`None` if the bodies did not part there).
+    pub restitution_continuous: Option<f64>,
 }

@@ -159,6 +159,20 @@ impl Setup {
         } else {
             Motion::Normal
         };
+        if scene.solver.method.is_fixed_step() && motion != Motion::Normal {
+            return fail(
+                "solver.method",
+                format!(
+                    "method = \"{}\" runs the peers' fixed-step scheme on the 1-D normal contact (a central impact, \
+                     or a smooth one along a fixed normal); this impact needs the {}: use \"auto\" or \"dop853\"",
+                    scene.solver.method.name(),
+                    match motion {
+                        Motion::Rigid => "rigid-body model (a body struck off its centre or turning about a pivot)",
+                        _ => "3-D model (an oblique impact of two spheres, or friction with slip)",
+                    }
+                ),
+            );
+        }
         let graze_depth = if turning && !eccentric {
             Some(graze(scene, &normal, approach_speed, &tangential_velocity)?)
         } else {

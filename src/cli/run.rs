@@ -4,7 +4,7 @@ use super::BadInput;
 use super::paths::{Origin, Paths};
 use crate::files::{self, Destination, OutputFile, Staging};
 use crate::history::Recording;
-use crate::impact::{Simulation, simulate};
+use crate::impact::{Simulation, SimulationError, simulate};
 use crate::output;
 use crate::scene::{OutputSpec, Parsed, Scene, WorldScene};
 use clap::Args;
@@ -77,7 +77,11 @@ pub fn run(args: &RunArgs) -> anyhow::Result<()> {
         (None, _, Some(_)) => Recording::Uniform(FIGURE_SAMPLES),
         (None, _, None) => Recording::Off,
     };
-    let simulation = simulate(&scene, recording)?;
+    // A scene rule that only the run can check (a fixed step against the contact's duration) is located in the file.
+    let simulation = simulate(&scene, recording).map_err(|error| match error {
+        SimulationError::Setup(error) => anyhow::Error::new(crate::scene::located(&args.scene, error)),
+        other => anyhow::Error::new(other),
+    })?;
     let written = write_outputs(&scene, &simulation, &plan)?;
     let text =
         if args.json { output::json::render(&simulation.report)? } else { output::table::render(&simulation.report) };

@@ -345,6 +345,22 @@ fn restitution(report: &Report) -> Section {
     section.row("impulse ratio (Poisson)", maybe(c.restitution_impulse_ratio, plain));
     section.row("velocity ratio (Newton)", maybe(c.restitution_velocity_ratio, plain));
     section.row("energy ratio (Stronge)", maybe(c.restitution_energy, plain));
+    if let Some(dt) = report.solver.dt {
+        // A fixed-step scheme's e beside the accurate path's: what a peer code gives at its step.
+        let continuous = report.solver.restitution_continuous;
+        let value = match (c.restitution_velocity_ratio, continuous) {
+            (Some(e), Some(accurate)) => format!(
+                "{} (continuous: {}, difference {})",
+                plain(e),
+                plain(accurate),
+                plain_digits(e - accurate, ERROR_DIGITS)
+            ),
+            (Some(e), None) => format!("{} (continuous: the bodies did not part)", plain(e)),
+            (None, Some(accurate)) => format!("— (continuous: {})", plain(accurate)),
+            (None, None) => "—".into(),
+        };
+        section.row(format!("e at dt = {}", engineering_digits(dt, "s", 3)), value);
+    }
     section
 }
 
@@ -554,6 +570,16 @@ fn reference(report: &Report, scales: &Scales) -> Option<Section> {
 /// The integrator and its work, on one line.
 fn solver(report: &Report) -> Section {
     let s = &report.solver;
+    if let Some(dt) = s.dt {
+        return Section::new(format!(
+            "solver: {} at the fixed step dt = {}: {} steps, {} force evaluations, {}",
+            s.method,
+            engineering_digits(dt, "s", 3),
+            s.steps,
+            s.force_evaluations,
+            engineering_digits(s.wall_time_s, "s", 3)
+        ));
+    }
     Section::new(format!(
         "solver: {}, rtol {:e}, atol {:e}: {} steps ({} rejected), {} force evaluations, {}",
         s.method,

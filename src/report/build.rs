@@ -52,9 +52,11 @@ pub fn build(
     let friction_work = 0.0 - (end.tangential_work + end.tangential_elastic_energy);
     // A force separation leaves the spring at the law's zero-force penetration for the separation speed: taken from
     // the rate, it is as accurate as the rate (the integrated penetration carries the event's time resolution).
+    // (A fixed-step scheme's end is its own step's penetration, whose spring energy is the law's there.)
     let force_end = scene.contact.separation == crate::law::Separation::Force
         && setup.law.kind.can_turn_tensile()
-        && end.penetration > 0.0;
+        && end.penetration > 0.0
+        && outcome.fixed_step.is_none();
     let elastic_left = if force_end {
         setup.law.elastic_energy(setup.law.separation_penetration(end.rate))
     } else {
@@ -208,6 +210,8 @@ pub fn build(
             method: outcome.method,
             rtol: scene.solver.tolerances.rtol,
             atol: scene.solver.tolerances.atol,
+            dt: outcome.fixed_step.map(|fixed| fixed.dt),
+            restitution_continuous: outcome.fixed_step.and_then(|fixed| fixed.restitution_continuous),
             steps: outcome.counters.steps,
             rejected_steps: outcome.counters.rejected_steps,
             force_evaluations: outcome.counters.evaluations,
@@ -215,11 +219,44 @@ pub fn build(
         },
         notes,
     };
+    if let Some(fixed) = outcome.fixed_step {
+        report.notes.push(fixed_step_note(&report, outcome.method, fixed.dt));
+    }
     if let Some(trial) = trial {
         let measured = measured_by(&report, scene.contact.friction, trial, levers(scene, setup));
         report.idealisation = idealisation::judge(scene.bodies.each_ref(), &measured);
     }
     report
+}
+
+/// What a fixed-step scheme's report means: its events at the first step past them, its e beside the accurate one,
+/// and the gap its energy balance leaves (its elastic force does not give back exactly the law's elastic energy).
+fn fixed_step_note(report: &Report, method: &str, dt: f64) -> String {
+    let (c, e) = (&report.contact, &report.energy);
+    let steps = report.solver.steps;
+    let mut note = format!(
+        "fixed-step scheme `{method}` at dt = {dt:.6e} s ({steps} steps): every quantity above is the scheme's, its \
+         events taken at the first step past them as the peer codes take them, its impulses the scheme's sums of \
+         its force kicks, and the reference errors are the scheme's errors"
+    );
+    if let (Some(e_scheme), Some(e_accurate)) = (c.restitution_velocity_ratio, report.solver.restitution_continuous) {
+        note.push_str(&format!(
+            "; e = {e_scheme:.6} against {e_accurate:.6} by the accurate path (difference {:+.3e})",
+            e_scheme - e_accurate
+        ));
+    }
+    if let (Some(after), Some(dissipated), Some(left), Some(work)) =
+        (e.kinetic_after, e.dissipated, e.elastic_left_at_separation, e.work_of_immovable_bodies)
+    {
+        let gap = e.kinetic_before + work - after - dissipated - left;
+        let scale = report.effective_mass * report.approach_speed * report.approach_speed;
+        note.push_str(&format!(
+            "; its energy balance does not close exactly (the discrete elastic force does not return the law's \
+             elastic energy, and the damping's work is the scheme's sum): a gap of {gap:.3e} J, {:.3e} of m* v0²",
+            gap / scale
+        ));
+    }
+    note
 }
 
 /// What the verdicts on the idealisation read: the report's own numbers.

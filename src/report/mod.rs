@@ -276,6 +276,12 @@ pub struct SolverReport {
     pub method: &'static str,
     pub rtol: f64,
     pub atol: f64,
+    /// The fixed-step schemes' step, s (`verlet`, `symplectic-euler`); null for the accurate paths.
+    pub dt: Option<f64>,
+    /// The e of the same contact by the accurate adaptive path, beside the e a fixed-step scheme gave (the report's
+    /// `contact.restitution_velocity_ratio`); null for the accurate paths, whose e is that one already (and when the
+    /// accurate path's bodies did not part).
+    pub restitution_continuous: Option<f64>,
     pub steps: u64,
     pub rejected_steps: u64,
     pub force_evaluations: u64,

@@ -98,6 +98,7 @@ pub struct RawSolver {
     pub method: Option<At<String>>,
     pub rtol: Option<At<f64>>,
     pub atol: Option<At<f64>>,
+    pub dt: Option<At<f64>>,
 }
 
 #[derive(Debug, Deserialize)]

@@ -103,6 +103,9 @@ pub struct SolverSpec {
     pub method: Method,
     /// Integrator tolerances on the scaled state.
     pub tolerances: Tolerances,
+    /// The fixed-step schemes' time step, s (`dt`): given with `"verlet"` and `"symplectic-euler"`, and only with
+    /// them.
+    pub dt: Option<f64>,
 }
 
 /// The integration path a scene asks for (`[solver] method`).
@@ -119,12 +122,28 @@ pub enum Method {
     /// The Taylor-series integrator of the regularised normal contact (`crate::fast`): the 1-D normal impact of
     /// every law but Brilliantov's.
     Taylor,
+    /// The DEM velocity Verlet of LAMMPS and LIGGGHTS at the fixed step `dt` (`crate::fixed_step`): the e a peer
+    /// code gives, beside the accurate one. The 1-D normal contact only.
+    Verlet,
+    /// The semi-implicit Euler of Kratos and MuJoCo at the fixed step `dt` (`crate::fixed_step`).
+    SymplecticEuler,
 }
 
 impl Method {
     /// Every method, by its scene spelling.
-    pub const ALL: [(&'static str, Method); 4] =
-        [("auto", Method::Auto), ("dop853", Method::Dop853), ("dopri5", Method::Dopri5), ("taylor", Method::Taylor)];
+    pub const ALL: [(&'static str, Method); 6] = [
+        ("auto", Method::Auto),
+        ("dop853", Method::Dop853),
+        ("dopri5", Method::Dopri5),
+        ("taylor", Method::Taylor),
+        ("verlet", Method::Verlet),
+        ("symplectic-euler", Method::SymplecticEuler),
+    ];
+
+    /// Whether the method is one of the peers' fixed-step schemes (which take `dt`).
+    pub fn is_fixed_step(self) -> bool {
+        matches!(self, Method::Verlet | Method::SymplecticEuler)
+    }
 
     /// The scene spelling.
     pub fn name(self) -> &'static str {

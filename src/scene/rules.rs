@@ -231,7 +231,25 @@ fn check_solver(solver: &super::SolverSpec) -> Checked {
             return fail(key, format!("expected a tolerance in [1e-14, 1e-2], got {x:e}"));
         }
     }
-    Ok(())
+    let method = solver.method.name();
+    match (solver.method.is_fixed_step(), solver.dt) {
+        (true, None) => fail(
+            "solver.dt",
+            format!(
+                "method = \"{method}\" is a fixed-step scheme: give its time step `dt` (s), the step of the code \
+                 whose e you want to see"
+            ),
+        ),
+        (true, Some(dt)) => number("solver.dt", dt, Allowed::Positive),
+        (false, Some(_)) => fail(
+            "solver.dt",
+            format!(
+                "`dt` is the step of the fixed-step methods (\"verlet\", \"symplectic-euler\"); method = \
+                 \"{method}\" chooses its own steps (set its tolerances with rtol and atol)"
+            ),
+        ),
+        (false, None) => Ok(()),
+    }
 }
 
 /// A world scene's rules (docs/scene.md#worlds): every body's, each contact table's (the keys renamed to where the
@@ -280,6 +298,16 @@ pub fn check_world(scene: &super::WorldScene) -> Checked {
         number("world.skin", skin, Allowed::PositiveOrInfinite)?;
     }
     check_solver(&scene.solver)?;
+    if scene.solver.method.is_fixed_step() {
+        return fail(
+            "solver.method",
+            format!(
+                "method = \"{}\" runs one normal contact (a scene of two bodies) at a fixed step; a world run \
+                 (more bodies, [world] or [[pair]]) takes the accurate path: use \"auto\" or \"dop853\"",
+                scene.solver.method.name()
+            ),
+        );
+    }
     let n = scene.bodies.len();
     for i in 0..n {
         for j in i + 1..n {

@@ -758,7 +758,8 @@ fn solver(src: &Source, raw: &RawSolver) -> Checked<SolverSpec> {
         rtol: raw.rtol.as_ref().map_or(defaults.rtol, |value| number(src, "solver.rtol", value)),
         atol: raw.atol.as_ref().map_or(defaults.atol, |value| number(src, "solver.atol", value)),
     };
-    Ok(SolverSpec { method, tolerances })
+    let dt = raw.dt.as_ref().map(|value| number(src, "solver.dt", value));
+    Ok(SolverSpec { method, tolerances, dt })
 }
 
 /// The `[output]` paths: a series must name a file (`-` is standard output), plots a folder.

@@ -34,14 +34,14 @@ const CONTACT_NUMBERS: [&str; 8] = [
     "yield_pressure",
 ];
 const CONTACT_VECTORS: [&str; 1] = ["normal"];
-const SOLVER_NUMBERS: [&str; 2] = ["rtol", "atol"];
+const SOLVER_NUMBERS: [&str; 3] = ["rtol", "atol", "dt"];
 
 /// The keys a sweep accepts, for error messages.
 pub const VALID_KEYS: &str = "bodies.I.radius, bodies.I.mass, bodies.I.density, bodies.I.young, bodies.I.poisson, \
      bodies.I.yield_stress, bodies.I.inertia, bodies.I.velocity.J, bodies.I.position.J, bodies.I.angular_velocity.J, \
      bodies.I.contact_offset.J, bodies.I.pivot.J, bodies.I.incidence_deg, \
      contact.restitution, contact.damping, contact.stiffness, contact.exponent, contact.friction, \
-     contact.tangential_stiffness, contact.tangential_damping, contact.yield_pressure, contact.normal.J, solver.rtol, solver.atol \
+     contact.tangential_stiffness, contact.tangential_damping, contact.yield_pressure, contact.normal.J, solver.rtol, solver.atol, solver.dt \
      (I = 0 or 1, the body; J = 0, 1 or 2, the component)";
 
 /// A number in the scene that a sweep sets.
@@ -350,6 +350,7 @@ impl SceneKey {
             ("solver", _) => match self.field {
                 "rtol" => scene.solver.tolerances.rtol = value,
                 "atol" => scene.solver.tolerances.atol = value,
+                "dt" => scene.solver.dt = Some(value),
                 _ => return Err(format!("`{self}` cannot be set")),
             },
             _ => return Err(format!("`{self}` cannot be set")),
