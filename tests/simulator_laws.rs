@@ -235,3 +235,42 @@ fn adams_impact_agrees_with_an_independent_implementation() {
         assert!(balance.abs() < 1e-8 * energy.kinetic_before, "energy balance {balance:e}");
     }
 }
+
+/// MuJoCo's own step, semi-implicit Euler (v += dt a(d, v); d += dt v), on its continuous force from a touch on a
+/// step boundary (no force at d = 0), until the penetration is not positive while the bodies part: e = -v/v0.
+fn mujoco_euler_e(m: f64, speed: f64, solref: [f64; 2], dt: f64) -> f64 {
+    let (mut d, mut v) = (0.0f64, speed);
+    let mut turned = false;
+    for _ in 0..10_000_000u64 {
+        let force = if d > 0.0 { mujoco_force(m, solref, DEFAULT_SOLIMP, d, v) } else { 0.0 };
+        v -= dt * force / m;
+        d += dt * v;
+        turned |= v <= 0.0;
+        if turned && v < 0.0 && d <= 0.0 {
+            return -v / speed;
+        }
+    }
+    panic!("no separation");
+}
+
+#[test]
+fn mujocos_euler_step_adds_to_e_at_first_order_in_the_step() {
+    // The published case of `mujocos_published_case_a_physical_k_and_c_typed_into_solref` at MuJoCo's time steps:
+    // `[solver] method = "symplectic-euler"` must be MuJoCo's step (an independent one written here), and its e
+    // departs from the continuous one in proportion to dt.
+    let (m, solref) = (0.5, [-1e4, -12.8962]);
+    let contact = format!("law = \"mujoco\"\nsolref = [{:?}, {:?}]", solref[0], solref[1]);
+    let mut differences = Vec::new();
+    for dt in [4e-4, 2e-4, 1e-4] {
+        let text = format!("{}\n[solver]\nmethod = \"symplectic-euler\"\ndt = {dt:e}\n", on_wall(m, 10.0, &contact));
+        let report = run(&text);
+        let e = report.contact.restitution_velocity_ratio.unwrap();
+        assert_close(&format!("Euler's e at dt = {dt}"), e, mujoco_euler_e(m, 10.0, solref, dt), 1e-12);
+        differences.push(e - report.solver.restitution_continuous.expect("the continuous e beside"));
+    }
+    for pair in differences.windows(2) {
+        let ratio = pair[0] / pair[1];
+        assert!((1.6..2.4).contains(&ratio), "first order in dt: differences {differences:?}");
+    }
+    assert!(differences.iter().all(|d| *d > 0.0), "the step adds to e: {differences:?}");
+}
