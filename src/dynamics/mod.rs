@@ -119,6 +119,58 @@ pub(crate) fn dissipation_scale(law: &crate::law::ContactLaw, scales: &Scales) -
     unit_or_one(law.damping_ratio(scales.length, scales.speed).min(1.0))
 }
 
+/// The normal contact's shared bookkeeping in scaled variables, for the 3-D models: at scaled penetration `d`, rate
+/// `rate` and the state's remembered deepest penetration `deepest_state` (a yielding law's; the state slot of the
+/// dissipated energy otherwise).
+pub(crate) struct Normal<'a> {
+    pub law: &'a crate::law::ContactLaw,
+    pub scales: &'a Scales,
+    pub d: f64,
+    pub rate: f64,
+    pub deepest_state: f64,
+}
+
+impl Normal<'_> {
+    /// The deepest penetration so far, m: the state's, or `d` where that is deeper.
+    fn deepest(&self) -> f64 {
+        self.deepest_state.max(self.d) * self.scales.length
+    }
+
+    /// [`ContactModel::separation_force`]: the law's separation function (a yielding law's in units of L).
+    pub fn separation(&self) -> f64 {
+        let s = self.scales;
+        let (d, rate) = (self.d * s.length, self.rate * s.speed);
+        if self.law.yields() {
+            self.law.separation_function_after(d, rate, self.deepest()) / s.length
+        } else {
+            self.law.separation_function(d, rate)
+        }
+    }
+
+    /// The rate of the dissipated-energy state (a yielding law's: of its remembered deepest penetration), for the
+    /// dissipative force `dissipative` (scaled) and the state's unit `per`.
+    pub fn dissipation_rate(&self, dissipative: f64, per: f64) -> f64 {
+        if self.law.yields() {
+            normal::deepening(self.d, self.deepest_state, self.rate)
+        } else {
+            dissipative * self.rate / per
+        }
+    }
+
+    /// The energy stored in the normal spring and the energy the normal force has dissipated, J, from the normal
+    /// work (scaled) and the dissipated-energy state `dissipated` in its unit `per`: a yielding law's dissipation is
+    /// what the normal force took and the unloading will not give back, the dent's work.
+    pub fn energies(&self, normal_work: f64, dissipated: f64, per: f64) -> (f64, f64) {
+        let s = self.scales;
+        if self.law.yields() {
+            let elastic = self.law.elastic_energy_after(self.d * s.length, self.deepest());
+            (elastic, normal_work * s.energy - elastic)
+        } else {
+            (self.law.elastic_energy(self.d * s.length), dissipated * s.energy * per)
+        }
+    }
+}
+
 /// `value / scale`, for the scaled energy integrals; a zero scale means the integral is zero anyway.
 pub(crate) fn unit_or_one(scale: f64) -> f64 {
     if scale > 0.0 && scale.is_finite() { scale } else { 1.0 }

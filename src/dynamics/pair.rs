@@ -7,7 +7,7 @@
 //! (the velocities follow from it). Spins are scaled as omega r / v0 so that they are O(1) at the contact point.
 
 use super::contact::{Kinematics, Mode, Shape, Tangential, set_vector, vector};
-use super::{ContactModel, Scales, Snapshot, dissipation_scale, unit_or_one};
+use super::{ContactModel, Normal, Scales, Snapshot, dissipation_scale, unit_or_one};
 use crate::body::Body;
 use crate::integrate::{Model, State};
 use crate::law::ContactLaw;
@@ -167,6 +167,17 @@ impl<'a> PairContact<'a> {
         y[index::DEEPEST].max(d) * self.scales.length
     }
 
+    /// The normal contact's bookkeeping at state `y` with kinematics `k`.
+    fn normal<'b>(&'b self, y: &State<SIZE>, k: &Kinematics) -> Normal<'b> {
+        Normal {
+            law: &self.law,
+            scales: &self.scales,
+            d: k.penetration,
+            rate: k.rate,
+            deepest_state: y[index::DEEPEST],
+        }
+    }
+
     fn evaluate(&self, y: &State<SIZE>) -> Evaluation {
         let s = &self.scales;
         let relative_velocity = self.relative_velocity + vector(y, index::IMPULSE) * self.impulse_gain;
@@ -221,11 +232,7 @@ impl Model<SIZE> for PairContact<'_> {
         set_vector(dy, index::SPRING, &e.spring_rate);
         dy[index::NORMAL_IMPULSE] = normal_force;
         dy[index::NORMAL_WORK] = normal_force * k.rate;
-        dy[index::DISSIPATED] = if self.law.yields() {
-            super::normal::deepening(k.penetration, y[index::DEEPEST], k.rate)
-        } else {
-            e.dissipative * k.rate / self.dissipation_scale
-        };
+        dy[index::DISSIPATED] = self.normal(y, k).dissipation_rate(e.dissipative, self.dissipation_scale);
         dy[index::TANGENTIAL_WORK] = e.tangential.dot(&k.slip) / self.friction_scale;
         // Power the contact feeds into an immovable body, with the opposite sign: the work it does on the other.
         let [a, b] = self.bodies;
@@ -284,14 +291,7 @@ impl ContactModel<SIZE> for PairContact<'_> {
     }
 
     fn separation_force(&self, y: &State<SIZE>) -> f64 {
-        let s = &self.scales;
-        let k = self.evaluate(y).kinematics;
-        if self.law.yields() {
-            let deepest = self.deepest(y, k.penetration);
-            self.law.separation_function_after(k.penetration * s.length, k.rate * s.speed, deepest) / s.length
-        } else {
-            self.law.separation_function(k.penetration * s.length, k.rate * s.speed)
-        }
+        self.normal(y, &self.evaluate(y).kinematics).separation()
     }
 
     fn switch_function(&self, y: &State<SIZE>) -> Option<f64> {
@@ -346,17 +346,8 @@ impl ContactModel<SIZE> for PairContact<'_> {
         let stored = e.spring.norm().min(cap);
         let tangential_elastic = if kt > 0.0 { stored * stored / (2.0 * kt) } else { 0.0 };
         let normal_work = y[index::NORMAL_WORK] * s.energy;
-        let (elastic_energy, dissipated_normal) = if self.law.yields() {
-            let deepest = self.deepest(y, k.penetration);
-            let elastic = self.law.elastic_energy_after(k.penetration * s.length, deepest);
-            // What the normal force took and the unloading will not give back: the dent's work.
-            (elastic, normal_work - elastic)
-        } else {
-            (
-                self.law.elastic_energy(k.penetration * s.length),
-                y[index::DISSIPATED] * s.energy * self.dissipation_scale,
-            )
-        };
+        let (elastic_energy, dissipated_normal) =
+            self.normal(y, k).energies(y[index::NORMAL_WORK], y[index::DISSIPATED], self.dissipation_scale);
         Snapshot {
             time,
             penetration: k.penetration * s.length,

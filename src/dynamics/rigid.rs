@@ -21,7 +21,7 @@
 //! keeps it still: its impulse is `M Δv_cm - ∫F dt`, read at each snapshot from the momentum.
 
 use super::contact::{Shape, set_vector, vector};
-use super::{ContactModel, Scales, Snapshot, dissipation_scale};
+use super::{ContactModel, Normal, Scales, Snapshot, dissipation_scale};
 use crate::body::Body;
 use crate::integrate::{Model, State};
 use crate::law::ContactLaw;
@@ -221,6 +221,17 @@ impl<'a> RigidContact<'a> {
         }
     }
 
+    /// The normal contact's bookkeeping at state `y` evaluated as `e`.
+    fn normal<'b>(&'b self, y: &State<SIZE>, e: &Evaluation) -> Normal<'b> {
+        Normal {
+            law: &self.law,
+            scales: &self.scales,
+            d: e.penetration,
+            rate: e.rate,
+            deepest_state: y[index::DEEPEST],
+        }
+    }
+
     /// The velocity of body `i`'s origin (its mass centre, or its pivot's zero), in v0.
     fn origin_velocity(&self, i: usize, motion: &Motion) -> Vector3<f64> {
         if self.parts[i].pivoted { Vector3::zeros() } else { motion.velocity }
@@ -300,11 +311,7 @@ impl Model<SIZE> for RigidContact<'_> {
         set_vector(dy, index::DISPLACEMENT, &relative);
         dy[index::NORMAL_IMPULSE] = force;
         dy[index::NORMAL_WORK] = force * e.rate;
-        dy[index::DISSIPATED] = if self.law.yields() {
-            super::normal::deepening(e.penetration, y[index::DEEPEST], e.rate)
-        } else {
-            e.dissipative * e.rate / self.dissipation_scale
-        };
+        dy[index::DISSIPATED] = self.normal(y, &e).dissipation_rate(e.dissipative, self.dissipation_scale);
         let [a, b] = self.bodies;
         let velocity = |body: &Body| body.velocity / self.scales.speed;
         dy[index::IMMOVABLE_WORK] = if b.is_immovable() {
@@ -353,14 +360,7 @@ impl ContactModel<SIZE> for RigidContact<'_> {
     }
 
     fn separation_force(&self, y: &State<SIZE>) -> f64 {
-        let s = &self.scales;
-        let e = self.evaluate(y);
-        if self.law.yields() {
-            let deepest = y[index::DEEPEST].max(e.penetration) * s.length;
-            self.law.separation_function_after(e.penetration * s.length, e.rate * s.speed, deepest) / s.length
-        } else {
-            self.law.separation_function(e.penetration * s.length, e.rate * s.speed)
-        }
+        self.normal(y, &self.evaluate(y)).separation()
     }
 
     fn kinks(&self, compressing: bool) -> crate::law::Kinks {
@@ -399,16 +399,8 @@ impl ContactModel<SIZE> for RigidContact<'_> {
             (position, velocity, spin, m.rotation, pivot)
         };
         let (a, b) = (part(0), part(1));
-        let (elastic_energy, dissipated_normal) = if self.law.yields() {
-            let deepest = y[index::DEEPEST].max(e.penetration) * s.length;
-            let elastic = self.law.elastic_energy_after(e.penetration * s.length, deepest);
-            (elastic, y[index::NORMAL_WORK] * s.energy - elastic)
-        } else {
-            (
-                self.law.elastic_energy(e.penetration * s.length),
-                y[index::DISSIPATED] * s.energy * self.dissipation_scale,
-            )
-        };
+        let (elastic_energy, dissipated_normal) =
+            self.normal(y, &e).energies(y[index::NORMAL_WORK], y[index::DISSIPATED], self.dissipation_scale);
         Snapshot {
             time,
             penetration: e.penetration * s.length,
