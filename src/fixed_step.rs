@@ -307,6 +307,8 @@ mod tests {
             damping: 2.0 * zeta * (k * m).sqrt(),
             tsuji_scale: 0.0,
             yield_penetration: f64::INFINITY,
+            solimp: crate::law::NO_SOLIMP,
+            ramp: f64::INFINITY,
         };
         Contact { law, mass: m, speed: 1.0, separation: Separation::Penetration }
     }

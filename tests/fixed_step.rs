@@ -140,7 +140,16 @@ fn both_schemes_give_the_e_of_an_independent_implementation() {
 }
 
 fn law(kind: LawKind, stiffness: f64, exponent: f64, damping: f64) -> ContactLaw {
-    ContactLaw { kind, stiffness, exponent, damping, tsuji_scale: 0.0, yield_penetration: f64::INFINITY }
+    ContactLaw {
+        kind,
+        stiffness,
+        exponent,
+        damping,
+        tsuji_scale: 0.0,
+        yield_penetration: f64::INFINITY,
+        solimp: impact::law::NO_SOLIMP,
+        ramp: f64::INFINITY,
+    }
 }
 
 /// Verlet's e converges at first order to Kelvin–Voigt's closed form e = exp(-zeta pi / sqrt(1 - zeta²))
