@@ -6,7 +6,7 @@
 mod common;
 
 use common::binary::{Scratch, assert_success, describe, impact, stderr};
-use impact::output::map_figure::Verdict;
+use impact::output::map_figure::{Verdict, contour, svg};
 use impact::sweep::map::from_csv;
 use std::f64::consts::PI;
 
@@ -153,6 +153,55 @@ fn gravity_matters_below_a_speed_that_grows_with_the_radius_and_travel_above_one
     assert!((travel_speed(0.1) / travel_speed(0.01) - 1.0).abs() < 1e-6);
 }
 
+/// The speed at which a bouncing ball's contact lasts a tenth of its flight to the next bounce under standard gravity:
+/// t_c / (2 e v0 / g) = 0.1, e = 1 for elastic Hertz, so g t_c / (2 v0) = 0.1 (the same ratio as gravity's `isolated`
+/// with J = 2 m v0): bisection on the ratio, which falls with speed as v0^(-6/5).
+fn flight_speed(radius: f64) -> f64 {
+    let e = 1.0;
+    let ratio = |v: f64| contact_time(radius, v) / (2.0 * e * v / GRAVITY);
+    bisect(|v| ratio(v) - 0.1, 1e-6, 1e3)
+}
+
+#[test]
+fn the_flight_line_lies_where_the_contact_lasts_a_tenth_of_the_flight_between_bounces() {
+    let scratch = Scratch::new("map-flight");
+    let radii = [0.01, 0.1];
+    let (slow, fast) = (flight_speed(radii[0]), flight_speed(radii[1]));
+    // Hand values: 8.7 mm/s at 1 cm, 6.0 cm/s at 10 cm; the speed grows as R^(5/6).
+    assert!((slow - 0.0087).abs() < 0.00005 && (fast - 0.060).abs() < 0.0005, "{slow} {fast}");
+    assert!((fast / slow - 10f64.powf(5.0 / 6.0)).abs() < 1e-6 * fast / slow);
+    let speeds = [0.8 * slow, 1.25 * slow, 0.8 * fast, 1.25 * fast];
+    let (map, csv) = map_of(&scratch, &speeds, &radii);
+    let levels = map.flight.as_ref().expect("the flight columns");
+    // Beyond the line (the contact longer than a tenth of the flight: level >= 0) below its speed, inside above.
+    for (j, radius) in radii.iter().enumerate() {
+        let (below, above) = (levels[j][2 * j], levels[j][2 * j + 1]);
+        assert!(below >= 0.0 && above < 0.0, "{radius}: {below} {above}\n{csv}");
+    }
+    // Each cell's ratio is g t_c / (2 e v0) of its own speed (e = 1 to rounding): ln(ratio / 0.1), by hand.
+    for (j, &radius) in radii.iter().enumerate() {
+        for (i, &speed) in speeds.iter().enumerate() {
+            let want = (GRAVITY * contact_time(radius, speed) / (2.0 * speed) / 0.1).ln();
+            assert!((levels[j][i] - want).abs() < 1e-4, "{radius} {speed}: {} against {want}", levels[j][i]);
+        }
+    }
+    // The line crosses each row at the hand-calculated speed when interpolated in the logarithms (the ratio is a
+    // power law of the speed there, so the interpolation is exact; these four uneven speeds make the map's own axis
+    // linear, in mm/s).
+    let (x_factor, y_factor) = (map.xs[0] / speeds[0], map.ys[0] / radii[0]);
+    let lines = contour(&map.xs, &map.ys, levels, true, true);
+    for (radius, speed) in [(radii[0], slow), (radii[1], fast)] {
+        let on = lines.iter().flatten().any(|&(x, y)| {
+            (y - radius * y_factor).abs() < 1e-9 * radius * y_factor
+                && (x - speed * x_factor).abs() < 1e-4 * speed * x_factor
+        });
+        assert!(on, "{radius}: {speed} not on {lines:?}");
+    }
+    // A figure's layer of its own, not a cell colour.
+    let figure = svg(&map);
+    assert!(figure.contains("class=\"flight\""), "no flight line");
+}
+
 #[test]
 fn the_verdict_columns_are_written_only_when_asked_for() {
     let scratch = Scratch::new("map-columns");
@@ -236,7 +285,8 @@ fn the_map_of_a_sweep_in_shards_is_drawn_by_merge() {
     let scratch = Scratch::new("map-merge");
     let scene = scratch.scene("ball.toml", SCENE);
     let ratios: Vec<String> = impact::idealisation::SEVERITY.iter().map(|key| format!("{key}_ratio")).collect();
-    let columns = format!("approach_speed,first_failure,first_marginal,{}", ratios.join(","));
+    let columns =
+        format!("approach_speed,first_failure,first_marginal,{},duration,restitution_velocity_ratio", ratios.join(","));
     for shard in ["1/2", "2/2"] {
         let out = format!("s{}.csv", &shard[..1]);
         let output = impact(
@@ -260,6 +310,9 @@ fn the_map_of_a_sweep_in_shards_is_drawn_by_merge() {
     }
     assert_success(&impact(scratch.path(), &["merge", "all.csv", "s1.csv", "s2.csv", "--map", "map.svg"]));
     assert!(scratch.read("map.svg").contains("class=\"cells\""));
+    // The flight line's columns came through the merge: its levels are read (the line itself lies below 0.1 m/s).
+    let merged = from_csv(&scratch.read("all.csv")).expect("a map");
+    assert!(merged.flight.as_ref().is_some_and(|levels| levels.iter().flatten().all(|v| v.is_finite())));
     // Shards without the verdicts: the map says which column it misses.
     for shard in ["1/2", "2/2"] {
         let out = format!("p{}.csv", &shard[..1]);

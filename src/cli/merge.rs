@@ -21,7 +21,8 @@ pub struct MergeArgs {
     #[arg(long, value_name = "FILE.png")]
     pub plot: Option<PathBuf>,
     /// Also draw the idealisation map (as `impact sweep --map`) into FILE.png or FILE.svg: the shards must have been
-    /// written with its columns (--columns approach_speed,first_failure,first_marginal,instantaneous_ratio,...; see
+    /// written with its columns (--columns approach_speed,first_failure,first_marginal,instantaneous_ratio,...; and
+    /// duration,restitution_velocity_ratio for the line of the flight between bounces; see
     /// docs/idealisation.md#the-idealisation-map).
     #[arg(long, value_name = "FILE.png")]
     pub map: Option<PathBuf>,

@@ -2,7 +2,8 @@
 //! assumption of the instantaneous impact that fails there, in the order of severity
 //! ([`crate::idealisation::SEVERITY`]) — a paler shade of its colour where none fails and it is the first marginal
 //! one, pale green where all hold — with, for every assumption whose failing threshold crosses the grid, the line
-//! where its ratio reaches it (docs/idealisation.md#the-idealisation-map). A function of the sweep's table alone
+//! where its ratio reaches it, and the line where a bouncing ball's contact lasts a tenth of its flight to the next
+//! bounce under standard gravity (docs/idealisation.md#the-idealisation-map). A function of the sweep's table alone
 //! ([`crate::sweep::map`] reads it).
 
 use super::chart::{Axis, Chart, Colour, Layer, Mark, Stroke};
@@ -49,7 +50,17 @@ pub struct IdealisationMap {
     /// `cells[j][i]`: the cell at (xs[i], ys[j]).
     pub cells: Vec<Vec<Verdict>>,
     pub boundaries: Vec<Boundary>,
+    /// `flight[j][i]`: ln(ratio / 0.1) of the contact time to the flight between bounces, g t_c / (2 e v0), at the
+    /// cell (i, j): +inf where e = 0 (no bounce: beyond the line), NaN where not measured; `None` when the CSV lacks
+    /// its columns. Its zero is drawn as one more line (not a cell colour).
+    pub flight: Option<Vec<Vec<f64>>>,
 }
+
+/// The flight line's name in the legend.
+pub const FLIGHT_LABEL: &str = "contact > 1/10 of the flight between bounces (2 e v0 / g)";
+/// The flight line: wide, solid and green (no assumption's colour), drawn under the assumptions' dashed lines (on the
+/// map of an elastic ball it lies on gravity's, since J = 2 m v0 there: both stay visible).
+const FLIGHT_STROKE: Stroke = Stroke { colour: Colour(44, 160, 44), width: 6.0, dash: None };
 
 /// Each assumption's colour where it fails first, in [`crate::idealisation::SEVERITY`]'s order, and its name in the legend.
 const ASSUMPTIONS: [(Colour, &str); 8] = [
@@ -147,6 +158,13 @@ pub fn chart(map: &IdealisationMap) -> Chart {
     for (verdict, tiles) in groups {
         let (fill, label, rank) = style(verdict);
         chart.push(Layer::new("cells", Mark::Tiles { tiles, fill }).label(label).rank(rank));
+    }
+    if let Some(levels) = &map.flight {
+        let lines = contour(&map.xs, &map.ys, levels, map.log_x, map.log_y);
+        for (n, points) in lines.into_iter().enumerate() {
+            let layer = Layer::new("flight", Mark::Line { points, stroke: FLIGHT_STROKE, marker: None });
+            chart.push(if n == 0 { layer.label(FLIGHT_LABEL).rank(300) } else { layer });
+        }
     }
     for boundary in &map.boundaries {
         let (colour, name) = ASSUMPTIONS[boundary.assumption];

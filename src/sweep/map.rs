@@ -6,22 +6,45 @@
 //! number per value of the key and grows or falls with it) — and y the second, each on a logarithmic axis when its
 //! values are evenly spaced in ratio rather than in difference. Lengths, pressures and speeds are scaled to an SI
 //! prefix that suits them (mm, GPa, ...).
+//!
+//! One more line is not an assumption's: where a bouncing ball's contact lasts a tenth of its flight to the next
+//! bounce under standard gravity, t_c / (2 e v0 / g) = 0.1 (the world's `instantaneous`), from the `duration`,
+//! `restitution_velocity_ratio` and `approach_speed` columns.
 
 use super::SweepError;
 use super::figure::unit_of;
 use super::key::SceneKey;
 use super::table::{VERDICT_COLUMNS, split};
-use crate::idealisation::{SEVERITY, limits};
+use crate::idealisation::{SEVERITY, STANDARD_GRAVITY, limits};
 use crate::output::chart::prefix;
 use crate::output::map_figure::{Boundary, IdealisationMap, Verdict};
 use crate::text::{TITLE_CHARS, cut};
 
 /// The result columns the map reads, which `--map` adds to a sweep's columns: the approach speed, the first failure
-/// and the first marginal assumption, each assumption's ratio and verdict.
+/// and the first marginal assumption, each assumption's ratio and verdict, then the contact's duration and e (for
+/// the flight line, [`FLIGHT_COLUMNS`]).
 pub fn columns() -> Vec<&'static str> {
     let mut names = vec!["approach_speed"];
     names.extend(VERDICT_COLUMNS);
+    names.extend(&FLIGHT_COLUMNS[1..]);
     names
+}
+
+/// The columns the flight line reads: the approach speed v0, the contact time t_c and e (the velocity ratio). A CSV
+/// without one of them (shards written with older `--columns`) has its map without the line.
+pub const FLIGHT_COLUMNS: [&str; 3] = ["approach_speed", "duration", "restitution_velocity_ratio"];
+
+/// The flight line's threshold: the contact lasts a tenth of the flight between bounces.
+pub const FLIGHT_THRESHOLD: f64 = 0.1;
+
+/// The contact time against the flight to the next bounce under standard gravity, t_c / (2 e v0 / g), computed as
+/// g t_c / (2 e v0); infinite where there is no bounce (e ≤ 0: never divided by zero); NaN where a number is missing.
+pub fn flight_ratio(duration: Option<f64>, e: Option<f64>, speed: Option<f64>) -> f64 {
+    match (duration, e, speed) {
+        (Some(_), Some(e), Some(_)) if e <= 0.0 => f64::INFINITY,
+        (Some(t), Some(e), Some(v)) if v > 0.0 => STANDARD_GRAVITY * t / (2.0 * e * v),
+        _ => f64::NAN,
+    }
 }
 
 /// Whether a sweep over `keys` varied keys under `laws` laws can have a map: exactly two keys, at most one law.
@@ -54,6 +77,7 @@ pub fn from_csv(text: &str) -> Result<IdealisationMap, SweepError> {
     let (law, failure, marginal) = (column("law")?, column("first_failure")?, column("first_marginal")?);
     let ratios: Vec<usize> = SEVERITY.iter().map(|key| column(&format!("{key}_ratio"))).collect::<Result<_, _>>()?;
     let speed = column("approach_speed").ok();
+    let flight_columns: Option<Vec<usize>> = FLIGHT_COLUMNS.iter().map(|name| column(name).ok()).collect();
     let rows: Vec<Vec<String>> = lines.map(split).collect();
     let cell = |row: &[String], i: usize| row.get(i).map_or("", String::as_str).to_string();
     let number = |row: &[String], i: usize| cell(row, i).parse::<f64>().ok().filter(|v| v.is_finite());
@@ -97,6 +121,7 @@ pub fn from_csv(text: &str) -> Result<IdealisationMap, SweepError> {
     let (nx, ny) = (x_values.len(), y_values.len());
     let mut cells = vec![vec![Verdict::Unknown; nx]; ny];
     let mut ratio_of = vec![vec![vec![f64::NAN; nx]; ny]; SEVERITY.len()];
+    let mut flight = flight_columns.as_ref().map(|_| vec![vec![f64::NAN; nx]; ny]);
     for row in &rows {
         let (Some(x), Some(y)) = (number(row, x_key), number(row, y_key)) else { continue };
         let (Some(i), Some(j)) = (at(&x_values, x), at(&y_values, y)) else { continue };
@@ -104,6 +129,11 @@ pub fn from_csv(text: &str) -> Result<IdealisationMap, SweepError> {
         cells[j][i] = verdict_of(&cell(row, failure), &cell(row, marginal));
         for (a, &r) in ratios.iter().enumerate() {
             ratio_of[a][j][i] = number(row, r).map_or(f64::NAN, f64::abs);
+        }
+        if let (Some(levels), Some(c)) = (flight.as_mut(), flight_columns.as_deref()) {
+            let ratio = flight_ratio(number(row, c[1]), number(row, c[2]), number(row, c[0]));
+            // ln(inf / 0.1) = inf: beyond the line.
+            levels[j][i] = (ratio / FLIGHT_THRESHOLD).ln();
         }
     }
     let boundaries = ratio_of.iter().enumerate().filter_map(|(a, ratios)| boundary(a, ratios)).collect();
@@ -122,6 +152,7 @@ pub fn from_csv(text: &str) -> Result<IdealisationMap, SweepError> {
         ys: y_values.iter().map(|y| y / y_factor).collect(),
         cells,
         boundaries,
+        flight,
     })
 }
 
@@ -232,5 +263,15 @@ mod tests {
         assert_eq!((factor, label.as_str(), log), (1e-3, "radius of body 1 (mm)", false));
         let (_, _, log) = scaled(&[0.1, 0.2, 0.3, 0.4], "e", "");
         assert!(!log);
+    }
+
+    #[test]
+    fn the_flight_ratio_is_infinite_without_a_bounce_and_unknown_without_a_number() {
+        // g t_c / (2 e v0): t_c = 1e-4 s, e = 0.5, v0 = 1 m/s.
+        let ratio = flight_ratio(Some(1e-4), Some(0.5), Some(1.0));
+        assert!((ratio - 9.80665e-4).abs() < 1e-15, "{ratio}");
+        assert_eq!(flight_ratio(Some(1e-4), Some(0.0), Some(1.0)), f64::INFINITY);
+        assert!(flight_ratio(None, Some(0.5), Some(1.0)).is_nan());
+        assert!(flight_ratio(Some(1e-4), Some(0.5), None).is_nan());
     }
 }
