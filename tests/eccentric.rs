@@ -6,7 +6,7 @@ mod common;
 
 use impact::draw::Draw;
 use impact::eccentric::{RigidBody, centre_of_percussion, eccentric_impact, positive_definite};
-use nalgebra::{Matrix3, Rotation3, Vector3};
+use nalgebra::{Matrix3, Vector3};
 
 /// A point mass (a ball struck at its centre: no lever arm) of mass `m` at `centre`, moving at `velocity`.
 fn ball(mass: f64, centre: Vector3<f64>, velocity: Vector3<f64>) -> RigidBody {
@@ -89,15 +89,6 @@ fn a_blow_at_the_centre_of_percussion_leaves_the_pivot_alone() {
     }
 }
 
-/// A random symmetric positive definite inertia tensor: principal moments obeying the triangle inequality, turned.
-fn random_inertia(draw: &mut Draw, scale: f64) -> Matrix3<f64> {
-    let (a, b) = (draw.log(0.1, 1.0), draw.log(0.1, 1.0));
-    let c = draw.uniform((a - b).abs().max(1e-3), a + b);
-    let turn = Rotation3::from_axis_angle(&nalgebra::Unit::new_normalize(draw.direction()), draw.uniform(0.0, 3.0));
-    let principal = Matrix3::from_diagonal(&Vector3::new(a, b, c)) * scale;
-    turn.matrix() * principal * turn.matrix().transpose()
-}
-
 #[test]
 fn random_free_bodies_keep_momentum_and_angular_momentum_and_lose_the_restitution_energy() {
     let mut checked = 0;
@@ -108,7 +99,7 @@ fn random_free_bodies_keep_momentum_and_angular_momentum_and_lose_the_restitutio
             let size = mass * draw.log(1e-4, 1.0);
             RigidBody {
                 mass,
-                inertia: random_inertia(&mut draw, size),
+                inertia: common::random_inertia(&mut draw, size),
                 centre: draw.direction() * draw.log(0.01, 1.0),
                 velocity: draw.direction() * draw.log(0.01, 10.0),
                 spin: draw.direction() * draw.log(0.01, 10.0),

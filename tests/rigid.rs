@@ -10,7 +10,7 @@ use impact::draw::Draw;
 use impact::impact::outcome;
 use impact::scene::Scene;
 use impact::setup::{Motion, Setup};
-use nalgebra::{Matrix3, Rotation3, Vector3};
+use nalgebra::{Matrix3, Vector3};
 use std::path::Path;
 
 /// A uniform rod of mass `mass` and length `length` along y: I = M L²/12 about x and z, a small polar moment.
@@ -218,16 +218,6 @@ fn a_ball_whose_inertia_differs_between_axes_struck_centrally_is_a_sphere() {
     assert!(b.notes.iter().any(|n| n.contains("rigid bodies")), "{:?}", b.notes);
 }
 
-/// A random symmetric positive definite inertia tensor (kg m²) of size `scale`: principal moments obeying the
-/// triangle inequality, turned.
-fn random_inertia(draw: &mut Draw, scale: f64) -> Matrix3<f64> {
-    let (a, b) = (draw.log(0.1, 1.0), draw.log(0.1, 1.0));
-    let c = draw.uniform((a - b).abs().max(1e-3), a + b);
-    let turn = Rotation3::from_axis_angle(&nalgebra::Unit::new_normalize(draw.direction()), draw.uniform(0.0, 3.0));
-    let principal = Matrix3::from_diagonal(&Vector3::new(a, b, c)) * scale;
-    turn.matrix() * principal * turn.matrix().transpose()
-}
-
 fn toml_vector(v: &Vector3<f64>) -> String {
     format!("[{:?}, {:?}, {:?}]", v.x, v.y, v.z)
 }
@@ -259,7 +249,7 @@ fn random_eccentric_pairs_keep_momentum_angular_momentum_and_energy() {
             let mass = draw.log(0.05, 20.0);
             let radius = draw.log(0.005, 0.05);
             let size = mass * draw.log(1e-3, 0.1);
-            let inertia = random_inertia(&mut draw, size);
+            let inertia = common::random_inertia(&mut draw, size);
             let offset = draw.direction() * draw.uniform(0.0, 0.3);
             let velocity = draw.direction() * draw.log(0.1, 3.0);
             let spin = draw.direction() * draw.log(0.01, 3.0);

@@ -113,15 +113,22 @@ pub struct RigidContact<'a> {
     setup: &'a Setup,
 }
 
-/// Everything the derivative computes at one state.
+/// Everything the derivative computes at one state (the force's rate, which only the force-peak event needs, is
+/// [`RigidContact::normal_force_rate`]'s).
 struct Evaluation {
     motions: [Motion; 2],
     normal: Vector3<f64>,
+    /// dn/dt, in 1/T.
+    normal_rate: Vector3<f64>,
+    /// The spheres' centres' relative velocity, in v0.
+    relative_velocity: Vector3<f64>,
     penetration: f64,
     rate: f64,
+    /// The penetration the force sees (the located edge from inside), in L, and the deepest so far, m.
+    seen: f64,
+    deepest: f64,
     elastic: f64,
     dissipative: f64,
-    normal_force_rate: f64,
 }
 
 impl<'a> RigidContact<'a> {
@@ -249,11 +256,28 @@ impl<'a> RigidContact<'a> {
         let deepest = y[index::DEEPEST].max(d) * s.length;
         let parts = self.law.split_force_after(d * s.length, k.rate * s.speed, deepest);
         let (elastic, dissipative) = (parts.elastic / s.force, parts.dissipative / s.force);
-        let force = elastic + dissipative;
-        // d'' = -(dw/dt·n + w·dn/dt), dw/dt the spheres' centres' relative acceleration.
+        Evaluation {
+            motions,
+            normal: k.normal,
+            normal_rate: k.normal_rate,
+            relative_velocity,
+            penetration: k.penetration,
+            rate: k.rate,
+            seen: d,
+            deepest,
+            elastic,
+            dissipative,
+        }
+    }
+
+    /// The normal force's rate dF/dt (scaled) at an evaluated state: F_d d' + F_v d'', with
+    /// d'' = -(dw/dt·n + w·dn/dt), dw/dt the spheres' centres' relative acceleration (Euler and centripetal terms).
+    fn normal_force_rate(&self, e: &Evaluation) -> f64 {
+        let s = &self.scales;
+        let force = e.elastic + e.dissipative;
         let acceleration = |i: usize, push: f64| {
-            let (p, m) = (&self.parts[i], &motions[i]);
-            let on = k.normal * (push * force);
+            let (p, m) = (&self.parts[i], &e.motions[i]);
+            let on = e.normal * (push * force);
             let linear = on * p.share;
             if !p.turns {
                 return linear;
@@ -271,18 +295,9 @@ impl<'a> RigidContact<'a> {
             centre + angular.cross(&lever) + m.spin.cross(&m.spin.cross(&lever))
         };
         let relative_acceleration = acceleration(1, 1.0) - acceleration(0, -1.0);
-        let rate_rate = -(relative_acceleration.dot(&k.normal) + relative_velocity.dot(&k.normal_rate));
-        let (by_penetration, by_rate) = self.law.force_gradient_after(d * s.length, k.rate * s.speed, deepest);
-        let normal_force_rate = (by_penetration * s.length * k.rate + by_rate * s.speed * rate_rate) / s.force;
-        Evaluation {
-            motions,
-            normal: k.normal,
-            penetration: k.penetration,
-            rate: k.rate,
-            elastic,
-            dissipative,
-            normal_force_rate,
-        }
+        let rate_rate = -(relative_acceleration.dot(&e.normal) + e.relative_velocity.dot(&e.normal_rate));
+        let (by_penetration, by_rate) = self.law.force_gradient_after(e.seen * s.length, e.rate * s.speed, e.deepest);
+        (by_penetration * s.length * e.rate + by_rate * s.speed * rate_rate) / s.force
     }
 }
 
@@ -356,7 +371,7 @@ impl ContactModel<SIZE> for RigidContact<'_> {
     }
 
     fn force_rate(&self, y: &State<SIZE>) -> f64 {
-        self.evaluate(y).normal_force_rate
+        self.normal_force_rate(&self.evaluate(y))
     }
 
     fn separation_force(&self, y: &State<SIZE>) -> f64 {

@@ -53,3 +53,14 @@ pub fn hunt_crossley_e(x: f64) -> f64 {
     }
     0.5 * (low + high)
 }
+
+/// A random symmetric positive definite inertia tensor of size `scale` (kg m²): principal moments obeying the
+/// triangle inequality (each at most the sum of the other two), turned by a random rotation.
+pub fn random_inertia(draw: &mut impact::draw::Draw, scale: f64) -> nalgebra::Matrix3<f64> {
+    use nalgebra::{Matrix3, Rotation3, Unit, Vector3};
+    let (a, b) = (draw.log(0.1, 1.0), draw.log(0.1, 1.0));
+    let c = draw.uniform((a - b).abs().max(1e-3), a + b);
+    let turn = Rotation3::from_axis_angle(&Unit::new_normalize(draw.direction()), draw.uniform(0.0, 3.0));
+    let principal = Matrix3::from_diagonal(&Vector3::new(a, b, c)) * scale;
+    turn.matrix() * principal * turn.matrix().transpose()
+}
