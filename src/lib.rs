@@ -28,6 +28,7 @@ pub mod setup;
 pub mod stress;
 pub mod sweep;
 pub mod text;
+pub mod translate;
 pub mod validate;
 pub mod world;
 pub mod world_run;

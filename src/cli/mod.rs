@@ -10,6 +10,7 @@ pub mod paths;
 pub mod run;
 mod stress;
 pub mod sweep;
+mod translate;
 mod validate;
 
 use clap::{Parser, Subcommand};
@@ -41,6 +42,8 @@ pub enum Command {
     Gallery(gallery::GalleryArgs),
     /// Run random scenes over the whole accepted range, checking each against invariants and exact results.
     Stress(stress::StressArgs),
+    /// Write the scene's contact as another program's input, with the e that program gives at its time step.
+    Translate(translate::TranslateArgs),
     /// The validation suite: the program on cases with known answers, each quantity beside its reference.
     Validate(validate::ValidateArgs),
 }
@@ -63,6 +66,7 @@ pub fn dispatch(cli: Cli) -> anyhow::Result<()> {
         Some(Command::Bench(args)) => bench::run(&args),
         Some(Command::Stress(args)) => stress::run(&args),
         Some(Command::Validate(args)) => validate::run(&args),
+        Some(Command::Translate(args)) => translate::run(&args),
     }
 }
 
