@@ -25,7 +25,7 @@ pub struct TranslateArgs {
     #[arg(long, value_name = "PEER")]
     pub to: String,
     /// The program's time step in seconds: its e at that step (its own scheme), and the parameter for the
-    /// scene's e at that step.
+    /// scene's e at that step. Default: the scene's `[solver] dt`, if it runs a fixed-step scheme.
     #[arg(long, value_name = "SECONDS", allow_negative_numbers = true)]
     pub dt: Option<f64>,
     /// Print the translation as JSON on stdout.
@@ -73,9 +73,11 @@ pub fn run(args: &TranslateArgs) -> anyhow::Result<()> {
     };
     let translation = match load_any(&args.scene)? {
         Parsed::Impact(scene) => {
-            let translation = translate(&scene, peer, args.dt).map_err(located)?;
+            // (A scene that runs a peer's fixed step gives its dt, unless --dt does.)
+            let dt = args.dt.or(scene.solver.dt);
+            let translation = translate(&scene, peer, dt).map_err(located)?;
             if let Some(folder) = &args.input {
-                let written = input::for_impact(&scene, &translation, args.dt).map_err(located)?;
+                let written = input::for_impact(&scene, &translation, dt).map_err(located)?;
                 input::write(folder, &args.scene, &written).map_err(located)?;
             }
             translation
@@ -89,7 +91,7 @@ pub fn run(args: &TranslateArgs) -> anyhow::Result<()> {
                 )
                 .into());
             };
-            let written = input::for_world(&world, args.dt).map_err(located)?;
+            let written = input::for_world(&world, args.dt.or(world.solver.dt)).map_err(located)?;
             input::write(folder, &args.scene, &written).map_err(located)?;
             if !args.json {
                 print!("{}", render_world(&written, folder));

@@ -60,13 +60,8 @@ pub fn plan(context: &Context) -> Result<Plan, TranslateError> {
         Family::Elastic => (RAMP_FRACTION * length, Knob::Fixed(0.0)),
         family if context.target.is_some() && family != Family::Plastic && family != Family::Impedance => {
             let ramp = RAMP_FRACTION * length;
-            notes.push(format!(
-                "ADAMS has no damping of the `{}` form: the translation keeps the spring K d^{} and tunes IMPACT's \
-                 c_max to the scene's e, with d = {} m (a hundredth of the penetration scale).",
-                law.kind.name(),
-                law.exponent,
-                number(ramp)
-            ));
+            notes.push(super::substituted(context, Peer::Adams, "IMPACT's c_max"));
+            notes.push(format!("IMPACT's d is taken as {} m, a hundredth of the penetration scale.", number(ramp)));
             (ramp, Knob::Damping { scale: critical })
         }
         _ => {

@@ -60,11 +60,21 @@ impl Mapping for Point {
         let (k, second) = self.each(p);
         let (setting, solver) = match self.model {
             Model::HuntCrossley => (
-                format!("hunt_crossley_dissipation={}", number(second)),
+                format!(
+                    "AddContactMaterial(dissipation={}, point_stiffness={}, friction=CoulombFriction(0.0, 0.0), \
+                         properties=props)\n",
+                    number(second),
+                    number(k)
+                ),
                 "MultibodyPlantConfig(time_step=0.0, contact_model=\"point\")".to_string(),
             ),
             Model::Sap => (
-                format!("relaxation_time={}", number(second)),
+                format!(
+                    "AddContactMaterial(point_stiffness={}, friction=CoulombFriction(0.0, 0.0), properties=props)\n\
+                         props.AddProperty(\"material\", \"relaxation_time\", {})\n",
+                    number(k),
+                    number(second)
+                ),
                 format!(
                     "MultibodyPlantConfig(time_step={}, contact_model=\"point\", \
                      discrete_contact_approximation=\"sap\")",
@@ -77,10 +87,8 @@ impl Mapping for Point {
              from pydrake.geometry import ProximityProperties, AddContactMaterial\n\
              from pydrake.multibody.plant import CoulombFriction, MultibodyPlantConfig\n\
              props = ProximityProperties()\n\
-             AddContactMaterial(point_stiffness={}, {setting}, friction=CoulombFriction(0.0, 0.0), properties=props)\n\
-             config = {solver}\n",
+             {setting}config = {solver}\n",
             self.context.scene.title,
-            number(k),
         )
     }
 }

@@ -40,7 +40,8 @@ fn nominal_for_gamma(gamma: f64) -> Option<f64> {
 }
 
 struct Hertz {
-    young: f64,
+    /// Each material's Young's modulus (Pa) and Poisson's ratio.
+    materials: [(f64, f64); 2],
     friction: f64,
     context: Context,
 }
@@ -55,8 +56,8 @@ impl Mapping for Hertz {
     fn parameters(&self, p: f64) -> Parameters {
         Parameters::default()
             .with("DEM_DISCONTINUUM_CONSTITUTIVE_LAW_NAME", "DEM_D_Hertz_viscous_Coulomb")
-            .with("YOUNG_MODULUS", self.young)
-            .with("POISSON_RATIO", POISSON)
+            .with("YOUNG_MODULUS", vec![self.materials[0].0, self.materials[1].0])
+            .with("POISSON_RATIO", vec![self.materials[0].1, self.materials[1].1])
             .with("COEFFICIENT_OF_RESTITUTION", p)
             .with("STATIC_FRICTION", self.friction)
             .with("DYNAMIC_FRICTION", self.friction)
@@ -64,19 +65,36 @@ impl Mapping for Hertz {
     }
 
     fn snippet(&self, p: f64, dt: Option<f64>) -> String {
-        let (young, e, mu) = (number(self.young), number(p), number(self.friction));
+        let [(y1, n1), (y2, n2)] = self.materials;
+        let (y1, y2, n1, n2) = (number(y1), number(y2), number(n1), number(n2));
+        // Kratos takes a sphere's mass from its PARTICLE_DENSITY (kg/m³) and radius.
+        let density = |body: &crate::body::Body| {
+            if body.is_flat() || body.is_immovable() {
+                String::new()
+            } else {
+                format!(
+                    ", \"PARTICLE_DENSITY\": {}",
+                    number(body.mass / (4.0 / 3.0 * std::f64::consts::PI * body.radius.powi(3)))
+                )
+            }
+        };
+        let [a, b] = &self.context.scene.bodies;
+        let (d1, d2) = (density(a), density(b));
+        let part = |body: &crate::body::Body| if body.is_flat() { "RigidFacePart" } else { "SpheresPart" };
+        let table = format!("\"material_assignation_table\": [[\"{}\", \"a\"], [\"{}\", \"b\"]]", part(a), part(b));
+        let (e, mu) = (number(p), number(self.friction));
         let step = match dt {
             Some(dt) => format!(", \"AutomaticTimestep\": false, \"MaxTimeStep\": {}", number(dt)),
             None => String::new(),
         };
         format!(
-            "// {} in Kratos DEM (impact translate): MaterialsDEM.json (both materials alike), and ProjectParameters.json\n\
-             \"materials\": [{{\"material_name\": \"a\", \"material_id\": 1, \"Variables\": {{\"YOUNG_MODULUS\": {young}, \
-             \"POISSON_RATIO\": {POISSON}}}}}, {{\"material_name\": \"b\", \"material_id\": 2, \"Variables\": \
-             {{\"YOUNG_MODULUS\": {young}, \"POISSON_RATIO\": {POISSON}}}}}],\n\
+            "// {} in Kratos DEM (impact translate)\n// MaterialsDEM.json (a: body 1, b: body 2 or the wall):\n\
+             \"materials\": [{{\"material_name\": \"a\", \"material_id\": 1, \"Variables\": {{\"YOUNG_MODULUS\": {y1}, \
+             \"POISSON_RATIO\": {n1}{d1}}}}}, {{\"material_name\": \"b\", \"material_id\": 2, \"Variables\": \
+             {{\"YOUNG_MODULUS\": {y2}, \"POISSON_RATIO\": {n2}{d2}}}}}],\n\
              \"material_relations\": [{{\"material_names_list\": [\"a\", \"b\"], \"material_ids_list\": [1, 2], \
              \"Variables\": {{\"COEFFICIENT_OF_RESTITUTION\": {e}, \"STATIC_FRICTION\": {mu}, \"DYNAMIC_FRICTION\": {mu}, \
-             \"DEM_DISCONTINUUM_CONSTITUTIVE_LAW_NAME\": \"DEM_D_Hertz_viscous_Coulomb\"}}}}]\n\
+             \"DEM_DISCONTINUUM_CONSTITUTIVE_LAW_NAME\": \"DEM_D_Hertz_viscous_Coulomb\"}}}}],\n{table}\n// ProjectParameters.json:\n\
              \"TranslationalIntegrationScheme\": \"Symplectic_Euler\"{step}\n",
             self.context.scene.title
         )
@@ -97,11 +115,8 @@ pub fn plan(context: &Context) -> Result<Plan, TranslateError> {
             )
         })?),
         kind if context.target.is_some() && context.hertzian() && kind != LawKind::Thornton => {
-            notes.push(format!(
-                "Kratos' Hertz contact damps in Tsuji's form: the translation keeps the Hertz spring and tunes \
-                 COEFFICIENT_OF_RESTITUTION to the scene's e, so the force–time curve differs from `{}`'s.",
-                kind.name()
-            ));
+            let _ = kind;
+            notes.push(super::substituted(context, Peer::Kratos, "COEFFICIENT_OF_RESTITUTION (Tsuji's form)"));
             Knob::Nominal
         }
         kind => {
@@ -117,20 +132,28 @@ pub fn plan(context: &Context) -> Result<Plan, TranslateError> {
     let Some(radius) = context.radius else {
         return Err(TranslateError::bad("bodies", "Kratos' Hertz contact needs the contact's effective radius R*"));
     };
-    let modulus = 3.0 * law.stiffness / (4.0 * radius.sqrt());
-    let young = 2.0 * (1.0 - POISSON * POISSON) * modulus;
-    notes.push(format!(
-        "Both materials get YOUNG_MODULUS = {} Pa and POISSON_RATIO = {POISSON}, which give the scene's E* = {} Pa.",
-        short(young),
-        short(modulus)
-    ));
-    if let Some(target) = context.target {
-        let nominal = Hertz { young, friction: 0.0, context: context.clone() }.contact(target);
-        if let Ok(Some(e)) = super::restitution(context, &nominal, None) {
+    let materials = match context.materials() {
+        Some(materials) => materials,
+        None => {
+            let modulus = 3.0 * law.stiffness / (4.0 * radius.sqrt());
+            let young = 2.0 * (1.0 - POISSON * POISSON) * modulus;
+            notes.push(format!(
+                "Both materials get YOUNG_MODULUS = {} Pa and POISSON_RATIO = {POISSON}, which give the scene's E* = \
+                 {} Pa.",
+                short(young),
+                short(modulus)
+            ));
+            [(young, POISSON); 2]
+        }
+    };
+    if let (Some(nominal), Some(target)) = (context.nominal, context.target) {
+        let typed = Hertz { materials, friction: 0.0, context: context.clone() }.contact(nominal);
+        if let Some(e) = super::restitution(context, &typed, None)? {
             notes.push(format!(
                 "Kratos maps COEFFICIENT_OF_RESTITUTION to its damping by a fit (Thornton et al. 2013) that misses \
-                 its own contact near e = 1 (a nominal 0.98 gives 0.9724): typing the scene's e = {target} would give \
-                 {e:.6}; the value above is tuned to give {target}."
+                 its own contact near e = 1 (a nominal 0.98 gives 0.9724): typing the scene's restitution = {nominal} \
+                 would give {e:.6}; the value above is tuned to give {}.",
+                short(target)
             ));
         }
     }
@@ -143,6 +166,6 @@ pub fn plan(context: &Context) -> Result<Plan, TranslateError> {
     if friction > 0.0 {
         notes.push("Kratos' walls take the lever arm r - d for friction's torque (this program: r).".into());
     }
-    let mapping = Hertz { young, friction, context: context.clone() };
+    let mapping = Hertz { materials, friction, context: context.clone() };
     Ok(Plan { law: "DEM_D_Hertz_viscous_Coulomb".into(), mapping: Box::new(mapping), knob, notes })
 }

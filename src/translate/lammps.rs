@@ -13,7 +13,7 @@
 //! The contact lasts while the spheres overlap, so the force may pull at its end; `limit_damping` clamps it at zero,
 //! which is this program's `separation = "force"`. Steps are velocity Verlet (`fix nve/sphere`).
 
-use super::{Context, Knob, Mapping, Parameters, Peer, Plan, TranslateError, cannot_express, number};
+use super::{Context, Knob, Mapping, Parameters, Peer, Plan, TranslateError, cannot_express, number, short};
 use crate::law::{LawKind, Separation};
 use crate::scene::{ContactSpec, DampingSpec};
 use std::f64::consts::PI;
@@ -178,6 +178,13 @@ impl Mapping for Pair {
             } else {
                 (s.positions[0], s.normal)
             };
+            let sphere = if self.context.scene.bodies[1].is_immovable() { s.positions[0] } else { s.positions[1] };
+            text += &format!(
+                "# the sphere touches the wall with its centre at ({}, {}, {}) (the scene's coordinates)\n",
+                number(sphere.x + 0.0),
+                number(sphere.y + 0.0),
+                number(sphere.z + 0.0)
+            );
             text += &format!(
                 "region wall plane {} {} {} {} {} {} side in\nfix wall all wall/gran/region granular {arguments} \
                  region wall\n",
@@ -261,12 +268,8 @@ pub fn granular(context: &Context) -> Result<(Granular, Knob, Vec<String>), Tran
             (normal, Damping::Velocity, knob)
         }
         kind if context.target.is_some() && context.hertzian() && kind != LawKind::Thornton => {
-            notes.push(format!(
-                "LAMMPS has no damping of the `{}` form: the translation keeps the Hertz spring and tunes Tsuji's \
-                 damping (coeff_restitution) to the scene's e, so the force–time curve differs from the scene's \
-                 while e, at this speed, is the same.",
-                kind.name()
-            ));
+            let _ = kind;
+            notes.push(super::substituted(context, Peer::Lammps, "Tsuji's damping (coeff_restitution)"));
             (hertz(context)?, Damping::CoeffRestitution, Knob::Nominal)
         }
         kind => {
@@ -287,8 +290,9 @@ pub fn granular(context: &Context) -> Result<(Granular, Knob, Vec<String>), Tran
         {
             notes.push(format!(
                 "Use damping coeff_restitution, not damping tsuji: LAMMPS releases before 2 Sep 2026 (22 Jul 2025 \
-                 among them) evaluate Tsuji's polynomial without its factor sqrt 2, so a nominal e = {nominal} under \
-                 damping tsuji gives e = {old:.4}."
+                 among them) evaluate Tsuji's polynomial without its factor sqrt 2, so a nominal e = {} under \
+                 damping tsuji gives e = {old:.4}.",
+                short(nominal)
             ));
         }
     }

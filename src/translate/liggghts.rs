@@ -5,9 +5,9 @@
 //! unless `limitForce on`. Steps are velocity Verlet (`fix nve/sphere`).
 
 use super::lammps::{damping_ratio, nominal_for_tsuji};
-use super::{Context, Knob, Mapping, Parameters, Peer, Plan, TranslateError, cannot_express, number};
+use super::{Context, Knob, Mapping, Parameters, Peer, Plan, TranslateError, cannot_express, number, short};
 use crate::law::{LawKind, Separation};
-use crate::scene::{ContactSpec, DampingSpec, StiffnessSpec};
+use crate::scene::{ContactSpec, DampingSpec};
 
 /// Poisson's ratio given to both atom types when the scene's stiffness is not from its bodies' materials.
 const POISSON: f64 = 0.3;
@@ -83,11 +83,8 @@ pub fn plan(context: &Context) -> Result<Plan, TranslateError> {
             })?),
         },
         kind if context.target.is_some() && context.hertzian() && kind != LawKind::Thornton => {
-            notes.push(format!(
-                "LIGGGHTS' hertz model damps in Tsuji's form: the translation keeps the Hertz spring and tunes \
-                 coefficientRestitution to the scene's e, so the force–time curve differs from `{}`'s.",
-                kind.name()
-            ));
+            let _ = kind;
+            notes.push(super::substituted(context, Peer::Liggghts, "coefficientRestitution (Tsuji's form)"));
             Knob::Nominal
         }
         kind => {
@@ -102,23 +99,18 @@ pub fn plan(context: &Context) -> Result<Plan, TranslateError> {
     let Some(radius) = context.radius else {
         return Err(TranslateError::bad("bodies", "LIGGGHTS' hertz model needs the contact's effective radius R*"));
     };
-    // Y* = 3 K / (4 sqrt(R*)); the bodies' own materials when the scene's K comes from them.
-    let bodies = &context.scene.bodies;
-    let own = |i: usize| match (bodies[i].young, bodies[i].poisson) {
-        (Some(young), Some(poisson)) if young.is_finite() => Some((young, poisson)),
-        _ => None,
-    };
-    let materials = match (context.scene.contact.stiffness, own(0), own(1)) {
-        (StiffnessSpec::Hertz, Some(a), Some(b)) if !context.wall => [a, b],
-        _ => {
+    // The bodies' own materials when the scene's K comes from them; else alike types with Y* = 3 K / (4 sqrt(R*)).
+    let materials = match context.materials() {
+        Some(materials) => materials,
+        None => {
             let modulus = 3.0 * law.stiffness / (4.0 * radius.sqrt());
             let young = 2.0 * (1.0 - POISSON * POISSON) * modulus;
             notes.push(format!(
                 "Both atom types get Y = {} Pa and nu = {POISSON}: the scene's K = {} N/m^1.5 (Y* = {} Pa); \
                  LIGGGHTS' wall takes its type's material too.",
-                number(young),
-                number(law.stiffness),
-                number(modulus)
+                short(young),
+                short(law.stiffness),
+                short(modulus)
             ));
             [(young, POISSON); 2]
         }

@@ -107,10 +107,13 @@ pub struct Context {
     pub speed: f64,
     /// R*, m, when the bodies have one (not two flat faces).
     pub radius: Option<f64>,
-    /// The e the scene asks for (its `restitution`), if it asks for one.
+    /// The e the scene's contact gives when the scene asks for one (its `restitution` through the law's map, run
+    /// head-on in the continuous limit): the e a translation reproduces.
     pub target: Option<f64>,
     /// The time step asked for, s.
     pub dt: Option<f64>,
+    /// The scene's nominal `restitution`, when it gives one (`target` is what its contact makes of it).
+    pub nominal: Option<f64>,
     /// Whether one body is an immovable wall (the peer's wall, not a second particle).
     pub wall: bool,
 }
@@ -128,7 +131,7 @@ impl Context {
             ));
         }
         let [a, b] = &scene.bodies;
-        Ok(Context {
+        let mut context = Context {
             scene: scene.clone(),
             law: setup.law,
             mass: setup.effective_mass,
@@ -141,7 +144,22 @@ impl Context {
             dt,
             wall: a.is_immovable() || b.is_immovable(),
             setup,
-        })
+            nominal: None,
+        };
+        // The e to reproduce is the one the scene's contact gives (head-on, in the continuous limit), not the
+        // nominal e its law's map was given: the two differ where the map is not exact.
+        if let Some(nominal) = context.target {
+            let own = restitution(&context, &context.own_contact(), None)?.ok_or_else(|| {
+                TranslateError::bad(
+                    "contact.restitution",
+                    "the scene's own contact does not rebound: no e to reproduce",
+                )
+            })?;
+            // (Within the simulation's noise of the nominal e, the nominal e itself: the map is exact.)
+            context.target = Some(if (own - nominal).abs() <= 1e-9 { nominal } else { own });
+            context.nominal = Some(nominal);
+        }
+        Ok(context)
     }
 
     /// The peer's contact as a scene of this program: a sphere of mass m* closing at v0 on an immovable wall, with
@@ -154,8 +172,23 @@ impl Context {
         scene.bodies[0].radius = 1.0e3 * self.setup.scales.length;
         scene.bodies[0].inertia = crate::body::Body::solid_sphere_inertia(self.mass, scene.bodies[0].radius);
         scene.contact = contact;
+        // (The sphere closes along x: the scene's own normal and friction do not apply to the normal contact.)
+        scene.contact.normal = None;
+        scene.contact.normal_given = None;
+        scene.contact.friction = 0.0;
         scene.solver.tolerances = self.scene.solver.tolerances;
         scene
+    }
+
+    /// The scene's own contact spec with its stiffness as the number K it resolves to (so that it runs on
+    /// [`Context::peer_scene`]'s sphere).
+    pub fn own_contact(&self) -> ContactSpec {
+        let mut spec = self.scene.contact.clone();
+        if self.law.kind.family() != crate::law::Family::Impedance {
+            spec.stiffness = StiffnessSpec::Value(self.law.stiffness);
+            spec.exponent = self.law.exponent;
+        }
+        spec
     }
 
     /// A contact spec of `law` with this scene's numeric stiffness K (N/m^n) and exponent, no damping, no friction,
@@ -171,6 +204,20 @@ impl Context {
     /// Hertz's K = k_N sqrt(R*) turned into the DEM codes' k_N = K / sqrt(R*) (Pa), or `None` without a radius.
     pub fn hertz_modulus(&self) -> Option<f64> {
         self.radius.map(|radius| self.law.stiffness / radius.sqrt())
+    }
+
+    /// The two bodies' own Young's moduli (Pa) and Poisson's ratios when the scene's stiffness is Hertz's from
+    /// them (what a peer that reads materials, LIGGGHTS or Kratos, should be given); `None` otherwise.
+    pub fn materials(&self) -> Option<[(f64, f64); 2]> {
+        let own = |body: &crate::body::Body| match (body.young, body.poisson) {
+            (Some(young), Some(poisson)) if young.is_finite() && young > 0.0 => Some((young, poisson)),
+            _ => None,
+        };
+        let [a, b] = &self.scene.bodies;
+        match self.scene.contact.stiffness {
+            StiffnessSpec::Hertz => Some([own(a)?, own(b)?]),
+            StiffnessSpec::Value(_) => None,
+        }
     }
 
     /// Whether the law is Hertz's spring (exponent 3/2) — what the DEM codes' `hertz` models have.
@@ -274,6 +321,21 @@ impl TranslateError {
             TranslateError::Unreachable(_) | TranslateError::Output(_) => false,
         }
     }
+}
+
+/// The note of a translation that keeps the spring but changes the damping's form, to meet the scene's e.
+pub fn substituted(context: &Context, peer: Peer, form: &str) -> String {
+    let mut note = format!(
+        "{} has no damping of the `{}` form: the translation keeps the spring and tunes {form} to the scene's e, so \
+         the force–time curve differs from the scene's while e, head-on at this speed, is the same.",
+        peer.title(),
+        context.law.kind.name()
+    );
+    if context.setup.motion == crate::setup::Motion::Full {
+        note += " The contact is oblique: the same head-on e is not the same outcome once the line of centres turns \
+                 or friction acts, so the velocities after differ a little.";
+    }
+    note
 }
 
 /// The refusal of a law the peer cannot express, naming the nearest one it has.
@@ -395,6 +457,18 @@ pub fn translate(scene: &Scene, peer: Peer, dt: Option<f64>) -> Result<Translati
         Peer::Adams => adams::plan(&context)?,
     };
     let mut notes = plan.notes;
+    if let (Some(nominal), Some(target)) = (context.nominal, context.target)
+        && (nominal - target).abs() > 1e-9
+    {
+        notes.insert(
+            0,
+            format!(
+                "The scene's restitution = {nominal} is `{}`'s nominal e: its map gives a contact whose e is \
+                 {target:.6}, and that is the e the translation reproduces.",
+                context.law.kind.name()
+            ),
+        );
+    }
     let step = match (dt, peer.scheme()) {
         (Some(dt), Some(scheme)) => Some((scheme, dt)),
         _ => None,

@@ -128,7 +128,7 @@ pub fn plan(context: &Context) -> Result<Plan, TranslateError> {
         LawKind::KelvinVoigt | LawKind::HertzDashpot if law.exponent == 1.0 => {
             let form = Form::Dashpot { stiffness: law.stiffness, mass };
             let physical = spec(context, [-law.stiffness, -law.damping], CONSTANT_SOLIMP);
-            let wrong = super::restitution(context, &physical, None).ok().flatten();
+            let wrong = super::restitution(context, &physical, None)?;
             notes.push(format!(
                 "solref's direct form is per unit mass: [-k/m*, -c/m*] with m* = {} kg. Typed with the physical k \
                  and c (solref = \"{} {}\"), MuJoCo would give e = {}.",
@@ -138,7 +138,7 @@ pub fn plan(context: &Context) -> Result<Plan, TranslateError> {
                 wrong.map_or("no rebound".into(), |e| format!("{e:.4}"))
             ));
             if contact.separation == Separation::Penetration {
-                let own = super::restitution(context, &context.scene.contact.clone(), None).ok().flatten();
+                let own = super::restitution(context, &context.own_contact(), None)?;
                 notes.push(format!(
                     "The scene's spring–dashpot separates at d = 0 and pulls just before (e = {}); MuJoCo's contact \
                      never pulls, so its e is that of the force falling to zero — higher.",
