@@ -140,6 +140,130 @@ def scene(contact, dt):
         contact, {"method": "verlet", "dt": dt})
 
 
+# ---------------------------------------------------------------------------------------------------------------
+# `impact translate --to lammps`: the snippet's lines, run as they stand
+# ---------------------------------------------------------------------------------------------------------------
+MASS_WALL = MASS  # a sphere on a wall: m* = m, R* = r, E* = E / (1 - nu^2)
+K_WALL = 4.0 / 3.0 * YOUNG / (1.0 - POISSON**2) * math.sqrt(RADIUS)
+TC_WALL = 3.2180654597 * (MASS_WALL**2 / (K_WALL**2 * SPEED)) ** 0.2
+K_HOOKE = 1.0e6  # N/m, the Kelvin-Voigt pair's spring
+TC_HOOKE = math.pi * math.sqrt(M_STAR / K_HOOKE)  # its undamped contact's duration
+A_BRILLIANTOV = 2.0 * ETA0 * M_STAR * math.sqrt(R_STAR) / (3.0 * K)  # s: damping viscoelastic's eta_n0 = ETA0
+TSUJI_WALL = os.path.join(common.ROOT, "models", "tsuji-dem-alumina.toml")
+
+
+def pair_scene(title, contact):
+    body = {"radius": RADIUS, "density": DENSITY, "young": YOUNG, "poisson": POISSON}
+    return common.scene_text(
+        title, [dict(body, name="1", velocity=[SPEED, 0.0, 0.0]), dict(body, name="2", velocity=[0.0, 0.0, 0.0])],
+        dict(contact, normal=[1.0, 0.0, 0.0]))
+
+
+TRANSLATE_CASES = [  # (case, scene: a path or a scene's text, dt, wall)
+    ("tsuji e = 0.5, pair", pair_scene("alumina pair, tsuji, e = 0.5", {"law": "tsuji", "restitution": 0.5}),
+     [TC / 200, TC / 50], False),
+    ("tsuji e = 0.5, pair, separation force",
+     pair_scene("alumina pair, tsuji, e = 0.5, separation force",
+                {"law": "tsuji", "restitution": 0.5, "separation": "force"}), [TC / 50], False),
+    ("brilliantov A (eta_n0 = 1e9), pair", pair_scene("alumina pair, brilliantov",
+                                                      {"law": "brilliantov", "damping": A_BRILLIANTOV}),
+     [TC / 200, TC / 50], False),
+    ("brilliantov A (eta_n0 = 1e9), pair, separation force",
+     pair_scene("alumina pair, brilliantov, separation force",
+                {"law": "brilliantov", "damping": A_BRILLIANTOV, "separation": "force"}), [TC / 50], False),
+    ("kelvin-voigt k = 1e6, e = 0.6, pair",
+     pair_scene("alumina pair, kelvin-voigt", {"law": "kelvin-voigt", "stiffness": K_HOOKE, "restitution": 0.6}),
+     [TC_HOOKE / 50], False),
+    ("kelvin-voigt k = 1e6, c = 2, pair",
+     pair_scene("alumina pair, kelvin-voigt, c", {"law": "kelvin-voigt", "stiffness": K_HOOKE, "damping": 2.0}),
+     [TC_HOOKE / 50], False),
+    ("kelvin-voigt k = 1e6, e = 0.6, pair, separation force",
+     pair_scene("alumina pair, kelvin-voigt, separation force",
+                {"law": "kelvin-voigt", "stiffness": K_HOOKE, "restitution": 0.6, "separation": "force"}),
+     [TC_HOOKE / 50], False),
+    ("models/tsuji-dem-alumina.toml (wall)", TSUJI_WALL, [TC_WALL / 200, TC_WALL / 50], True),
+]
+
+
+def snippet_e(lammps, snippet, dt, tc, wall):
+    """Runs the translation's snippet line by line as it stands, with the box and the atoms (and the neighbour
+    settings) inserted before its `pair_style`: a pair touching at the start (1 at SPEED into 2 at rest), or one
+    sphere at the origin moving at SPEED along +x onto the snippet's wall. Returns (e, the lines run); a line
+    LAMMPS rejects raises with the line and LAMMPS's message."""
+    setup = [
+        "atom_modify map array",
+        "dimension 3",
+        "boundary f f f",
+        "region box block -0.05 0.05 -0.01 0.01 -0.01 0.01",
+        "create_box 1 box",
+    ]
+    if wall:
+        setup += ["create_atoms 1 single 0 0 0"]
+    else:
+        setup += [f"create_atoms 1 single {-RADIUS!r} 0 0", f"create_atoms 1 single {RADIUS!r} 0 0"]
+    setup += [f"set type 1 diameter {2 * RADIUS!r}", f"set type 1 density {DENSITY!r}", "group first id 1",
+              f"velocity first set {SPEED!r} 0 0", "neighbor 0.001 bin", "neigh_modify delay 0 every 1 check yes",
+              "thermo 0"]
+    lines = []
+    for line in snippet.splitlines():
+        if line.startswith("pair_style"):
+            lines += setup
+        lines.append(line)
+    if not any(line.startswith("timestep") for line in lines):
+        lines.append(f"timestep {dt!r}")
+    lmp = lammps.lammps(cmdargs=["-log", "none", "-screen", "none", "-nocite"])
+    for line in lines:
+        if not line.strip() or line.lstrip().startswith("#"):
+            continue
+        try:
+            lmp.command(line)
+        except Exception as error:
+            lmp.close()
+            raise RuntimeError(f"LAMMPS rejected `{line}`: {error}") from None
+    step = lmp.extract_global("dt")
+    if abs(step - dt) > 1e-12 * dt:
+        raise RuntimeError(f"the snippet's timestep reads as {step}, not {dt}")
+    for attempt in range(100):
+        lmp.command(f"run {math.ceil(3 * tc / dt)}" + (" pre no" if attempt else ""))
+        x = list(lmp.gather_atoms("x", 1, 3))
+        v = list(lmp.gather_atoms("v", 1, 3))
+        if wall and v[0] < 0 and x[0] < -1e-3 * RADIUS:
+            lmp.close()
+            return -v[0] / SPEED, lines
+        if not wall and x[3] - x[0] > 2 * RADIUS and v[3] > v[0]:
+            lmp.close()
+            return (v[3] - v[0]) / SPEED, lines
+    raise RuntimeError("the contact did not end")
+
+
+def translated(lammps):
+    table = common.Table("LAMMPS", "translation")
+    runs = []
+    for case, scene_, dts, wall in TRANSLATE_CASES:
+        tc = {True: TC_WALL, False: TC_HOOKE if "kelvin" in case else TC}[wall]
+        for dt in dts:
+            try:
+                t = common.translate(scene_, "lammps", dt)
+                e, lines = snippet_e(lammps, t["snippet"], dt, tc, wall)
+            except RuntimeError as error:
+                print(f"{case}, dt = {dt:.3g}: {error}")
+                continue
+            table.add(f"{case} (tc/{round(tc / dt)})", dt, e, t["restitution_at_dt"], t["restitution_continuous"])
+            runs.append((case, t))
+    print("\nimpact translate --to lammps --dt DT --json: LAMMPS run with the snippet's lines as they stand "
+          "(the box and atoms inserted before pair_style)")
+    table.print()
+    print("pair_coeff (and fix wall/gran/region) arguments, as translated:")
+    seen = set()
+    for case, t in runs:
+        if case not in seen:
+            seen.add(case)
+            print(f"  {case}: {t['parameters']['pair_coeff']}")
+            for line in t["snippet"].splitlines():
+                if line.startswith(("region", "fix wall")):
+                    print(f"      {line}")
+
+
 def main():
     lammps = load_lammps()
     table = common.Table("LAMMPS")
@@ -155,6 +279,7 @@ def main():
     table.print()
     print("LAMMPS lines used: pair_style granular")
     print("  " + pair_coeff("MODEL", "DAMP").replace("'", ""))
+    translated(lammps)
 
 
 if __name__ == "__main__":
