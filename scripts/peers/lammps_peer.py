@@ -21,9 +21,11 @@ and impact's prediction at LAMMPS's step is `[solver] method = "verlet"`, `dt`.
 import ctypes
 import glob
 import importlib.util
+import json
 import math
 import os
 import site
+import subprocess
 import sys
 
 os.environ["OMP_NUM_THREADS"] = "1"  # before liblammps (and its libgomp) loads
@@ -264,6 +266,91 @@ def translated(lammps):
                     print(f"      {line}")
 
 
+# ---------------------------------------------------------------------------------------------------------------
+# `impact translate --to lammps --input DIR`: the whole scene as LAMMPS input, run by `lmp -in in.impact` from DIR
+# ---------------------------------------------------------------------------------------------------------------
+INPUT_CASES = [  # (case, scene: a path or a scene's text)
+    ("models/newtons-cradle-3.toml", os.path.join(common.ROOT, "models", "newtons-cradle-3.toml")),
+    ("models/tsuji-dem-alumina.toml (wall)", TSUJI_WALL),
+    ("tsuji e = 0.5, pair", TRANSLATE_CASES[0][1]),
+]
+STEPS_PER_CONTACT_INPUT = 50  # dt = the shortest contact's duration (impact run) / this
+
+
+def impact_final(path):
+    """`impact run SCENE --json`: (the movable bodies' names and final velocities, in the scene's order; the
+    shortest contact's duration, s)."""
+    with open(path) as f:
+        report = common.impact_report(f.read(), "input-run")
+    bodies = [(b["name"], b["velocity_after"]) for b in report["bodies"] if b["mass"] != "inf"]
+    contacts = report.get("contacts") or [report["contact"]]
+    durations = [c["duration"] for c in contacts if c.get("duration")]
+    return bodies, min(durations)
+
+
+def lammps_input(lammps, case, scene_):
+    """Writes DIR/in.impact with impact translate --input, runs it in LAMMPS from DIR, and compares DIR/final.txt
+    with impact run's final velocities. Returns the printed lines."""
+    path = scene_ if os.path.exists(scene_) else common.write_scene(scene_, "input-scene")
+    bodies, tc = impact_final(path)
+    dt = tc / STEPS_PER_CONTACT_INPUT
+    folder = os.path.join(common.folder(), "input-" + "".join(c if c.isalnum() else "-" for c in case))
+    os.makedirs(folder, exist_ok=True)
+    command = [common.IMPACT, "translate", path, "--to", "lammps", "--dt", repr(dt), "--input", folder, "--json"]
+    run = subprocess.run(command, capture_output=True, text=True)
+    if run.returncode != 0:
+        return [f"{case}: impact translate --input failed ({run.returncode}): {run.stderr.strip()}"]
+    translation = json.loads(run.stdout)
+    cwd = os.getcwd()
+    lmp = lammps.lammps(cmdargs=["-log", os.path.join(folder, "log.lammps"), "-screen", "none", "-nocite"])
+    try:
+        os.chdir(folder)
+        lmp.file("in.impact")
+    except Exception as error:
+        common._keep.append(folder)
+        return [f"{case}: LAMMPS stopped on in.impact ({folder}): {str(error).strip()}"]
+    finally:
+        os.chdir(cwd)
+        lmp.close()
+    final = os.path.join(folder, "final.txt")
+    if not os.path.exists(final):
+        common._keep.append(folder)
+        return [f"{case}: LAMMPS ran in.impact but wrote no final.txt ({folder})"]
+    rows = {}
+    with open(final) as f:
+        for line in f:
+            fields = line.split()
+            if len(fields) == 4 and not line.startswith("#"):
+                try:
+                    rows[int(fields[0])] = [float(v) for v in fields[1:]]
+                except ValueError:
+                    pass
+    lines = [f"{case}: dt = {dt:.4g} s (tc/{STEPS_PER_CONTACT_INPUT}), translation e at dt "
+             f"{translation.get('restitution_at_dt')}, continuous {translation.get('restitution_continuous')}"]
+    if len(rows) != len(bodies):
+        common._keep.append(folder)
+        lines.append(f"  final.txt has {len(rows)} bodies, impact run {len(bodies)} movable ones ({folder})")
+    for (name, v_impact), atom in zip(bodies, sorted(rows)):
+        v = rows[atom]
+        difference = max(abs(a - b) for a, b in zip(v, v_impact))
+        lines.append(f"  {name:<16} id {atom}: LAMMPS ({v[0]: .6f}, {v[1]: .6f}, {v[2]: .6f})  impact run "
+                     f"({v_impact[0]: .6f}, {v_impact[1]: .6f}, {v_impact[2]: .6f})  max |difference| "
+                     f"{difference:.2e} m/s")
+    return lines
+
+
+def inputs(lammps):
+    probe = subprocess.run([common.IMPACT, "translate", "--help"], capture_output=True, text=True)
+    if "--input" not in probe.stdout:
+        print("\nimpact translate --input: not in this impact (skipped)")
+        return
+    print("\nimpact translate SCENE --to lammps --dt DT --input DIR: LAMMPS runs DIR/in.impact; DIR/final.txt against "
+          "impact run SCENE --json (final velocities)")
+    for case, scene_ in INPUT_CASES:
+        for line in lammps_input(lammps, case, scene_):
+            print(line)
+
+
 def main():
     lammps = load_lammps()
     table = common.Table("LAMMPS")
@@ -280,6 +367,7 @@ def main():
     print("LAMMPS lines used: pair_style granular")
     print("  " + pair_coeff("MODEL", "DAMP").replace("'", ""))
     translated(lammps)
+    inputs(lammps)
 
 
 if __name__ == "__main__":
