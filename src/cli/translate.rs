@@ -71,20 +71,33 @@ pub fn run(args: &TranslateArgs) -> anyhow::Result<()> {
             error => anyhow::Error::new(error).context(shown.clone()),
         }
     };
-    let scene = match load_any(&args.scene)? {
-        Parsed::Impact(scene) => scene,
-        Parsed::World(_) => {
-            return Err(SceneError::file(
-                &args.scene,
-                "translate takes the contact of a two-body scene; a world's input for LAMMPS is not written yet",
-            )
-            .into());
+    let translation = match load_any(&args.scene)? {
+        Parsed::Impact(scene) => {
+            let translation = translate(&scene, peer, args.dt).map_err(located)?;
+            if let Some(folder) = &args.input {
+                let written = input::for_impact(&scene, &translation, args.dt).map_err(located)?;
+                input::write(folder, &args.scene, &written).map_err(located)?;
+            }
+            translation
+        }
+        Parsed::World(world) => {
+            let Some(folder) = args.input.as_ref().filter(|_| peer == Peer::Lammps) else {
+                return Err(SceneError::file(
+                    &args.scene,
+                    "a world's contacts meet at many speeds: translate it as a whole LAMMPS input with --to lammps \
+                     --input DIR, or translate one of its contacts as a two-body scene",
+                )
+                .into());
+            };
+            let written = input::for_world(&world, args.dt).map_err(located)?;
+            input::write(folder, &args.scene, &written).map_err(located)?;
+            if !args.json {
+                print!("{}", render_world(&written, folder));
+                return Ok(());
+            }
+            input::as_translation(&written)
         }
     };
-    let translation = translate(&scene, peer, args.dt).map_err(located)?;
-    if let Some(folder) = &args.input {
-        input::write(folder, &args.scene, &scene, &translation, args.dt).map_err(located)?;
-    }
     let text = if args.json { serde_json::to_string_pretty(&translation)? + "\n" } else { render(&translation) };
     print!("{text}");
     Ok(())
@@ -93,6 +106,33 @@ pub fn run(args: &TranslateArgs) -> anyhow::Result<()> {
 /// e as the table prints it.
 fn restitution(e: Option<f64>) -> String {
     e.map_or("none (the bodies do not part)".into(), |e| format!("{e:.6}"))
+}
+
+/// What was written for a world.
+fn render_world(input: &input::Input, folder: &std::path::Path) -> String {
+    let shown = folder.display();
+    let mut text = format!(
+        "In LAMMPS: {} spheres ({} atom type{}), {} wall{}, {} steps of {} s\n  wrote {shown}/in.impact and \
+         {shown}/data.impact; run `lmp -in in.impact` there: it writes {shown}/final.txt (id vx vy vz per sphere)\n\n",
+        input.atoms.len(),
+        input.types,
+        if input.types == 1 { "" } else { "s" },
+        input.walls.len(),
+        if input.walls.len() == 1 { "" } else { "s" },
+        input.steps,
+        crate::translate::number(input.dt)
+    );
+    for (a, b, arguments) in &input.pair_coeffs {
+        let _ = writeln!(text, "  pair_coeff {a} {b} {arguments}");
+    }
+    for (k, wall) in input.walls.iter().enumerate() {
+        let _ = writeln!(text, "  wall{k}: {}", wall.arguments);
+    }
+    let _ = writeln!(text, "\n  notes");
+    for note in &input.notes {
+        let _ = writeln!(text, "    - {note}");
+    }
+    text
 }
 
 /// The readable translation.

@@ -256,6 +256,9 @@ pub enum TranslateError {
     /// The target e is out of the peer's reach (at this step).
     #[error("{0}")]
     Unreachable(String),
+    /// An output could not be written.
+    #[error("{0}")]
+    Output(String),
 }
 
 impl TranslateError {
@@ -268,7 +271,7 @@ impl TranslateError {
         match self {
             TranslateError::Bad { .. } => true,
             TranslateError::Simulation(error) => matches!(error, SimulationError::Setup(_)),
-            TranslateError::Unreachable(_) => false,
+            TranslateError::Unreachable(_) | TranslateError::Output(_) => false,
         }
     }
 }
