@@ -269,12 +269,31 @@ def translated(lammps):
 # ---------------------------------------------------------------------------------------------------------------
 # `impact translate --to lammps --input DIR`: the whole scene as LAMMPS input, run by `lmp -in in.impact` from DIR
 # ---------------------------------------------------------------------------------------------------------------
-INPUT_CASES = [  # (case, scene: a path or a scene's text)
-    ("models/newtons-cradle-3.toml", os.path.join(common.ROOT, "models", "newtons-cradle-3.toml")),
-    ("models/tsuji-dem-alumina.toml (wall)", TSUJI_WALL),
-    ("tsuji e = 0.5, pair", TRANSLATE_CASES[0][1]),
+STEPS_PER_CONTACT_INPUT = [50, 500]  # dt = the shortest contact's duration (impact run) / each
+
+
+def model(name):
+    return os.path.join(common.ROOT, "models", f"{name}.toml")
+
+
+def oblique_tsuji():
+    """models/lecture-oblique.toml with Tsuji's damping (LAMMPS' own form) instead of carvalho-martins."""
+    with open(model("lecture-oblique")) as f:
+        return "\n".join('law = "tsuji"' if line.startswith("law = ") else line for line in f.read().splitlines())
+
+
+INPUT_CASES = [  # (case, scene: a path or a scene's text, steps per contact: None runs without --dt)
+    ("models/newtons-cradle-3.toml", model("newtons-cradle-3"), STEPS_PER_CONTACT_INPUT),
+    ("models/tsuji-dem-alumina.toml (wall)", TSUJI_WALL, STEPS_PER_CONTACT_INPUT),
+    ("tsuji e = 0.5, pair", TRANSLATE_CASES[0][1], STEPS_PER_CONTACT_INPUT),
+] + [(f"models/{name}.toml", model(name), STEPS_PER_CONTACT_INPUT) for name in [
+    "newtons-cradle-5", "newtons-cradle-gaps", "ball-stack", "bouncing-ball", "viscoelastic-spheres",
+    "sphere-on-rigid-wall", "steel-pair-hertz"]] + [
+    # a scene with its own [solver] method = "verlet", dt = 1.3e-7: impact run gives the nominal e's run at that step
+    ("models/dem-verlet-alumina.toml", model("dem-verlet-alumina"), [None, 50]),
+    ("models/lecture-oblique.toml (carvalho-martins)", model("lecture-oblique"), STEPS_PER_CONTACT_INPUT),
+    ("models/lecture-oblique.toml with law = tsuji", oblique_tsuji(), STEPS_PER_CONTACT_INPUT),
 ]
-STEPS_PER_CONTACT_INPUT = 50  # dt = the shortest contact's duration (impact run) / this
 
 
 def impact_final(path):
@@ -288,15 +307,16 @@ def impact_final(path):
     return bodies, min(durations)
 
 
-def lammps_input(lammps, case, scene_):
-    """Writes DIR/in.impact with impact translate --input, runs it in LAMMPS from DIR, and compares DIR/final.txt
-    with impact run's final velocities. Returns the printed lines."""
+def lammps_input(lammps, case, scene_, steps):
+    """Writes DIR/in.impact with impact translate --input at dt = tc / steps, runs it in LAMMPS from DIR, and
+    compares DIR/final.txt with impact run's final velocities. Returns the printed lines."""
     path = scene_ if os.path.exists(scene_) else common.write_scene(scene_, "input-scene")
     bodies, tc = impact_final(path)
-    dt = tc / STEPS_PER_CONTACT_INPUT
-    folder = os.path.join(common.folder(), "input-" + "".join(c if c.isalnum() else "-" for c in case))
+    dt = None if steps is None else tc / steps
+    folder = os.path.join(common.folder(), f"input-{steps}-" + "".join(c if c.isalnum() else "-" for c in case))
     os.makedirs(folder, exist_ok=True)
-    command = [common.IMPACT, "translate", path, "--to", "lammps", "--dt", repr(dt), "--input", folder, "--json"]
+    command = [common.IMPACT, "translate", path, "--to", "lammps", "--input", folder, "--json"]
+    command += [] if dt is None else ["--dt", repr(dt)]
     run = subprocess.run(command, capture_output=True, text=True)
     if run.returncode != 0:
         return [f"{case}: impact translate --input failed ({run.returncode}): {run.stderr.strip()}"]
@@ -325,7 +345,10 @@ def lammps_input(lammps, case, scene_):
                     rows[int(fields[0])] = [float(v) for v in fields[1:]]
                 except ValueError:
                     pass
-    lines = [f"{case}: dt = {dt:.4g} s (tc/{STEPS_PER_CONTACT_INPUT}), translation e at dt "
+    with open(os.path.join(folder, "in.impact")) as f:
+        timestep = [line.split()[1] for line in f if line.startswith("timestep")]
+    given = "no --dt" if dt is None else f"--dt {dt:.4g} s (tc/{steps})"
+    lines = [f"{case}: {given}, in.impact timestep {timestep[0] if timestep else '(none)'}, translation e at dt "
              f"{translation.get('restitution_at_dt')}, continuous {translation.get('restitution_continuous')}"]
     if len(rows) != len(bodies):
         common._keep.append(folder)
@@ -346,9 +369,10 @@ def inputs(lammps):
         return
     print("\nimpact translate SCENE --to lammps --dt DT --input DIR: LAMMPS runs DIR/in.impact; DIR/final.txt against "
           "impact run SCENE --json (final velocities)")
-    for case, scene_ in INPUT_CASES:
-        for line in lammps_input(lammps, case, scene_):
-            print(line)
+    for case, scene_, steps_list in INPUT_CASES:
+        for steps in steps_list:
+            for line in lammps_input(lammps, case, scene_, steps):
+                print(line)
 
 
 def main():
