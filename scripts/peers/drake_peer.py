@@ -186,6 +186,10 @@ def translated(drake):
     print("\nimpact translate --to drake [--dt DT] --json: Drake run with the snippet's properties on both geometries "
           "and its MultibodyPlantConfig")
     table.print()
+    for name, path in [("hunt-crossley", hc), ("kelvin-voigt", kv)]:
+        with open(path) as f:
+            own, _ = common.impact_e(f.read(), "drake-own")
+        print(f"the {name} scene's own e (impact run, its restitution read by its law's map): {own:.6f}")
     for error, snippet in errors.items():
         print(f"the snippet as it stands fails: {error}")
     if errors:

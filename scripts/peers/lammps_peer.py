@@ -293,6 +293,10 @@ INPUT_CASES = [  # (case, scene: a path or a scene's text, steps per contact: No
     ("models/dem-verlet-alumina.toml", model("dem-verlet-alumina"), [None, 50]),
     ("models/lecture-oblique.toml (carvalho-martins)", model("lecture-oblique"), STEPS_PER_CONTACT_INPUT),
     ("models/lecture-oblique.toml with law = tsuji", oblique_tsuji(), STEPS_PER_CONTACT_INPUT),
+    # friction on a wall at 45 degrees (LAMMPS' mindlin through fix wall/gran/region)
+    ("models/chung-ooi-test4.toml", model("chung-ooi-test4"), STEPS_PER_CONTACT_INPUT),
+    # a law whose map from the nominal e is inexact: the scene's restitution = 0.5 gives e = 0.725 in impact run
+    ("models/hysteresis-lankarani-nikravesh.toml", model("hysteresis-lankarani-nikravesh"), STEPS_PER_CONTACT_INPUT),
 ]
 
 
