@@ -106,11 +106,34 @@ def impact_e(text, name="scene"):
     return e, e if continuous is None else continuous
 
 
-class Table:
-    """case, dt, e (program), e (impact at dt), difference, e (impact continuous)."""
+def write_scene(text, name):
+    """A scene given as text written into the run's folder: its path."""
+    path = os.path.join(_tmp, name + ".toml")
+    with open(path, "w") as f:
+        f.write(text)
+    return path
 
-    def __init__(self, program):
+
+def translate(scene, peer, dt=None):
+    """`impact translate SCENE --to PEER [--dt DT] --json`, parsed: SCENE a path, or a scene's text (written into the
+    run's folder first)."""
+    path = scene if os.path.exists(scene) else write_scene(scene, f"translate-{peer}")
+    command = [IMPACT, "translate", path, "--to", peer, "--json"] + ([] if dt is None else ["--dt", repr(dt)])
+    run = subprocess.run(command, capture_output=True, text=True)
+    if run.returncode != 0:
+        _keep.append(path)
+        raise RuntimeError(f"{' '.join(command)} failed ({run.returncode}):\n{run.stderr}")
+    return json.loads(run.stdout)
+
+
+class Table:
+    """case, dt, e (program), e (impact at dt), difference, e (impact continuous). `against` names the prediction
+    ("impact": `impact run` on the same contact; "translation": `impact translate`'s restitution_at_dt and
+    restitution_continuous)."""
+
+    def __init__(self, program, against="impact"):
         self.program = program
+        self.against = against
         self.rows = []
 
     def add(self, case, dt, e_program, e_impact_dt, e_impact_continuous):
@@ -120,10 +143,12 @@ class Table:
 
     def print(self):
         width = max([len("case")] + [len(r[0]) for r in self.rows])
-        print(f"{'case':<{width}}  {'dt (s)':>10}  {'e (' + self.program + ')':>16}  {'e (impact, dt)':>14}  "
-              f"{'difference':>11}  {'e (impact, dt -> 0)':>19}")
+        a = self.against
+        print(f"{'case':<{width}}  {'dt (s)':>10}  {'e (' + self.program + ')':>16}  {'e (' + a + ', dt)':>{len(a) + 8}}  "
+              f"{'difference':>11}  {'e (' + a + ', dt -> 0)':>{len(a) + 13}}")
         for case, dt, e, e_dt, e_cont in self.rows:
             step = "continuous" if dt is None else f"{dt:.3g}"
-            at_dt = "no scheme" if e_dt is None else f"{e_dt:.6f}"
+            at_dt = ("no scheme" if self.against == "impact" else "not given") if e_dt is None else f"{e_dt:.6f}"
             difference = "n/a" if e_dt is None else f"{e - e_dt:.2e}"
-            print(f"{case:<{width}}  {step:>10}  {e:>16.6f}  {at_dt:>14}  {difference:>11}  {e_cont:>19.6f}")
+            print(f"{case:<{width}}  {step:>10}  {e:>16.6f}  {at_dt:>{len(a) + 8}}  {difference:>11}  "
+                  f"{e_cont:>{len(a) + 13}.6f}")

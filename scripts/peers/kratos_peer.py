@@ -48,7 +48,11 @@ def thornton_gamma(e):
     return ExplicitStrategy.GammaForHertzThornton(None, e)
 
 
-def materials():
+def materials(snippet=None):
+    """MaterialsDEM.json: the driver's own, or, with a translation's `snippet`, the snippet's materials and relation
+    (over the driver's values for the keys the snippet leaves out) with the sphere's PARTICLE_DENSITY added."""
+    if snippet is not None:
+        return snippet_materials(snippet)
     return {
         "materials": [
             {"material_name": "sphere", "material_id": 1,
@@ -69,7 +73,40 @@ def materials():
     }
 
 
-def project(dt):
+def snippet_parts(snippet):
+    """The snippet's two JSON fragments: (MaterialsDEM.json's "materials" and "material_relations",
+    ProjectParameters.json's settings), each read as the members of one object."""
+    lines = [line for line in snippet.splitlines() if line.strip() and not line.lstrip().startswith("//")]
+    materials_text = "{" + "\n".join(line for line in lines if line.startswith(('"materials"', '"material_relations"'))) + "}"
+    project_text = "{" + "\n".join(line for line in lines
+                                    if not line.startswith(('"materials"', '"material_relations"'))) + "}"
+    try:
+        materials_part = json.loads(materials_text)
+    except json.JSONDecodeError as error:
+        raise RuntimeError(f"the snippet's materials do not read as JSON members ({error}):\n{materials_text}")
+    return materials_part, json.loads(project_text)
+
+
+def snippet_materials(snippet):
+    given, _ = snippet_parts(snippet)
+    base = materials()
+    sphere, wall = given["materials"]
+    sphere["Variables"]["PARTICLE_DENSITY"] = DENSITY  # (the snippet has no density: the sphere's mass needs one)
+    relation = given["material_relations"][0]
+    relation["Variables"] = dict(base["material_relations"][0]["Variables"], **relation["Variables"])
+    return {"materials": [sphere, wall], "material_relations": [relation],
+            "material_assignation_table": [["SpheresPart", sphere["material_name"]],
+                                           ["RigidFacePart", wall["material_name"]]]}
+
+
+def project(dt, snippet=None):
+    settings = project_own(dt)
+    if snippet is not None:
+        settings.update(snippet_parts(snippet)[1])
+    return settings
+
+
+def project_own(dt):
     return {
         "Dimension": 3, "BoundingBoxOption": False, "dem_inlet_option": False,
         "GravityX": 0.0, "GravityY": 0.0, "GravityZ": 0.0,
@@ -89,9 +126,9 @@ def project(dt):
     }
 
 
-def kratos_e(Kratos, DEM, stage_class, dt, folder):
+def kratos_e(Kratos, DEM, stage_class, dt, folder, snippet=None):
     with open(os.path.join(folder, "MaterialsDEM.json"), "w") as f:
-        json.dump(materials(), f)
+        json.dump(materials(snippet), f)
 
     class Stage(stage_class):
         def GetMainPath(self):
@@ -124,7 +161,10 @@ def kratos_e(Kratos, DEM, stage_class, dt, folder):
             self.final_z = [n.Z for n in self.spheres_model_part.Nodes]
             super().Finalize()
 
-    stage = Stage(Kratos.Model(), Kratos.Parameters(json.dumps(project(dt))))
+    settings = project(dt, snippet)
+    if settings["MaxTimeStep"] != dt:
+        raise RuntimeError(f"the snippet's MaxTimeStep is {settings['MaxTimeStep']}, not {dt}")
+    stage = Stage(Kratos.Model(), Kratos.Parameters(json.dumps(settings)))
     stage.Run()
     if stage.final_z[0] <= RADIUS:
         raise RuntimeError("the sphere has not left the wall at the end time")
@@ -170,6 +210,50 @@ def main():
           f"alumina sphere (r = {RADIUS} m) on a rigid wall at {SPEED} m/s, {SCHEME}, tc = {TC:.4g} s")
     print(f"  COEFFICIENT_OF_RESTITUTION {E_NOMINAL} -> DAMPING_GAMMA {gamma:.6f} (Thornton's fit) -> "
           f"impact tsuji damping a = sqrt(6) gamma = {a:.6f}")
+    table.print()
+    translated(Kratos, DEM, DEMAnalysisStage, folder)
+
+
+# ---------------------------------------------------------------------------------------------------------------
+# `impact translate --to kratos`: the snippet's materials and settings
+# ---------------------------------------------------------------------------------------------------------------
+E_TRANSLATE = 0.98  # the e the scene asks for (law = "tsuji", separation = "force")
+
+
+def translate_scene():
+    return common.scene_text(
+        f"Alumina sphere on a rigid wall, tsuji, e = {E_TRANSLATE}, separation force",
+        [{"name": "sphere", "radius": RADIUS, "density": DENSITY, "young": YOUNG, "poisson": POISSON,
+          "velocity": [0.0, 0.0, -SPEED]},
+         {"name": "wall", "radius": float("inf"), "mass": float("inf"), "young": float("inf"),
+          "velocity": [0.0, 0.0, 0.0]}],
+        {"law": "tsuji", "restitution": E_TRANSLATE, "separation": "force", "normal": [0.0, 0.0, -1.0]})
+
+
+def translated(Kratos, DEM, stage_class, folder):
+    """The scene translated at each dt and run in Kratos with the snippet's MaterialsDEM.json entries (both
+    materials, the wall's too, as the snippet gives them; the sphere's PARTICLE_DENSITY added) and its
+    ProjectParameters.json settings."""
+    table = common.Table("Kratos", "translation")
+    cwd = os.getcwd()
+    shown = None
+    path = common.write_scene(translate_scene(), "kratos-translate")
+    for steps in STEPS_PER_CONTACT:
+        dt = TC / steps
+        t = common.translate(path, "kratos", dt)
+        try:
+            os.chdir(folder)
+            with common.quiet():
+                e = kratos_e(Kratos, DEM, stage_class, dt, folder, t["snippet"])
+        finally:
+            os.chdir(cwd)
+        nominal = t["parameters"]["COEFFICIENT_OF_RESTITUTION"]
+        table.add(f"tsuji e = {E_TRANSLATE}, force: COEFFICIENT_OF_RESTITUTION {nominal:.6f} (tc/{steps})", dt, e,
+                  t["restitution_at_dt"], t["restitution_continuous"])
+        shown = t
+    print(f"\nimpact translate --to kratos --dt DT --json: Kratos run with the snippet's materials (YOUNG_MODULUS "
+          f"{shown['parameters']['YOUNG_MODULUS']:.6g} Pa, POISSON_RATIO {shown['parameters']['POISSON_RATIO']} on "
+          f"the sphere and the wall) and settings")
     table.print()
 
 

@@ -15,6 +15,7 @@ on a step boundary, as in impact's fixed-step run (touch phase 0). e = qvel_z af
 
 import math
 import os
+import re
 import sys
 import tomllib
 
@@ -105,6 +106,85 @@ def scene(name, mass, radius, speed, solref, dt):
         {"method": "symplectic-euler", "dt": dt})
 
 
+# ---------------------------------------------------------------------------------------------------------------
+# `impact translate --to mujoco`: the snippet's attributes, used literally
+# ---------------------------------------------------------------------------------------------------------------
+TRANSLATE_DTS = [2e-4, 1e-4]  # s
+
+
+def kelvin_voigt_scene():
+    """The discussion's intent as a scene: a linear spring-dashpot, k = K, e = E_TARGET, the ball at SPEED."""
+    return common.scene_text(
+        f"Kelvin-Voigt ball, k = {K:g} N/m, m = {MASS} kg, e = {E_TARGET}",
+        [{"name": "ball", "mass": MASS, "radius": RADIUS, "velocity": [0.0, 0.0, -SPEED]},
+         {"name": "floor", "mass": float("inf"), "radius": float("inf"), "velocity": [0.0, 0.0, 0.0]}],
+        {"law": "kelvin-voigt", "stiffness": K, "restitution": E_TARGET, "normal": [0.0, 0.0, -1.0]})
+
+
+def snippet_model(snippet, mass, radius):
+    """A MuJoCo model built from the translation's snippet as it stands: its <option .../> (gravity off added) and
+    its <geom .../> attributes as the default of both geoms (the snippet asks for them on both)."""
+    option = re.search(r"<option\b([^>]*?)/>", snippet)
+    geom = re.search(r"<geom\b([^>]*?)/>", snippet)
+    if not option or not geom:
+        raise RuntimeError(f"the snippet has no <option/> or <geom/> element:\n{snippet}")
+    return f"""<mujoco model="impact-translate">
+  <option{option.group(1)} gravity="0 0 0"/>
+  <default>
+    <geom{geom.group(1)}/>
+  </default>
+  <worldbody>
+    <geom name="floor" type="plane" size="10 10 0.1"/>
+    <body name="ball" pos="0 0 {radius + 1e-12!r}">
+      <freejoint/>
+      <geom name="ball" type="sphere" size="{radius!r}" mass="{mass!r}"/>
+    </body>
+  </worldbody>
+</mujoco>
+"""
+
+
+def snippet_e(mujoco, xml, speed):
+    model = mujoco.MjModel.from_xml_string(xml)
+    data = mujoco.MjData(model)
+    data.qvel[2] = -speed
+    touched = False
+    for _ in range(10_000_000):
+        mujoco.mj_step(model, data)
+        touched = touched or data.ncon > 0
+        if touched and data.ncon == 0 and data.qvel[2] > 0:
+            return data.qvel[2] / speed, model.opt.timestep
+    raise RuntimeError("the ball did not leave the plane")
+
+
+def translated(mujoco):
+    """models/mujoco-typed-physical.toml and the Kelvin-Voigt scene, each translated at each dt and run in MuJoCo
+    from the snippet; the table sets MuJoCo's e beside the translation's restitution_at_dt and continuous e."""
+    _, mass, radius, speed, _ = model_case()
+    kv = common.write_scene(kelvin_voigt_scene(), "mujoco-kelvin-voigt")
+    table = common.Table("MuJoCo", "translation")
+    snippets = []
+    for name, path, mass, radius, speed in [
+            ("models/mujoco-typed-physical.toml", MODEL, mass, radius, speed),
+            (f"kelvin-voigt e = {E_TARGET}, k = {K:g}", kv, MASS, RADIUS, SPEED)]:
+        for dt in TRANSLATE_DTS:
+            t = common.translate(path, "mujoco", dt)
+            xml = snippet_model(t["snippet"], mass, radius)
+            e, step = snippet_e(mujoco, xml, speed)
+            if step != dt:
+                raise RuntimeError(f"the snippet's timestep reads as {step}, not {dt}")
+            solref = " ".join(f"{v:.6g}" for v in t["parameters"]["solref"])
+            table.add(f"{name} {speed:g} m/s, solref {solref}", dt, e, t["restitution_at_dt"],
+                      t["restitution_continuous"])
+            snippets.append((name, dt, t["snippet"]))
+    print(f"\nimpact translate --to mujoco --dt DT --json: MuJoCo {mujoco.__version__} run with the snippet's <option> "
+          "and <geom> attributes (on both geoms), no gravity")
+    table.print()
+    name, dt, snippet = snippets[-1]
+    print(f"the snippet ({name}, dt = {dt:g}), used as it stands:")
+    print("".join("  " + line + "\n" for line in snippet.splitlines()), end="")
+
+
 def main():
     try:
         import mujoco
@@ -121,6 +201,7 @@ def main():
     table.print()
     print('MuJoCo geom attributes used: condim="1" solref="-K -C" solimp="0.9 0.95 0.001 0.5 2" (on both geoms),')
     print('  <option gravity="0 0 0" integrator="Euler" cone="pyramidal" timestep="DT"/>')
+    translated(mujoco)
 
 
 if __name__ == "__main__":
