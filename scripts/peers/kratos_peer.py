@@ -74,29 +74,27 @@ def materials(snippet=None):
 
 
 def snippet_parts(snippet):
-    """The snippet's two JSON fragments: (MaterialsDEM.json's "materials" and "material_relations",
-    ProjectParameters.json's settings), each read as the members of one object."""
-    lines = [line for line in snippet.splitlines() if line.strip() and not line.lstrip().startswith("//")]
-    materials_text = "{" + "\n".join(line for line in lines if line.startswith(('"materials"', '"material_relations"'))) + "}"
-    project_text = "{" + "\n".join(line for line in lines
-                                    if not line.startswith(('"materials"', '"material_relations"'))) + "}"
+    """The snippet's two parts: MaterialsDEM.json (a whole JSON object) and ProjectParameters.json's settings (read
+    as the members of one object)."""
+    materials_text, _, project_text = snippet.partition("// ProjectParameters.json")
+    strip = lambda text: "\n".join(line for line in text.splitlines() if line.strip() and not line.lstrip().startswith("//"))
     try:
-        materials_part = json.loads(materials_text)
+        materials_part = json.loads(strip(materials_text))
     except json.JSONDecodeError as error:
-        raise RuntimeError(f"the snippet's materials do not read as JSON members ({error}):\n{materials_text}")
-    return materials_part, json.loads(project_text)
+        raise RuntimeError(f"the snippet's MaterialsDEM.json does not read as JSON ({error}):\n{materials_text}")
+    project_lines = project_text.splitlines()[1:]  # (the rest of the comment line)
+    return materials_part, json.loads("{" + strip("\n".join(project_lines)) + "}")
 
 
 def snippet_materials(snippet):
     given, _ = snippet_parts(snippet)
     base = materials()
     sphere, wall = given["materials"]
-    sphere["Variables"]["PARTICLE_DENSITY"] = DENSITY  # (the snippet has no density: the sphere's mass needs one)
+    sphere["Variables"].setdefault("PARTICLE_DENSITY", DENSITY)
     relation = given["material_relations"][0]
     relation["Variables"] = dict(base["material_relations"][0]["Variables"], **relation["Variables"])
     return {"materials": [sphere, wall], "material_relations": [relation],
-            "material_assignation_table": [["SpheresPart", sphere["material_name"]],
-                                           ["RigidFacePart", wall["material_name"]]]}
+            "material_assignation_table": given["material_assignation_table"]}
 
 
 def project(dt, snippet=None):
@@ -252,7 +250,7 @@ def translated(Kratos, DEM, stage_class, folder):
                   t["restitution_at_dt"], t["restitution_continuous"])
         shown = t
     print(f"\nimpact translate --to kratos --dt DT --json: Kratos run with the snippet's materials (YOUNG_MODULUS "
-          f"{shown['parameters']['YOUNG_MODULUS']:.6g} Pa, POISSON_RATIO {shown['parameters']['POISSON_RATIO']} on "
+          f"{shown['parameters']['YOUNG_MODULUS'][0]:.6g} Pa, POISSON_RATIO {shown['parameters']['POISSON_RATIO'][0]} on "
           f"the sphere and the wall) and settings")
     table.print()
 

@@ -88,13 +88,14 @@ impl Mapping for Hertz {
             None => String::new(),
         };
         format!(
-            "// {} in Kratos DEM (impact translate)\n// MaterialsDEM.json (a: body 1, b: body 2 or the wall):\n\
+            "// {} in Kratos DEM (impact translate)\n// MaterialsDEM.json (a: body 1, b: body 2 or the wall):\n{{\n  \
              \"materials\": [{{\"material_name\": \"a\", \"material_id\": 1, \"Variables\": {{\"YOUNG_MODULUS\": {y1}, \
              \"POISSON_RATIO\": {n1}{d1}}}}}, {{\"material_name\": \"b\", \"material_id\": 2, \"Variables\": \
-             {{\"YOUNG_MODULUS\": {y2}, \"POISSON_RATIO\": {n2}{d2}}}}}],\n\
+             {{\"YOUNG_MODULUS\": {y2}, \"POISSON_RATIO\": {n2}{d2}}}}}],\n  \
              \"material_relations\": [{{\"material_names_list\": [\"a\", \"b\"], \"material_ids_list\": [1, 2], \
              \"Variables\": {{\"COEFFICIENT_OF_RESTITUTION\": {e}, \"STATIC_FRICTION\": {mu}, \"DYNAMIC_FRICTION\": {mu}, \
-             \"DEM_DISCONTINUUM_CONSTITUTIVE_LAW_NAME\": \"DEM_D_Hertz_viscous_Coulomb\"}}}}],\n{table}\n// ProjectParameters.json:\n\
+             \"DEM_DISCONTINUUM_CONSTITUTIVE_LAW_NAME\": \"DEM_D_Hertz_viscous_Coulomb\"}}}}],\n  {table}\n}}\n\
+             // ProjectParameters.json, beside its other settings:\n\
              \"TranslationalIntegrationScheme\": \"Symplectic_Euler\"{step}\n",
             self.context.scene.title
         )
