@@ -113,21 +113,6 @@ impl Mode {
     }
 }
 
-/// How far a normal force `normal_force` is from pulling, relative to its elastic part `elastic` (both scaled):
-/// Fn / F_elastic = 1 + F_dissipative / F_elastic, which falls through zero where a damped force turns tensile. Unlike
-/// Fn itself it stays away from zero where a force that never pulls vanishes with the penetration (a Hertzian law's
-/// at separation), so that the passage into tension is never confused with the contact's end. Out of contact (no
-/// elastic force) it is the force's sign, or 1 without a force.
-pub fn compression_ratio(normal_force: f64, elastic: f64) -> f64 {
-    if elastic > 0.0 {
-        normal_force / elastic
-    } else if normal_force == 0.0 {
-        1.0
-    } else {
-        normal_force.signum()
-    }
-}
-
 /// The tangential contact, scaled: an incremental spring dT/dt = -kt slip (Mindlin: kt = 8 G* sqrt(R* d)) with a
 /// dashpot c_t on the slip, the total capped at mu Fn (Coulomb). While sticking the spring follows the slip; while
 /// sliding it stays on the cap |T| = mu Fn, turning towards the slip, until the spring would unload faster than the
@@ -244,10 +229,27 @@ impl Tangential {
             Mode::Slip if normal_force <= 0.0 && self.cap == FrictionCap::Compressive => {
                 TangentialForce { force: Vector3::zeros(), spring_rate: turning }
             }
-            Mode::Slip | Mode::SlipInTension => {
+            Mode::SlipInTension => {
+                // The spring carries only the force's direction here (the force is the cap along it): the cap's rate
+                // grows without bound where a damping term in d^(1/4) or d^(1/2) (Tsuji's, Brilliantov's) pulls the
+                // contact apart, and a spring made to follow it would hold the integrator to ever shorter steps.
+                // Released at the cap's kink, it is zero, and the force is against the slip.
+                let along = Tangential::direction(spring, &k.slip);
+                let across = loading - along * loading.dot(&along);
+                let size = loading.norm();
+                // The direction turns towards the loading at |loading across it| / cap, at most MAX_TURN_RATE.
+                let turn = if across.norm() <= MISALIGNMENT * size {
+                    Vector3::zeros()
+                } else if size > MAX_TURN_RATE * cap {
+                    across * (MAX_TURN_RATE * spring.norm() / size)
+                } else {
+                    across * (spring.norm() / cap)
+                };
+                TangentialForce { force: along * cap, spring_rate: turn + turning }
+            }
+            Mode::Slip => {
                 let along = Tangential::sliding_direction(spring, &k.slip, cap);
-                // d(mu |Fn|)/dt on the mode's side of Fn = 0.
-                let cap_rate = self.friction * mode.side() * normal_force_rate;
+                let cap_rate = self.friction * normal_force_rate;
                 // The spring turns towards the loading at the rate |loading across it| / |T|, which grows without
                 // bound where the Coulomb limit vanishes (the edges of the contact): faster than MAX_TURN_RATE it
                 // is taken as that rate, so that an explicit integrator is not held to ever shorter steps.
@@ -269,8 +271,8 @@ impl Tangential {
     /// cap - |T|; while sliding, how much faster the spring would load than the cap grows, (dT/dt of a holding
     /// spring)·t - d(cap)/dt (positive, no switch, while a compressive cap has no normal force). With the magnitude
     /// cap a sliding mode also ends where the normal force passes through zero (the cap's kink), watched as the
-    /// [`compression_ratio`] on the mode's side, `elastic` being the elastic part of the normal force: the smaller
-    /// of the two falls through zero first, and both are continuous.
+    /// compression ratio on the mode's side (`elastic` is the elastic part of the normal force): the smaller of the
+    /// two falls through zero first, and both are continuous.
     pub fn switch_function(
         &self,
         mode: Mode,
@@ -296,7 +298,11 @@ impl Tangential {
     }
 
     /// A sliding mode's two switch functions: how much faster a holding spring would load than the cap grows, and
-    /// the compression ratio on the mode's side (positive infinity, never falling, with the compressive cap).
+    /// the compression ratio on the mode's side (positive infinity, never falling, with the compressive cap). The
+    /// ratio Fn / F_elastic = 1 + F_dissipative / F_elastic falls through zero where a damped force turns tensile;
+    /// unlike Fn itself it stays away from zero where a force that never pulls vanishes with the penetration (a
+    /// Hertzian law's at separation), and out of contact, without a force, it is 1 on either side: the passage into
+    /// or out of tension is never confused with the contact's end.
     fn sliding_parts(
         &self,
         mode: Mode,
@@ -307,22 +313,41 @@ impl Tangential {
         elastic: f64,
     ) -> (f64, f64) {
         let kt = self.stiffness_at(kinematics.penetration);
-        let along = Tangential::sliding_direction(spring, &kinematics.slip, self.cap(normal_force));
-        let holding = -kinematics.slip.dot(&along) * kt + spring.dot(&along) * self.rescale_rate(kinematics);
+        let along = self.sliding_along(mode, spring, &kinematics.slip, normal_force);
+        let held = self.held(mode, spring, normal_force);
+        let holding = -kinematics.slip.dot(&along) * kt + held * self.rescale_rate(kinematics);
         let lifting = holding - self.friction * mode.side() * normal_force_rate;
         let kink = match self.cap {
             FrictionCap::Compressive => f64::INFINITY,
-            FrictionCap::Magnitude => mode.side() * compression_ratio(normal_force, elastic),
+            FrictionCap::Magnitude if elastic > 0.0 => mode.side() * normal_force / elastic,
+            // At the edge, Kelvin–Voigt's force from inside: its sign.
+            FrictionCap::Magnitude if normal_force != 0.0 => mode.side() * normal_force.signum(),
+            FrictionCap::Magnitude => 1.0,
         };
         (lifting, kink)
     }
 
-    /// The mode after a located zero of [`Tangential::switch_function`] in `mode`, at that instant's state, and
-    /// whether the spring is to be released there (set to zero: it sat on a cap that passes through zero). Sticking
-    /// turns to sliding on the side of Fn it is on. Sliding turns to sticking, unless the zero is the magnitude cap's
-    /// kink: there the cap restarts from zero at the rate mu |dFn/dt| and a released spring would load against the
-    /// slip at kt |slip|, so the contact goes on sliding on the other side if the spring outgrows the cap, and
-    /// sticks otherwise.
+    /// The direction a sliding mode's force takes: the spring's (see [`Tangential::evaluate`]).
+    fn sliding_along(&self, mode: Mode, spring: &Vector3<f64>, slip: &Vector3<f64>, normal_force: f64) -> Vector3<f64> {
+        match mode {
+            Mode::SlipInTension => Tangential::direction(spring, slip),
+            _ => Tangential::sliding_direction(spring, slip, self.cap(normal_force)),
+        }
+    }
+
+    /// The size of the force the spring holds in `mode` (scaled): the cap while sliding under tension (the spring
+    /// then carries only the direction), the spring's, at most the cap, otherwise.
+    pub fn held(&self, mode: Mode, spring: &Vector3<f64>, normal_force: f64) -> f64 {
+        let cap = self.cap(normal_force);
+        if mode == Mode::SlipInTension { cap } else { spring.norm().min(cap) }
+    }
+
+    /// The mode after a located zero of [`Tangential::switch_function`] in `mode`, at that instant's state, and the
+    /// spring to set there, if any. Sticking turns to sliding on the side of Fn it is on. Sliding turns to sticking
+    /// (from under tension with the spring placed on the cap, whose direction alone it carried), unless the zero is
+    /// the magnitude cap's kink: there the spring, on a cap that is zero, is released; the cap restarts from zero at
+    /// the rate mu |dFn/dt| and a released spring would load against the slip at kt |slip|, so the contact goes on
+    /// sliding on the other side if the spring outgrows the cap, and sticks otherwise.
     pub fn next_mode(
         &self,
         mode: Mode,
@@ -331,19 +356,23 @@ impl Tangential {
         normal_force: f64,
         normal_force_rate: f64,
         elastic: f64,
-    ) -> (Mode, bool) {
+    ) -> (Mode, Option<Vector3<f64>>) {
         match mode {
-            Mode::Stick if self.cap == FrictionCap::Magnitude && normal_force < 0.0 => (Mode::SlipInTension, false),
-            Mode::Stick => (Mode::Slip, false),
+            Mode::Stick if self.cap == FrictionCap::Magnitude && normal_force < 0.0 => (Mode::SlipInTension, None),
+            Mode::Stick => (Mode::Slip, None),
             Mode::Slip | Mode::SlipInTension => {
                 let (lifting, kink) =
                     self.sliding_parts(mode, spring, kinematics, normal_force, normal_force_rate, elastic);
                 if self.cap == FrictionCap::Compressive || lifting < kink {
-                    return (Mode::Stick, false);
+                    let placed = (mode == Mode::SlipInTension).then(|| {
+                        self.sliding_along(mode, spring, &kinematics.slip, normal_force) * self.cap(normal_force)
+                    });
+                    return (Mode::Stick, placed);
                 }
                 let loading = self.stiffness_at(kinematics.penetration) * kinematics.slip.norm();
                 let other = if mode == Mode::Slip { Mode::SlipInTension } else { Mode::Slip };
-                (if loading >= self.friction * normal_force_rate.abs() { other } else { Mode::Stick }, true)
+                let next = if loading >= self.friction * normal_force_rate.abs() { other } else { Mode::Stick };
+                (next, Some(Vector3::zeros()))
             }
         }
     }

@@ -317,9 +317,9 @@ impl ContactModel<SIZE> for PairContact<'_> {
         let Some(t) = &self.tangential else { return };
         let e = self.evaluate(y);
         let force = e.elastic + e.dissipative;
-        let (next, release) = t.next_mode(mode(y), &e.spring, &e.kinematics, force, e.normal_force_rate, e.elastic);
-        if release {
-            set_vector(y, index::SPRING, &Vector3::zeros());
+        let (next, spring) = t.next_mode(mode(y), &e.spring, &e.kinematics, force, e.normal_force_rate, e.elastic);
+        if let Some(spring) = spring {
+            set_vector(y, index::SPRING, &spring);
         }
         set_mode(y, next);
     }
@@ -358,8 +358,7 @@ impl ContactModel<SIZE> for PairContact<'_> {
         let kt = self.tangential.map_or(0.0, |t| t.stiffness_at(k.penetration));
         // The spring stores at most what the Coulomb cap lets it hold: at the contact's edge kt -> 0 and Fn -> 0, and an
         // uncapped spring state (a rounding-sized remainder) over a vanishing kt gave energies of 1e9 J in a 3 J impact.
-        let cap = self.tangential.map_or(0.0, |t| t.cap(e.elastic + e.dissipative));
-        let stored = e.spring.norm().min(cap);
+        let stored = self.tangential.map_or(0.0, |t| t.held(mode(y), &e.spring, e.elastic + e.dissipative));
         let tangential_elastic = if kt > 0.0 { stored * stored / (2.0 * kt) } else { 0.0 };
         let normal_work = y[index::NORMAL_WORK] * s.energy;
         let (elastic_energy, dissipated_normal) =

@@ -843,10 +843,10 @@ impl<'a> World<'a> {
                 Watched::Switch(c) => {
                     let slip = self.slip_now(live[c]);
                     let contact = &mut self.active[live[c]];
-                    let (mode, release) = switched.unwrap_or((Mode::Stick, false));
+                    let (mode, spring) = switched.unwrap_or((Mode::Stick, None));
                     contact.mode = mode;
-                    if release {
-                        contact.spring = Vector3::zeros();
+                    if let Some(spring) = spring {
+                        contact.spring = spring;
                     }
                     let record = &mut self.records[contact.record];
                     // A contact that began without slip and now slides (driven by gravity or other contacts, not by

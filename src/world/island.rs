@@ -403,9 +403,9 @@ impl<'a> Island<'a> {
         Some(if mode == Mode::Stick { value + STICK_MARGIN } else { value })
     }
 
-    /// Contact `c`'s mode after a located zero of its switch function at `y`, and whether its spring is released there
+    /// Contact `c`'s mode after a located zero of its switch function at `y`, and the spring (N) to set there, if any
     /// ([`Tangential::next_mode`]); `None` for a smooth contact.
-    pub fn next_mode(&self, c: usize, y: &DVector<f64>) -> Option<(Mode, bool)> {
+    pub fn next_mode(&self, c: usize, y: &DVector<f64>) -> Option<(Mode, Option<Vector3<f64>>)> {
         let u = &self.units;
         let state = self.contact_state(c, y);
         let (law, kinematics, spring) = self.tangential_state(c, &state, y)?;
@@ -413,7 +413,8 @@ impl<'a> Island<'a> {
         let normal_force = (elastic + dissipative) / u.force;
         let mode = self.contacts[c].mode;
         let rate = self.force_rate(c, y) * u.time / u.force;
-        Some(law.next_mode(mode, &spring, &kinematics, normal_force, rate, elastic / u.force))
+        let (next, spring) = law.next_mode(mode, &spring, &kinematics, normal_force, rate, elastic / u.force);
+        Some((next, spring.map(|spring| spring * u.force)))
     }
 
     /// The part of body `k`'s angular velocity (rad/s) that no friction of its contacts can change: the spin about
@@ -437,7 +438,7 @@ impl<'a> Island<'a> {
         let (elastic, dissipative) = self.force(c, &state, y);
         let spring = self.spring(c, &state.normal, y);
         let kt = law.stiffness_at(state.penetration / u.length);
-        let stored = spring.norm().min(law.cap((elastic + dissipative) / u.force));
+        let stored = law.held(self.contacts[c].mode, &spring, (elastic + dissipative) / u.force);
         let energy = if kt > 0.0 { stored * stored / (2.0 * kt) } else { 0.0 };
         (spring * u.force, y[at + 3] * u.energy * self.friction_units[c], energy * u.energy)
     }
