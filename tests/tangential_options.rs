@@ -145,6 +145,86 @@ fn the_magnitude_cap_rubs_on_while_kelvin_voigt_pulls_and_the_compressive_cap_do
     assert!((difference - MU * pulling).abs() < 1e-8 * MU * pulling, "{difference} vs {}", MU * pulling);
 }
 
+/// ∫ max(-Fn, 0) dt (N s) of the sphere's normal motion m d'' = -Fn(d, d') from d = 0, d' = v0 to d = 0 again, by RK4
+/// with steps of `h` (the last one cut at the root).
+fn tensile_impulse_by_rk4(force: &dyn Fn(f64, f64) -> f64, h: f64) -> f64 {
+    let f = |y: &[f64; 3]| -> [f64; 3] {
+        let fn_ = force(y[0].max(0.0), y[1]);
+        [y[1], -fn_ / MASS, (-fn_).max(0.0)]
+    };
+    let mut y = [0.0, APPROACH, 0.0];
+    loop {
+        let next = rk4(&f, &y, h);
+        if next[0] > 0.0 {
+            y = next;
+            continue;
+        }
+        let (mut low, mut high) = (0.0, h);
+        for _ in 0..80 {
+            let middle = 0.5 * (low + high);
+            if rk4(&f, &y, middle)[0] > 0.0 { low = middle } else { high = middle }
+        }
+        return rk4(&f, &y, high)[2];
+    }
+}
+
+#[test]
+fn tsuji_slides_on_to_separation_under_tension_with_the_magnitude_cap() {
+    // Tsuji's F = K d^(3/2) + a sqrt(m K) d^(1/4) d' pulls near the end, and there its rate grows as d^(-3/4): the
+    // contact slides under tension to d = 0, and the two caps differ by mu times the tensile impulse.
+    let (stiffness, a) = (1e8, 0.5);
+    let text = |cap: &str| {
+        kelvin_voigt_slide(cap).replace("law = \"kelvin-voigt\"", "law = \"tsuji\"").replace(
+            &format!("stiffness = {K:?}\ndamping = {C:?}\n"),
+            &format!("stiffness = {stiffness:?}\ndamping = {a:?}\n"),
+        )
+    };
+    let scale = (MASS * stiffness).sqrt();
+    let force = |d: f64, rate: f64| stiffness * d * d.sqrt() + a * scale * d.sqrt().sqrt() * rate;
+    let (pulling, finer) = (tensile_impulse_by_rk4(&force, 2e-8), tensile_impulse_by_rk4(&force, 1e-8));
+    assert!((pulling - finer).abs() < 1e-5 * finer, "the integration converged: {pulling} vs {finer}");
+    let mut changes = Vec::new();
+    for cap in ["compressive", "magnitude"] {
+        let (report, _) = run(&text(cap), Recording::Off);
+        assert!(report.contact.separated, "{cap}: {:?}", report.notes);
+        assert_eq!(report.oblique.as_ref().map(|o| o.regime.as_str()), Some("sliding"), "{cap}");
+        assert!(imbalance(&report).abs() < 1e-9, "{cap}: energy imbalance {:e}", imbalance(&report));
+        changes.push(MASS * (ACROSS - report.bodies[0].velocity_after.unwrap()[1]));
+    }
+    let difference = changes[1] - changes[0];
+    assert!((difference - MU * finer).abs() < 1e-5 * MU * finer, "{difference:e} vs {:e}", MU * finer);
+}
+
+#[test]
+fn a_world_contact_takes_the_magnitude_cap_as_one_impact_does() {
+    // The same sphere and Kelvin–Voigt contact on a floor in a world run (the world's driver, its island and its
+    // switches): thrown down at v0 with 3 v0 along x from 1 mm above the floor, without gravity.
+    let (pushing, pulling) = impulses_closed_form();
+    for (cap, rubbed) in [("compressive", pushing), ("magnitude", pushing + pulling)] {
+        let text = format!(
+            "[world]\nend_time = 0.02\n\n[[bodies]]\nname = \"sphere\"\nradius = {RADIUS:?}\nmass = {MASS:?}\n\
+             position = [0.0, 0.0, {:?}]\nvelocity = [{ACROSS:?}, 0.0, {:?}]\n\n[[bodies]]\nname = \"floor\"\nradius = inf\n\
+             mass = inf\nposition = [0.0, 0.0, 0.0]\nnormal = [0.0, 0.0, 1.0]\nvelocity = [0.0, 0.0, 0.0]\n\n\
+             [contact]\nlaw = \"kelvin-voigt\"\nstiffness = {K:?}\ndamping = {C:?}\nseparation = \"penetration\"\n\
+             friction = {MU:?}\ntangential_stiffness = 1e10\nfriction_cap = \"{cap}\"\n",
+            RADIUS + 1e-3,
+            -APPROACH
+        );
+        let scene = match impact::setup::parse_any(&text, Path::new("world.toml")) {
+            Ok(impact::scene::Parsed::World(world)) => *world,
+            other => panic!("not a world scene: {other:?}\n{text}"),
+        };
+        let report = impact::world_run::simulate(&scene).unwrap_or_else(|e| panic!("{e}\n{text}")).report;
+        let report = serde_json::to_value(&report).expect("the world report serialises");
+        let contacts = report["contacts"].as_array().expect("contacts");
+        assert_eq!(contacts.len(), 1, "{cap}: {contacts:?}");
+        assert_eq!(contacts[0]["regime"], "sliding", "{cap}");
+        let after = report["bodies"][0]["velocity_after"][0].as_f64().expect("velocity_after");
+        let impulse = MASS * (ACROSS - after);
+        assert!((impulse - MU * rubbed).abs() < 1e-6 * MU * rubbed, "{cap}: {impulse} vs {}", MU * rubbed);
+    }
+}
+
 #[test]
 fn a_law_that_never_pulls_gives_the_same_impact_under_either_cap() {
     // Hunt–Crossley at e = 0.6 never pulls: mu |Fn| is mu Fn throughout.
