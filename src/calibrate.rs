@@ -431,6 +431,8 @@ pub fn default_scene(law: LawKind, approach_speed: f64, separation: Separation) 
             friction: 0.0,
             tangential_stiffness: crate::scene::TangentialStiffnessSpec::Mindlin,
             tangential_damping: 0.0,
+            tangential_unloading: crate::scene::TangentialUnloading::None,
+            friction_cap: crate::scene::FrictionCap::Compressive,
             yield_pressure: None,
             solref: None,
             solimp: None,

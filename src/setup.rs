@@ -12,7 +12,10 @@ use crate::geometry::{self, PlacementProblem};
 use crate::law::damping::{MapError, damping_for_restitution};
 use crate::law::{ContactLaw, Family, LawKind, NO_SOLIMP, Separation};
 use crate::scales::Scales;
-use crate::scene::{ContactSpec, DampingSpec, Parsed, Scene, SceneError, StiffnessSpec, TangentialStiffnessSpec};
+use crate::scene::{
+    ContactSpec, DampingSpec, FrictionCap, Parsed, Scene, SceneError, StiffnessSpec, TangentialStiffnessSpec,
+    TangentialUnloading,
+};
 use nalgebra::Vector3;
 use std::path::Path;
 
@@ -85,6 +88,12 @@ pub struct Friction {
     pub damping_ratio: f64,
     /// m_t = 1/B, B = 1/m1 + 1/m2 + r1²/I1 + r2²/I2: the mass the tangential force sees at the contact point, kg.
     pub tangential_mass: f64,
+    /// What the spring does while the contact unloads (`tangential_unloading`).
+    pub unloading: TangentialUnloading,
+    /// How the Coulomb limit follows the normal force: the scene's `friction_cap`, but `Compressive` wherever
+    /// `Magnitude` is the same limit — a law whose force never pulls, or one ended where its force returns to zero
+    /// (`separation = "force"`) — so that no passage into tension is watched for that never comes.
+    pub cap: FrictionCap,
 }
 
 fn fail<T>(key: impl Into<String>, message: impl Into<String>) -> Result<T, SetupError> {
@@ -509,6 +518,12 @@ pub fn friction_of(
         stiffness_exponent,
         damping_ratio: contact.tangential_damping,
         tangential_mass: 1.0 / inverse,
+        unloading: contact.tangential_unloading,
+        cap: if contact.law.can_pull() && !(contact.separation == Separation::Force && contact.law.can_turn_tensile()) {
+            contact.friction_cap
+        } else {
+            FrictionCap::Compressive
+        },
     }))
 }
 

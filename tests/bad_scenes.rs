@@ -395,6 +395,29 @@ fn unknown_separation_is_rejected_naming_the_key() {
     );
 }
 
+#[test]
+fn unknown_tangential_unloading_is_rejected_naming_the_key() {
+    let text = scene(LEFT_BALL, RIGHT_BALL, &with(HUNT_CROSSLEY, "friction = 0.3\ntangential_unloading = \"shrink\""));
+    let test = "unknown_tangential_unloading_is_rejected_naming_the_key";
+    let at = At::Line("tangential_unloading =");
+    assert_rejected(test, &text, "contact.tangential_unloading", at, &["shrink", "\"none\"", "\"rescale\""]);
+}
+
+#[test]
+fn unknown_friction_cap_is_rejected_naming_the_key() {
+    let text = scene(LEFT_BALL, RIGHT_BALL, &with(HUNT_CROSSLEY, "friction = 0.3\nfriction_cap = \"absolute\""));
+    let test = "unknown_friction_cap_is_rejected_naming_the_key";
+    let at = At::Line("friction_cap =");
+    assert_rejected(test, &text, "contact.friction_cap", at, &["absolute", "\"compressive\"", "\"magnitude\""]);
+}
+
+#[test]
+fn a_pair_with_an_unknown_friction_cap_is_rejected_naming_its_key() {
+    let text = edit(WORLD, "restitution = 0.7", "restitution = 0.7\nfriction = 0.2\nfriction_cap = \"both\"");
+    let test = "a_pair_with_an_unknown_friction_cap";
+    assert_rejected(test, &text, "pair.0.friction_cap", At::Line("friction_cap ="), &["both"]);
+}
+
 // ---------------------------------------------------------------------------------------------------------------
 // NaN and -inf anywhere, +inf outside mass, radius and young: one case per numeric key of `EVERY_KEY`
 

@@ -12,6 +12,7 @@
 //! rigid-body theory has it.
 
 use crate::integrate::State;
+use crate::scene::{FrictionCap, TangentialUnloading};
 use nalgebra::Vector3;
 
 /// The geometry of a contact, scaled by the penetration scale L.
@@ -93,13 +94,34 @@ pub const MISALIGNMENT: f64 = 1e-9;
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Mode {
     Stick,
+    /// Sliding on the limit of a compressive normal force (or, with [`FrictionCap::Compressive`], of any).
     Slip,
+    /// Sliding on the limit mu |Fn| while the normal force pulls: only with [`FrictionCap::Magnitude`]. A mode of its
+    /// own because the limit's rate changes sign where Fn passes through zero: that passage is located as a switch.
+    SlipInTension,
+}
+
+impl Mode {
+    /// Whether the contact slides on the Coulomb limit.
+    pub fn is_sliding(self) -> bool {
+        self != Mode::Stick
+    }
+
+    /// The sign of the normal force a sliding mode's limit follows: -1 in tension, 1 otherwise.
+    fn side(self) -> f64 {
+        if self == Mode::SlipInTension { -1.0 } else { 1.0 }
+    }
 }
 
 /// The tangential contact, scaled: an incremental spring dT/dt = -kt slip (Mindlin: kt = 8 G* sqrt(R* d)) with a
 /// dashpot c_t on the slip, the total capped at mu Fn (Coulomb). While sticking the spring follows the slip; while
 /// sliding it stays on the cap |T| = mu Fn, turning towards the slip, until the spring would unload faster than the
 /// cap falls — the elastic–perfectly-plastic slider in continuous time, with the switches located as events.
+///
+/// Two options (docs/oblique.md#the-simulators-options): `unloading = Rescale` adds T (dkt/dt)/kt to the spring's rate
+/// while the penetration decreases (T d'/(2d) for Mindlin's kt ∝ sqrt(d)), so that a holding spring shrinks with the
+/// contact's stiffness; `cap = Magnitude` caps the force at mu |Fn|, so that friction acts also while a damped
+/// normal force pulls.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Tangential {
     /// Coulomb coefficient mu.
@@ -109,6 +131,10 @@ pub struct Tangential {
     pub exponent: f64,
     /// c_t = `damping` sqrt(kt), in units of F0/v0 (2 ratio sqrt(m_t/m*) in scaled units).
     pub damping: f64,
+    /// The Coulomb limit: mu max(Fn, 0) or mu |Fn| (`Magnitude` only where the two differ: `setup::Friction::cap`).
+    pub cap: FrictionCap,
+    /// Whether the spring shrinks with the stiffness while the contact unloads.
+    pub unloading: TangentialUnloading,
 }
 
 /// The tangential force and the rate of the spring at one instant (scaled).
@@ -129,6 +155,26 @@ impl Tangential {
             self.stiffness
         } else {
             self.stiffness * crate::law::power(d, self.exponent)
+        }
+    }
+
+    /// The Coulomb limit for the normal force `normal_force` (scaled): mu max(Fn, 0), or mu |Fn| with the magnitude cap.
+    pub fn cap(&self, normal_force: f64) -> f64 {
+        match self.cap {
+            FrictionCap::Compressive => self.friction * normal_force.max(0.0),
+            FrictionCap::Magnitude => self.friction * normal_force.abs(),
+        }
+    }
+
+    /// The rescaling rate of an unloading spring, (dkt/dt)/kt = exponent d'/d in units of 1/T, while the penetration
+    /// decreases and `unloading = Rescale` (LAMMPS' step-wise T a/a_prev for a < a_prev in the limit of small steps);
+    /// zero otherwise, and for a constant kt.
+    pub fn rescale_rate(&self, kinematics: &Kinematics) -> f64 {
+        let (d, rate) = (kinematics.penetration, kinematics.rate);
+        if self.unloading == TangentialUnloading::Rescale && d > 0.0 && rate < 0.0 {
+            self.exponent * rate / d
+        } else {
+            0.0
         }
     }
 
@@ -169,17 +215,38 @@ impl Tangential {
         let loading = -k.slip * kt;
         // Keep the spring in the tangent plane as the normal turns: d(T·n)/dt = 0.
         let turning = -k.normal * spring.dot(&k.normal_rate);
-        let cap = self.friction * normal_force.max(0.0);
+        let cap = self.cap(normal_force);
         match mode {
             Mode::Stick => {
                 let trial = spring - k.slip * (self.damping * kt.sqrt());
                 let size = trial.norm();
                 let force = if size > cap { trial * (cap / size) } else { trial };
-                TangentialForce { force, spring_rate: loading + turning }
+                let rescaling = spring * self.rescale_rate(k);
+                TangentialForce { force, spring_rate: loading + rescaling + turning }
             }
             // No compression, no friction: the spring (at the cap, so near zero) is left as it is, rather than turned
             // at a rate that grows without bound as its length vanishes.
-            Mode::Slip if normal_force <= 0.0 => TangentialForce { force: Vector3::zeros(), spring_rate: turning },
+            Mode::Slip if normal_force <= 0.0 && self.cap == FrictionCap::Compressive => {
+                TangentialForce { force: Vector3::zeros(), spring_rate: turning }
+            }
+            Mode::SlipInTension => {
+                // The spring carries only the force's direction here (the force is the cap along it): the cap's rate
+                // grows without bound where a damping term in d^(1/4) or d^(1/2) (Tsuji's, Brilliantov's) pulls the
+                // contact apart, and a spring made to follow it would hold the integrator to ever shorter steps.
+                // Released at the cap's kink, it is zero, and the force is against the slip.
+                let along = Tangential::direction(spring, &k.slip);
+                let across = loading - along * loading.dot(&along);
+                let size = loading.norm();
+                // The direction turns towards the loading at |loading across it| / cap, at most MAX_TURN_RATE.
+                let turn = if across.norm() <= MISALIGNMENT * size {
+                    Vector3::zeros()
+                } else if size > MAX_TURN_RATE * cap {
+                    across * (MAX_TURN_RATE * spring.norm() / size)
+                } else {
+                    across * (spring.norm() / cap)
+                };
+                TangentialForce { force: along * cap, spring_rate: turn + turning }
+            }
             Mode::Slip => {
                 let along = Tangential::sliding_direction(spring, &k.slip, cap);
                 let cap_rate = self.friction * normal_force_rate;
@@ -201,8 +268,11 @@ impl Tangential {
     }
 
     /// The function whose fall through zero ends the present mode: the room left under the cap while sticking,
-    /// mu Fn - |T|; while sliding, how much faster the spring loads than the cap grows, (-kt slip)·t - mu dFn/dt
-    /// (positive, no switch, while the normal force is not compressive).
+    /// cap - |T|; while sliding, how much faster the spring would load than the cap grows, (dT/dt of a holding
+    /// spring)·t - d(cap)/dt (positive, no switch, while a compressive cap has no normal force). With the magnitude
+    /// cap a sliding mode also ends where the normal force passes through zero (the cap's kink), watched as the
+    /// compression ratio on the mode's side (`elastic` is the elastic part of the normal force): the smaller of the
+    /// two falls through zero first, and both are continuous.
     pub fn switch_function(
         &self,
         mode: Mode,
@@ -210,15 +280,99 @@ impl Tangential {
         kinematics: &Kinematics,
         normal_force: f64,
         normal_force_rate: f64,
+        elastic: f64,
     ) -> f64 {
         match mode {
-            Mode::Stick => self.friction * normal_force - spring.norm(),
+            Mode::Stick => match self.cap {
+                FrictionCap::Compressive => self.friction * normal_force - spring.norm(),
+                FrictionCap::Magnitude => self.friction * normal_force.abs() - spring.norm(),
+            },
             // Without compression there is no friction to stick with: a sliding contact stays sliding.
-            Mode::Slip if normal_force <= 0.0 => 1.0,
-            Mode::Slip => {
-                let kt = self.stiffness_at(kinematics.penetration);
-                let along = Tangential::sliding_direction(spring, &kinematics.slip, self.friction * normal_force);
-                -kinematics.slip.dot(&along) * kt - self.friction * normal_force_rate
+            Mode::Slip if normal_force <= 0.0 && self.cap == FrictionCap::Compressive => 1.0,
+            Mode::Slip | Mode::SlipInTension => {
+                let (lifting, kink) =
+                    self.sliding_parts(mode, spring, kinematics, normal_force, normal_force_rate, elastic);
+                lifting.min(kink)
+            }
+        }
+    }
+
+    /// A sliding mode's two switch functions: how much faster a holding spring would load than the cap grows, and
+    /// the compression ratio on the mode's side (positive infinity, never falling, with the compressive cap). The
+    /// ratio Fn / F_elastic = 1 + F_dissipative / F_elastic falls through zero where a damped force turns tensile;
+    /// unlike Fn itself it stays away from zero where a force that never pulls vanishes with the penetration (a
+    /// Hertzian law's at separation), and out of contact, without a force, it is 1 on either side: the passage into
+    /// or out of tension is never confused with the contact's end.
+    fn sliding_parts(
+        &self,
+        mode: Mode,
+        spring: &Vector3<f64>,
+        kinematics: &Kinematics,
+        normal_force: f64,
+        normal_force_rate: f64,
+        elastic: f64,
+    ) -> (f64, f64) {
+        let kt = self.stiffness_at(kinematics.penetration);
+        let along = self.sliding_along(mode, spring, &kinematics.slip, normal_force);
+        let held = self.held(mode, spring, normal_force);
+        let holding = -kinematics.slip.dot(&along) * kt + held * self.rescale_rate(kinematics);
+        let lifting = holding - self.friction * mode.side() * normal_force_rate;
+        let kink = match self.cap {
+            FrictionCap::Compressive => f64::INFINITY,
+            FrictionCap::Magnitude if elastic > 0.0 => mode.side() * normal_force / elastic,
+            // At the edge, Kelvin–Voigt's force from inside: its sign.
+            FrictionCap::Magnitude if normal_force != 0.0 => mode.side() * normal_force.signum(),
+            FrictionCap::Magnitude => 1.0,
+        };
+        (lifting, kink)
+    }
+
+    /// The direction a sliding mode's force takes: the spring's (see [`Tangential::evaluate`]).
+    fn sliding_along(&self, mode: Mode, spring: &Vector3<f64>, slip: &Vector3<f64>, normal_force: f64) -> Vector3<f64> {
+        match mode {
+            Mode::SlipInTension => Tangential::direction(spring, slip),
+            _ => Tangential::sliding_direction(spring, slip, self.cap(normal_force)),
+        }
+    }
+
+    /// The size of the force the spring holds in `mode` (scaled): the cap while sliding under tension (the spring
+    /// then carries only the direction), the spring's, at most the cap, otherwise.
+    pub fn held(&self, mode: Mode, spring: &Vector3<f64>, normal_force: f64) -> f64 {
+        let cap = self.cap(normal_force);
+        if mode == Mode::SlipInTension { cap } else { spring.norm().min(cap) }
+    }
+
+    /// The mode after a located zero of [`Tangential::switch_function`] in `mode`, at that instant's state, and the
+    /// spring to set there, if any. Sticking turns to sliding on the side of Fn it is on. Sliding turns to sticking
+    /// (from under tension with the spring placed on the cap, whose direction alone it carried), unless the zero is
+    /// the magnitude cap's kink: there the spring, on a cap that is zero, is released; the cap restarts from zero at
+    /// the rate mu |dFn/dt| and a released spring would load against the slip at kt |slip|, so the contact goes on
+    /// sliding on the other side if the spring outgrows the cap, and sticks otherwise.
+    pub fn next_mode(
+        &self,
+        mode: Mode,
+        spring: &Vector3<f64>,
+        kinematics: &Kinematics,
+        normal_force: f64,
+        normal_force_rate: f64,
+        elastic: f64,
+    ) -> (Mode, Option<Vector3<f64>>) {
+        match mode {
+            Mode::Stick if self.cap == FrictionCap::Magnitude && normal_force < 0.0 => (Mode::SlipInTension, None),
+            Mode::Stick => (Mode::Slip, None),
+            Mode::Slip | Mode::SlipInTension => {
+                let (lifting, kink) =
+                    self.sliding_parts(mode, spring, kinematics, normal_force, normal_force_rate, elastic);
+                if self.cap == FrictionCap::Compressive || lifting < kink {
+                    let placed = (mode == Mode::SlipInTension).then(|| {
+                        self.sliding_along(mode, spring, &kinematics.slip, normal_force) * self.cap(normal_force)
+                    });
+                    return (Mode::Stick, placed);
+                }
+                let loading = self.stiffness_at(kinematics.penetration) * kinematics.slip.norm();
+                let other = if mode == Mode::Slip { Mode::SlipInTension } else { Mode::Slip };
+                let next = if loading >= self.friction * normal_force_rate.abs() { other } else { Mode::Stick };
+                (next, Some(Vector3::zeros()))
             }
         }
     }

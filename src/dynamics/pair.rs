@@ -42,7 +42,7 @@ pub mod index {
     pub const TANGENTIAL_WORK: usize = 18;
     /// Work of an immovable body on the movable one, in the energy unit.
     pub const IMMOVABLE_WORK: usize = 19;
-    /// The tangential mode, constant between switches: 0 sticking, 1 sliding.
+    /// The tangential mode, constant between switches: 0 sticking, 1 sliding, 2 sliding while the normal force pulls.
     pub const MODE: usize = 20;
 }
 
@@ -81,13 +81,18 @@ pub struct PairContact<'a> {
 
 /// The tangential mode a state is in.
 fn mode(y: &State<SIZE>) -> Mode {
-    if y[index::MODE] > 0.5 { Mode::Slip } else { Mode::Stick }
+    match y[index::MODE] {
+        m if m > 1.5 => Mode::SlipInTension,
+        m if m > 0.5 => Mode::Slip,
+        _ => Mode::Stick,
+    }
 }
 
 fn set_mode(y: &mut State<SIZE>, mode: Mode) {
     y[index::MODE] = match mode {
         Mode::Stick => 0.0,
         Mode::Slip => 1.0,
+        Mode::SlipInTension => 2.0,
     };
 }
 
@@ -125,7 +130,14 @@ impl<'a> PairContact<'a> {
         let tangential = setup.friction.map(|f| {
             let stiffness = f.stiffness * s.length.powf(f.stiffness_exponent + 1.0) / s.force;
             let damping = 2.0 * f.damping_ratio * (f.tangential_mass / (setup.effective_mass * impulse_gain)).sqrt();
-            Tangential { friction: f.coefficient, stiffness, exponent: f.stiffness_exponent, damping }
+            Tangential {
+                friction: f.coefficient,
+                stiffness,
+                exponent: f.stiffness_exponent,
+                damping,
+                cap: f.cap,
+                unloading: f.unloading,
+            }
         });
         let spin_gain = |body: &Body| {
             let gain = setup.effective_mass * body.radius * body.radius / body.inertia;
@@ -297,19 +309,23 @@ impl ContactModel<SIZE> for PairContact<'_> {
     fn switch_function(&self, y: &State<SIZE>) -> Option<f64> {
         let t = self.tangential.as_ref()?;
         let e = self.evaluate(y);
-        Some(t.switch_function(mode(y), &e.spring, &e.kinematics, e.elastic + e.dissipative, e.normal_force_rate))
+        let force = e.elastic + e.dissipative;
+        Some(t.switch_function(mode(y), &e.spring, &e.kinematics, force, e.normal_force_rate, e.elastic))
     }
 
     fn switch(&self, y: &mut State<SIZE>) {
-        let next = match mode(y) {
-            Mode::Stick => Mode::Slip,
-            Mode::Slip => Mode::Stick,
-        };
+        let Some(t) = &self.tangential else { return };
+        let e = self.evaluate(y);
+        let force = e.elastic + e.dissipative;
+        let (next, spring) = t.next_mode(mode(y), &e.spring, &e.kinematics, force, e.normal_force_rate, e.elastic);
+        if let Some(spring) = spring {
+            set_vector(y, index::SPRING, &spring);
+        }
         set_mode(y, next);
     }
 
     fn sliding(&self, y: &State<SIZE>) -> bool {
-        self.tangential.is_some() && mode(y) == Mode::Slip
+        self.tangential.is_some() && mode(y).is_sliding()
     }
 
     fn slip_along_start(&self, y: &State<SIZE>) -> Option<f64> {
@@ -342,8 +358,7 @@ impl ContactModel<SIZE> for PairContact<'_> {
         let kt = self.tangential.map_or(0.0, |t| t.stiffness_at(k.penetration));
         // The spring stores at most what the Coulomb cap lets it hold: at the contact's edge kt -> 0 and Fn -> 0, and an
         // uncapped spring state (a rounding-sized remainder) over a vanishing kt gave energies of 1e9 J in a 3 J impact.
-        let cap = self.tangential.map_or(0.0, |t| t.friction * (e.elastic + e.dissipative).max(0.0));
-        let stored = e.spring.norm().min(cap);
+        let stored = self.tangential.map_or(0.0, |t| t.held(mode(y), &e.spring, e.elastic + e.dissipative));
         let tangential_elastic = if kt > 0.0 { stored * stored / (2.0 * kt) } else { 0.0 };
         let normal_work = y[index::NORMAL_WORK] * s.energy;
         let (elastic_energy, dissipated_normal) =

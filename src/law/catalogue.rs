@@ -261,6 +261,16 @@ impl LawKind {
         LAWS.iter().map(|row| row.name).collect()
     }
 
+    /// Whether the force can pull at all: a damping term that can outweigh the spring and is not cut where the sum
+    /// would pull (the Hunt–Crossley family's K d^n (1 + c d') too, for a heavy damping given as such), so that a
+    /// Coulomb limit of mu |Fn| differs from mu max(Fn, 0).
+    pub fn can_pull(self) -> bool {
+        matches!(
+            self.family(),
+            Family::Hysteresis | Family::Linear | Family::Tsuji | Family::Viscoelastic | Family::Dashpot
+        )
+    }
+
     /// Whether the force can turn tensile before the penetration returns to zero (docs/laws.md), so that the
     /// separation criterion matters.
     pub fn can_turn_tensile(self) -> bool {

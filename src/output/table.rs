@@ -423,6 +423,16 @@ fn oblique(report: &Report, scales: &Scales) -> Option<Section> {
     if let Some(below) = o.below_friction_limit_duration.filter(|&below| below > 0.0) {
         section.row("friction below the Coulomb limit for", engineering(below, "s"));
     }
+    // The simulators' tangential options, when a frictional contact names one other than the default.
+    if o.regime != "smooth" && o.friction_cap != "compressive" {
+        section.row("Coulomb limit", "mu |Fn|, also while the normal force pulls (friction_cap = \"magnitude\")");
+    }
+    if o.regime != "smooth" && o.tangential_unloading != "none" {
+        section.row(
+            "tangential spring",
+            "rescaled with the stiffness while unloading (tangential_unloading = \"rescale\")",
+        );
+    }
     if let Some(work) = o.friction_work.filter(|_| o.regime != "smooth") {
         section.row("work of friction", engineering(denoise(work, scales.energy), "J"));
     }

@@ -391,6 +391,8 @@ fn oblique(scene: &Scene, setup: &Setup, outcome: &Outcome, e: f64, friction_wor
         tangential_restitution_contact: done.then(|| ratio(&end.slip, &slip)).flatten(),
         friction_work: done.then_some(friction_work),
         friction,
+        friction_cap: scene.contact.friction_cap.name(),
+        tangential_unloading: scene.contact.tangential_unloading.name(),
         regime: regime.into(),
         below_friction_limit_duration: (friction > 0.0).then_some(if setup.motion == Motion::Normal {
             end.time

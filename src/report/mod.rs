@@ -166,6 +166,12 @@ pub struct ObliqueReport {
     /// Coulomb friction coefficient mu of the contact (dimensionless; 0: smooth), as the scene gave it (an
     /// addition).
     pub friction: f64,
+    /// The scene's `friction_cap`, "compressive" (mu max(Fn, 0)) or "magnitude" (mu |Fn|), as written or its default
+    /// (an addition; it changes nothing without friction, nor for a law whose force never pulls).
+    pub friction_cap: &'static str,
+    /// The scene's `tangential_unloading`, "none" or "rescale" (the spring shrinks with the Mindlin stiffness while
+    /// the contact unloads), as written or its default (an addition; nothing without friction).
+    pub tangential_unloading: &'static str,
     /// "smooth" (no friction), "sliding" (the contact points slipped throughout, as rigid-body theory's sliding) or
     /// "sticking" (their slip came to rest at some time: the contact stuck or rolled).
     pub regime: String,

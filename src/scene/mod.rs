@@ -160,6 +160,56 @@ pub enum TangentialStiffnessSpec {
     Value(f64),
 }
 
+/// How a frictional contact's Coulomb limit follows the normal force (`friction_cap`, docs/oblique.md).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum FrictionCap {
+    /// mu max(Fn, 0): no friction while the normal force pulls (a damped law's tensile force near separation).
+    #[default]
+    Compressive,
+    /// mu |Fn|: friction also while the normal force pulls, as LAMMPS' granular styles and LIGGGHTS cap it.
+    Magnitude,
+}
+
+impl FrictionCap {
+    /// Every cap, by its scene spelling.
+    pub const ALL: [(&'static str, FrictionCap); 2] =
+        [("compressive", FrictionCap::Compressive), ("magnitude", FrictionCap::Magnitude)];
+
+    /// The scene spelling.
+    pub fn name(self) -> &'static str {
+        match self {
+            FrictionCap::Compressive => "compressive",
+            FrictionCap::Magnitude => "magnitude",
+        }
+    }
+}
+
+/// What the tangential spring does while the contact unloads (`tangential_unloading`, docs/oblique.md).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum TangentialUnloading {
+    /// The spring force keeps what the slip loaded into it: dT/dt = -kt slip.
+    #[default]
+    None,
+    /// While the penetration decreases the spring force is scaled with the stiffness, dT/dt = -kt slip +
+    /// T (dkt/dt)/kt: Mindlin's kt ∝ a ∝ sqrt(d) gives T d'/(2 d) (LAMMPS' `mindlin_rescale/force` in continuous
+    /// time); a constant kt has nothing to rescale.
+    Rescale,
+}
+
+impl TangentialUnloading {
+    /// Every behaviour, by its scene spelling.
+    pub const ALL: [(&'static str, TangentialUnloading); 2] =
+        [("none", TangentialUnloading::None), ("rescale", TangentialUnloading::Rescale)];
+
+    /// The scene spelling.
+    pub fn name(self) -> &'static str {
+        match self {
+            TangentialUnloading::None => "none",
+            TangentialUnloading::Rescale => "rescale",
+        }
+    }
+}
+
 /// The `[contact]` table.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ContactSpec {
@@ -177,6 +227,10 @@ pub struct ContactSpec {
     pub tangential_stiffness: TangentialStiffnessSpec,
     /// Damping ratio of the tangential spring (0: none): c_t = 2 ratio sqrt(k_t m_t).
     pub tangential_damping: f64,
+    /// What the tangential spring does while the contact unloads (used only with friction).
+    pub tangential_unloading: TangentialUnloading,
+    /// How the Coulomb limit follows the normal force (used only with friction).
+    pub friction_cap: FrictionCap,
     /// The `thornton` law's yield pressure p_y, Pa, when written (otherwise 1.6 times the smaller `yield_stress`).
     pub yield_pressure: Option<f64>,
     /// The `mujoco` law's `solref`: [timeconst (s), dampratio], or [-stiffness (1/s²), -damping (1/s)] per unit mass.

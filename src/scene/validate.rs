@@ -7,8 +7,8 @@
 use super::file::{At, RawBody, RawContact, RawOutput, RawPair, RawScene, RawSolver, RawWorld};
 use super::world::{DampingMap, MAX_CONTACTS_LIMIT, PairSpec, WorldScene, WorldSpec};
 use super::{
-    ContactSpec, DampingSpec, Method, OutputSpec, Parsed, Scene, SceneError, SetupError, SolverSpec, StiffnessSpec,
-    TangentialStiffnessSpec,
+    ContactSpec, DampingSpec, FrictionCap, Method, OutputSpec, Parsed, Scene, SceneError, SetupError, SolverSpec,
+    StiffnessSpec, TangentialStiffnessSpec, TangentialUnloading,
 };
 use crate::body::Body;
 use crate::integrate::Tolerances;
@@ -55,10 +55,12 @@ impl Source<'_> {
             key: Some(key.to_string()),
             line: span.map(|s| self.line(s)),
             message: message.into(),
-            // Missing tables, a wrong number of bodies, a bad separation word or output path: nothing a sweep's
-            // numbers can set.
+            // Missing tables, a wrong number of bodies, a bad separation or tangential word or output path: nothing
+            // a sweep's numbers can set.
             form: matches!(key, "bodies" | "contact" | "contact.separation" | "output.series" | "output.plots")
                 || key.ends_with(".separation")
+                || key.ends_with(".tangential_unloading")
+                || key.ends_with(".friction_cap")
                 || key.starts_with("pair.") && key.ends_with(".bodies"),
         }
     }
@@ -488,6 +490,8 @@ fn pair(src: &Source, k: usize, raw: &At<RawPair>, contact: &RawContact, count: 
         friction,
         tangential_stiffness,
         tangential_damping,
+        tangential_unloading,
+        friction_cap,
         yield_pressure,
         solref,
         solimp,
@@ -705,6 +709,9 @@ fn contact_spec(
     };
     let tangential_damping =
         raw.tangential_damping.as_ref().map_or(0.0, |c| number(src, &key("tangential_damping"), c));
+    let tangential_unloading =
+        word(src, &key("tangential_unloading"), raw.tangential_unloading.as_ref(), &TangentialUnloading::ALL)?;
+    let friction_cap = word(src, &key("friction_cap"), raw.friction_cap.as_ref(), &FrictionCap::ALL)?;
     let yield_pressure = raw.yield_pressure.as_ref().map(|p| number(src, &key("yield_pressure"), p));
     let solref = raw
         .solref
@@ -729,6 +736,8 @@ fn contact_spec(
         friction,
         tangential_stiffness,
         tangential_damping,
+        tangential_unloading,
+        friction_cap,
         yield_pressure,
         solref,
         solimp,
@@ -736,6 +745,25 @@ fn contact_spec(
         dmax,
         normal: None,
         normal_given,
+    })
+}
+
+/// The choice a key's word names (`choices`, by spelling), or `T::default()` when the key is not written; an unknown
+/// word is an error naming the key and its line.
+fn word<T: Copy + Default>(
+    src: &Source,
+    key: &str,
+    written: Option<&At<String>>,
+    choices: &[(&'static str, T)],
+) -> Checked<T> {
+    let Some(value) = written else { return Ok(T::default()) };
+    choices.iter().find(|(spelling, _)| spelling == value.get_ref()).map(|(_, choice)| *choice).ok_or_else(|| {
+        let names: Vec<_> = choices.iter().map(|(spelling, _)| format!("\"{spelling}\"")).collect();
+        src.error(
+            key,
+            Some(&value.span()),
+            format!("expected {}, got \"{}\"", names.join(" or "), cut(value.get_ref())),
+        )
     })
 }
 

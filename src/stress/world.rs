@@ -137,6 +137,14 @@ pub fn scene_text(seed: u64, index: u64, quick: bool) -> String {
         if rough.chance(0.5) {
             let _ = writeln!(keys, "tangential_damping = {}", number(rough.uniform(0.0, 1.0)));
         }
+        // The simulators' tangential options, from a stream of their own as well.
+        let mut options = Draw::new(seed ^ 0x7a46_e17b, index);
+        if options.chance(1.0 / 3.0) {
+            keys.push_str("tangential_unloading = \"rescale\"\n");
+        }
+        if options.chance(1.0 / 3.0) {
+            keys.push_str("friction_cap = \"magnitude\"\n");
+        }
         text += &keys;
         for k in 0..count {
             if rough.chance(0.6) {

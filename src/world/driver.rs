@@ -504,6 +504,8 @@ impl<'a> World<'a> {
                     stiffness: f.stiffness,
                     exponent: f.stiffness_exponent,
                     damping: 0.0,
+                    cap: f.cap,
+                    unloading: f.unloading,
                 };
                 // In SI: the spring a tiny penetration (a millionth of the contact's length unit) would load against
                 // the Coulomb limit there.
@@ -784,6 +786,14 @@ impl<'a> World<'a> {
             },
             _ => Vec::new(),
         };
+        // A stick–slip switch's next mode, decided on the state it was located at.
+        let switched = match end.ending {
+            Ending::Event(index) => match kinds[index].0 {
+                Watched::Switch(c) => island.next_mode(c, y),
+                _ => None,
+            },
+            _ => None,
+        };
         drop(events);
         drop(functions);
         drop(island);
@@ -833,14 +843,15 @@ impl<'a> World<'a> {
                 Watched::Switch(c) => {
                     let slip = self.slip_now(live[c]);
                     let contact = &mut self.active[live[c]];
-                    contact.mode = match contact.mode {
-                        Mode::Stick => Mode::Slip,
-                        Mode::Slip => Mode::Stick,
-                    };
+                    let (mode, spring) = switched.unwrap_or((Mode::Stick, None));
+                    contact.mode = mode;
+                    if let Some(spring) = spring {
+                        contact.spring = spring;
+                    }
                     let record = &mut self.records[contact.record];
                     // A contact that began without slip and now slides (driven by gravity or other contacts, not by
                     // its approach) has not come to rest yet: its slip's rest is watched from here, along this slip.
-                    if contact.mode == Mode::Slip && contact.slip_direction == Vector3::zeros() && slip.norm() > 0.0 {
+                    if contact.mode.is_sliding() && contact.slip_direction == Vector3::zeros() && slip.norm() > 0.0 {
                         contact.slip_direction = slip / slip.norm();
                         record.slip_rest = None;
                     }

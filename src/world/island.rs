@@ -17,6 +17,7 @@ use crate::dynamics::unit_or_one;
 use crate::geometry::Meeting;
 use crate::integrate::{ModelOf, Vector};
 use crate::law::ContactLaw;
+use crate::scene::FrictionCap;
 use crate::scene::WorldScene;
 use crate::setup::Friction;
 use nalgebra::{DVector, Dyn, Vector3};
@@ -183,6 +184,8 @@ impl<'a> Island<'a> {
                     stiffness: f.stiffness * units.length.powf(f.stiffness_exponent + 1.0) / units.force,
                     exponent: f.stiffness_exponent,
                     damping: 2.0 * f.damping_ratio * (f.tangential_mass / units.mass).sqrt(),
+                    cap: f.cap,
+                    unloading: f.unloading,
                 })
             })
             .collect();
@@ -391,13 +394,27 @@ impl<'a> Island<'a> {
         let (elastic, dissipative) = self.force(c, &state, y);
         let normal_force = (elastic + dissipative) / u.force;
         let mode = self.contacts[c].mode;
-        let rate = if mode == Mode::Slip { self.force_rate(c, y) * u.time / u.force } else { 0.0 };
-        let value = law.switch_function(mode, &spring, &kinematics, normal_force, rate);
+        let rate = if mode.is_sliding() { self.force_rate(c, y) * u.time / u.force } else { 0.0 };
+        let value = law.switch_function(mode, &spring, &kinematics, normal_force, rate, elastic / u.force);
         // A sticking contact may begin with cap and spring both zero (no slip at first touch, no force yet): its
         // `mu Fn - |T|` starts at zero, and a spring that then outgrows the cap (a ball set down on a slope) would
         // never be seen to fall through it. Sticking holds to STICK_MARGIN of the force unit beyond the cap — far
         // below the integration's accuracy — so that the function starts above zero.
         Some(if mode == Mode::Stick { value + STICK_MARGIN } else { value })
+    }
+
+    /// Contact `c`'s mode after a located zero of its switch function at `y`, and the spring (N) to set there, if any
+    /// ([`Tangential::next_mode`]); `None` for a smooth contact.
+    pub fn next_mode(&self, c: usize, y: &DVector<f64>) -> Option<(Mode, Option<Vector3<f64>>)> {
+        let u = &self.units;
+        let state = self.contact_state(c, y);
+        let (law, kinematics, spring) = self.tangential_state(c, &state, y)?;
+        let (elastic, dissipative) = self.force(c, &state, y);
+        let normal_force = (elastic + dissipative) / u.force;
+        let mode = self.contacts[c].mode;
+        let rate = self.force_rate(c, y) * u.time / u.force;
+        let (next, spring) = law.next_mode(mode, &spring, &kinematics, normal_force, rate, elastic / u.force);
+        Some((next, spring.map(|spring| spring * u.force)))
     }
 
     /// The part of body `k`'s angular velocity (rad/s) that no friction of its contacts can change: the spin about
@@ -421,7 +438,7 @@ impl<'a> Island<'a> {
         let (elastic, dissipative) = self.force(c, &state, y);
         let spring = self.spring(c, &state.normal, y);
         let kt = law.stiffness_at(state.penetration / u.length);
-        let stored = spring.norm().min(law.friction * ((elastic + dissipative) / u.force).max(0.0));
+        let stored = law.held(self.contacts[c].mode, &spring, (elastic + dissipative) / u.force);
         let energy = if kt > 0.0 { stored * stored / (2.0 * kt) } else { 0.0 };
         (spring * u.force, y[at + 3] * u.energy * self.friction_units[c], energy * u.energy)
     }
@@ -680,12 +697,10 @@ impl ModelOf<Dyn> for Island<'_> {
             } else {
                 dissipative / u.force * rate / self.dissipation_units[c]
             };
-            if self.tangentials[c].is_none() {
-                continue;
-            }
+            let Some(law) = self.tangentials[c].as_ref() else { continue };
             // Friction: the tangential force Ft on body i (-Ft on body j) at the contact point, its torques, and the
             // spring's rate (a sliding spring follows the Coulomb cap, so it needs the normal force's rate).
-            let sliding = self.contacts[c].mode == Mode::Slip && force > 0.0;
+            let sliding = self.contacts[c].mode.is_sliding() && (force > 0.0 || law.cap == FrictionCap::Magnitude);
             let force_rate = if sliding { self.force_rate(c, y) * u.time / u.force } else { 0.0 };
             let (kinematics, tangential) =
                 self.tangential(c, &state, force, force_rate, y).expect("a frictional contact");
