@@ -15,7 +15,7 @@
 
 use super::{Context, Knob, Mapping, Parameters, Peer, Plan, TranslateError, cannot_express, number, short};
 use crate::law::{LawKind, Separation};
-use crate::scene::{ContactSpec, DampingSpec};
+use crate::scene::{ContactSpec, DampingSpec, FrictionCap, TangentialUnloading};
 use std::f64::consts::PI;
 
 /// A LAMMPS normal model.
@@ -53,8 +53,9 @@ impl Damping {
 pub enum Tangential {
     /// Frictionless: `linear_nohistory 0 0`.
     None,
-    /// `mindlin k_t 0 mu` (F_t = −k_t a ξ, k_t in Pa) or `linear_history k_t 0 mu` (N/m).
-    Spring { mindlin: bool, k: f64, mu: f64 },
+    /// `mindlin k_t 0 mu` (F_t = −k_t a ξ, k_t in Pa; `mindlin_rescale/force` when the spring's force is rescaled
+    /// as the contact unloads) or `linear_history k_t 0 mu` (N/m).
+    Spring { mindlin: bool, rescale: bool, k: f64, mu: f64 },
 }
 
 /// LAMMPS' `pair_coeff` granular model of one pair of types.
@@ -78,13 +79,8 @@ impl Granular {
         };
         let tangential = match self.tangential {
             Tangential::None => "tangential linear_nohistory 0.0 0.0".to_string(),
-            Tangential::Spring { mindlin, k, mu } => {
-                format!(
-                    "tangential {} {} 0.0 {}",
-                    if mindlin { "mindlin" } else { "linear_history" },
-                    number(k),
-                    number(mu)
-                )
+            Tangential::Spring { mindlin, rescale, k, mu } => {
+                format!("tangential {} {} 0.0 {}", spring_name(mindlin, rescale), number(k), number(mu))
             }
         };
         let limit = if self.limit_damping { " limit_damping" } else { "" };
@@ -112,6 +108,15 @@ impl Granular {
             spec.exponent_given = None;
         }
         spec
+    }
+}
+
+/// The tangential model's name: Mindlin's spring (its force rescaled as the contact unloads, or not) or a linear one.
+fn spring_name(mindlin: bool, rescale: bool) -> &'static str {
+    match (mindlin, rescale) {
+        (true, true) => "mindlin_rescale/force",
+        (true, false) => "mindlin",
+        (false, _) => "linear_history",
     }
 }
 
@@ -154,11 +159,8 @@ impl Mapping for Pair {
         let damp = if g.damping == Damping::CoeffRestitution { "e" } else { "eta_n0" };
         let mut parameters = Parameters::default().with("normal", model).with("k_n", k).with(damp, p);
         parameters = parameters.with("damping", g.damping.name()).with("limit_damping", g.limit_damping);
-        if let Tangential::Spring { mindlin, k, mu } = g.tangential {
-            parameters = parameters
-                .with("tangential", if mindlin { "mindlin" } else { "linear_history" })
-                .with("k_t", k)
-                .with("mu", mu);
+        if let Tangential::Spring { mindlin, rescale, k, mu } = g.tangential {
+            parameters = parameters.with("tangential", spring_name(mindlin, rescale)).with("k_t", k).with("mu", mu);
         }
         parameters.with("pair_coeff", format!("* * {}", g.arguments(p)))
     }
@@ -299,9 +301,16 @@ pub fn granular(context: &Context) -> Result<(Granular, Knob, Vec<String>), Tran
     let tangential = match context.setup.friction {
         None => Tangential::None,
         Some(friction) => {
+            if context.scene.contact.friction_cap == FrictionCap::Compressive && law.kind.can_pull() {
+                notes.push(
+                    "LAMMPS caps friction at mu |F_n| even while a damped normal force pulls; the scene caps it at \
+                     mu max(F_n, 0) (friction_cap = \"magnitude\" runs LAMMPS' cap here)."
+                        .into(),
+                );
+            }
             notes.push(
-                "LAMMPS caps friction at mu |F_n| even while a damped normal force pulls (this program, by default: \
-                 mu max(F_n, 0)), and its pair torque takes the lever r - d/2 while the slip takes the full radii."
+                "LAMMPS' pair torque takes the lever r - d/2 while its slip takes the full radii (this program: r \
+                 for both)."
                     .into(),
             );
             if friction.damping_ratio > 0.0 {
@@ -316,7 +325,8 @@ pub fn granular(context: &Context) -> Result<(Granular, Knob, Vec<String>), Tran
                 (true, Some(radius)) => friction.stiffness / radius.sqrt(),
                 _ => friction.stiffness,
             };
-            Tangential::Spring { mindlin, k, mu: friction.coefficient }
+            let rescale = context.scene.contact.tangential_unloading == TangentialUnloading::Rescale;
+            Tangential::Spring { mindlin, rescale: mindlin && rescale, k, mu: friction.coefficient }
         }
     };
     if limit_damping {
