@@ -147,7 +147,7 @@ pub fn render(t: &Translation) -> String {
     }
     let _ = writeln!(text);
     if let Some(target) = t.restitution_target {
-        let _ = writeln!(text, "  {:<30} {target}", "e the scene asks for");
+        let _ = writeln!(text, "  {:<30} {target}", "e of the scene's contact");
     }
     let _ = writeln!(text, "  {:<30} {}", "e in the continuous limit", restitution(t.restitution_continuous));
     if let Some(dt) = t.dt {
