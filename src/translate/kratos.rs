@@ -8,9 +8,6 @@ use super::{Context, Knob, Mapping, Parameters, Peer, Plan, TranslateError, cann
 use crate::law::{LawKind, Separation};
 use crate::scene::{ContactSpec, DampingSpec};
 
-/// Poisson's ratio given to both materials.
-const POISSON: f64 = 0.3;
-
 /// Kratos' γ for a nominal e (Thornton, Cummins & Cleary 2013's fit, as Kratos evaluates it: e clamped to 0.001
 /// from below, γ = 0 above 0.999).
 pub fn thornton_gamma(e: f64) -> f64 {
@@ -115,8 +112,7 @@ pub fn plan(context: &Context) -> Result<Plan, TranslateError> {
                 "a is beyond the damping Kratos' fit reaches (its gamma at e = 0.001)",
             )
         })?),
-        kind if context.target.is_some() && context.hertzian() && kind != LawKind::Thornton => {
-            let _ = kind;
+        _ if context.target.is_some() && context.hertzian() && law.kind != LawKind::Thornton => {
             notes.push(super::substituted(context, Peer::Kratos, "COEFFICIENT_OF_RESTITUTION (Tsuji's form)"));
             Knob::Nominal
         }
@@ -133,20 +129,7 @@ pub fn plan(context: &Context) -> Result<Plan, TranslateError> {
     let Some(radius) = context.radius else {
         return Err(TranslateError::bad("bodies", "Kratos' Hertz contact needs the contact's effective radius R*"));
     };
-    let materials = match context.materials() {
-        Some(materials) => materials,
-        None => {
-            let modulus = 3.0 * law.stiffness / (4.0 * radius.sqrt());
-            let young = 2.0 * (1.0 - POISSON * POISSON) * modulus;
-            notes.push(format!(
-                "Both materials get YOUNG_MODULUS = {} Pa and POISSON_RATIO = {POISSON}, which give the scene's E* = \
-                 {} Pa.",
-                short(young),
-                short(modulus)
-            ));
-            [(young, POISSON); 2]
-        }
-    };
+    let materials = context.peer_materials(radius, &mut notes);
     if let (Some(nominal), Some(target)) = (context.nominal, context.target) {
         let typed = Hertz { materials, friction: 0.0, context: context.clone() }.contact(nominal);
         if let Some(e) = super::restitution(context, &typed, None)? {

@@ -269,8 +269,7 @@ pub fn granular(context: &Context) -> Result<(Granular, Knob, Vec<String>), Tran
             };
             (normal, Damping::Velocity, knob)
         }
-        kind if context.target.is_some() && context.hertzian() && kind != LawKind::Thornton => {
-            let _ = kind;
+        _ if context.target.is_some() && context.hertzian() && law.kind != LawKind::Thornton => {
             notes.push(super::substituted(context, Peer::Lammps, "Tsuji's damping (coeff_restitution)"));
             (hertz(context)?, Damping::CoeffRestitution, Knob::Nominal)
         }

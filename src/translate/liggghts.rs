@@ -5,12 +5,9 @@
 //! unless `limitForce on`. Steps are velocity Verlet (`fix nve/sphere`).
 
 use super::lammps::{damping_ratio, nominal_for_tsuji};
-use super::{Context, Knob, Mapping, Parameters, Peer, Plan, TranslateError, cannot_express, number, short};
+use super::{Context, Knob, Mapping, Parameters, Peer, Plan, TranslateError, cannot_express, number};
 use crate::law::{LawKind, Separation};
 use crate::scene::{ContactSpec, DampingSpec};
-
-/// Poisson's ratio given to both atom types when the scene's stiffness is not from its bodies' materials.
-const POISSON: f64 = 0.3;
 
 struct Hertz {
     /// Each type's Young's modulus (Pa) and Poisson's ratio.
@@ -82,8 +79,7 @@ pub fn plan(context: &Context) -> Result<Plan, TranslateError> {
                 )
             })?),
         },
-        kind if context.target.is_some() && context.hertzian() && kind != LawKind::Thornton => {
-            let _ = kind;
+        _ if context.target.is_some() && context.hertzian() && law.kind != LawKind::Thornton => {
             notes.push(super::substituted(context, Peer::Liggghts, "coefficientRestitution (Tsuji's form)"));
             Knob::Nominal
         }
@@ -99,22 +95,7 @@ pub fn plan(context: &Context) -> Result<Plan, TranslateError> {
     let Some(radius) = context.radius else {
         return Err(TranslateError::bad("bodies", "LIGGGHTS' hertz model needs the contact's effective radius R*"));
     };
-    // The bodies' own materials when the scene's K comes from them; else alike types with Y* = 3 K / (4 sqrt(R*)).
-    let materials = match context.materials() {
-        Some(materials) => materials,
-        None => {
-            let modulus = 3.0 * law.stiffness / (4.0 * radius.sqrt());
-            let young = 2.0 * (1.0 - POISSON * POISSON) * modulus;
-            notes.push(format!(
-                "Both atom types get Y = {} Pa and nu = {POISSON}: the scene's K = {} N/m^1.5 (Y* = {} Pa); \
-                 LIGGGHTS' wall takes its type's material too.",
-                short(young),
-                short(law.stiffness),
-                short(modulus)
-            ));
-            [(young, POISSON); 2]
-        }
-    };
+    let materials = context.peer_materials(radius, &mut notes);
     let limit_force = context.scene.contact.separation == Separation::Force;
     if context.dt.is_some() {
         notes.push(

@@ -223,6 +223,26 @@ impl Context {
         }
     }
 
+    /// The materials a peer that reads them (LIGGGHTS, Kratos) is given: the bodies' own ([`Context::materials`]),
+    /// or else both alike, Poisson's ratio 0.3 and the Young's modulus that gives the scene's E* = 3 K / (4 sqrt R*),
+    /// with a note saying so.
+    pub fn peer_materials(&self, radius: f64, notes: &mut Vec<String>) -> [(f64, f64); 2] {
+        const POISSON: f64 = 0.3;
+        if let Some(materials) = self.materials() {
+            return materials;
+        }
+        let modulus = 3.0 * self.law.stiffness / (4.0 * radius.sqrt());
+        let young = 2.0 * (1.0 - POISSON * POISSON) * modulus;
+        notes.push(format!(
+            "Both bodies (or atom types) get Young's modulus {} Pa and Poisson's ratio {POISSON}, which give the \
+             scene's E* = {} Pa (K = {} N/m^1.5).",
+            short(young),
+            short(modulus),
+            short(self.law.stiffness)
+        ));
+        [(young, POISSON); 2]
+    }
+
     /// Whether the law is Hertz's spring (exponent 3/2) — what the DEM codes' `hertz` models have.
     pub fn hertzian(&self) -> bool {
         self.law.exponent == 1.5
