@@ -265,6 +265,8 @@ fn bad_input_exits_2_naming_what_is_wrong() {
         (vec!["translate", model, "--to", "lammps", "--dt", "0"], "--dt"),
         (vec!["translate", model, "--to", "lammps", "--dt=-1e-7"], "--dt"),
         (vec!["translate", model, "--to", "lammps", "--dt", "1e-3"], "larger than the contact's duration"),
+        (vec!["translate", model, "--to", "lammps", "--dt", "1e-14"], "more than 1e6 steps"),
+        (vec!["translate", model, "--to", "lammps", "--dt", "nan"], "--dt"),
         (vec!["translate", model, "--to", "lammps-x"], "--to"),
         (vec!["translate", model, "--to", "mujoco"], "nearest"),
         (vec!["translate", model, "--to", "mujoco"], "key `contact.law`"),

@@ -39,7 +39,7 @@ impl Mapping for Impact {
              ! x the distance between the centres (DM), x' its rate (VR), x1 = r1 + r2 (a wall: the distance from \
              its plane, DZ, and x1 = r)\n\
              FUNCTION = IMPACT(DM(I,J), VR(I,J), {}, {}, {}, {}, {})\n",
-            self.context.scene.title,
+            self.context.title(),
             number(reach),
             number(self.stiffness),
             number(self.exponent),

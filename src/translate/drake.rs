@@ -88,7 +88,7 @@ impl Mapping for Point {
              from pydrake.multibody.plant import CoulombFriction, MultibodyPlantConfig\n\
              props = ProximityProperties()\n\
              {setting}config = {solver}\n",
-            self.context.scene.title,
+            self.context.title(),
         )
     }
 }

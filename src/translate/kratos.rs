@@ -94,7 +94,7 @@ impl Mapping for Hertz {
              \"DEM_DISCONTINUUM_CONSTITUTIVE_LAW_NAME\": \"DEM_D_Hertz_viscous_Coulomb\"}}}}],\n  {table}\n}}\n\
              // ProjectParameters.json, beside its other settings:\n\
              \"TranslationalIntegrationScheme\": \"Symplectic_Euler\"{step}\n",
-            self.context.scene.title
+            self.context.title()
         )
     }
 }

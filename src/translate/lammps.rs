@@ -170,7 +170,7 @@ impl Mapping for Pair {
         let mut text = format!(
             "# {} in LAMMPS (impact translate); SI units\nunits si\natom_style sphere\ncomm_modify vel yes\n\
              pair_style granular\npair_coeff * * {arguments}\n",
-            self.context.scene.title
+            self.context.title()
         );
         if self.context.wall {
             let s = &self.context.setup;

@@ -46,7 +46,7 @@ impl Mapping for Hertz {
              fix m2 all property/global poissonsRatio peratomtype {} {}\n\
              fix m3 all property/global coefficientRestitution peratomtypepair 2 {e} {e} {e} {e}\n\
              fix m4 all property/global coefficientFriction peratomtypepair 2 {mu} {mu} {mu} {mu}\n",
-            self.context.scene.title,
+            self.context.title(),
             number(y1),
             number(y2),
             number(n1),

@@ -31,6 +31,8 @@ use serde::Serialize;
 use serde::ser::SerializeMap;
 use serde_json::Value;
 
+/// Most steps over one contact a translation at `--dt` runs (each of its many runs takes that many).
+pub const MAX_STEPS_PER_CONTACT: f64 = 1.0e6;
 /// How many touch phases the spread of e over a step samples.
 pub const PHASES: usize = 16;
 /// A target e met to within this (absolute) is met: the bisection stops there.
@@ -241,6 +243,11 @@ impl Context {
             short(self.law.stiffness)
         ));
         [(young, POISSON); 2]
+    }
+
+    /// The scene's title as a comment line of any peer's input may carry it.
+    pub fn title(&self) -> String {
+        comment(&self.scene.title)
     }
 
     /// Whether the law is Hertz's spring (exponent 3/2) — what the DEM codes' `hertz` models have.
@@ -504,13 +511,25 @@ pub fn translate(scene: &Scene, peer: Peer, dt: Option<f64>) -> Result<Translati
         _ => None,
     };
     // The step is checked against the contact's duration first, at the knob's starting value.
-    if let Some(dt) = dt {
+    if let (Some(dt), Some(_)) = (dt, peer.scheme()) {
         let start = match plan.knob {
             Knob::Fixed(p) => p,
             Knob::Damping { .. } => 0.0,
             Knob::Nominal => context.target.unwrap_or(1.0),
         };
-        if let Some(duration) = duration(&context, &plan.mapping.contact(start))?
+        let duration = duration(&context, &plan.mapping.contact(start))?;
+        if let Some(duration) = duration
+            && duration / dt > MAX_STEPS_PER_CONTACT
+        {
+            return Err(TranslateError::bad(
+                "--dt",
+                format!(
+                    "dt = {dt:e} s takes more than {MAX_STEPS_PER_CONTACT:e} steps over the contact's {duration:.4e} s: \
+                     at such a step the scheme's e is the continuous one to about dt / t_c; translate without --dt"
+                ),
+            ));
+        }
+        if let Some(duration) = duration
             && dt > duration
         {
             return Err(TranslateError::bad(
@@ -592,6 +611,13 @@ fn unreachable_knob(peer: Peer) -> Result<Knob, TranslateError> {
 /// A number written as a peer's input reads it back exactly: plain for moderate magnitudes, scientific otherwise.
 pub fn number(value: f64) -> String {
     crate::calibrate::readable(value)
+}
+
+/// Text made safe for one comment line of a peer's input: no line breaks, no control characters, and no `--`
+/// (which would end an XML comment).
+pub fn comment(text: &str) -> String {
+    let line: String = text.chars().map(|c| if c.is_control() { ' ' } else { c }).collect();
+    line.replace("--", "- -")
 }
 
 /// A number for a note: six significant digits.

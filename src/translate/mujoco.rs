@@ -83,7 +83,7 @@ impl Mapping for Soft {
         format!(
             "<!-- {} in MuJoCo (impact translate): give both geoms of the contact these attributes (MuJoCo mixes \
              two geoms' solref and solimp) -->\n{option}<geom{friction} margin=\"0\" solref=\"{}\" solimp=\"{}\"/>\n",
-            self.context.scene.title,
+            self.context.title(),
             list(&solref),
             list(&solimp)
         )
