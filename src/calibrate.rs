@@ -11,11 +11,15 @@
 //! | `tsuji` | penetration | exact relation: `a = -sqrt(5) ln E / sqrt(pi² + ln² E)` | `a` |
 //! | `tsuji` | force | closed form (the Kelvin–Voigt `F = 0` one at `zeta = a/sqrt(5)`), root-found in `a` | `a` |
 //! | `brilliantov` | either | bracketed root-find on the simulation of the scene | `A` |
+//! | `hertz-dashpot` | either | bracketed root-find on the simulation of the scene | `c` |
+//! | `mujoco` | either | bracketed root-find on the simulation of the scene | `solref`'s dampratio (or damping) |
+//! | `adams-impact` | either | bracketed root-find on the simulation of the scene | `cmax` |
 //!
 //! The hysteresis family's `e` depends on `x = alpha v0` only, Kelvin–Voigt's on `zeta` only and Tsuji's on `a`
 //! only, so these need no scene: the approach speed (hysteresis only) defaults to [`DEFAULT_APPROACH_SPEED`], and
 //! Kelvin–Voigt's `c` is left unknown (its `zeta` is still given) because it needs the scene's `k` and `m*`.
-//! Brilliantov's `e` depends on the impact speed, the stiffness and the masses, so it needs a scene. `E = 1` is
+//! Brilliantov's `e` depends on the impact speed, the stiffness and the masses, and so do the simulators' laws'
+//! (`hertz-dashpot`, `mujoco`, `adams-impact`), so these need a scene. `E = 1` is
 //! zero damping for every damped law, scene or not.
 //!
 //! Whatever the method, the result is checked by one more simulation (of the scene, or of [`default_scene`]) and
@@ -25,9 +29,9 @@ use crate::body::Body;
 use crate::impact::{Options, SimulationError, simulate_with};
 use crate::law::damping::{damping_for_restitution, hysteresis_chi};
 use crate::law::{Family, LawKind, Separation};
-use crate::reference::{self, SeparationCriterion, brilliantov_c1};
+use crate::reference::{self, Bracket, SeparationCriterion, Stop, brilliantov_c1, illinois};
 use crate::scene::{ContactSpec, DampingSpec, OutputSpec, Scene, StiffnessSpec};
-use crate::setup::Setup;
+use crate::setup::{DEFAULT_SOLREF, Setup};
 use nalgebra::Vector3;
 use serde::Serialize;
 
@@ -207,7 +211,10 @@ pub fn calibrate(request: &Request) -> Result<Calibration, CalibrationError> {
     {
         return Err(CalibrationError::ApproachSpeed(speed));
     }
-    if matches!(law.family(), Family::Viscoelastic | Family::Dashpot) && request.scene.is_none() && target < 1.0 {
+    if matches!(law.family(), Family::Viscoelastic | Family::Dashpot | Family::Impedance | Family::Ramp)
+        && request.scene.is_none()
+        && target < 1.0
+    {
         return Err(CalibrationError::NeedsScene(law.name()));
     }
     let scene = match &request.scene {
@@ -236,7 +243,7 @@ pub fn calibrate(request: &Request) -> Result<Calibration, CalibrationError> {
         law: law.name(),
         restitution_target: target,
         damping: known(found.damping),
-        damping_units: law.info().damping_units,
+        damping_units: contact.damping_units(),
         dimensionless: Dimensionless { symbol: dimensionless_symbol(law), value: contact.dimensionless(found.damping) },
         method: found.method,
         separation: contact.separation.name(),
@@ -447,9 +454,16 @@ pub fn default_scene(law: LawKind, approach_speed: f64, separation: Separation) 
 }
 
 /// The scene with its damping parameter set to `damping` (law units).
+/// For `mujoco` the damping is `solref`'s second entry: the dampratio of `[timeconst, dampratio]`, or the damping
+/// per unit mass of `[-stiffness, -damping]` (entered as `-damping`); the first entry and `solimp` are kept.
 pub fn with_damping(scene: &Scene, damping: f64) -> Scene {
     let mut scene = scene.clone();
-    scene.contact.damping = DampingSpec::Parameter(damping);
+    if scene.contact.law.family() == Family::Impedance {
+        let [first, _] = scene.contact.solref.unwrap_or(DEFAULT_SOLREF);
+        scene.contact.solref = Some([first, if first > 0.0 { damping } else { -damping }]);
+    } else {
+        scene.contact.damping = DampingSpec::Parameter(damping);
+    }
     scene
 }
 
@@ -462,6 +476,8 @@ struct Contact {
     /// L = (m* v0² / K)^(1/(n+1)), m: the contact's penetration scale.
     length: f64,
     separation: Separation,
+    /// The scene's `solref` (MuJoCo's default if it gives none); unused by the other laws.
+    solref: [f64; 2],
 }
 
 impl Contact {
@@ -474,6 +490,7 @@ impl Contact {
             stiffness: setup.law.stiffness,
             length: setup.scales.length,
             separation: scene.contact.separation,
+            solref: scene.contact.solref.unwrap_or(DEFAULT_SOLREF),
         })
     }
 
@@ -496,8 +513,25 @@ impl Contact {
             Family::Tsuji => damping / 5f64.sqrt(),
             // b = (3/2) A (K/m*)^(2/5) v0^(1/5) (docs/references.md).
             Family::Viscoelastic => damping * self.brilliantov_b_per_a(),
-            Family::Dashpot => damping / self.critical_dashpot(),
-            Family::Elastic | Family::Plastic | Family::Impedance | Family::Ramp => 0.0,
+            Family::Dashpot | Family::Ramp => damping / self.critical_dashpot(),
+            Family::Impedance => damping * self.mujoco_ratio_per_damping(),
+            Family::Elastic | Family::Plastic => 0.0,
+        }
+    }
+
+    /// MuJoCo's damping ratio per unit of `solref`'s second entry (as a positive number): 1 for a dampratio, and
+    /// 1/(2 sqrt(stiffness)) for `[-stiffness, -damping]` (b = damping/d_max, k = stiffness/d_max² per unit mass).
+    fn mujoco_ratio_per_damping(&self) -> f64 {
+        let [first, _] = self.solref;
+        if first > 0.0 { 1.0 } else { 0.5 / (-first).sqrt() }
+    }
+
+    /// What the calibrated number is, and its units.
+    fn damping_units(&self) -> &'static str {
+        match self.law.family() {
+            Family::Impedance if self.solref[0] > 0.0 => "dampratio: solref = [timeconst, dampratio], timeconst kept",
+            Family::Impedance => "damping per unit mass in 1/s: solref = [-stiffness, -damping], stiffness kept",
+            _ => self.law.info().damping_units,
         }
     }
 
@@ -514,7 +548,9 @@ fn dimensionless_symbol(law: LawKind) -> &'static str {
         Family::Tsuji => "zeta = a / sqrt(5)",
         Family::Viscoelastic => "b = (3/2) A (K/m*)^(2/5) v0^(1/5)",
         Family::Dashpot => "zeta = c L / (2 m* v0), L = (m* v0² / K)^(1/(n+1))",
-        Family::Elastic | Family::Plastic | Family::Impedance | Family::Ramp => "-",
+        Family::Ramp => "zeta = c_max L / (2 m* v0), L = (m* v0² / K)^(1/(n+1))",
+        Family::Impedance => "zeta = b / (2 sqrt(k)), MuJoCo's damping ratio",
+        Family::Elastic | Family::Plastic => "-",
     }
 }
 
@@ -616,7 +652,23 @@ fn solve(
             let search = Search { law: "hertz-dashpot", symbol: "c", unit: "N s/m", per_damping: per_c, limit: "zeta" };
             by_simulation(target, guess, &search, simulations)
         }
-        Family::Elastic | Family::Plastic | Family::Impedance | Family::Ramp => Err(CalibrationError::NoDamping),
+        // MuJoCo: solref's second entry (its damping ratio, or its damping per unit mass), from the linear
+        // spring–dashpot's ratio for e; ADAMS: c_max from the same guess as a constant dashpot's.
+        Family::Impedance => {
+            let per = contact.mujoco_ratio_per_damping();
+            let guess = reference::kelvin_voigt_zeta(target).max(1e-6) / per;
+            let (symbol, unit) = if contact.solref[0] > 0.0 { ("dampratio", "") } else { ("-solref[1]", "1/s") };
+            let search = Search { law: "mujoco", symbol, unit, per_damping: per, limit: "zeta" };
+            by_simulation(target, guess, &search, simulations)
+        }
+        Family::Ramp => {
+            let per_c = 1.0 / contact.critical_dashpot();
+            let guess = reference::kelvin_voigt_zeta(target).max(1e-6) * contact.critical_dashpot();
+            let search =
+                Search { law: "adams-impact", symbol: "cmax", unit: "N s/m", per_damping: per_c, limit: "zeta" };
+            by_simulation(target, guess, &search, simulations)
+        }
+        Family::Elastic | Family::Plastic => Err(CalibrationError::NoDamping),
     }
 }
 
@@ -738,75 +790,6 @@ fn by_simulation(
     })
 }
 
-/// A sign change of a decreasing function: `f(lo) > 0 > f(hi)` (either may be 0).
-#[derive(Debug, Clone, Copy)]
-struct Bracket {
-    lo: f64,
-    f_lo: f64,
-    hi: f64,
-    f_hi: f64,
-}
-
-/// When a root-find stops: `|f| <= residual`, or the bracket narrower than `relative_width` of its upper end.
-#[derive(Debug, Clone, Copy)]
-struct Stop {
-    residual: f64,
-    relative_width: f64,
-    max_evaluations: u32,
-}
-
-/// The evaluated point of smallest |f|, and the final bracket.
-#[derive(Debug, Clone, Copy)]
-struct Root {
-    x: f64,
-    residual: f64,
-    bracket: Bracket,
-}
-
-/// The Illinois variant of regula falsi (Dowell & Jarratt 1971): the secant through the bracket's ends, halving
-/// the value kept at an end that survives twice in a row; a bisection whenever two steps did not halve the
-/// bracket, so that a noisy or jumping `f` (a simulation, a non-separating contact) still converges.
-fn illinois<E>(mut f: impl FnMut(f64) -> Result<f64, E>, mut b: Bracket, stop: Stop) -> Result<Root, E> {
-    let mut best = if b.f_lo.abs() <= b.f_hi.abs() { (b.lo, b.f_lo) } else { (b.hi, b.f_hi) };
-    // The values the secant is drawn through: f at the ends, scaled down at an end kept twice in a row.
-    let (mut weight_lo, mut weight_hi) = (b.f_lo, b.f_hi);
-    let mut evaluations = 0;
-    let mut kept_lo_last = None;
-    let mut widths = [f64::INFINITY; 2];
-    while evaluations < stop.max_evaluations && best.1.abs() > stop.residual {
-        let width = b.hi - b.lo;
-        if width <= stop.relative_width * b.hi.abs() {
-            break;
-        }
-        let secant = b.hi - weight_hi * width / (weight_hi - weight_lo);
-        let slow = width > 0.5 * widths[0];
-        let x = if slow || !(secant > b.lo && secant < b.hi) { b.lo + 0.5 * width } else { secant };
-        if !(x > b.lo && x < b.hi) {
-            break; // the bracket is down to adjacent floating-point numbers
-        }
-        widths = [widths[1], width];
-        let fx = f(x)?;
-        evaluations += 1;
-        if fx.abs() < best.1.abs() {
-            best = (x, fx);
-        }
-        if fx > 0.0 {
-            (b.lo, b.f_lo, weight_lo) = (x, fx, fx);
-            if kept_lo_last == Some(false) {
-                weight_hi *= 0.5;
-            }
-            kept_lo_last = Some(false);
-        } else {
-            (b.hi, b.f_hi, weight_hi) = (x, fx, fx);
-            if kept_lo_last == Some(true) {
-                weight_lo *= 0.5;
-            }
-            kept_lo_last = Some(true);
-        }
-    }
-    Ok(Root { x: best.0, residual: best.1, bracket: b })
-}
-
 /// A number as a reader wants it: plain for moderate magnitudes, scientific otherwise; either way the shortest
 /// text that reads back as the same `f64`.
 pub(crate) fn readable(x: f64) -> String {
@@ -816,27 +799,6 @@ pub(crate) fn readable(x: f64) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    fn find(f: impl Fn(f64) -> f64, lo: f64, hi: f64) -> Root {
-        let bracket = Bracket { lo, f_lo: f(lo), hi, f_hi: f(hi) };
-        let stop = Stop { residual: 0.0, relative_width: 4.0 * f64::EPSILON, max_evaluations: 200 };
-        illinois(|x| Ok::<_, ()>(f(x)), bracket, stop).unwrap()
-    }
-
-    #[test]
-    fn illinois_finds_a_smooth_root_to_rounding() {
-        // exp(-x) = 0.3 at x = ln(10/3).
-        let root = find(|x| (-x).exp() - 0.3, 0.0, 50.0);
-        assert!((root.x - (10.0f64 / 3.0).ln()).abs() < 4e-16, "{}", root.x);
-    }
-
-    #[test]
-    fn illinois_closes_in_on_a_jump_without_claiming_a_root() {
-        // A contact that stops separating at A = 0.7: the bracket shrinks onto the jump, the residual stays large.
-        let root = find(|x| if x < 0.7 { 0.2 } else { -1.0 }, 0.0, 4.0);
-        assert!(root.bracket.lo < 0.7 && root.bracket.hi >= 0.7 && root.bracket.hi - root.bracket.lo < 1e-14);
-        assert!(root.residual.abs() >= 0.2);
-    }
 
     #[test]
     fn closed_form_root_inverts_the_kelvin_voigt_force_separation() {

@@ -10,6 +10,7 @@
 use crate::body::Body;
 use crate::geometry::{self, PlacementProblem};
 use crate::law::damping::{MapError, damping_for_restitution};
+use crate::law::dashpot::dashpot_damping;
 use crate::law::{ContactLaw, Family, LawKind, NO_SOLIMP, Separation};
 use crate::scales::Scales;
 use crate::scene::{
@@ -280,20 +281,27 @@ pub fn resolve_law(
         DampingSpec::None if kind.family() == Family::Ramp => contact.cmax.unwrap_or(0.0),
         DampingSpec::None => 0.0,
         DampingSpec::Parameter(value) => value,
-        // K d + c d' is Kelvin–Voigt: its exact map; another exponent's e depends on the speed and has none.
+        // K d + c d' is Kelvin–Voigt: its exact map. Another exponent's e depends on the speed: the c that gives e
+        // at this contact's speed, found by a root-find on the simulated contact (law::dashpot).
         DampingSpec::Restitution(e) if kind.family() == Family::Dashpot => {
-            if exponent != 1.0 {
-                return fail(
-                    "contact.restitution",
-                    format!(
-                        "`hertz-dashpot` with exponent {exponent} has no map from e (its e depends on the approach \
-                         speed): give `damping` c in N s/m (`impact calibrate SCENE --law hertz-dashpot --restitution \
-                         E` finds the c that gives E in this scene), or exponent = 1"
-                    ),
-                );
+            if exponent == 1.0 {
+                damping_for_restitution(LawKind::KelvinVoigt, e, stiffness, effective_mass, map_speed)
+                    .map_err(|_| SetupError { key: "contact.restitution".into(), message: "no map at e = 0".into() })?
+            } else {
+                let separation = contact.separation;
+                let found = dashpot_damping(e, stiffness, exponent, effective_mass, map_speed, separation);
+                let Some(damping) = found else {
+                    return fail(
+                        "contact.restitution",
+                        format!(
+                            "no dashpot c of `hertz-dashpot` (exponent {exponent}, separation = \"{}\") gives e = {e} \
+                             at this contact's speed: e = 0 needs an infinite c; ask for a small positive e",
+                            separation.name()
+                        ),
+                    );
+                };
+                damping
             }
-            damping_for_restitution(LawKind::KelvinVoigt, e, stiffness, effective_mass, map_speed)
-                .map_err(|_| SetupError { key: "contact.restitution".into(), message: "no map at e = 0".into() })?
         }
         DampingSpec::Restitution(e) => {
             damping_for_restitution(kind, e, stiffness, effective_mass, map_speed).or_else(|error| {
@@ -315,6 +323,9 @@ pub fn resolve_law(
     Ok(ContactLaw { kind, stiffness, exponent, damping, tsuji_scale, yield_penetration, solimp: NO_SOLIMP, ramp })
 }
 
+/// MuJoCo's default `solref`: [timeconst 0.02 s, dampratio 1].
+pub const DEFAULT_SOLREF: [f64; 2] = [0.02, 1.0];
+
 /// The `mujoco` law of `contact` for a contact of effective mass `effective_mass` (kg): MuJoCo's per-unit-mass
 /// spring k and damper b from `solref` — [timeconst, dampratio]: b = 2/(d_max timeconst), k = 1/(d_max² timeconst²
 /// dampratio²); [-stiffness, -damping]: b = damping/d_max, k = stiffness/d_max² — times m*, so that the force is
@@ -323,7 +334,7 @@ pub fn resolve_law(
 pub fn mujoco_law(contact: &ContactSpec, effective_mass: f64) -> ContactLaw {
     let solimp = contact.solimp.unwrap_or(NO_SOLIMP);
     let high = solimp[1];
-    let [a, b] = contact.solref.unwrap_or([0.02, 1.0]);
+    let [a, b] = contact.solref.unwrap_or(DEFAULT_SOLREF);
     let (stiffness, damping) =
         if a > 0.0 { (1.0 / (high * high * a * a * b * b), 2.0 / (high * a)) } else { (-a / (high * high), -b / high) };
     ContactLaw {

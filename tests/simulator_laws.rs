@@ -274,3 +274,79 @@ fn mujocos_euler_step_adds_to_e_at_first_order_in_the_step() {
     }
     assert!(differences.iter().all(|d| *d > 0.0), "the step adds to e: {differences:?}");
 }
+
+#[test]
+fn hertz_dashpot_restitution_is_found_by_simulation_at_the_contact_speed() {
+    // `restitution = e` for exponent n ≠ 1: the c that gives e at this contact's speed. Fed into the independent
+    // implementation, that c gives e back; at another speed the same e needs another c.
+    let (m, k) = (0.1, 1e9);
+    for (n, e, speed, separation, end) in [
+        (1.5, 0.7, 1.0, "penetration", End::Penetration),
+        (1.5, 0.7, 0.1, "penetration", End::Penetration),
+        (1.5, 0.4, 2.0, "force", End::Force),
+        (2.0, 0.9, 0.5, "penetration", End::Penetration),
+    ] {
+        let contact = format!(
+            "law = \"hertz-dashpot\"\nstiffness = {k:e}\nexponent = {n:?}\nrestitution = {e:?}\nseparation = \"{separation}\""
+        );
+        let report = run(&on_wall(m, speed, &contact));
+        let c = report.law.damping;
+        let length = (m * speed * speed / k).powf(1.0 / (n + 1.0));
+        let force = |d: f64, v: f64| k * d.powf(n) + c * v;
+        let independent = independent_e(m, speed, length / speed, 1e5, end, force);
+        assert!((independent - e).abs() < 1e-7, "n {n}, v0 {speed}, {separation}: c = {c} gives {independent}");
+        assert_close("the program's e", report.contact.restitution_velocity_ratio.unwrap(), e, 1e-9);
+        assert_eq!(report.law.restitution_nominal, Some(e));
+        assert!(
+            report.notes.iter().any(|note| note.contains("found by simulation")),
+            "the report says how c was found: {:?}",
+            report.notes
+        );
+    }
+}
+
+/// A calibration of `law` on the scene text to the target e, through the library.
+fn calibrated(text: &str, law: &str, target: f64) -> impact::calibrate::Calibration {
+    let scene = impact::scene::Scene::parse(text, std::path::Path::new("calibrate.toml")).expect("scene");
+    let request = impact::calibrate::Request {
+        law: impact::law::LawKind::from_name(law).expect("a law"),
+        restitution: target,
+        approach_speed: None,
+        separation: None,
+        scene: Some(scene),
+    };
+    impact::calibrate::calibrate(&request).expect("calibrates")
+}
+
+#[test]
+fn calibrated_mujoco_dampratio_gives_the_target_in_an_independent_implementation() {
+    // solref = [timeconst, dampratio]: the dampratio for e, timeconst and solimp kept; and the direct form's damping.
+    let solimp = [0.5, 0.99, 0.002, 0.3, 3.0];
+    for (m, speed, solref, target) in
+        [(1.0, 0.05, [0.01, 0.5], 0.6), (2.0, 0.3, [0.02, 1.0], 0.8), (0.5, 1.0, [-20000.0, -10.0], 0.5)]
+    {
+        let contact = format!("law = \"mujoco\"\nsolref = {}\nsolimp = {}", toml_list(&solref), toml_list(&solimp));
+        let calibration = calibrated(&on_wall(m, speed, &contact), "mujoco", target);
+        let p = calibration.damping.expect("a parameter");
+        let found = if solref[0] > 0.0 { [solref[0], p] } else { [solref[0], -p] };
+        let k_over_m = mujoco_force(1.0, found, solimp, 1.0, 0.0);
+        let scale = 1.0 / k_over_m.sqrt();
+        let e = independent_e(m, speed, scale, 2e4, End::Force, |d, v| mujoco_force(m, found, solimp, d, v));
+        assert!((e - target).abs() < 1e-7, "solref {found:?}: e = {e}, target {target}");
+    }
+}
+
+#[test]
+fn calibrated_adams_cmax_gives_the_target_in_an_independent_implementation() {
+    let (m, k, n) = (1.0, 1e8, 1.5);
+    for (dmax, speed, target) in [(1e-4, 1.0, 0.7), (1e-5, 0.5, 0.3), (1e-3, 2.0, 0.9)] {
+        let contact =
+            format!("law = \"adams-impact\"\nstiffness = {k:e}\nexponent = {n:?}\ncmax = 1.0\ndmax = {dmax:e}");
+        let calibration = calibrated(&on_wall(m, speed, &contact), "adams-impact", target);
+        let cmax = calibration.damping.expect("c_max");
+        let length = (m * speed * speed / k).powf(1.0 / (n + 1.0));
+        let force = |d: f64, v: f64| adams_force(k, n, cmax, dmax, d, v);
+        let e = independent_e(m, speed, length / speed, 1e5, End::Penetration, force);
+        assert!((e - target).abs() < 1e-7, "c_max {cmax}: e = {e}, target {target}");
+    }
+}

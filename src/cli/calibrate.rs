@@ -15,14 +15,16 @@ use std::path::PathBuf;
 ///
 /// Uses the exact relation where one exists (hysteresis family; kelvin-voigt and tsuji with separation at zero
 /// penetration), a root-find on the exact closed form for kelvin-voigt and tsuji with separation = "force", and a
-/// bracketed root-find on the simulation of SCENE for brilliantov. The result is checked by one more simulation.
+/// bracketed root-find on the simulation of SCENE for brilliantov and the simulators' laws (hertz-dashpot's c, mujoco's
+/// dampratio, adams-impact's cmax). The result is checked by one more simulation.
 /// Without SCENE, hysteresis laws use v0 = 1 m/s unless --approach-speed is given, kelvin-voigt reports only zeta
-/// (c = 2 zeta sqrt(k m*) needs a scene), and brilliantov is an error.
+/// (c = 2 zeta sqrt(k m*) needs a scene), and brilliantov and the simulators' laws are an error.
 #[derive(Debug, Args)]
 #[command(after_help = AFTER_HELP)]
 pub struct CalibrateArgs {
     /// Scene file (TOML) supplying the bodies, stiffness, separation and approach speed; its own restitution or
-    /// damping is replaced by the calibrated damping. Required for brilliantov.
+    /// damping is replaced by the calibrated damping. Required for brilliantov, hertz-dashpot, mujoco and
+    /// adams-impact.
     pub scene: Option<PathBuf>,
     /// The law to calibrate (see `impact models`); replaces the scene's law. Default: the scene's law.
     #[arg(long, value_name = "LAW")]
@@ -49,7 +51,9 @@ Methods (the first that applies):
   kelvin-voigt, tsuji      exact relation with separation = penetration; root-find on the exact
                            closed form with separation = force (kelvin-voigt's c needs a scene)
   brilliantov,             bracketed root-find on the simulation of SCENE (required): their e
-  hertz-dashpot            depends on the speed, the mass and the stiffness
+  hertz-dashpot,           depends on the speed, the mass and the stiffness; mujoco's is
+  mujoco, adams-impact     solref's dampratio (timeconst, solimp kept; the damping of the
+                           [-stiffness, -damping] form), adams-impact's cmax (dmax kept)
 Every result is checked by one simulation, and shown beside what the law's own published map gives.
 
 Examples:

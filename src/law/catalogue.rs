@@ -210,7 +210,7 @@ pub const LAWS: [LawInfo; 18] = [
         name: "hertz-dashpot",
         family: Family::Dashpot,
         formula: "K d^n + c d'",
-        map: "n = 1: the Kelvin–Voigt map; otherwise none (e depends on speed): impact calibrate finds c",
+        map: "n = 1: the Kelvin–Voigt map; otherwise the c for e at this contact's speed, found by simulation",
         damping_units: "c in N s/m",
         source: "the DEM codes' Hertz with a viscous dashpot (LAMMPS damping velocity / mass_velocity)",
     },

@@ -6,6 +6,7 @@
 
 pub mod catalogue;
 pub mod damping;
+pub mod dashpot;
 
 pub use crate::reference::Separation;
 pub use catalogue::{Family, LawKind};

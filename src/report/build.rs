@@ -113,6 +113,17 @@ pub fn build(
     if !done {
         notes.push(outcome.note.clone().unwrap_or_else(|| stuck_note(outcome, scene.contact.friction > 0.0)));
     }
+    if setup.law.kind.family() == Family::Dashpot
+        && setup.law.exponent != 1.0
+        && let DampingSpec::Restitution(e) = scene.contact.damping
+    {
+        notes.push(format!(
+            "the dashpot c = {:.6e} N s/m was found by simulation: a root-find on the simulated e of this contact's \
+             normal motion at its approach speed {:.6e} m/s gives e = {e} there (`hertz-dashpot` with exponent {} has \
+             no closed-form map; docs/laws.md)",
+            setup.law.damping, setup.approach_speed, setup.law.exponent
+        ));
+    }
     let oblique = if rigid { None } else { oblique(scene, setup, outcome, e_velocity, friction_work) };
     if rigid {
         let turned = |i: usize| end.orientations[i].angle().to_degrees();

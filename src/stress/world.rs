@@ -36,6 +36,13 @@ pub fn scene_text(seed: u64, index: u64, quick: bool) -> String {
     let law = laws[((r.unit() * laws.len() as f64) as usize).min(laws.len() - 1)];
     let mut plastic = Draw::new(seed ^ 0x7e1d_5a7e_0001, index);
     let law = if plastic.chance(1.0 / 15.0) { LawKind::Thornton } else { law };
+    // One world in ten then takes a simulator's law, again from a stream of its own.
+    let mut simulators = Draw::new(seed ^ 0x51a7_e0f0_0001, index);
+    let law = if simulators.chance(0.1) {
+        simulators.pick(&[LawKind::HertzDashpot, LawKind::Mujoco, LawKind::AdamsImpact])
+    } else {
+        law
+    };
     let mut text = format!("title = \"world stress case {index} of seed {seed}\"\n\n[world]\n");
     if gravity {
         let _ =
@@ -109,6 +116,27 @@ pub fn scene_text(seed: u64, index: u64, quick: bool) -> String {
                 number(r.log(1e5, 1e7)),
                 number(r.uniform(0.1, 1.0))
             );
+        }
+        // The simulators' laws draw their keys from their own stream: `hertz-dashpot`'s nominal e at each contact's
+        // speed (its c found by simulation), `mujoco`'s solref = [timeconst, dampratio] (penetrations of at most
+        // about a millimetre at these speeds) and a solimp width of 0.01 to 1 mm, `adams-impact`'s c_max and d_max.
+        Family::Dashpot => {
+            let _ = writeln!(text, "restitution = {}", number(simulators.uniform(0.1, 1.0)));
+        }
+        Family::Impedance => {
+            let (timeconst, dampratio) = (simulators.log(1e-5, 2e-4), simulators.uniform(0.3, 2.0));
+            let width = simulators.log(1e-5, 1e-3);
+            let _ = writeln!(
+                text,
+                "solref = [{}, {}]\nsolimp = [0.9, 0.95, {}, 0.5, 2.0]",
+                number(timeconst),
+                number(dampratio),
+                number(width)
+            );
+        }
+        Family::Ramp => {
+            let (cmax, dmax) = (simulators.log(1e-2, 1e2), simulators.log(1e-7, 1e-4));
+            let _ = writeln!(text, "cmax = {}\ndmax = {}", number(cmax), number(dmax));
         }
         _ => {
             let e = r.uniform(0.1, 1.0);
