@@ -32,7 +32,7 @@ pub struct TranslateArgs {
     #[arg(long)]
     pub json: bool,
     /// With --to lammps: also write DIR/in.impact and DIR/data.impact, the whole scene as a runnable LAMMPS
-    /// input (run `lmp -in in.impact` from DIR; it writes DIR/final.txt, one line `id vx vy vz` per body).
+    /// input (run `lmp -in in.impact` from DIR; it writes DIR/final.txt, one line `id vx vy vz` per sphere).
     #[arg(long, value_name = "DIR")]
     pub input: Option<PathBuf>,
 }
@@ -48,7 +48,8 @@ Programs and what they get:
 
 Examples:
   impact translate models/mujoco-typed-physical.toml --to mujoco --dt 2e-4
-  impact translate models/steel-on-steel.toml --to lammps --dt 1e-7 --json";
+  impact translate models/tsuji-dem-alumina.toml --to lammps --dt 1.3e-7 --json
+  impact translate models/newtons-cradle-3.toml --to lammps --input out/cradle-lammps";
 
 pub fn run(args: &TranslateArgs) -> anyhow::Result<()> {
     let Some(peer) = Peer::from_name(&args.to) else {

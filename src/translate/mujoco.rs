@@ -139,10 +139,14 @@ pub fn plan(context: &Context) -> Result<Plan, TranslateError> {
             ));
             if contact.separation == Separation::Penetration {
                 let own = super::restitution(context, &context.own_contact(), None)?;
+                let same = spec(context, [-law.stiffness / mass, -law.damping / mass], CONSTANT_SOLIMP);
+                let never_pulling = super::restitution(context, &same, None)?;
+                let shown = |e: Option<f64>| e.map_or("no rebound".to_string(), |e| format!("{e:.4}"));
                 notes.push(format!(
                     "The scene's spring–dashpot separates at d = 0 and pulls just before (e = {}); MuJoCo's contact \
-                     never pulls, so its e is that of the force falling to zero — higher.",
-                    own.map_or("no rebound".into(), |e| format!("{e:.4}"))
+                     never pulls, so the same k and c per unit mass give it a higher e ({}, continuous).",
+                    shown(own),
+                    shown(never_pulling)
                 ));
             }
             let knob = match context.target {
