@@ -36,6 +36,10 @@ pub enum Scheme {
     Verlet,
     /// The semi-implicit (symplectic) Euler of Kratos and MuJoCo: the velocity first, then the position with it.
     SymplecticEuler,
+    /// The implicit (backward) Euler of Drake's discrete SAP contact: the new velocity solves
+    /// `m* (v' - v) = -dt max(0, F(d + dt v', v'))`, the force at the step's end, cut at zero; then `d += dt v'`.
+    /// Not a scene's `[solver] method`: `impact translate --to drake` runs it.
+    ImplicitEuler,
 }
 
 impl Scheme {
@@ -44,6 +48,7 @@ impl Scheme {
         match self {
             Scheme::Verlet => "verlet",
             Scheme::SymplecticEuler => "symplectic-euler",
+            Scheme::ImplicitEuler => "implicit-euler",
         }
     }
 }
@@ -154,6 +159,31 @@ impl Contact {
         }
     }
 
+    /// The implicit Euler step's new rate v' from (d, v): the root of `g(v') = m* (v' - v) + dt max(0, F(d + dt v',
+    /// v'))`, which lies in `[v - dt F(d + dt v, v)/m*, v]` for a force that grows with d and d' (g is not positive at
+    /// the left end, not negative at the right); found by bisection to the last bit.
+    fn implicit_rate(&self, d: f64, v: f64, dt: f64, deepest: f64) -> f64 {
+        let m = self.mass;
+        let pushed = |rate: f64| {
+            let (elastic, dissipative) = self.force(d + dt * rate, rate, deepest.max(d + dt * rate));
+            (elastic + dissipative).max(0.0)
+        };
+        let g = |rate: f64| m * (rate - v) + dt * pushed(rate);
+        let mut high = v;
+        if g(high) <= 0.0 {
+            return high;
+        }
+        let mut low = v - dt * pushed(v) / m;
+        for _ in 0..200 {
+            let middle = 0.5 * (low + high);
+            if middle <= low || middle >= high {
+                break;
+            }
+            if g(middle) > 0.0 { high = middle } else { low = middle }
+        }
+        0.5 * (low + high)
+    }
+
     /// Runs `scheme` at step `dt` (s, > 0) with the touch at phase `phase` ∈ [0, 1) of its step (module docs).
     /// `record`, when given, receives every step boundary in contact (and the first and last).
     pub fn run(&self, scheme: Scheme, dt: f64, phase: f64, mut record: Option<&mut Vec<Point>>) -> Run {
@@ -237,6 +267,31 @@ impl Contact {
                         evaluations += 1;
                     }
                     (at.force, damping) = (elastic + dissipative, dissipative);
+                    (d, v)
+                }
+                Scheme::ImplicitEuler => {
+                    let rate = self.implicit_rate(at.penetration, at.rate, dt, at.deepest);
+                    let force = m * (at.rate - rate) / dt;
+                    at.impulse += dt * force;
+                    at.penetration += dt * rate;
+                    at.rate = rate;
+                    at.time += dt;
+                    let (d, v) = (at.penetration, rate);
+                    if d > 0.0 {
+                        evaluations += 1;
+                    }
+                    at.deepest = at.deepest.max(d);
+                    let (_, dissipative) = self.force(d, v, at.deepest);
+                    // (Where the force is cut at zero, so is its dissipative part.)
+                    at.dissipated += dt * if force > 0.0 { dissipative * v } else { 0.0 };
+                    at.force = force;
+                    if force > peak.0 {
+                        peak = (force, at.time);
+                    }
+                    if compressed.is_some() && force <= 0.0 && v < 0.0 {
+                        at.work = work(v);
+                        break Ending::Separated;
+                    }
                     (d, v)
                 }
             };

@@ -402,3 +402,58 @@ fn lammps_runs_the_written_input_where_installed() {
     }
     let _ = std::fs::remove_dir_all(&folder);
 }
+
+/// Drake's discrete SAP contact steps a spring–dashpot cut at zero with an implicit Euler: the translation tunes the
+/// relaxation time at Drake's step, and the scheme reproduces what Drake 1.51.1 itself gave.
+#[test]
+fn drake_sap_at_its_step() {
+    let scene = on_wall(0.5, 0.05, 1.0, "law = \"kelvin-voigt\"\nstiffness = 1e4\nrestitution = 0.75");
+    let dt = 1e-4;
+    let t = translate(&scene, Peer::Drake, Some(dt)).unwrap();
+    let (each, tau) = (num(&t, "point_contact_stiffness"), num(&t, "relaxation_time"));
+    // In series k = each / 2; the two relaxation times add: c = k (tau + tau).
+    let (k, m) = (each / 2.0, 0.5);
+    let c = k * 2.0 * tau;
+    // Backward Euler written here: v' = (m v - dt k d) / (m + dt (k dt + c)) while the force k (d + dt v') + c v'
+    // is positive, else no force; d += dt v'.
+    let backward = |c: f64, dt: f64| {
+        let (mut d, mut v) = (0.0f64, 1.0f64);
+        loop {
+            let mut next = (m * v - dt * k * d) / (m + dt * (k * dt + c));
+            let force = k * (d + dt * next) + c * next;
+            if force <= 0.0 {
+                next = v;
+            }
+            d += dt * next;
+            v = next;
+            if d > 0.0 && force <= 0.0 && v < 0.0 {
+                return -v;
+            }
+        }
+    };
+    let independent = backward(c, dt);
+    assert!((independent - 0.75).abs() < 1e-9, "{independent}");
+    assert!((t.restitution_at_dt.unwrap() - 0.75).abs() < 1e-9);
+    // Drake 1.51.1 (scripts/peers, 2026-11-26) on this contact with each geometry's relaxation_time
+    // 6.870091893431994e-4 s (the continuous limit's, e = 0.75) gave 0.610680 at dt = 1e-3 s and 0.734484 at 1e-4 s.
+    let drake = impact::fixed_step::Contact {
+        law: impact::law::ContactLaw {
+            kind: impact::law::LawKind::KelvinVoigt,
+            stiffness: k,
+            exponent: 1.0,
+            damping: k * 2.0 * 6.870091893431994e-4,
+            tsuji_scale: 0.0,
+            yield_penetration: f64::INFINITY,
+            solimp: impact::law::NO_SOLIMP,
+            ramp: f64::INFINITY,
+        },
+        mass: m,
+        speed: 1.0,
+        separation: impact::law::Separation::Force,
+    };
+    let scheme = impact::fixed_step::Scheme::ImplicitEuler;
+    for (dt, measured) in [(1e-3, 0.610680), (1e-4, 0.734484)] {
+        let e = drake.restitution(scheme, dt, 0.0).unwrap();
+        assert!((e - measured).abs() < 1e-6, "dt {dt}: {e} against Drake's {measured}");
+    }
+}

@@ -81,5 +81,5 @@ pub fn plan(context: &Context) -> Result<Plan, TranslateError> {
         number(length)
     ));
     let mapping = Impact { stiffness: law.stiffness, exponent: law.exponent, ramp, context: context.clone() };
-    Ok(Plan { law: "IMPACT function".into(), mapping: Box::new(mapping), knob, notes })
+    Ok(Plan { law: "IMPACT function".into(), mapping: Box::new(mapping), knob, notes, scheme: Peer::Adams.scheme() })
 }

@@ -109,7 +109,8 @@ pub fn plan(context: &Context) -> Result<Plan, TranslateError> {
             notes.push(
                 "Drake's continuous point contact is Hunt–Crossley: a spring–dashpot is its discrete SAP contact \
                  (time_step > 0), with c = k (tau_A + tau_B). SAP's force never pulls, so its e is that of the \
-                 force falling to zero."
+                 force falling to zero; its step is an implicit Euler, whose e falls below the continuous one at \
+                 first order in dt."
                     .into(),
             );
             let knob = match context.target {
@@ -141,5 +142,8 @@ pub fn plan(context: &Context) -> Result<Plan, TranslateError> {
         Model::Sap => "point contact, discrete SAP (Kelvin–Voigt with relaxation time)",
     };
     let mapping = Point { model, stiffness: law.stiffness, context: context.clone() };
-    Ok(Plan { law: law_name.into(), mapping: Box::new(mapping), knob, notes })
+    // (Drake's discrete SAP steps the contact with an implicit Euler, which this program runs; its continuous plant
+    // integrates with error control.)
+    let scheme = (model == Model::Sap).then_some(crate::fixed_step::Scheme::ImplicitEuler);
+    Ok(Plan { law: law_name.into(), mapping: Box::new(mapping), knob, notes, scheme })
 }

@@ -151,5 +151,11 @@ pub fn plan(context: &Context) -> Result<Plan, TranslateError> {
         notes.push("Kratos' walls take the lever arm r - d for friction's torque (this program: r).".into());
     }
     let mapping = Hertz { materials, friction, context: context.clone() };
-    Ok(Plan { law: "DEM_D_Hertz_viscous_Coulomb".into(), mapping: Box::new(mapping), knob, notes })
+    Ok(Plan {
+        law: "DEM_D_Hertz_viscous_Coulomb".into(),
+        mapping: Box::new(mapping),
+        knob,
+        notes,
+        scheme: Peer::Kratos.scheme(),
+    })
 }

@@ -360,5 +360,11 @@ pub fn plan(context: &Context) -> Result<Plan, TranslateError> {
         (Normal::Hooke { .. }, damping) => format!("pair_style granular: hooke, damping {}", damping.name()),
         (Normal::Hertz { .. }, damping) => format!("pair_style granular: hertz, damping {}", damping.name()),
     };
-    Ok(Plan { law, mapping: Box::new(Pair { granular, context: context.clone() }), knob, notes })
+    Ok(Plan {
+        law,
+        mapping: Box::new(Pair { granular, context: context.clone() }),
+        knob,
+        notes,
+        scheme: Peer::Lammps.scheme(),
+    })
 }

@@ -109,5 +109,6 @@ pub fn plan(context: &Context) -> Result<Plan, TranslateError> {
         mapping: Box::new(mapping),
         knob,
         notes,
+        scheme: Peer::Liggghts.scheme(),
     })
 }

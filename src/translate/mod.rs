@@ -88,13 +88,14 @@ impl Peer {
     }
 
     /// The fixed-step scheme the program integrates a contact with, when it has one this program runs: LAMMPS' and
-    /// LIGGGHTS' velocity Verlet, MuJoCo's and Kratos' semi-implicit Euler. Drake's discrete solvers are implicit
-    /// and ADAMS' integrators adapt their step: `None`.
+    /// LIGGGHTS' velocity Verlet, MuJoCo's and Kratos' semi-implicit Euler, Drake's implicit Euler (its discrete SAP
+    /// contact; its continuous point contact has none). ADAMS' integrators adapt their step: `None`.
     pub fn scheme(self) -> Option<Scheme> {
         match self {
             Peer::Lammps | Peer::Liggghts => Some(Scheme::Verlet),
             Peer::Mujoco | Peer::Kratos => Some(Scheme::SymplecticEuler),
-            Peer::Drake | Peer::Adams => None,
+            Peer::Drake => Some(Scheme::ImplicitEuler),
+            Peer::Adams => None,
         }
     }
 }
@@ -305,6 +306,9 @@ pub struct Plan {
     pub mapping: Box<dyn Mapping>,
     pub knob: Knob,
     pub notes: Vec<String>,
+    /// The fixed-step scheme the program runs this contact with, when this program has it: the peer's own
+    /// ([`Peer::scheme`]), or Drake's implicit Euler for its discrete SAP contact.
+    pub scheme: Option<Scheme>,
 }
 
 /// A translation: what `impact translate` prints (the JSON of docs/simulators.md).
@@ -506,12 +510,12 @@ pub fn translate(scene: &Scene, peer: Peer, dt: Option<f64>) -> Result<Translati
             ),
         );
     }
-    let step = match (dt, peer.scheme()) {
+    let step = match (dt, plan.scheme) {
         (Some(dt), Some(scheme)) => Some((scheme, dt)),
         _ => None,
     };
     // The step is checked against the contact's duration first, at the knob's starting value.
-    if let (Some(dt), Some(_)) = (dt, peer.scheme()) {
+    if let (Some(dt), Some(_)) = (dt, plan.scheme) {
         let start = match plan.knob {
             Knob::Fixed(p) => p,
             Knob::Damping { .. } => 0.0,
@@ -571,7 +575,7 @@ pub fn translate(scene: &Scene, peer: Peer, dt: Option<f64>) -> Result<Translati
     }
     if dt.is_some() && step.is_none() {
         notes.push(format!(
-            "{} does not step a contact with a fixed explicit scheme this program runs: no e at dt is computed; \
+            "{} does not step this contact with a fixed-step scheme this program runs: no e at dt is computed; \
              its e approaches the continuous one as its step (or its error tolerance) falls.",
             peer.title()
         ));

@@ -183,5 +183,11 @@ pub fn plan(context: &Context) -> Result<Plan, TranslateError> {
         Form::Given { .. } => "soft contact (solref, solimp as given)",
         Form::Dashpot { .. } => "soft contact: solref's direct form, constant impedance",
     };
-    Ok(Plan { law: name.into(), mapping: Box::new(Soft { form, context: context.clone(), friction }), knob, notes })
+    Ok(Plan {
+        law: name.into(),
+        mapping: Box::new(Soft { form, context: context.clone(), friction }),
+        knob,
+        notes,
+        scheme: Peer::Mujoco.scheme(),
+    })
 }
