@@ -15,6 +15,7 @@
 
 use super::{Context, Knob, Mapping, Parameters, Peer, Plan, TranslateError, cannot_express, number, short};
 use crate::law::{LawKind, Separation};
+use crate::reference::{kelvin_voigt_zeta, tsuji_damping};
 use crate::scene::{ContactSpec, DampingSpec, FrictionCap, TangentialUnloading};
 use std::f64::consts::PI;
 
@@ -93,12 +94,12 @@ impl Granular {
         let (law, damping) = match (self.normal, self.damping) {
             (Normal::Hooke { .. }, Damping::Velocity) => (LawKind::KelvinVoigt, p),
             (Normal::Hooke { k }, Damping::CoeffRestitution) => {
-                (LawKind::KelvinVoigt, 2.0 * (k * self.mass).sqrt() * damping_ratio(p))
+                (LawKind::KelvinVoigt, 2.0 * (k * self.mass).sqrt() * kelvin_voigt_zeta(p))
             }
             // (hooke with viscoelastic is not offered: its damping grows as sqrt(d), a law this program lacks.)
             (Normal::Hooke { .. }, Damping::Viscoelastic) => (LawKind::KelvinVoigt, f64::NAN),
             (Normal::Hertz { .. }, Damping::Velocity) => (LawKind::HertzDashpot, p),
-            (Normal::Hertz { .. }, Damping::CoeffRestitution) => (LawKind::Tsuji, 5f64.sqrt() * damping_ratio(p)),
+            (Normal::Hertz { .. }, Damping::CoeffRestitution) => (LawKind::Tsuji, tsuji_damping(p)),
             (Normal::Hertz { k, .. }, Damping::Viscoelastic) => (LawKind::Brilliantov, 2.0 * self.mass * p / (3.0 * k)),
         };
         let mut spec = context.spec(law, separation);
@@ -118,13 +119,6 @@ fn spring_name(mindlin: bool, rescale: bool) -> &'static str {
         (true, false) => "mindlin",
         (false, _) => "linear_history",
     }
-}
-
-/// ζ = −ln e / sqrt(π² + ln² e), the damping ratio of the linear oscillator whose e (separating at d = 0) is `e`:
-/// LAMMPS' `coeff_restitution`, written as LAMMPS writes it (0 for e = 1).
-pub fn damping_ratio(e: f64) -> f64 {
-    let log = e.ln();
-    -log / (PI * PI + log * log).sqrt()
 }
 
 /// Tsuji's polynomial α(e), as LAMMPS' `damping tsuji` evaluates it (without the factor √2 of releases from 2 Sep

@@ -4,9 +4,10 @@
 //! with a = −sqrt(5) β (the same as LAMMPS' `coeff_restitution`). The force may pull at the end of the contact
 //! unless `limitForce on`. Steps are velocity Verlet (`fix nve/sphere`).
 
-use super::lammps::{damping_ratio, nominal_for_tsuji};
+use super::lammps::nominal_for_tsuji;
 use super::{Context, Knob, Mapping, Parameters, Peer, Plan, TranslateError, cannot_express, number};
 use crate::law::{LawKind, Separation};
+use crate::reference::tsuji_damping;
 use crate::scene::{ContactSpec, DampingSpec};
 
 struct Hertz {
@@ -21,7 +22,7 @@ impl Mapping for Hertz {
     fn contact(&self, p: f64) -> ContactSpec {
         let separation = if self.limit_force { Separation::Force } else { Separation::Penetration };
         let mut spec = self.context.spec(LawKind::Tsuji, separation);
-        spec.damping = DampingSpec::Parameter(5f64.sqrt() * damping_ratio(p));
+        spec.damping = DampingSpec::Parameter(tsuji_damping(p));
         spec
     }
 

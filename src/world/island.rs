@@ -367,6 +367,16 @@ impl<'a> Island<'a> {
         Some((kinematics, force))
     }
 
+    /// What a stick–slip switch of contact `c` is judged by at `y`: its tangential law, kinematics and spring, and its
+    /// normal force and that force's elastic part, both in the island's force unit (`None` for a smooth contact).
+    fn switching_state(&self, c: usize, y: &DVector<f64>) -> Option<(&Tangential, Kinematics, Vector3<f64>, f64, f64)> {
+        let u = &self.units;
+        let state = self.contact_state(c, y);
+        let (law, kinematics, spring) = self.tangential_state(c, &state, y)?;
+        let (elastic, dissipative) = self.force(c, &state, y);
+        Some((law, kinematics, spring, (elastic + dissipative) / u.force, elastic / u.force))
+    }
+
     /// Contact `c`'s tangential law, its kinematics at `state` and its spring (`None` for a smooth contact).
     fn tangential_state(
         &self,
@@ -389,13 +399,10 @@ impl<'a> Island<'a> {
     /// force or force-rate units); `None` for a smooth contact.
     pub fn switch_value(&self, c: usize, y: &DVector<f64>) -> Option<f64> {
         let u = &self.units;
-        let state = self.contact_state(c, y);
-        let (law, kinematics, spring) = self.tangential_state(c, &state, y)?;
-        let (elastic, dissipative) = self.force(c, &state, y);
-        let normal_force = (elastic + dissipative) / u.force;
+        let (law, kinematics, spring, normal_force, elastic) = self.switching_state(c, y)?;
         let mode = self.contacts[c].mode;
         let rate = if mode.is_sliding() { self.force_rate(c, y) * u.time / u.force } else { 0.0 };
-        let value = law.switch_function(mode, &spring, &kinematics, normal_force, rate, elastic / u.force);
+        let value = law.switch_function(mode, &spring, &kinematics, normal_force, rate, elastic);
         // A sticking contact may begin with cap and spring both zero (no slip at first touch, no force yet): its
         // `mu Fn - |T|` starts at zero, and a spring that then outgrows the cap (a ball set down on a slope) would
         // never be seen to fall through it. Sticking holds to STICK_MARGIN of the force unit beyond the cap — far
@@ -407,13 +414,10 @@ impl<'a> Island<'a> {
     /// ([`Tangential::next_mode`]); `None` for a smooth contact.
     pub fn next_mode(&self, c: usize, y: &DVector<f64>) -> Option<(Mode, Option<Vector3<f64>>)> {
         let u = &self.units;
-        let state = self.contact_state(c, y);
-        let (law, kinematics, spring) = self.tangential_state(c, &state, y)?;
-        let (elastic, dissipative) = self.force(c, &state, y);
-        let normal_force = (elastic + dissipative) / u.force;
+        let (law, kinematics, spring, normal_force, elastic) = self.switching_state(c, y)?;
         let mode = self.contacts[c].mode;
         let rate = self.force_rate(c, y) * u.time / u.force;
-        let (next, spring) = law.next_mode(mode, &spring, &kinematics, normal_force, rate, elastic / u.force);
+        let (next, spring) = law.next_mode(mode, &spring, &kinematics, normal_force, rate, elastic);
         Some((next, spring.map(|spring| spring * u.force)))
     }
 
