@@ -29,6 +29,7 @@ pub mod stress;
 pub mod sweep;
 pub mod text;
 pub mod translate;
+pub mod units;
 pub mod validate;
 pub mod world;
 pub mod world_run;

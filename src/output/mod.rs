@@ -10,7 +10,6 @@ pub mod map_figure;
 pub mod render;
 pub mod sweep_figure;
 pub mod table;
-pub mod units;
 pub mod world_figures;
 pub mod world_series;
 pub mod world_table;

@@ -1,6 +1,6 @@
 //! The readable terminal report: a title, then sections of labelled rows with the values in one aligned column.
 //!
-//! Numbers are in engineering form with six significant digits ([`super::units`]); the JSON and CSV views keep
+//! Numbers are in engineering form with six significant digits ([`crate::units`]); the JSON and CSV views keep
 //! full precision. Each section is one small function of the [`Report`] returning a `Section` (or `None` when
 //! the report has nothing for it), so a new part of the report is a new function and one line in [`render`].
 //!
@@ -9,10 +9,10 @@
 //!   precision rounding, not physics, and is shown as 0 (V0 of a symmetric impact is 0, not 1e-16 m/s);
 //! - times of the contact are measured from first contact; the scene time of first contact is given once.
 
-use super::units::{DIGITS, engineering, engineering_digits, plain, plain_digits, prefix_for, short};
 use crate::idealisation::{Judgement, Verdict};
 use crate::law::{Family, LawKind};
 use crate::report::{InstantaneousReport, Report, Vec3};
+use crate::units::{DIGITS, engineering, engineering_digits, plain, plain_digits, prefix_for, short};
 use std::fmt::Write;
 
 /// A value smaller than this fraction of its quantity's scale is shown as zero. Sums of terms of the scale's size

@@ -3,9 +3,9 @@
 //! [`WorldReport`].
 
 use super::table::{Section, VerdictRow, layout, verdict_table};
-use super::units::{engineering, plain, plain_digits, short};
 use crate::report::Vec3;
 use crate::report::world::{SequentialModel, WorldContact, WorldReport};
+use crate::units::{engineering, plain, plain_digits, short};
 
 /// How many contacts (and bodies) the table lists one by one before it shows only the first and the last ones.
 const LISTED: usize = 24;
@@ -71,7 +71,7 @@ fn why_not_judged(key: &str) -> &'static str {
 
 fn vector(v: &Vec3, unit: &str) -> String {
     let scale = v.iter().map(|x| x.abs()).fold(0.0, f64::max);
-    let (factor, prefix) = super::units::prefix_for(scale);
+    let (factor, prefix) = crate::units::prefix_for(scale);
     let shown: Vec<String> = v.iter().map(|x| short(x / factor)).collect();
     format!("[{}] {prefix}{unit}", shown.join(", "))
 }

@@ -1,6 +1,8 @@
-//! Numbers for people: SI prefixes chosen for the quantity, six significant digits.
+//! Numbers for people: SI prefixes chosen for the quantity, six significant digits in the readable report, three in
+//! messages ([`brief`]).
 //!
-//! Only the terminal report uses these; JSON and CSV keep full precision. Every function rounds once, by the
+//! The terminal report and the messages (errors, notes) use these; JSON and CSV keep full precision. It needs nothing
+//! of the crate, so that every layer that composes a message can use it. Every function rounds once, by the
 //! standard library's correctly rounded `{:e}` formatting, and builds the text from its digits, so a value that
 //! rounds up to the next power of a thousand takes the next prefix ("1.00000 kN", never "1000.00 N").
 
@@ -93,12 +95,48 @@ pub fn plain_digits(value: f64, digits: usize) -> String {
 /// A number as given, for inputs such as an exponent or a nominal e: [`plain`] without trailing zeros
 /// (1.5 -> "1.5", 0.8 -> "0.8", 1 -> "1", 1.5e-7 -> "1.5e-7").
 pub fn short(value: f64) -> String {
-    let text = plain(value);
-    let (mantissa, exponent) = text.split_once('e').map_or((text.as_str(), None), |(m, e)| (m, Some(e)));
+    trim_zeros(&plain(value))
+}
+
+/// Significant digits of a number in a message ([`brief`]).
+pub const BRIEF_DIGITS: usize = 3;
+
+/// A number in a message (an error, a note): `value` in `unit` as the readable report writes it, with three
+/// significant digits and no trailing zeros — 1.0933620739432781 m -> "1.09 m", 0.01 m -> "10 mm", 0.0329 kg ->
+/// "32.9 g", 2.1e11 Pa -> "210 GPa". Prefixes go from pico to mega (to giga for pressures and stiffnesses: a reader
+/// does not think in "Em/s" or "Gm"): beyond, the exponent form in the base unit ("9.2e18 m/s", "1e-100 m"); a unit that takes no prefix keeps its value in
+/// [`plain`] form ("1.09e10 N/m^1.5", "0.5"). Zero is "0 unit", infinities "inf unit", NaN "NaN unit".
+pub fn brief(value: f64, unit: &str) -> String {
+    if !value.is_finite() || value == 0.0 {
+        return with_unit(special(value), unit);
+    }
+    let (_, _, exponent) = decompose(value, BRIEF_DIGITS);
+    let grams = if unit == "kg" { value.abs() * 1e3 } else { f64::NAN };
+    // Pressures and stiffnesses are read in GPa and GN/m; other quantities beyond mega read better as powers of ten.
+    let top = if matches!(unit, "Pa" | "N/m" | "N s/m") { 12 } else { 9 };
+    let readable = |exponent: i32| (-12..top).contains(&exponent);
+    let text = if unit == "kg" && grams.is_finite() && decompose(grams, BRIEF_DIGITS).2 < 3 {
+        let exponent = decompose(grams, BRIEF_DIGITS).2;
+        if readable(exponent) { prefixed(value * 1e3, "g", BRIEF_DIGITS) } else { None }
+    } else if PREFIXABLE.contains(&unit) && readable(exponent) {
+        prefixed(value, unit, BRIEF_DIGITS)
+    } else {
+        None
+    };
+    let text = text.unwrap_or_else(|| with_unit(plain_digits(value, BRIEF_DIGITS), unit));
+    trim_zeros(&text)
+}
+
+/// The number at the start of `text` without trailing zeros after its decimal point ("10.0 mm" -> "10 mm",
+/// "1.50e-7 m" -> "1.5e-7 m").
+fn trim_zeros(text: &str) -> String {
+    let end = text.find(' ').unwrap_or(text.len());
+    let (number, rest) = text.split_at(end);
+    let (mantissa, exponent) = number.split_once('e').map_or((number, None), |(m, e)| (m, Some(e)));
     let mantissa = if mantissa.contains('.') { mantissa.trim_end_matches('0').trim_end_matches('.') } else { mantissa };
     match exponent {
-        Some(exponent) => format!("{mantissa}e{exponent}"),
-        None => mantissa.to_string(),
+        Some(exponent) => format!("{mantissa}e{exponent}{rest}"),
+        None => format!("{mantissa}{rest}"),
     }
 }
 
@@ -279,5 +317,31 @@ mod tests {
         assert_eq!(prefix_for(2.0), (1.0, ""));
         assert_eq!(prefix_for(1500.0), (1e3, "k"));
         assert_eq!(prefix_for(0.0), (1.0, ""));
+    }
+
+    #[test]
+    fn numbers_in_messages_read_like_the_report() {
+        // The example: 1.0933620739432781 m and a radius of 1e-2 m.
+        assert_eq!(brief(1.0933620739432781, "m"), "1.09 m");
+        assert_eq!(brief(1e-2, "m"), "10 mm");
+        // 3.288200310757317e-2 kg = 32.882 g.
+        assert_eq!(brief(3.288200310757317e-2, "kg"), "32.9 g");
+        assert_eq!(brief(2.1e11, "Pa"), "210 GPa");
+        assert_eq!(brief(-0.8, "m/s"), "-800 mm/s");
+        // 999.6 rounds to 1.00e3 at three digits: the next prefix.
+        assert_eq!(brief(999.6, "N"), "1 kN");
+        // Beyond giga and below pico: the exponent form in the base unit.
+        assert_eq!(brief(9.2e18, "m/s"), "9.2e18 m/s");
+        assert_eq!(brief(1e-100, "m"), "1e-100 m");
+        assert_eq!(brief(3.0306579066630573e10, "m"), "3.03e10 m");
+        assert_eq!(brief(1e300, "kg"), "1e300 kg");
+        assert_eq!(brief(5e-20, "kg"), "5e-20 kg");
+        // Units without a prefix, and none.
+        assert_eq!(brief(1.0878565864e10, "N/m^1.5"), "1.09e10 N/m^1.5");
+        assert_eq!(brief(0.5, ""), "0.5");
+        assert_eq!(brief(1e-50, ""), "1e-50");
+        assert_eq!(brief(0.0, "m"), "0 m");
+        assert_eq!(brief(f64::INFINITY, "kg"), "inf kg");
+        assert_eq!(brief(f64::NAN, "s"), "NaN s");
     }
 }
