@@ -202,8 +202,7 @@ fn run<const N: usize, M: ContactModel<N>>(
         below_limit_since: (frictional && !model.sliding(&start)).then_some(0.0),
         below_limit: 0.0,
         switches: 0,
-        resume: usize::MAX,
-        passed: None,
+        resumable: Vec::new(),
     };
     stepper.note(0.0, start);
 
@@ -233,15 +232,14 @@ fn run<const N: usize, M: ContactModel<N>>(
         compression.push(event(&slip, false));
     }
     if rising.count > 0 {
-        phases.resume = compression.len();
-        phases.passed = Some(&passed);
+        phases.resumable.push((compression.len(), &passed));
         compression.push(event(&next_above, true));
     }
     if frictional {
         compression.push(event(&switch, true));
     }
     let compressed = phases.run(&mut stepper, model, 0.0, start, &compression, frictional)?;
-    phases.resume = usize::MAX;
+    phases.resumable.clear();
     // The kinks the restitution passes on its way down: those below the deepest point, descending.
     let deepest = model.penetration(&compressed.state);
     let falling = model.kinks(false);
@@ -272,10 +270,37 @@ fn run<const N: usize, M: ContactModel<N>>(
     if slipping {
         restitution.push(event(&slip, false));
     }
+    // Where a frictional contact's force turns tensile and back (located, not terminal): the tensile impulse.
+    let force = |y: &State<N>| model.force(y);
+    let tension = frictional && !on_force && law.law.can_pull();
+    let tension_events = restitution.len();
+    if tension {
+        restitution.push(event(&force, false));
+        restitution.push(Event { function: &force, direction: Direction::Rising, terminal: false });
+    }
     if !below.is_empty() {
-        phases.resume = restitution.len();
-        phases.passed = Some(&passed);
+        phases.resumable.push((restitution.len(), &passed));
         restitution.push(event(&next_below, true));
+    }
+    // A law that never pulls cuts its damper where spring and damper together would pull (and `adams-impact`, whose
+    // damping vanishes at first touch, may push again nearer the surface): each zero of the uncut force is a step
+    // boundary, watched falling, then rising, in turn — a located zero sits at zero to rounding, and the next watch
+    // looks the other way. (With a force criterion MuJoCo's contact ends at the first: its ending event.)
+    let cuts = std::cell::Cell::new(0usize);
+    let uncut = |y: &State<N>| match model.uncut_force(y) {
+        Some(force) if cuts.get() < MAX_CUTS => {
+            if cuts.get().is_multiple_of(2) {
+                force
+            } else {
+                -force
+            }
+        }
+        _ => 1.0,
+    };
+    let ended_by_cut = on_force && law.law.family() == crate::law::Family::Impedance;
+    if model.uncut_force(&compressed.state).is_some() && !ended_by_cut {
+        phases.resumable.push((restitution.len(), &cuts));
+        restitution.push(event(&uncut, true));
     }
     if frictional {
         restitution.push(event(&switch, true));
@@ -304,6 +329,11 @@ fn run<const N: usize, M: ContactModel<N>>(
         (true, true) => slip_rest(&compressed.crossings, slip_in_compression)
             .or_else(|| slip_rest(&released.crossings, slip_in_restitution)),
     };
+    let tensile_impulse = if !tension {
+        if frictional && !law.law.can_pull() { 0.0 } else { f64::NAN }
+    } else {
+        tensile_impulse(model, &released, tension_events)
+    };
     let ending = match released.ending {
         _ if parted => Ending::Event(0),
         Ending::Event(_) => Ending::Event(1),
@@ -320,6 +350,7 @@ fn run<const N: usize, M: ContactModel<N>>(
             * model.scales().time,
         slip_rest_time,
         switches: phases.switches,
+        tensile_impulse,
         counters: stepper.counters,
         method: scheme.name(),
         restitution: None,
@@ -388,6 +419,7 @@ fn fast_outcome(
         below_limit_duration: 0.0,
         slip_rest_time: None,
         switches: 0,
+        tensile_impulse: f64::NAN,
         counters: Counters { steps: fast.steps, rejected_steps: 0, evaluations: fast.force_evaluations },
         method: "taylor",
         restitution: Some((fast.restitution_impulse * s.impulse, fast.restitution_work * s.energy)),
@@ -506,6 +538,7 @@ fn fixed_step_outcome(
         below_limit_duration: 0.0,
         slip_rest_time: None,
         switches: 0,
+        tensile_impulse: f64::NAN,
         counters: Counters { steps: run.steps, rejected_steps: 0, evaluations: run.evaluations },
         method: scheme.name(),
         restitution: None,
@@ -517,6 +550,35 @@ fn fixed_step_outcome(
     };
     Ok((outcome, history))
 }
+
+/// The impulse of the normal force while it pulled over a restitution (N s, a positive size), from the located
+/// crossings of its force into tension (event `into`) and back out (event `into + 1`), and its end.
+fn tensile_impulse<const N: usize, M: ContactModel<N>>(model: &M, released: &PhaseEnd<N>, into: usize) -> f64 {
+    let impulse = |time: f64, state: &State<N>| model.snapshot(time, state).normal_impulse;
+    let mut crossings: Vec<&Crossing<N>> =
+        released.crossings.iter().filter(|c| c.event == into || c.event == into + 1).collect();
+    crossings.sort_by(|a, b| a.time.total_cmp(&b.time));
+    let (mut total, mut since) = (0.0, None);
+    for crossing in crossings {
+        let at = impulse(crossing.time, &crossing.state);
+        match (crossing.event == into, since) {
+            (true, None) => since = Some(at),
+            (false, Some(start)) => {
+                total += start - at;
+                since = None;
+            }
+            _ => {}
+        }
+    }
+    if let Some(start) = since {
+        total += start - impulse(released.time, &released.state);
+    }
+    total.max(0.0)
+}
+
+/// Most zeros of a cutting law's uncut force one restitution makes step boundaries (a cut and a release each; more
+/// are only stepped across).
+const MAX_CUTS: usize = 8;
 
 /// An event where `function` falls through zero.
 fn event<'a, const N: usize>(function: &'a dyn Fn(&State<N>) -> f64, terminal: bool) -> Event<'a, N> {
@@ -539,10 +601,9 @@ struct Phases<'a> {
     /// Time spent below the limit in finished stretches.
     below_limit: f64,
     switches: u32,
-    /// The terminal event after which the phase simply goes on (a kink of the force); `usize::MAX` for none.
-    resume: usize,
-    /// How many of those events are passed (its function then watches the next).
-    passed: Option<&'a std::cell::Cell<usize>>,
+    /// The terminal events after which the phase simply goes on (a kink of the force, a damper's cut), each with the
+    /// count of its located crossings (its function then watches the next).
+    resumable: Vec<(usize, &'a std::cell::Cell<usize>)>,
 }
 
 /// How a phase ended (the run's end, with the crossings of all its stretches).
@@ -570,11 +631,11 @@ impl Phases<'_> {
         loop {
             let end = stepper.run(time, state, TIME_LIMIT, events)?;
             crossings.extend(end.crossings);
-            if end.ending == Ending::Event(self.resume) {
-                // A step boundary at the event, and on, without it.
-                if let Some(passed) = self.passed {
-                    passed.set(passed.get() + 1);
-                }
+            if let Ending::Event(index) = end.ending
+                && let Some((_, passed)) = self.resumable.iter().find(|(resumable, _)| *resumable == index)
+            {
+                // A step boundary at the event, and on, watching the next.
+                passed.set(passed.get() + 1);
                 (time, state) = (end.time, end.state);
                 continue;
             }

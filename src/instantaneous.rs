@@ -80,7 +80,11 @@ pub struct RigidBody {
 /// relative to body 2's) and B = 1/m1 + 1/m2 + r1²/I1 + r2²/I2, the contact slides throughout when
 /// |slip| >= mu (1+e) vn m* B — the tangential impulse is then mu times the normal one against the slip — and
 /// otherwise sticks: the tangential impulse slip/B stops the slip. Lever arms are the radii along the normal; a body
-/// that does not rotate (immovable or flat) contributes no r²/I.
+/// that does not rotate (immovable or flat) contributes no r²/I. `rubbed` (N s, 0 for rigid-body theory proper) is
+/// impulse friction acts through beyond the normal one, so that sliding throughout takes mu (J_n + rubbed) of
+/// tangential impulse: a compliant contact whose force pulls for an impulse J_t rubs through its compressive impulse
+/// J_n + J_t (`rubbed` = J_t), or with a Coulomb limit of mu |Fn| (`friction_cap = "magnitude"`) through the pull too
+/// (`rubbed` = 2 J_t).
 pub fn rigid_body_impact(
     bodies: &[Body; 2],
     normal: &Vector3<f64>,
@@ -88,17 +92,19 @@ pub fn rigid_body_impact(
     e: f64,
     friction: f64,
     slip: &Vector3<f64>,
+    rubbed: f64,
 ) -> RigidBody {
     let [a, b] = bodies;
     let approach = (a.velocity - b.velocity).dot(normal);
     let normal_impulse = (1.0 + e) * effective_mass * approach;
+    let rubbing = normal_impulse + rubbed;
     let rotational = |body: &Body| if body.rotates() { body.radius * body.radius / body.inertia } else { 0.0 };
     let compliance = a.inverse_mass() + b.inverse_mass() + rotational(a) + rotational(b);
     let slip_size = slip.norm();
     let (regime, tangential) = if friction == 0.0 {
         (RigidRegime::Smooth, Vector3::zeros())
-    } else if slip_size >= friction * normal_impulse * compliance {
-        (RigidRegime::Sliding, -slip * (friction * normal_impulse / slip_size))
+    } else if slip_size >= friction * rubbing * compliance {
+        (RigidRegime::Sliding, -slip * (friction * rubbing / slip_size))
     } else {
         (RigidRegime::Sticking, -slip / compliance)
     };

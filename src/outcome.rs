@@ -40,6 +40,11 @@ pub struct Outcome {
     pub slip_rest_time: Option<f64>,
     /// Stick–slip switches taken.
     pub switches: u32,
+    /// The impulse of the normal force while it pulled, N s (a positive size): 0 for a law that never pulls or a
+    /// contact ended where its force returns to zero; measured by a frictional contact's run (where the magnitude
+    /// cap rubs on through it: a contact sliding throughout then takes mu (J_n + 2 tensile_impulse) of friction
+    /// impulse), NaN where not measured.
+    pub tensile_impulse: f64,
     /// The integrator's work for the impact itself (before any resampling).
     pub counters: Counters,
     /// The path that ran (`dop853`, `dopri5`, `taylor`).

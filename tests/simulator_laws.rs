@@ -350,3 +350,98 @@ fn calibrated_adams_cmax_gives_the_target_in_an_independent_implementation() {
         assert!((e - target).abs() < 1e-7, "c_max {cmax}: e = {e}, target {target}");
     }
 }
+
+/// Where the force of a sphere of mass `m` on a wall at `speed` returns to zero while the bodies part (the law's
+/// force `force(d, d')` continued across zero, as a force separation ends it): the penetration there (m), by RK4 at
+/// `steps` steps per `time_scale` (s), interpolated linearly on the last step.
+fn independent_force_end(m: f64, speed: f64, time_scale: f64, steps: f64, force: impl Fn(f64, f64) -> f64) -> f64 {
+    let h = time_scale / steps;
+    let acceleration = |d: f64, v: f64| -force(d.max(0.0), v) / m;
+    let (mut d, mut v) = (0.0f64, speed);
+    for _ in 0..100_000_000u64 {
+        let (k1d, k1v) = (v, acceleration(d, v));
+        let (k2d, k2v) = (v + 0.5 * h * k1v, acceleration(d + 0.5 * h * k1d, v + 0.5 * h * k1v));
+        let (k3d, k3v) = (v + 0.5 * h * k2v, acceleration(d + 0.5 * h * k2d, v + 0.5 * h * k2v));
+        let (k4d, k4v) = (v + h * k3v, acceleration(d + h * k3d, v + h * k3v));
+        let next_d = d + h / 6.0 * (k1d + 2.0 * k2d + 2.0 * k3d + k4d);
+        let next_v = v + h / 6.0 * (k1v + 2.0 * k2v + 2.0 * k3v + k4v);
+        let (g0, g1) = (force(d, v), force(next_d, next_v));
+        if v < 0.0 && g0 > 0.0 && g1 <= 0.0 {
+            let s = g0 / (g0 - g1);
+            return d + s * (next_d - d);
+        }
+        (d, v) = (next_d, next_v);
+    }
+    panic!("the independent integration did not end on its force");
+}
+
+#[test]
+fn mujocos_spring_left_at_a_force_separation_is_the_integral_of_its_falling_impedance() {
+    // An impedance that falls across its width (d_min = 0.9 > d_max = 0.02, as MuJoCo allows), wider than the
+    // contact goes (about 18 um of 40): the spring m k d(d)² d is not (1/2) k d², and d(d) d = -b d'/k, where the
+    // force vanishes, holds inside the width and again beyond it (at about 80 um, which this contact never
+    // reaches). The elastic energy left where the force returns to zero must be m k ∫₀^d d(s)² s ds at the
+    // penetration the contact reached (stress case 10014 of seed 424242 took the zero beyond the width and closed
+    // its balance to 12 %).
+    let (m, speed) = (1.0, 0.05);
+    let solref = [-5000.0, -10.0];
+    let solimp = [0.9, 0.02, 4e-5, 0.4, 2.2];
+    let contact = format!(
+        "law = \"mujoco\"\nsolref = {}\nsolimp = {}\nseparation = \"force\"",
+        toml_list(&solref),
+        toml_list(&solimp)
+    );
+    let report = run(&on_wall(m, speed, &contact));
+    let left = report.energy.elastic_left_at_separation.expect("separates");
+    // The independent end: the force written above, its zero by RK4; the spring's energy by Simpson's rule on
+    // m k d(s)² s, k = stiffness / d_max² (solref's direct form).
+    let k = -solref[0] / (solimp[1] * solimp[1]);
+    // The fastest time scale: the spring's at the largest impedance, d_min.
+    let scale = 1.0 / (k * solimp[0] * solimp[0]).sqrt();
+    let end = independent_force_end(m, speed, scale, 2e4, |d, v| {
+        let imp = impedance(solimp, d);
+        m * imp * (-solref[1] / solimp[1] * v + k * imp * d)
+    });
+    let pieces = 20_000;
+    let width = end / pieces as f64;
+    let integrand = |s: f64| m * k * impedance(solimp, s).powi(2) * s;
+    let simpson: f64 = (0..pieces)
+        .map(|i| {
+            let a = i as f64 * width;
+            width / 6.0 * (integrand(a) + 4.0 * integrand(a + 0.5 * width) + integrand(a + width))
+        })
+        .sum();
+    assert!(end > 0.0 && end < solimp[2], "the force ends inside the impedance's width: d = {end:e}");
+    assert_close("elastic energy left at the force's zero", left, simpson, 1e-6);
+    let energy = &report.energy;
+    let balance = energy.kinetic_before - (energy.kinetic_after.unwrap() + energy.dissipated.unwrap() + left);
+    assert!(balance.abs() < 1e-9 * energy.kinetic_before, "energy balance {balance:e}");
+}
+
+#[test]
+fn mujocos_energy_balance_closes_whatever_the_power_of_its_impedance() {
+    // The impedance d_min + (d_max - d_min) m (x/m)^p is rough at first touch and separation as p nears an integer
+    // from below (its p-th derivative is infinite there): on stress case 18040 of seed 424242 the balance missed
+    // 1e-9 of m* v0² at p = 1.95 and 2.9. Every power from 1.1 to 3.95, both separations: within 1e-9.
+    let solref = [-567448.3312479574, -43.98969268702484];
+    for p in [1.1, 1.5, 1.9, 1.95, 1.99, 2.01, 2.5, 2.9, 3.5, 3.95] {
+        for separation in ["penetration", "force"] {
+            let solimp = [0.549, 0.897, 0.0321, 0.597, p];
+            let contact = format!(
+                "law = \"mujoco\"\nsolref = {}\nsolimp = {}\nseparation = \"{separation}\"",
+                toml_list(&solref),
+                toml_list(&solimp)
+            );
+            let report = run(&on_wall(6011.6, 514.8, &contact).replace("radius = 1.0", "radius = 4181.0"));
+            let e = &report.energy;
+            let balance = e.kinetic_before
+                - (e.kinetic_after.unwrap() + e.dissipated.unwrap() + e.elastic_left_at_separation.unwrap());
+            assert!(
+                balance.abs() < 1e-9 * e.kinetic_before,
+                "p = {p}, {separation}: balance {:e}",
+                balance / e.kinetic_before
+            );
+            assert!(report.notes.iter().all(|n| !n.contains("energy balance")), "p = {p}: {:?}", report.notes);
+        }
+    }
+}

@@ -191,13 +191,20 @@ impl Tangential {
     }
 
     /// The direction a sliding spring is driven along and judged by. Sliding keeps the spring at the cap,
-    /// |T| = mu Fn; a spring that has drifted below half of it (the integration's error, which near the contact's
-    /// edges, where the cap vanishes, can carry the spring through zero and reverse it) no longer gives a
-    /// direction: the spring's rate and the stick–slip switch then take the direction against the slip, as
-    /// Coulomb's law has it. (The force stays the spring itself, below the integration's error there.)
-    fn sliding_direction(spring: &Vector3<f64>, slip: &Vector3<f64>, cap: f64) -> Vector3<f64> {
+    /// |T| = mu Fn, against the slip; a spring that has drifted below half of it (the integration's error, which
+    /// near the contact's edges, where the cap vanishes, can carry the spring through zero and reverse it) no longer
+    /// gives a direction: the spring's rate and the stick–slip switch then take the direction against the slip, as
+    /// Coulomb's law has it. (The force stays the spring itself, below the integration's error there.) Nor does a
+    /// reversed spring — one along the slip — while the cap grows (`growing`): driven along its own direction, it
+    /// would grow with the cap and push the slip on. Where a damper cut to zero force inside the contact lets the
+    /// force push again, the spring left reversed by rounding as the cap fell to zero did so: stress case 11645 of
+    /// seed 424242 (`adams-impact`, its force cut for 2.3 s of a 3.1 s contact) rubbed its last 11 % of friction
+    /// impulse the wrong way. (While the cap falls, a reversed spring only shrinks on its own: a creeping contact's
+    /// rounding-sized spring is left to it rather than turned back and forth.)
+    fn sliding_direction(spring: &Vector3<f64>, slip: &Vector3<f64>, cap: f64, growing: bool) -> Vector3<f64> {
         let length = spring.norm();
-        if length >= 0.5 * cap && length > 1e-300 { spring / length } else { Tangential::against(slip) }
+        let reversed = growing && spring.dot(slip) > 0.0;
+        if length >= 0.5 * cap && length > 1e-300 && !reversed { spring / length } else { Tangential::against(slip) }
     }
 
     /// The force and spring rate in `mode`, for the spring `spring` (in the tangent plane), the kinematics, the
@@ -248,7 +255,7 @@ impl Tangential {
                 TangentialForce { force: along * cap, spring_rate: turn + turning }
             }
             Mode::Slip => {
-                let along = Tangential::sliding_direction(spring, &k.slip, cap);
+                let along = Tangential::sliding_direction(spring, &k.slip, cap, normal_force_rate > 0.0);
                 let cap_rate = self.friction * normal_force_rate;
                 // The spring turns towards the loading at the rate |loading across it| / |T|, which grows without
                 // bound where the Coulomb limit vanishes (the edges of the contact): faster than MAX_TURN_RATE it
@@ -313,7 +320,7 @@ impl Tangential {
         elastic: f64,
     ) -> (f64, f64) {
         let kt = self.stiffness_at(kinematics.penetration);
-        let along = self.sliding_along(mode, spring, &kinematics.slip, normal_force);
+        let along = self.sliding_along(mode, spring, &kinematics.slip, normal_force, normal_force_rate);
         let held = self.held(mode, spring, normal_force);
         let holding = -kinematics.slip.dot(&along) * kt + held * self.rescale_rate(kinematics);
         let lifting = holding - self.friction * mode.side() * normal_force_rate;
@@ -328,10 +335,17 @@ impl Tangential {
     }
 
     /// The direction a sliding mode's force takes: the spring's (see [`Tangential::evaluate`]).
-    fn sliding_along(&self, mode: Mode, spring: &Vector3<f64>, slip: &Vector3<f64>, normal_force: f64) -> Vector3<f64> {
+    fn sliding_along(
+        &self,
+        mode: Mode,
+        spring: &Vector3<f64>,
+        slip: &Vector3<f64>,
+        normal_force: f64,
+        normal_force_rate: f64,
+    ) -> Vector3<f64> {
         match mode {
             Mode::SlipInTension => Tangential::direction(spring, slip),
-            _ => Tangential::sliding_direction(spring, slip, self.cap(normal_force)),
+            _ => Tangential::sliding_direction(spring, slip, self.cap(normal_force), normal_force_rate > 0.0),
         }
     }
 
@@ -365,7 +379,8 @@ impl Tangential {
                     self.sliding_parts(mode, spring, kinematics, normal_force, normal_force_rate, elastic);
                 if self.cap == FrictionCap::Compressive || lifting < kink {
                     let placed = (mode == Mode::SlipInTension).then(|| {
-                        self.sliding_along(mode, spring, &kinematics.slip, normal_force) * self.cap(normal_force)
+                        self.sliding_along(mode, spring, &kinematics.slip, normal_force, normal_force_rate)
+                            * self.cap(normal_force)
                     });
                     return (Mode::Stick, placed);
                 }

@@ -85,6 +85,10 @@ pub trait ContactModel<const N: usize>: Model<N> {
     /// A continuous function whose fall through zero is a force separation (see
     /// [`crate::law::ContactLaw::separation_function`]).
     fn separation_force(&self, y: &State<N>) -> f64;
+    /// The sign of the force a law that never pulls would have without its cut, continued (see
+    /// [`crate::law::ContactLaw::uncut_force`]): its zeros in restitution are step boundaries; `None` for the laws
+    /// that never cut.
+    fn uncut_force(&self, y: &State<N>) -> Option<f64>;
     /// The function whose fall through zero switches the contact between sticking and sliding, in the state's
     /// mode; `None` for a model without modes.
     fn switch_function(&self, _y: &State<N>) -> Option<f64> {
@@ -145,6 +149,12 @@ impl Normal<'_> {
         } else {
             self.law.separation_function(d, rate)
         }
+    }
+
+    /// [`ContactModel::uncut_force`], in the law's own units (only its sign and zeros matter).
+    pub fn uncut(&self) -> Option<f64> {
+        let s = self.scales;
+        self.law.uncut_force(self.d * s.length, self.rate * s.speed)
     }
 
     /// The rate of the dissipated-energy state (a yielding law's: of its remembered deepest penetration), for the

@@ -203,6 +203,11 @@ impl ContactModel<SIZE> for NormalContact<'_> {
         }
     }
 
+    fn uncut_force(&self, y: &State<SIZE>) -> Option<f64> {
+        let s = &self.scales;
+        self.law.uncut_force(y[index::PENETRATION] * s.length, y[index::RATE] * s.speed)
+    }
+
     fn kinks(&self, compressing: bool) -> crate::law::Kinks {
         self.law.kinks(compressing).scaled(self.scales.length)
     }

@@ -306,6 +306,10 @@ impl ContactModel<SIZE> for PairContact<'_> {
         self.normal(y, &self.evaluate(y).kinematics).separation()
     }
 
+    fn uncut_force(&self, y: &State<SIZE>) -> Option<f64> {
+        self.normal(y, &self.evaluate(y).kinematics).uncut()
+    }
+
     fn switch_function(&self, y: &State<SIZE>) -> Option<f64> {
         let t = self.tangential.as_ref()?;
         let e = self.evaluate(y);

@@ -378,6 +378,10 @@ impl ContactModel<SIZE> for RigidContact<'_> {
         self.normal(y, &self.evaluate(y)).separation()
     }
 
+    fn uncut_force(&self, y: &State<SIZE>) -> Option<f64> {
+        self.normal(y, &self.evaluate(y)).uncut()
+    }
+
     fn kinks(&self, compressing: bool) -> crate::law::Kinks {
         self.law.kinks(compressing).scaled(self.scales.length)
     }

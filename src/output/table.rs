@@ -436,6 +436,9 @@ fn oblique(report: &Report, scales: &Scales) -> Option<Section> {
     if let Some(work) = o.friction_work.filter(|_| o.regime != "smooth") {
         section.row("work of friction", engineering(denoise(work, scales.energy), "J"));
     }
+    if let Some(pull) = o.tensile_impulse.filter(|&pull| pull > 0.0) {
+        section.row("impulse while the normal force pulled", engineering(pull, "N s"));
+    }
     if let Some(turn) = o.normal_turn_deg {
         section.row("line of centres turned by", degrees(turn));
     }

@@ -58,7 +58,7 @@ pub fn build(
         && end.penetration > 0.0
         && outcome.fixed_step.is_none();
     let elastic_left = if force_end {
-        setup.law.elastic_energy(setup.law.separation_penetration(end.rate))
+        setup.law.elastic_energy(setup.law.separation_penetration(end.rate, end.penetration))
     } else {
         end.elastic_energy
     };
@@ -232,12 +232,26 @@ pub fn build(
     };
     if let Some(fixed) = outcome.fixed_step {
         report.notes.push(fixed_step_note(&report, outcome.method, fixed.dt));
+    } else if let Some(note) = energy_balance(&report.energy).and_then(|relative| {
+        let bound = super::energy_balance_bound(scene.solver.tolerances.rtol, scene.solver.tolerances.atol);
+        super::balance_note(relative, "the largest energy term", bound)
+    }) {
+        report.notes.push(note);
     }
     if let Some(trial) = trial {
         let measured = measured_by(&report, scene.contact.friction, trial, levers(scene, setup));
         report.idealisation = idealisation::judge(scene.bodies.each_ref(), &measured);
     }
     report
+}
+
+/// The energy balance of a separated contact, `(in - out)` over its largest term: `kinetic_before +
+/// work_of_immovable_bodies = kinetic_after + dissipated + elastic_left_at_separation` (null before separation).
+fn energy_balance(e: &super::EnergyReport) -> Option<f64> {
+    let (after, dissipated, left, work) =
+        (e.kinetic_after?, e.dissipated?, e.elastic_left_at_separation?, e.work_of_immovable_bodies?);
+    let largest = [e.kinetic_before, work.abs(), after, dissipated.abs(), left.abs()].into_iter().fold(0.0, f64::max);
+    (largest > 0.0).then(|| (e.kinetic_before + work - after - dissipated - left) / largest)
 }
 
 /// What a fixed-step scheme's report means: its events at the first step past them, its e beside the accurate one,
@@ -373,8 +387,11 @@ fn oblique(scene: &Scene, setup: &Setup, outcome: &Outcome, e: f64, friction_wor
     // A graze: the force made less than half of the reversal of the normal velocity, the turning line of centres
     // the rest (docs/oblique.md#grazing-contacts).
     let slid_off = done && end.normal_impulse < 0.5 * setup.effective_mass * (v0 - end.rate);
+    // The impulse of the pulling force: sliding friction rubs through the compressive impulse, J_n + J_t, and
+    // under the magnitude cap through the pulling one as well, J_n + 2 J_t, where rigid-body theory knows J_n alone.
+    let tensile_impulse = (friction > 0.0 && outcome.tensile_impulse.is_finite()).then_some(outcome.tensile_impulse);
     let rigid_body = done.then(|| {
-        let rigid = rigid_body_impact(bodies, &n, setup.effective_mass, e, friction, &slip);
+        let rigid = rigid_body_impact(bodies, &n, setup.effective_mass, e, friction, &slip, 0.0);
         let largest = |simulated: &[Vector3<f64>; 2], ideal: &[Vector3<f64>; 2]| {
             (0..2).map(|i| (simulated[i] - ideal[i]).amax()).fold(0.0, f64::max)
         };
@@ -414,6 +431,7 @@ fn oblique(scene: &Scene, setup: &Setup, outcome: &Outcome, e: f64, friction_wor
         normal_turn_deg: done.then(|| degrees(n.cross(&end.normal).norm().atan2(n.dot(&end.normal)))),
         normal_at_separation: done.then(|| vec3(&end.normal)),
         slid_off,
+        tensile_impulse,
         rigid_body,
     })
 }
@@ -505,4 +523,34 @@ fn instantaneous_report(ideal: &Instantaneous, simulated: Option<&[Vector3<f64>;
 
 fn vec3(v: &Vector3<f64>) -> Vec3 {
     [v.x, v.y, v.z]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::energy_balance;
+    use crate::report::{EnergyReport, balance_note, energy_balance_bound};
+
+    /// A separated contact's balance, (kinetic before + work of immovable bodies - kinetic after - dissipated - left)
+    /// over its largest term, and the note when it misses its bound.
+    #[test]
+    fn an_energy_balance_that_misses_its_bound_says_so() {
+        let energy = |dissipated: f64| EnergyReport {
+            kinetic_before: 6.25,
+            kinetic_after: Some(0.28),
+            dissipated: Some(dissipated),
+            elastic_left_at_separation: Some(2.05),
+            work_of_immovable_bodies: Some(0.0),
+        };
+        // Case 10014 of seed 424242 in aJ: 6.25 in, 0.28 + 5.48 + 2.05 = 7.81 out: -1.56 of 6.25, -0.2496.
+        let relative = energy_balance(&energy(5.48)).expect("separated");
+        assert!((relative - (6.25 - 7.81) / 6.25).abs() < 1e-15, "{relative}");
+        let note = balance_note(relative, "the largest energy term", 1e-9).expect("a note");
+        assert!(note.contains("-0.25 of the largest energy term") && note.contains("1e-9"), "{note}");
+        // Closed to 1e-12 (dissipated 3.92 - 4e-12): no note.
+        let closed = energy_balance(&energy(3.92 - 4e-12)).expect("separated");
+        assert!(closed.abs() < 1e-11 && balance_note(closed, "it", 1e-9).is_none(), "{closed}");
+        // Looser tolerances loosen the bound in proportion; the default's is 1e-9.
+        assert_eq!(energy_balance_bound(1e-10, 1e-12), 1e-9);
+        assert!((energy_balance_bound(1e-6, 1e-8) - 1e-5).abs() < 1e-20);
+    }
 }

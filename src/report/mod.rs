@@ -190,7 +190,12 @@ pub struct ObliqueReport {
     /// of the normal velocity, its impulse below m* (v0 + separation speed)/2, and the turning line of centres the
     /// rest — a graze, which the instantaneous impacts do not describe. False when the bodies did not separate.
     pub slid_off: bool,
-    /// The rigid-body prediction with the simulated normal e; null when the bodies did not separate.
+    /// The impulse of the normal force while it pulled, N s, a positive size (an addition): 0 for a law that never
+    /// pulls and for a contact ended where its force returns to zero; null for a smooth contact. Sliding friction
+    /// rubs through the compressive impulse J_n + J_t, and with `friction_cap = "magnitude"` through J_n + 2 J_t.
+    pub tensile_impulse: Option<f64>,
+    /// The rigid-body prediction with the simulated normal e (rigid-body theory's: friction through J_n alone);
+    /// null when the bodies did not separate.
     pub rigid_body: Option<RigidBodyReport>,
 }
 
@@ -312,4 +317,30 @@ fn both_maybe_infinite<S: Serializer>(values: &[f64; 2], serializer: S) -> Resul
         }
     }
     pair.end()
+}
+
+/// How closely a run's energy balance must close at the default tolerances (rtol = 1e-10), relative to its largest
+/// energy term: its separately integrated energies (kinetic before and after, the works of the contact's forces, of
+/// gravity and of immovable bodies, what is dissipated and what is left stored) are each accurate to the
+/// integration's tolerances, and a balance that misses its bound is an integration error the run must own up to (a
+/// note), never print silently. Looser tolerances loosen it in proportion ([`energy_balance_bound`]).
+pub const ENERGY_BALANCE_BOUND: f64 = 1e-9;
+
+/// The bound of a run integrated at tolerances `rtol` and `atol`: [`ENERGY_BALANCE_BOUND`], or ten times the looser
+/// of the two where that is larger (the bound is ten times the default rtol).
+pub fn energy_balance_bound(rtol: f64, atol: f64) -> f64 {
+    ENERGY_BALANCE_BOUND.max(10.0 * rtol.max(atol))
+}
+
+/// The note a report carries when its energy balance, `(in - out) / largest` (relative to `largest`, named for the
+/// reader), misses `bound`; `None` when it closes.
+pub fn balance_note(relative: f64, largest: &str, bound: f64) -> Option<String> {
+    (relative.abs() > bound || relative.is_nan()).then(|| {
+        format!(
+            "the energy balance misses its bound: in - out is {} of {largest}, beyond the {} its tolerances let the \
+             energies close to — an integration error of this run (a smaller [solver] rtol and atol tighten it)",
+            crate::units::brief(relative, ""),
+            crate::units::brief(bound, ""),
+        )
+    })
 }

@@ -257,6 +257,11 @@ pub fn build(scene: &WorldScene, outcome: &WorldOutcome, wall_time: f64) -> Worl
             if repressed.len() > 1 { "their" } else { "its" },
         ));
     }
+    let energy = energy(scene, outcome);
+    let bound = super::energy_balance_bound(scene.solver.tolerances.rtol, scene.solver.tolerances.atol);
+    if let Some(note) = super::balance_note(energy.balance, "the largest energy in play", bound) {
+        notes.push(note);
+    }
     WorldReport {
         title: scene.title.clone(),
         world: WorldSection {
@@ -269,7 +274,7 @@ pub fn build(scene: &WorldScene, outcome: &WorldOutcome, wall_time: f64) -> Worl
         idealisation: idealisation::worst(&contacts.iter().map(|c| &c.idealisation).collect::<Vec<_>>()),
         contacts,
         bodies,
-        energy: energy(scene, outcome),
+        energy,
         sequential: SequentialReport {
             nominal: model(sequential(scene, outcome, nominal)),
             simulated_e: model(sequential(scene, outcome, simulated)),

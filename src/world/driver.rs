@@ -16,7 +16,7 @@ use super::record::{
 use crate::dynamics::contact::{Mode, Tangential};
 use crate::geometry::Meeting;
 use crate::integrate::{Counters, Direction, Ending, EventOf, IntegrationError, StepperOf, Tolerances};
-use crate::law::{Family, Separation};
+use crate::law::Separation;
 use crate::scene::SetupError;
 use crate::scene::{DampingMap, DampingSpec, WorldScene};
 use crate::setup::{check_law, friction_of, resolve_law};
@@ -686,11 +686,11 @@ impl<'a> World<'a> {
             .collect();
 
         let requested = scene.solver.tolerances;
-        // A tenth of the scene's, and a hundredth of that where a contact's force has kinks that one impact makes
-        // step boundaries and a world does not (MuJoCo's impedance at its midpoint and width, ADAMS' cubic step at
-        // d_max, which one impact also integrates at a hundredth: `ContactLaw::tolerance_factor`).
-        let kinked = |law: &crate::law::ContactLaw| matches!(law.kind.family(), Family::Impedance | Family::Ramp);
-        let factor = 0.1 * isl.contacts.iter().map(|c| if kinked(&c.law) { 0.01 } else { 1.0 }).fold(1.0, f64::min);
+        // A tenth of the scene's, and the law's own fraction of that (`ContactLaw::tolerance_factor`: a hundredth
+        // for MuJoCo's and ADAMS' laws, rough at first touch and separation), which a world needs all the more as
+        // it does not make their forces' kinks step boundaries as one impact does (MuJoCo's impedance at its
+        // midpoint and width, ADAMS' cubic step at d_max).
+        let factor = 0.1 * isl.contacts.iter().map(|c| c.law.tolerance_factor()).fold(1.0, f64::min);
         let tolerances = Tolerances { rtol: requested.rtol * factor, atol: requested.atol * factor };
         let mut stepper = StepperOf::new(&island, tolerances, self.observer.is_some());
         let by_end = self.left() / units.time;
@@ -1124,7 +1124,7 @@ impl<'a> World<'a> {
         let elastic_left = if let Some(stored) = stored {
             stored
         } else if contact.on_force && penetration > 0.0 {
-            contact.law.elastic_energy(contact.law.separation_penetration(rate))
+            contact.law.elastic_energy(contact.law.separation_penetration(rate, penetration))
         } else {
             0.0
         };

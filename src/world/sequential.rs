@@ -76,7 +76,7 @@ pub fn sequential(
             let arms = crate::geometry::touch_arms(&pair[0], &pair[1], &n);
             let slip = crate::geometry::slip(&n, [velocities[i], velocities[j]], [spins[i], spins[j]], arms);
             let friction = scene.contact_of(i, j).0.friction;
-            let after = rigid_body_impact(&pair, &n, effective_mass, e, friction, &slip);
+            let after = rigid_body_impact(&pair, &n, effective_mass, e, friction, &slip, 0.0);
             [velocities[i], velocities[j]] = after.velocity_after;
             [spins[i], spins[j]] = after.angular_velocity_after;
         }
