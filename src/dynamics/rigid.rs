@@ -152,7 +152,7 @@ impl<'a> RigidContact<'a> {
             let rigid = crate::setup::rigid_body(body, position);
             let inertia = rigid.inertia_about_pivot();
             let gain = if turns {
-                inertia.try_inverse().unwrap_or_else(Matrix3::zeros) * (setup.effective_mass * s.length * s.length)
+                crate::eccentric::inverse_inertia(&inertia) * (setup.effective_mass * s.length * s.length)
             } else {
                 Matrix3::zeros()
             };

@@ -168,6 +168,9 @@ pub fn build(
             outcome.switches
         ));
     }
+    let reference = if fixed_normal { accuracy::reference(scene, setup, measured, detail, &mut notes) } else { None };
+    let ratios = Ratios::of(done, deformation_impulse, restitution_impulse, compression_work, restitution_work);
+    notes.extend(ratios.notes());
     let mut report = Report {
         title: scene.title.clone(),
         law: LawReport {
@@ -198,9 +201,9 @@ pub fn build(
             common_normal_velocity,
             deformation_impulse,
             restitution_impulse: when(restitution_impulse),
-            restitution_impulse_ratio: when(restitution_impulse / deformation_impulse),
+            restitution_impulse_ratio: ratios.impulse,
             restitution_velocity_ratio: when(e_velocity),
-            restitution_energy: when((restitution_work.max(0.0) / compression_work).sqrt()),
+            restitution_energy: ratios.energy,
             separated: done,
             permanent_dent: (done && setup.law.yields()).then_some(end.penetration.max(0.0)),
         },
@@ -215,7 +218,7 @@ pub fn build(
         oblique,
         instantaneous: when(e_velocity).map(compare),
         instantaneous_nominal: nominal.map(compare),
-        reference: if fixed_normal { accuracy::reference(scene, setup, measured, detail) } else { None },
+        reference,
         idealisation: Idealisation::default(),
         solver: SolverReport {
             method: outcome.method,
@@ -238,6 +241,53 @@ pub fn build(
         report.idealisation = idealisation::judge(scene.bodies.each_ref(), &measured);
     }
     report
+}
+
+/// Poisson's and Stronge's e, each a ratio of what restitution gave back to what compression took: the impulses, and
+/// the square root of the works. A ratio is formed only over a finite, positive compression integral and a finite
+/// restitution one; otherwise (an integral that overflowed, or a compression that did no work in double precision)
+/// it is null, with a note that says why, never NaN.
+#[derive(Debug, Clone, Copy)]
+struct Ratios {
+    impulse: Option<f64>,
+    energy: Option<f64>,
+    /// The compression and restitution integrals of a ratio left out: (what, unit, compression, restitution).
+    missing: [Option<(&'static str, &'static str, f64, f64)>; 2],
+}
+
+impl Ratios {
+    fn of(separated: bool, deformation: f64, restitution: f64, compression_work: f64, restitution_work: f64) -> Ratios {
+        let ratio = |compression: f64, restitution: f64| {
+            (compression.is_finite() && compression > 0.0 && restitution.is_finite())
+                .then(|| restitution / compression)
+                .filter(|r| r.is_finite())
+        };
+        let impulse = ratio(deformation, restitution);
+        // (A work given back that rounds below zero is none.)
+        let energy = ratio(compression_work, restitution_work).map(|r| r.max(0.0).sqrt());
+        let missing = |value: Option<f64>, what, unit, compression, restitution| {
+            (separated && value.is_none()).then_some((what, unit, compression, restitution))
+        };
+        Ratios {
+            impulse: impulse.filter(|_| separated),
+            energy: energy.filter(|_| separated),
+            missing: [
+                missing(impulse, "impulse ratio (Poisson's e)", "N s", deformation, restitution),
+                missing(energy, "energy ratio (Stronge's e)", "J", compression_work, restitution_work),
+            ],
+        }
+    }
+
+    fn notes(&self) -> impl Iterator<Item = String> + '_ {
+        self.missing.iter().flatten().map(|(what, unit, compression, restitution)| {
+            format!(
+                "the {what} is undefined here: compression gave {} and restitution {} (a ratio needs a finite, \
+                 positive compression integral)",
+                crate::units::brief(*compression, unit),
+                crate::units::brief(*restitution, unit)
+            )
+        })
+    }
 }
 
 /// What a fixed-step scheme's report means: its events at the first step past them, its e beside the accurate one,
