@@ -152,7 +152,7 @@ pub fn reference(
             notes.push(format!(
                 "the exact {what} came out as {} ({source}), which is no reference for a positive quantity: it is \
                  left out, with its relative error",
-                crate::units::brief(value, unit)
+                super::described(value, unit)
             ));
         }
         None

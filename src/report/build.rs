@@ -283,8 +283,8 @@ impl Ratios {
             format!(
                 "the {what} is undefined here: compression gave {} and restitution {} (a ratio needs a finite, \
                  positive compression integral)",
-                crate::units::brief(*compression, unit),
-                crate::units::brief(*restitution, unit)
+                super::described(*compression, unit),
+                super::described(*restitution, unit)
             )
         })
     }
@@ -555,4 +555,39 @@ fn instantaneous_report(ideal: &Instantaneous, simulated: Option<&[Vector3<f64>;
 
 fn vec3(v: &Vector3<f64>) -> Vec3 {
     [v.x, v.y, v.z]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::Ratios;
+
+    #[test]
+    fn ratios_of_finite_positive_integrals_are_poisson_and_stronge() {
+        // Restitution gave back 0.8 of the impulse and 0.25 of the work: Poisson's e 0.8, Stronge's sqrt(0.25) = 0.5.
+        let ratios = Ratios::of(true, 2.0, 1.6, 4.0, 1.0);
+        assert_eq!(ratios.impulse, Some(0.8));
+        assert_eq!(ratios.energy, Some(0.5));
+        assert_eq!(ratios.notes().count(), 0);
+        // A work given back that rounds below zero is none; before separation there is no ratio, and no note.
+        assert_eq!(Ratios::of(true, 2.0, 0.0, 4.0, -1e-30).energy, Some(0.0));
+        let before = Ratios::of(false, 2.0, 1.6, 4.0, 1.0);
+        assert_eq!((before.impulse, before.energy, before.notes().count()), (None, None, 0));
+    }
+
+    #[test]
+    fn a_ratio_over_an_overflowed_or_empty_compression_is_null_with_a_note() {
+        // inf/inf and 0/0 were NaN; each is now null, and a note gives both integrals.
+        for (compression, restitution) in [(f64::INFINITY, f64::INFINITY), (0.0, 0.0), (f64::NAN, 1.0), (1.0, f64::NAN)]
+        {
+            let ratios = Ratios::of(true, 1.0, 0.5, compression, restitution);
+            assert_eq!(ratios.energy, None, "{compression} {restitution}");
+            assert_eq!(ratios.impulse, Some(0.5));
+            let notes: Vec<String> = ratios.notes().collect();
+            assert!(notes.len() == 1 && notes[0].contains("Stronge"), "{notes:?}");
+            assert!(!notes[0].contains("NaN") && !notes[0].contains("inf J"), "{notes:?}");
+        }
+        let ratios = Ratios::of(true, 0.0, 0.0, 1.0, 0.5);
+        assert_eq!(ratios.impulse, None);
+        assert!(ratios.notes().any(|note| note.contains("Poisson") && note.contains("0 N s")));
+    }
 }
