@@ -213,8 +213,13 @@ fn an_exponent_outside_the_range_is_refused_in_a_pair_table_and_in_a_sweep_row()
         ball("b", 0.03, 0.0),
         ball("c", 0.06, 0.0)
     );
-    let error = parse_any(&world, Path::new("world.toml")).err().expect("exponent = 3.5 in a [[pair]] is refused");
+    let error = match parse_any(&world, Path::new("world.toml")) {
+        Err(error) => error,
+        Ok(_) => panic!("exponent = 3.5 in a [[pair]] is refused"),
+    };
     assert_eq!(error.key.as_deref(), Some("pair.0.exponent"), "{error}");
+    let line = world.lines().position(|l| l == "exponent = 3.5").expect("the pair's exponent") + 1;
+    assert!(error.to_string().contains(&format!("line {line},")), "line {line}: {error}");
     assert!(error.message.contains("between 1 and 3, got 3.5"), "{error}");
     // At 3 the same world runs.
     assert!(parse_any(&world.replace("exponent = 3.5", "exponent = 3"), Path::new("world.toml")).is_ok());

@@ -144,7 +144,8 @@ pub fn build(
     // The bodies part at e v0: the separation time carries an error of about atol / e (in units of the contact's
     // own time), the absolute tolerance on speeds over the speed they part with.
     let resolution = scene.solver.tolerances.atol / e_velocity;
-    if done && resolution > 1e-9 {
+    // (No note at e = 0, whose resolution would be infinite: such bodies do not part at any speed.)
+    if done && resolution > 1e-9 && resolution.is_finite() {
         notes.push(format!(
             "the bodies part slowly (e = {e_velocity:.3e}): the contact's end, and so its duration, is resolved to \
              about atol / e = {resolution:.1e} relative (a smaller [solver] atol sharpens it)"
