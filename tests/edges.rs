@@ -356,6 +356,7 @@ fn assert_no_nonsense(scratch: &Scratch, name: &str, text: &str) {
     let scene = scratch.scene(&file, text);
     let output = impact(scratch.path(), &["run", &scene, "--json"]);
     assert_success(&output);
+    assert!(!stdout(&output).contains("NaN"), "{name}: the JSON shows NaN\n{}", stdout(&output));
     let json: Value =
         serde_json::from_slice(&output.stdout).unwrap_or_else(|e| panic!("{name}: {e}\n{}", describe(&output)));
     if json.get("contacts").is_none() {
@@ -451,6 +452,12 @@ fn restitution_near_zero_and_one_reports_no_nonsense() {
     for contact in contacts {
         assert_no_nonsense(&scratch, contact, &on_wall(1.0, 1.0, 1.0, contact));
     }
+    // A world whose one contact never ends (critical damping): the run stops with the bodies at rest in contact.
+    let world = "[world]\n\n[[bodies]]\nname = \"a\"\nradius = 0.01\nmass = 1.0\nposition = [0.0, 0.0, 0.0]\n\
+                 velocity = [1.0, 0.0, 0.0]\n\n[[bodies]]\nname = \"b\"\nradius = 0.01\nmass = 1.0\n\
+                 position = [0.03, 0.0, 0.0]\nvelocity = [0.0, 0.0, 0.0]\n\n[contact]\nlaw = \"kelvin-voigt\"\n\
+                 stiffness = 1e6\nrestitution = 0\n";
+    assert_no_nonsense(&scratch, "a world whose contact never ends", world);
 }
 
 #[test]
@@ -567,4 +574,17 @@ fn a_degenerate_exact_reference_is_left_out_with_a_note() {
     assert!(notes.iter().any(|note| note.contains("the exact maximum force came out as 0 N")), "{notes:?}");
     // What the quadrature still gets right stays, with its error.
     assert!(reference.restitution.is_some_and(|e| e > 0.0) && reference.errors.restitution.is_some());
+}
+
+#[test]
+fn the_table_shows_a_ratio_it_could_not_form_as_not_available() {
+    // After separation a ratio left null reads "n/a", pointing to the note; before it, an e that does not exist
+    // yet reads "—".
+    let mut report = common::on_wall(1.0, 1.0, "law = \"hunt-crossley\"\nstiffness = 1e6\nrestitution = 0.8");
+    report.contact.restitution_energy = None;
+    let table = impact::output::table::render(&report);
+    let line = table.lines().find(|line| line.contains("energy ratio (Stronge)")).expect("Stronge's row");
+    assert!(line.trim_end().ends_with("n/a (see the notes)"), "{line}");
+    let poisson = table.lines().find(|line| line.contains("impulse ratio (Poisson)")).expect("Poisson's row");
+    assert!(!poisson.contains("n/a"), "{poisson}");
 }
