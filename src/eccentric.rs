@@ -50,7 +50,7 @@ impl RigidBody {
         }
         let arm = point - self.pivot.unwrap_or(self.centre);
         let moment = arm.cross(normal);
-        let turning = self.inertia_about_pivot().try_inverse().map_or(0.0, |inverse| moment.dot(&(inverse * moment)));
+        let turning = moment.dot(&(inverse_inertia(&self.inertia_about_pivot()) * moment));
         if self.pivot.is_some() { turning } else { 1.0 / self.mass + turning }
     }
 
@@ -69,7 +69,7 @@ impl RigidBody {
             return (self.velocity, self.spin, Vector3::zeros());
         }
         let origin = self.pivot.unwrap_or(self.centre);
-        let inverse = self.inertia_about_pivot().try_inverse().unwrap_or_else(Matrix3::zeros);
+        let inverse = inverse_inertia(&self.inertia_about_pivot());
         let spin = self.spin + inverse * (point - origin).cross(impulse);
         match self.pivot {
             Some(pivot) => {
@@ -138,6 +138,20 @@ pub fn eccentric_impact(
 /// centre (m); 2L/3 for a uniform rod of length L hung from one end.
 pub fn centre_of_percussion(mass: f64, inertia_about_pivot: f64, distance: f64) -> f64 {
     inertia_about_pivot / (mass * distance)
+}
+
+/// The inverse of an inertia tensor (kg m²), 1/(kg m²), at any size the scene rules accept: the tensor is scaled by a
+/// power of two near its largest entry before inverting (exactly, so an ordinary tensor's inverse keeps its bits). A
+/// 3×3 inverse divides by the determinant, the cube of the entries, which overflows above about 1e100 kg m² and
+/// underflows below 1e-100: the body would turn as if its inverse inertia were NaN, or as if it could not turn at all.
+/// Zero for a singular tensor (which the scene rules refuse).
+pub fn inverse_inertia(inertia: &Matrix3<f64>) -> Matrix3<f64> {
+    let size = inertia.amax();
+    if !(size > 0.0 && size.is_finite()) {
+        return Matrix3::zeros();
+    }
+    let scale = 2f64.powi(size.log2().round() as i32);
+    (inertia / scale).try_inverse().map_or_else(Matrix3::zeros, |inverse| inverse / scale)
 }
 
 /// Whether a symmetric 3×3 matrix is positive definite (Cholesky succeeds), for an inertia tensor.

@@ -730,7 +730,7 @@ mod tests {
             "law = \"hertz\"",
             "law = \"hunt-crossley\"\nrestitution = 0.6",
             "law = \"gonthier\"\nrestitution = 0.3",
-            "law = \"hunt-crossley\"\nexponent = 0.5\nstiffness = 1e4\ndamping = 0.2",
+            "law = \"hunt-crossley\"\nexponent = 3.0\nstiffness = 1e12\ndamping = 0.2",
             "law = \"kelvin-voigt\"\nrestitution = 0.5\nstiffness = 1e6\nexponent = 1.0",
             "law = \"tsuji\"\nrestitution = 0.4",
         ];

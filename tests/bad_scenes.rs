@@ -503,6 +503,8 @@ bad_values! {
     zero_stiffness_is_rejected_naming_the_key: "stiffness = 1.0e10" => "stiffness = 0" names "contact.stiffness";
     negative_stiffness_is_rejected_naming_the_key: "stiffness = 1.0e10" => "stiffness = -1.0e10" names "contact.stiffness";
     zero_exponent_is_rejected_naming_the_key: "exponent = 1.5" => "exponent = 0.0" names "contact.exponent";
+    exponent_below_a_flat_punch_is_rejected_naming_the_key: "exponent = 1.5" => "exponent = 0.5" names "contact.exponent";
+    exponent_beyond_the_fits_is_rejected_naming_the_key: "exponent = 1.5" => "exponent = 3.5" names "contact.exponent";
     restitution_above_one_is_rejected_naming_the_key: "damping = 0.1" => "restitution = 1.5" names "contact.restitution";
     restitution_below_zero_is_rejected_naming_the_key:
         "damping = 0.1" => "restitution = -0.1" names "contact.restitution";

@@ -94,13 +94,15 @@ fn extreme_scales_give_the_same_nondimensional_contact() {
 }
 
 #[test]
-fn power_law_exponents_below_one_stay_finite() {
-    // n = 0.5: the force gradient is unbounded at d = 0; the duration constant is (2/(n+1)) B(1/(n+1), 1/2)
-    // = (4/3) B(2/3, 1/2) and dmax = ((n+1)/2)^(1/(n+1)) L = 0.75^(2/3) L (docs/references.md).
-    let report = on_wall(1.0, 1.0, "law = \"hertz\"\nstiffness = 1e6\nexponent = 0.5");
-    let length = (1.0f64 / 1e6).powf(1.0 / 1.5);
-    assert_close("dmax", report.contact.max_penetration, 0.75f64.powf(2.0 / 3.0) * length, 1e-9);
-    assert_close("e", report.contact.restitution_velocity_ratio.unwrap(), 1.0, 1e-9);
+fn power_law_exponents_below_one_are_refused_naming_the_range() {
+    // n = 0.5 once ran (its force gradient unbounded at d = 0). No indenter's profile z ~ r^k gives an exponent
+    // (k + 1)/k below a flat punch's 1 (docs/laws.md#which-exponents), and as n falls to 0 the exact maximum force
+    // of the hysteresis family rounded to 0 N: the scene is refused, naming the key and the range.
+    let text = "[[bodies]]\nradius = 1.0\nmass = 1.0\nvelocity = [1.0, 0.0, 0.0]\n[[bodies]]\nradius = inf\nmass = inf\n\
+                velocity = [0.0, 0.0, 0.0]\n[contact]\nlaw = \"hertz\"\nstiffness = 1e6\nexponent = 0.5\n";
+    let error = impact::scene::Scene::parse(text, std::path::Path::new("below-one.toml")).unwrap_err();
+    assert_eq!(error.key.as_deref(), Some("contact.exponent"));
+    assert!(error.message.contains("between 1 and 3, got 0.5"), "{}", error.message);
 }
 
 #[test]

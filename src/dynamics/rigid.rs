@@ -152,12 +152,14 @@ impl<'a> RigidContact<'a> {
             let rigid = crate::setup::rigid_body(body, position);
             let inertia = rigid.inertia_about_pivot();
             let gain = if turns {
-                inertia.try_inverse().unwrap_or_else(Matrix3::zeros) * (setup.effective_mass * s.length * s.length)
+                // m* L² / I, multiplied in an order that keeps each factor inside double precision: m* L² alone
+                // underflows for a body of 1e-180 kg, whose m*/I is still of the order of its size's inverse square.
+                crate::eccentric::inverse_inertia(&inertia) * setup.effective_mass * s.length * s.length
             } else {
                 Matrix3::zeros()
             };
             let momentum = if turns {
-                inertia * body.angular_velocity / (setup.effective_mass * s.speed * s.length)
+                inertia * body.angular_velocity / setup.effective_mass / s.speed / s.length
             } else {
                 Vector3::zeros()
             };

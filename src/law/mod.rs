@@ -55,6 +55,15 @@ impl Kinks {
     }
 }
 
+/// The smallest exponent n of K d^n a scene may give: a flat punch's (docs/laws.md#which-exponents). Below it no
+/// indenter's profile gives the law, its stiffness n K d^(n-1) is infinite at first touch, and as n falls to 0 the
+/// force becomes a step of height K at first contact, reached in no time.
+pub const MIN_EXPONENT: f64 = 1.0;
+
+/// The largest exponent n of K d^n a scene may give: beyond a cone's 2, the published fits of soft and rough
+/// contacts reach about 3 (docs/laws.md#which-exponents).
+pub const MAX_EXPONENT: f64 = 3.0;
+
 /// MuJoCo's default `solimp`, [0.9, 0.95, 0.001, 0.5, 2]: what a law that is not `mujoco` carries, unused.
 pub const NO_SOLIMP: [f64; 5] = [0.9, 0.95, 0.001, 0.5, 2.0];
 

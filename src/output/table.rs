@@ -342,9 +342,14 @@ fn contact(report: &Report, scales: &Scales) -> Section {
 fn restitution(report: &Report) -> Section {
     let c = &report.contact;
     let mut section = Section::new("coefficient of restitution e");
-    section.row("impulse ratio (Poisson)", maybe(c.restitution_impulse_ratio, plain));
-    section.row("velocity ratio (Newton)", maybe(c.restitution_velocity_ratio, plain));
-    section.row("energy ratio (Stronge)", maybe(c.restitution_energy, plain));
+    // Before separation there is no e ("—"); after it, a ratio the report could not form is "n/a" (a note says why).
+    let e = |value: Option<f64>| match value {
+        None if c.separated => "n/a (see the notes)".into(),
+        value => maybe(value, plain),
+    };
+    section.row("impulse ratio (Poisson)", e(c.restitution_impulse_ratio));
+    section.row("velocity ratio (Newton)", e(c.restitution_velocity_ratio));
+    section.row("energy ratio (Stronge)", e(c.restitution_energy));
     if let Some(dt) = report.solver.dt {
         // A fixed-step scheme's e beside the accurate path's: what a peer code gives at its step.
         let continuous = report.solver.restitution_continuous;

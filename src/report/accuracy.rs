@@ -124,7 +124,17 @@ fn scaled_yield(setup: &Setup) -> f64 {
 }
 
 /// Exact values for this contact (SI units) and the relative errors of `measured` against them.
-pub fn reference(scene: &Scene, setup: &Setup, measured: Measured, detail: ReferenceDetail) -> Option<ReferenceReport> {
+///
+/// Every exact quantity of an impact is positive (an e, a depth, two times, a force): one that is not — NaN, infinite,
+/// zero or negative, as a quadrature at the edge of its accuracy could give — is no reference. It is left out (null)
+/// with a note in `notes` saying what it came to, and no relative error is formed against it.
+pub fn reference(
+    scene: &Scene,
+    setup: &Setup,
+    measured: Measured,
+    detail: ReferenceDetail,
+    notes: &mut Vec<String>,
+) -> Option<ReferenceReport> {
     let (exact, source) = match detail {
         ReferenceDetail::Off => return None,
         ReferenceDetail::Full => exact(setup, scene.contact.separation)?,
@@ -134,14 +144,27 @@ pub fn reference(scene: &Scene, setup: &Setup, measured: Measured, detail: Refer
         }
     };
     let s = &setup.scales;
-    let finite = |value: f64| value.is_finite().then_some(value);
-    let restitution = finite(exact.restitution);
-    let max_penetration = finite(exact.max_penetration * s.length);
-    let max_compression_time = finite(exact.max_compression_time * s.time);
-    let duration = finite(exact.duration * s.time);
-    let max_force = finite(exact.max_force * s.force);
+    let mut usable = |what: &str, value: f64, unit: &str, asked: bool| {
+        if value.is_finite() && value > 0.0 {
+            return Some(value);
+        }
+        if asked {
+            notes.push(format!(
+                "the exact {what} came out as {} ({source}), which is no reference for a positive quantity: it is \
+                 left out, with its relative error",
+                super::described(value, unit)
+            ));
+        }
+        None
+    };
+    let full = detail == ReferenceDetail::Full;
+    let restitution = usable("restitution", exact.restitution, "", true);
+    let max_penetration = usable("maximum penetration", exact.max_penetration * s.length, "m", full);
+    let max_compression_time = usable("time of maximum compression", exact.max_compression_time * s.time, "s", full);
+    let duration = usable("contact duration", exact.duration * s.time, "s", full);
+    let max_force = usable("maximum force", exact.max_force * s.force, "N", full);
     let error = |simulated: Option<f64>, exact: Option<f64>| match (simulated, exact) {
-        (Some(simulated), Some(exact)) if exact != 0.0 => Some(((simulated - exact) / exact).abs()),
+        (Some(simulated), Some(exact)) => Some(((simulated - exact) / exact).abs()).filter(|e| e.is_finite()),
         _ => None,
     };
     let ideal = direct_impact(&scene.bodies, &setup.normal, setup.effective_mass, 1.0);

@@ -144,7 +144,8 @@ pub fn build(
     // The bodies part at e v0: the separation time carries an error of about atol / e (in units of the contact's
     // own time), the absolute tolerance on speeds over the speed they part with.
     let resolution = scene.solver.tolerances.atol / e_velocity;
-    if done && resolution > 1e-9 {
+    // (No note at e = 0, whose resolution would be infinite: such bodies do not part at any speed.)
+    if done && resolution > 1e-9 && resolution.is_finite() {
         notes.push(format!(
             "the bodies part slowly (e = {e_velocity:.3e}): the contact's end, and so its duration, is resolved to \
              about atol / e = {resolution:.1e} relative (a smaller [solver] atol sharpens it)"
@@ -168,6 +169,9 @@ pub fn build(
             outcome.switches
         ));
     }
+    let reference = if fixed_normal { accuracy::reference(scene, setup, measured, detail, &mut notes) } else { None };
+    let ratios = Ratios::of(done, deformation_impulse, restitution_impulse, compression_work, restitution_work);
+    notes.extend(ratios.notes());
     let mut report = Report {
         title: scene.title.clone(),
         law: LawReport {
@@ -198,9 +202,9 @@ pub fn build(
             common_normal_velocity,
             deformation_impulse,
             restitution_impulse: when(restitution_impulse),
-            restitution_impulse_ratio: when(restitution_impulse / deformation_impulse),
+            restitution_impulse_ratio: ratios.impulse,
             restitution_velocity_ratio: when(e_velocity),
-            restitution_energy: when((restitution_work.max(0.0) / compression_work).sqrt()),
+            restitution_energy: ratios.energy,
             separated: done,
             permanent_dent: (done && setup.law.yields()).then_some(end.penetration.max(0.0)),
         },
@@ -215,7 +219,7 @@ pub fn build(
         oblique,
         instantaneous: when(e_velocity).map(compare),
         instantaneous_nominal: nominal.map(compare),
-        reference: if fixed_normal { accuracy::reference(scene, setup, measured, detail) } else { None },
+        reference,
         idealisation: Idealisation::default(),
         solver: SolverReport {
             method: outcome.method,
@@ -252,6 +256,53 @@ fn energy_balance(e: &super::EnergyReport) -> Option<f64> {
         (e.kinetic_after?, e.dissipated?, e.elastic_left_at_separation?, e.work_of_immovable_bodies?);
     let largest = [e.kinetic_before, work.abs(), after, dissipated.abs(), left.abs()].into_iter().fold(0.0, f64::max);
     (largest > 0.0).then(|| (e.kinetic_before + work - after - dissipated - left) / largest)
+}
+
+/// Poisson's and Stronge's e, each a ratio of what restitution gave back to what compression took: the impulses, and
+/// the square root of the works. A ratio is formed only over a finite, positive compression integral and a finite
+/// restitution one; otherwise (an integral that overflowed, or a compression that did no work in double precision)
+/// it is null, with a note that says why, never NaN.
+#[derive(Debug, Clone, Copy)]
+struct Ratios {
+    impulse: Option<f64>,
+    energy: Option<f64>,
+    /// The compression and restitution integrals of a ratio left out: (what, unit, compression, restitution).
+    missing: [Option<(&'static str, &'static str, f64, f64)>; 2],
+}
+
+impl Ratios {
+    fn of(separated: bool, deformation: f64, restitution: f64, compression_work: f64, restitution_work: f64) -> Ratios {
+        let ratio = |compression: f64, restitution: f64| {
+            (compression.is_finite() && compression > 0.0 && restitution.is_finite())
+                .then(|| restitution / compression)
+                .filter(|r| r.is_finite())
+        };
+        let impulse = ratio(deformation, restitution);
+        // (A work given back that rounds below zero is none.)
+        let energy = ratio(compression_work, restitution_work).map(|r| r.max(0.0).sqrt());
+        let missing = |value: Option<f64>, what, unit, compression, restitution| {
+            (separated && value.is_none()).then_some((what, unit, compression, restitution))
+        };
+        Ratios {
+            impulse: impulse.filter(|_| separated),
+            energy: energy.filter(|_| separated),
+            missing: [
+                missing(impulse, "impulse ratio (Poisson's e)", "N s", deformation, restitution),
+                missing(energy, "energy ratio (Stronge's e)", "J", compression_work, restitution_work),
+            ],
+        }
+    }
+
+    fn notes(&self) -> impl Iterator<Item = String> + '_ {
+        self.missing.iter().flatten().map(|(what, unit, compression, restitution)| {
+            format!(
+                "the {what} is undefined here: compression gave {} and restitution {} (a ratio needs a finite, \
+                 positive compression integral)",
+                super::described(*compression, unit),
+                super::described(*restitution, unit)
+            )
+        })
+    }
 }
 
 /// What a fixed-step scheme's report means: its events at the first step past them, its e beside the accurate one,
@@ -527,7 +578,7 @@ fn vec3(v: &Vector3<f64>) -> Vec3 {
 
 #[cfg(test)]
 mod tests {
-    use super::energy_balance;
+    use super::{Ratios, energy_balance};
     use crate::report::{EnergyReport, balance_note, energy_balance_bound};
 
     /// A separated contact's balance, (kinetic before + work of immovable bodies - kinetic after - dissipated - left)
@@ -552,5 +603,35 @@ mod tests {
         // Looser tolerances loosen the bound in proportion; the default's is 1e-9.
         assert_eq!(energy_balance_bound(1e-10, 1e-12), 1e-9);
         assert!((energy_balance_bound(1e-6, 1e-8) - 1e-5).abs() < 1e-20);
+    }
+
+    #[test]
+    fn ratios_of_finite_positive_integrals_are_poisson_and_stronge() {
+        // Restitution gave back 0.8 of the impulse and 0.25 of the work: Poisson's e 0.8, Stronge's sqrt(0.25) = 0.5.
+        let ratios = Ratios::of(true, 2.0, 1.6, 4.0, 1.0);
+        assert_eq!(ratios.impulse, Some(0.8));
+        assert_eq!(ratios.energy, Some(0.5));
+        assert_eq!(ratios.notes().count(), 0);
+        // A work given back that rounds below zero is none; before separation there is no ratio, and no note.
+        assert_eq!(Ratios::of(true, 2.0, 0.0, 4.0, -1e-30).energy, Some(0.0));
+        let before = Ratios::of(false, 2.0, 1.6, 4.0, 1.0);
+        assert_eq!((before.impulse, before.energy, before.notes().count()), (None, None, 0));
+    }
+
+    #[test]
+    fn a_ratio_over_an_overflowed_or_empty_compression_is_null_with_a_note() {
+        // inf/inf and 0/0 were NaN; each is now null, and a note gives both integrals.
+        for (compression, restitution) in [(f64::INFINITY, f64::INFINITY), (0.0, 0.0), (f64::NAN, 1.0), (1.0, f64::NAN)]
+        {
+            let ratios = Ratios::of(true, 1.0, 0.5, compression, restitution);
+            assert_eq!(ratios.energy, None, "{compression} {restitution}");
+            assert_eq!(ratios.impulse, Some(0.5));
+            let notes: Vec<String> = ratios.notes().collect();
+            assert!(notes.len() == 1 && notes[0].contains("Stronge"), "{notes:?}");
+            assert!(!notes[0].contains("NaN") && !notes[0].contains("inf J"), "{notes:?}");
+        }
+        let ratios = Ratios::of(true, 0.0, 0.0, 1.0, 0.5);
+        assert_eq!(ratios.impulse, None);
+        assert!(ratios.notes().any(|note| note.contains("Poisson") && note.contains("0 N s")));
     }
 }

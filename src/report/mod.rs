@@ -300,6 +300,18 @@ pub struct SolverReport {
     pub wall_time_s: f64,
 }
 
+/// A number for a note about a quantity that could not be formed from it: as people read it ("0 N", "1.2e-300 J"), or
+/// in words where it is not a number, so that no note shows "NaN" or "inf" (docs/report.md#conventions).
+pub(crate) fn described(value: f64, unit: &str) -> String {
+    if value.is_nan() {
+        "not a number".into()
+    } else if value.is_infinite() {
+        format!("{} beyond double precision", if value > 0.0 { "a value" } else { "a negative value" })
+    } else {
+        crate::units::brief(value, unit)
+    }
+}
+
 /// Writes an infinite input back as the string "inf" (docs/report.md).
 pub(crate) fn maybe_infinite<S: Serializer>(value: &f64, serializer: S) -> Result<S::Ok, S::Error> {
     if value.is_infinite() && *value > 0.0 { serializer.serialize_str("inf") } else { serializer.serialize_f64(*value) }

@@ -262,6 +262,20 @@ pub fn build(scene: &WorldScene, outcome: &WorldOutcome, wall_time: f64) -> Worl
     if let Some(note) = super::balance_note(energy.balance, "the largest energy in play", bound) {
         notes.push(note);
     }
+    let undefined: Vec<String> = contacts
+        .iter()
+        .enumerate()
+        .filter(|(_, c)| c.separated && (c.restitution_impulse_ratio.is_none() || c.restitution_energy.is_none()))
+        .map(|(k, _)| k.to_string())
+        .collect();
+    if !undefined.is_empty() {
+        notes.push(format!(
+            "contact{} {}: Poisson's or Stronge's e is undefined (null), its compression impulse or work zero or beyond \
+             double precision",
+            if undefined.len() > 1 { "s" } else { "" },
+            shorten(&undefined),
+        ));
+    }
     WorldReport {
         title: scene.title.clone(),
         world: WorldSection {
@@ -308,7 +322,10 @@ fn contact(record: &ContactRecord) -> WorldContact {
     let separated = end.is_some();
     let (peak_time, peak) = record.peak_force.unwrap_or((record.start_time, 0.0));
     let restitution_impulse = end.map(|e| e.impulse - max.impulse);
-    let ratio = |numerator: f64, denominator: f64| (denominator > 0.0).then(|| numerator / denominator);
+    // (A ratio over a zero or overflowed denominator is none, never NaN: the report's notes say which contacts.)
+    let ratio = |numerator: f64, denominator: f64| {
+        (denominator > 0.0).then(|| numerator / denominator).filter(|r| r.is_finite())
+    };
     WorldContact {
         bodies: record.bodies,
         law: record.law.kind.name(),

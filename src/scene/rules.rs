@@ -6,8 +6,8 @@
 
 use super::{DampingSpec, Scene, SetupError, StiffnessSpec, TangentialStiffnessSpec};
 use crate::body::Body;
-use crate::law::Family;
 use crate::law::damping::{MapError, check_restitution};
+use crate::law::{Family, MAX_EXPONENT, MIN_EXPONENT};
 use nalgebra::{Matrix3, Vector3};
 
 type Checked = Result<(), SetupError>;
@@ -470,6 +470,25 @@ fn check_body(i: usize, body: &Body) -> Checked {
     Ok(())
 }
 
+/// The exponent n of K d^n inside the range the laws' physics supports, [`MIN_EXPONENT`] to [`MAX_EXPONENT`]: from a
+/// flat punch's 1 through Hertz's 3/2 and a cone's 2 to the fits of soft and rough contacts (docs/laws.md#which-exponents).
+fn exponent_in_range(n: f64) -> Checked {
+    let range = MIN_EXPONENT..=MAX_EXPONENT;
+    if range.contains(&n) {
+        return Ok(());
+    }
+    // Three digits would show 3.0001 as "3": a number just outside the range keeps the digits that put it there.
+    let brief = crate::units::brief(n, "");
+    let got = if brief.parse::<f64>().is_ok_and(|shown| range.contains(&shown)) { format!("{n}") } else { brief };
+    fail(
+        "contact.exponent",
+        format!(
+            "exponent must be between {MIN_EXPONENT} and {MAX_EXPONENT}, got {got} (1 is a flat punch, 3/2 Hertz's \
+             sphere, 2 a cone; fits of soft and rough contacts reach 3: docs/laws.md#which-exponents)"
+        ),
+    )
+}
+
 fn check_contact(contact: &super::ContactSpec) -> Checked {
     let law = contact.law;
     let name = law.name();
@@ -545,6 +564,7 @@ fn check_contact(contact: &super::ContactSpec) -> Checked {
     }
     if let Some(n) = contact.exponent_given {
         number("contact.exponent", n, Allowed::Positive)?;
+        exponent_in_range(n)?;
     }
     let exponent = contact.exponent_given;
     let family = law.family();
