@@ -172,15 +172,32 @@ pub fn apart(a: f64, b: f64, unit: &str) -> (String, String) {
 /// gives the largest of them — [0.001, 0, -0.0005] m/s -> "[1, 0, -0.5] mm/s"; a dimensionless one plain
 /// ("[0.707, 0.707, 0]").
 pub fn brief_vector(components: &[f64], unit: &str) -> String {
+    brief_vector_digits(components, unit, BRIEF_DIGITS)
+}
+
+/// Two vectors of one quantity for a message that compares them, as [`apart`] does for numbers: [`brief_vector`]
+/// each, with more digits while they would read equal although they differ.
+pub fn apart_vectors(a: &[f64], b: &[f64], unit: &str) -> (String, String) {
+    let mut digits = BRIEF_DIGITS;
+    loop {
+        let pair = (brief_vector_digits(a, unit, digits), brief_vector_digits(b, unit, digits));
+        if pair.0 != pair.1 || a == b || digits >= 17 {
+            return pair;
+        }
+        digits += 1;
+    }
+}
+
+fn brief_vector_digits(components: &[f64], unit: &str, digits: usize) -> String {
     let largest = components.iter().fold(0.0f64, |m, x| if x.abs() > m || x.is_nan() { x.abs() } else { m });
-    let prefix = if largest.is_finite() && largest > 0.0 { brief_prefix(largest, unit, BRIEF_DIGITS) } else { None };
+    let prefix = if largest.is_finite() && largest > 0.0 { brief_prefix(largest, unit, digits) } else { None };
     let (scale, unit) = match prefix {
         Some((scale, prefix, base)) => (scale, format!("{prefix}{base}")),
         None => (1.0, unit.to_string()),
     };
     let shown: Vec<String> = components
         .iter()
-        .map(|&x| if x.is_finite() && x != 0.0 { trim_zeros(&plain_digits(x / scale, BRIEF_DIGITS)) } else { special(x) })
+        .map(|&x| if x.is_finite() && x != 0.0 { trim_zeros(&plain_digits(x / scale, digits)) } else { special(x) })
         .collect();
     with_unit(format!("[{}]", shown.join(", ")), &unit)
 }
@@ -428,5 +445,10 @@ mod tests {
         assert_eq!(brief_vector(&[f64::INFINITY, 1.0, f64::NAN], "m/s"), "[inf, 1, NaN] m/s");
         // 2.5 rad/s takes no prefix.
         assert_eq!(brief_vector(&[2.5, 0.0, 0.0], "rad/s"), "[2.5, 0, 0] rad/s");
+        // [1, 0, 0] and [1, 1e-9, 0]: the second component tells them apart at once.
+        assert_eq!(apart_vectors(&[1.0, 0.0, 0.0], &[1.0, 1e-9, 0.0], ""), ("[1, 0, 0]".into(), "[1, 1e-9, 0]".into()));
+        // 2 and 2 + 4e-9 m/s: ten digits.
+        let (a, b) = apart_vectors(&[2.0, 0.0, 0.0], &[2.0 + 4e-9, 0.0, 0.0], "m/s");
+        assert_eq!((a.as_str(), b.as_str()), ("[2, 0, 0] m/s", "[2.000000004, 0, 0] m/s"));
     }
 }
