@@ -13,11 +13,11 @@ use crate::law::damping::{MapError, damping_for_restitution};
 use crate::law::dashpot::dashpot_damping;
 use crate::law::{ContactLaw, Family, LawKind, NO_SOLIMP, Separation};
 use crate::scales::Scales;
-use crate::units::{apart, apart_vectors, brief, brief_vector, short};
 use crate::scene::{
     ContactSpec, DampingSpec, FrictionCap, Parsed, Scene, SceneError, StiffnessSpec, TangentialStiffnessSpec,
     TangentialUnloading,
 };
+use crate::units::{apart, apart_vectors, brief, brief_vector, short};
 use nalgebra::Vector3;
 use std::path::Path;
 
@@ -848,19 +848,16 @@ fn graze(scene: &Scene, normal: &Vector3<f64>, approach: f64, tangential: &Vecto
     }
     let side = |body: &Body| (body.velocity - normal * body.velocity.dot(normal)).norm();
     let faster = usize::from(side(b) > side(a));
-    fail(
-        format!("bodies.{faster}.velocity"),
-        {
-            let (depth, resolution) = apart(depth, resolution, "m");
-            format!(
-                "the bodies barely touch: closing at {} while sliding across each other at {}, their free flight \
+    fail(format!("bodies.{faster}.velocity"), {
+        let (depth, resolution) = apart(depth, resolution, "m");
+        format!(
+            "the bodies barely touch: closing at {} while sliding across each other at {}, their free flight \
                  would overlap by at most {depth}, below the resolution of their positions ({resolution}, 1e-12 of \
                  the smaller radius): such a graze is beyond double precision",
-                brief(approach, "m/s"),
-                brief(across, "m/s")
-            )
-        },
-    )
+            brief(approach, "m/s"),
+            brief(across, "m/s")
+        )
+    })
 }
 
 /// K = (4/3) E* sqrt(R*), with the rules for rigid bodies and missing constants of

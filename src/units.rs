@@ -98,6 +98,24 @@ pub fn short(value: f64) -> String {
     short_digits(value, DIGITS)
 }
 
+/// A value a user gave that breaks a rule, as a message echoes it: [`short`], with more digits (up to 17) where six
+/// would read as a value that keeps the rule — a restitution of 1.0000001 against [0, 1] is "1.0000001", not "1".
+pub fn short_outside(value: f64, keeps_rule: impl Fn(f64) -> bool) -> String {
+    (DIGITS..=17)
+        .map(|digits| short_digits(value, digits))
+        .find(|text| !text.parse::<f64>().is_ok_and(&keeps_rule))
+        .unwrap_or_else(|| format!("{value}"))
+}
+
+/// A value a user gave, echoed exactly: [`short`], with as many more digits (up to 17) as it takes to read back as
+/// `value` — 0.1 -> "0.1", 1.00000000000001 -> "1.00000000000001", 1e300 -> "1e300".
+pub fn short_exact(value: f64) -> String {
+    (DIGITS..=17)
+        .map(|digits| short_digits(value, digits))
+        .find(|text| text.parse::<f64>().is_ok_and(|read| read == value))
+        .unwrap_or_else(|| short_digits(value, 17))
+}
+
 /// [`short`] with `digits` significant digits (at least 1): 1.0000001 with 8 digits -> "1.0000001".
 pub fn short_digits(value: f64, digits: usize) -> String {
     trim_zeros(&plain_digits(value, digits))
@@ -439,7 +457,10 @@ mod tests {
         // 1 mm/s is the largest: every component in mm/s.
         assert_eq!(brief_vector(&[0.001, 0.0, -0.0005], "m/s"), "[1, 0, -0.5] mm/s");
         // 1/sqrt(2) = 0.70710678...
-        assert_eq!(brief_vector(&[std::f64::consts::FRAC_1_SQRT_2, std::f64::consts::FRAC_1_SQRT_2, 0.0], ""), "[0.707, 0.707, 0]");
+        assert_eq!(
+            brief_vector(&[std::f64::consts::FRAC_1_SQRT_2, std::f64::consts::FRAC_1_SQRT_2, 0.0], ""),
+            "[0.707, 0.707, 0]"
+        );
         assert_eq!(brief_vector(&[1e200, 0.0, 0.0], "m/s"), "[1e200, 0, 0] m/s");
         assert_eq!(brief_vector(&[0.0, 0.0, 0.0], "m/s"), "[0, 0, 0] m/s");
         assert_eq!(brief_vector(&[f64::INFINITY, 1.0, f64::NAN], "m/s"), "[inf, 1, NaN] m/s");

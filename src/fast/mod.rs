@@ -193,7 +193,10 @@ pub fn simulate_normal(request: &Request) -> Result<Outcome, FastError> {
     let system = Regularised::new(&request.law, &request.scales)?;
     let tolerance = request.tolerance;
     if !(tolerance.is_finite() && tolerance > 0.0) {
-        return Err(FastError::Invalid(format!("tolerance {} must be finite and positive", crate::units::short(tolerance))));
+        return Err(FastError::Invalid(format!(
+            "tolerance {} must be finite and positive",
+            crate::units::short(tolerance)
+        )));
     }
     let eps = (tolerance * TOLERANCE_FACTOR).clamp(EPS_FLOOR, EPS_CEILING);
     let force_criterion = request.separation == Separation::Force && system.can_turn_tensile();

@@ -208,7 +208,10 @@ impl Regularised {
             )));
         }
         if !(law.damping.is_finite() && law.damping >= 0.0) {
-            return Err(FastError::Invalid(format!("damping {} must be finite and >= 0", crate::units::brief(law.damping, ""))));
+            return Err(FastError::Invalid(format!(
+                "damping {} must be finite and >= 0",
+                crate::units::brief(law.damping, "")
+            )));
         }
         let units = [scales.length, scales.speed, scales.time, scales.force, scales.impulse, scales.energy];
         if !units.iter().all(|&u| positive(u)) {

@@ -8,7 +8,7 @@ use super::{DampingSpec, Scene, SetupError, StiffnessSpec, TangentialStiffnessSp
 use crate::body::Body;
 use crate::law::Family;
 use crate::law::damping::{MapError, check_restitution};
-use crate::units::{DIGITS, apart, brief, short, short_digits};
+use crate::units::{apart, brief, short, short_outside};
 use nalgebra::{Matrix3, Vector3};
 
 type Checked = Result<(), SetupError>;
@@ -46,13 +46,10 @@ pub(super) enum Allowed {
 /// most, never three hundred), with more digits where six would read as a value that keeps the rule it breaks
 /// (a restitution of 1.0000001 is "1.0000001", not "1").
 fn shown_breaking(x: f64, keeps_rule: impl Fn(f64) -> bool) -> String {
-    (DIGITS..=17)
-        .map(|digits| short_digits(x, digits))
-        .find(|text| !text.parse::<f64>().is_ok_and(&keeps_rule))
-        .unwrap_or_else(|| format!("{x}"))
+    short_outside(x, keeps_rule)
 }
 
-/// A value a user gave, in short form ([`shown_breaking`] for a value whose rule is not a range).
+/// A value a user gave, in short form ([`shown_breaking`] for a value whose rule is a range).
 fn shown(x: f64) -> String {
     short(x)
 }
@@ -471,7 +468,10 @@ fn check_body(i: usize, body: &Body) -> Checked {
         number(key("poisson"), nu, Allowed::Any)?;
         let poisson = |nu: f64| nu > -1.0 && nu <= 0.5;
         if !poisson(nu) {
-            return fail(key("poisson"), format!("expected a number in (-1, 0.5], got {}", shown_breaking(nu, poisson)));
+            return fail(
+                key("poisson"),
+                format!("expected a number in (-1, 0.5], got {}", shown_breaking(nu, poisson)),
+            );
         }
     }
     Ok(())
@@ -540,7 +540,10 @@ fn check_contact(contact: &super::ContactSpec) -> Checked {
             Ok(()) => {}
             Err(MapError::NoMap) => fail(
                 "contact.restitution",
-                format!("`{name}` is elastic: restitution must be 1 (or left out), got {}", shown_breaking(e, |e| e == 1.0)),
+                format!(
+                    "`{name}` is elastic: restitution must be 1 (or left out), got {}",
+                    shown_breaking(e, |e| e == 1.0)
+                ),
             )?,
             Err(MapError::UndefinedAtZero) => {
                 fail("contact.restitution", format!("the map of `{name}` ({}) is undefined at e = 0", law.info().map))?
