@@ -8,7 +8,7 @@
 
 use crate::body::Body;
 use crate::geometry::effective_radius;
-use crate::units::{apart, brief, short};
+use crate::units::{apart, brief, brief_digits, short};
 use nalgebra::Vector3;
 use serde::Serialize;
 
@@ -408,18 +408,21 @@ fn across_contacts(measured: &Measured, speeds: &Neighbours) -> Option<Verdict> 
         (None, None) => return None,
     };
     let slope = (high.2 / low.2).ln() / (high.1 / low.1).ln();
-    let (low_e, high_e) = apart(low.2, high.2, "");
     let name = |c: (usize, f64, f64), e: &str| {
         let which = if c.0 == usize::MAX { "this contact".to_string() } else { format!("contact {}", c.0) };
         format!("{e} at {} in {which}", brief(c.1, "m/s"))
     };
+    let pair = match two_values(low.2, high.2) {
+        Ok((low_e, high_e)) => format!("{} and {}", name(low, &low_e), name(high, &high_e)),
+        Err((e, difference)) => {
+            format!("{} and {} alike (to {difference})", name(low, &e), name(high, "").trim_start())
+        }
+    };
     verdict(slope, SLOPE_SCALE, SLOPE, ("d ln e / d ln v0", ""), |_| {
         let change = 100.0 * (2f64.powf(slope) - 1.0);
         format!(
-            "the pair's e is {} and {}: a slope of {}, so doubling the speed changes e by {} % — the idealisation's \
-             one e serves {}{}",
-            name(low, &low_e),
-            name(high, &high_e),
+            "the pair's e is {pair}: a slope of {}, so doubling the speed changes e by {} % — the idealisation's one e \
+             serves {}{}",
             brief(slope, ""),
             brief(change, ""),
             if slope.abs() < SLOPE_SCALE * SLOPE.holds_below { "all these speeds" } else { "one speed only" },
@@ -431,6 +434,16 @@ fn across_contacts(measured: &Measured, speeds: &Neighbours) -> Option<Verdict> 
             }
         )
     })
+}
+
+/// Two values of e for a meaning: each with the digits that tell them apart, up to six (0.79991 and 0.79993); closer
+/// than six digits show, `Err` with the one value they share and their difference ("0.98", "1.2e-14").
+fn two_values(a: f64, b: f64) -> Result<(String, String), (String, String)> {
+    if a != b && brief_digits(a, "", 6) == brief_digits(b, "", 6) {
+        Err((brief(a, ""), brief((b - a).abs(), "")))
+    } else {
+        Ok(apart(a, b, ""))
+    }
 }
 
 /// A verdict on `value` against `compared_with`; `None` for a measure that is not a finite number.
@@ -624,10 +637,12 @@ fn constant_e(measured: &Measured) -> Option<Verdict> {
     let slope = (faster / slower).ln() / ((1.0 + SPEED_STEP) / (1.0 - SPEED_STEP)).ln();
     verdict(slope, SLOPE_SCALE, SLOPE, ("d ln e / d ln v0", ""), |_| {
         let change = 100.0 * (2f64.powf(slope) - 1.0);
-        let (slower, faster) = apart(slower, faster, "");
+        let both = match two_values(slower, faster) {
+            Ok((slower, faster)) => format!("{slower} at 0.9 and {faster} at 1.1 times the speed"),
+            Err((e, difference)) => format!("{e} at 0.9 and 1.1 times the speed alike (to {difference})"),
+        };
         format!(
-            "e is {slower} at 0.9 and {faster} at 1.1 times the speed: a slope of {}, so doubling the speed changes e \
-             by {} % — the idealisation's one e serves {}",
+            "e is {both}: a slope of {}, so doubling the speed changes e by {} % — the idealisation's one e serves {}",
             brief(slope, ""),
             brief(change, ""),
             if slope.abs() < SLOPE_SCALE * SLOPE.holds_below { "all nearby speeds" } else { "this speed only" }

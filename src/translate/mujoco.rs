@@ -110,7 +110,7 @@ pub fn plan(context: &Context) -> Result<Plan, TranslateError> {
                 short(high),
                 short(k * mass),
                 short(b * mass),
-                crate::units::brief_digits(b / (2.0 * k.sqrt()), "", 4)
+                crate::units::brief(b / (2.0 * k.sqrt()), "")
             ));
             if let Some(dt) = context.dt
                 && solref[0] > 0.0
