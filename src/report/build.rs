@@ -171,8 +171,9 @@ pub fn build(
     }
     if outcome.switches > 0 {
         notes.push(format!(
-            "the tangential force switched between the Coulomb limit and below it {} times",
-            outcome.switches
+            "the tangential force switched between the Coulomb limit and below it {} time{}",
+            outcome.switches,
+            if outcome.switches == 1 { "" } else { "s" }
         ));
     }
     let mut report = Report {
