@@ -100,11 +100,12 @@ pub fn short(value: f64) -> String {
 
 /// A value a user gave that breaks a rule, as a message echoes it: [`short`], with more digits (up to 17) where six
 /// would read as a value that keeps the rule — a restitution of 1.0000001 against [0, 1] is "1.0000001", not "1".
+/// (A value that keeps the rule is [`short`].)
 pub fn short_outside(value: f64, keeps_rule: impl Fn(f64) -> bool) -> String {
     (DIGITS..=17)
         .map(|digits| short_digits(value, digits))
         .find(|text| !text.parse::<f64>().is_ok_and(&keeps_rule))
-        .unwrap_or_else(|| format!("{value}"))
+        .unwrap_or_else(|| short(value))
 }
 
 /// A value a user gave, echoed exactly: [`short`], with as many more digits (up to 17) as it takes to read back as
@@ -450,6 +451,14 @@ mod tests {
         assert_eq!(short_digits(1.0000001, 8), "1.0000001");
         assert_eq!(short_digits(1.0000001, 6), "1");
         assert_eq!(brief_digits(0.0123456, "m", 5), "12.346 mm");
+        // Outside [0, 1] by 1e-7: eight digits; 2 is outside at once; 1e-11 is inside (short form).
+        assert_eq!(short_outside(1.0000001, |e| (0.0..=1.0).contains(&e)), "1.0000001");
+        assert_eq!(short_outside(2.0, |e| (0.0..=1.0).contains(&e)), "2");
+        assert_eq!(short_outside(1e-11, |e| (0.0..=1.0).contains(&e)), "1e-11");
+        // 0.1 reads back at once; 1 + 1e-14 needs fifteen digits; 1e300 its exponent form.
+        assert_eq!(short_exact(0.1), "0.1");
+        assert_eq!(short_exact(1.0 + 1e-14), "1.00000000000001");
+        assert_eq!(short_exact(1e300), "1e300");
     }
 
     #[test]

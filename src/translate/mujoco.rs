@@ -132,8 +132,8 @@ pub fn plan(context: &Context) -> Result<Plan, TranslateError> {
                 "solref's direct form is per unit mass: [-k/m*, -c/m*] with m* = {} kg. Typed with the physical k \
                  and c (solref = \"{} {}\"), MuJoCo would give e = {}.",
                 short(mass),
-                number(-law.stiffness),
-                number(-law.damping),
+                short(-law.stiffness),
+                short(-law.damping),
                 wrong.map_or("no rebound".into(), |e| crate::units::brief_digits(e, "", 4))
             ));
             if contact.separation == Separation::Penetration {
