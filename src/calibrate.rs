@@ -32,6 +32,7 @@ use crate::law::{Family, LawKind, Separation};
 use crate::reference::{self, Bracket, SeparationCriterion, Stop, brilliantov_c1, illinois};
 use crate::scene::{ContactSpec, DampingSpec, OutputSpec, Scene, StiffnessSpec};
 use crate::setup::{DEFAULT_SOLREF, Setup};
+use crate::units::{apart, brief, short};
 use nalgebra::Vector3;
 use serde::Serialize;
 
@@ -176,7 +177,7 @@ pub enum CalibrationError {
     #[error("{0}")]
     Target(String),
     /// The approach speed is not a finite positive number.
-    #[error("the approach speed must be a finite number > 0 m/s, got {0}")]
+    #[error("the approach speed must be a finite number > 0 m/s, got {}", short(*.0))]
     ApproachSpeed(f64),
     /// The law's e depends on quantities only a scene supplies.
     #[error(
@@ -293,22 +294,22 @@ fn published_map(law: LawKind, target: f64, contact: &Contact, has_scene: bool) 
 /// What the calibration assumed without a scene.
 fn default_scene_note(law: LawKind, contact: &Contact, speed_given: bool, damping: f64) -> String {
     let scene = format!(
-        "the default scene ({DEFAULT_MASS} kg sphere on an immovable wall, stiffness {DEFAULT_STIFFNESS:e} N/m^{}, \
-         v0 = {} m/s)",
-        if law.family() == Family::Linear { "1" } else { "1.5" },
-        contact.approach_speed
+        "the default scene ({} sphere on an immovable wall, stiffness {}, v0 = {})",
+        brief(DEFAULT_MASS, "kg"),
+        brief(DEFAULT_STIFFNESS, if law.family() == Family::Linear { "N/m" } else { "N/m^1.5" }),
+        brief(contact.approach_speed, "m/s")
     );
     match law.family() {
         Family::Hysteresis => format!(
-            "no scene: alpha = chi / v0 at v0 = {} m/s ({}); e depends on chi = alpha v0 alone, so this alpha holds \
-             for any masses and stiffness at that speed; verified on {scene}",
-            contact.approach_speed,
+            "no scene: alpha = chi / v0 at v0 = {} ({}); e depends on chi = alpha v0 alone, so this alpha holds for \
+             any masses and stiffness at that speed; verified on {scene}",
+            brief(contact.approach_speed, "m/s"),
             if speed_given { "--approach-speed" } else { "the default; give --approach-speed or a scene" }
         ),
         Family::Linear => format!(
             "no scene: c = 2 zeta sqrt(k m*) needs the scene's k and m*, so only zeta is given (e depends on zeta \
-             alone); verified on {scene}, where c = {} N s/m",
-            readable(damping)
+             alone); verified on {scene}, where c = {}",
+            brief(damping, "N s/m")
         ),
         _ => format!("no scene: the damping is dimensionless and e depends on it alone; verified on {scene}"),
     }
@@ -342,16 +343,17 @@ fn check_target(law: LawKind, target: f64) -> Result<(), CalibrationError> {
     if !(target > 0.0 && target <= 1.0) {
         return Err(CalibrationError::Target(format!(
             "the target e must be a coefficient of restitution in (0, 1], got {}",
-            readable(target)
+            given_target(target)
         )));
     }
     if target < MIN_TARGET {
         return Err(CalibrationError::Target(format!(
-            "e = {} is below the smallest e that can be simulated, about {MIN_TARGET:e}: the damping it needs makes \
-             the restitution creep for longer than any integration can follow (the scene limit on the damping is \
-             {:e} times the elastic force)",
-            readable(target),
-            crate::setup::MAX_DAMPING_RATIO
+            "e = {} is below the smallest e that can be simulated, about {}: the damping it needs makes the \
+             restitution creep for longer than any integration can follow (the scene limit on the damping is {} \
+             times the elastic force)",
+            apart(target, MIN_TARGET, "").0,
+            brief(MIN_TARGET, ""),
+            brief(crate::setup::MAX_DAMPING_RATIO, "")
         )));
     }
     Ok(())
@@ -389,12 +391,14 @@ fn check_law_fits(contact: &ContactSpec, law: LawKind) -> Result<(), Calibration
         Family::Linear if contact.stiffness == StiffnessSpec::Hertz => {
             Some(format!("`{name}` needs a numeric `stiffness` k in N/m, but the scene has stiffness = \"hertz\""))
         }
-        Family::Linear if n != 1.0 => {
-            Some(format!("`{name}` is linear (exponent 1), but the scene's stiffness is for exponent {n} (N/m^{n})"))
-        }
-        Family::Tsuji | Family::Viscoelastic if n != 1.5 => {
-            Some(format!("`{name}` fixes the exponent at 3/2, but the scene's stiffness is for exponent {n} (N/m^{n})"))
-        }
+        Family::Linear if n != 1.0 => Some(format!(
+            "`{name}` is linear (exponent 1), but the scene's stiffness is for exponent {n} (N/m^{n})",
+            n = apart(n, 1.0, "").0
+        )),
+        Family::Tsuji | Family::Viscoelastic if n != 1.5 => Some(format!(
+            "`{name}` fixes the exponent at 3/2, but the scene's stiffness is for exponent {n} (N/m^{n})",
+            n = apart(n, 1.5, "").0
+        )),
         _ => None,
     };
     match problem {
@@ -736,12 +740,12 @@ fn by_simulation(
         bracket = Bracket { lo: guess, f_lo: f_guess, hi: guess, f_hi: f_guess };
         while bracket.f_hi > 0.0 {
             if bracket.hi * per_damping > MAX_BRILLIANTOV_B {
+                let (target, reached) = apart(target, bracket.f_hi + target, "");
                 return Err(CalibrationError::Unattainable(format!(
-                    "no damping {symbol} up to {limit} = {MAX_BRILLIANTOV_B:e} brings the simulated e of `{law}` down \
-                     to {} in this scene (e = {} at {symbol} = {} {unit})",
-                    readable(target),
-                    readable(bracket.f_hi + target),
-                    readable(bracket.hi)
+                    "no damping {symbol} up to {limit} = {} brings the simulated e of `{law}` down to {target} in \
+                     this scene (e = {reached} at {symbol} = {})",
+                    brief(MAX_BRILLIANTOV_B, ""),
+                    brief(bracket.hi, unit)
                 )));
             }
             (bracket.lo, bracket.f_lo) = (bracket.hi, bracket.f_hi);
@@ -767,15 +771,13 @@ fn by_simulation(
         let beyond = match &failure {
             Some((at, why)) if *at <= hi => format!("the simulation fails ({why})"),
             _ if root.bracket.f_hi == NO_RESTITUTION - target => "the bodies no longer separate".into(),
-            _ => format!("e = {}", readable(root.bracket.f_hi + target)),
+            _ => format!("e = {}", brief(root.bracket.f_hi + target, "")),
         };
+        let (target, reached) = apart(target, root.bracket.f_lo + target, "");
+        let (lo, hi) = apart(lo, hi, unit);
         return Err(CalibrationError::Unattainable(format!(
-            "the simulated e of `{law}` in this scene cannot be made {}: the smallest e reached is {} at \
-             {symbol} = {} {unit}, and at {symbol} = {} {unit} {beyond}",
-            readable(target),
-            readable(root.bracket.f_lo + target),
-            readable(lo),
-            readable(hi),
+            "the simulated e of `{law}` in this scene cannot be made {target}: the smallest e reached is {reached} at \
+             {symbol} = {lo}, and at {symbol} = {hi} {beyond}"
         )));
     }
     Ok(Found {
@@ -784,10 +786,15 @@ fn by_simulation(
         iterations: evaluations,
         notes: vec![format!(
             "{symbol} root-found ({evaluations} simulations, Illinois with a bisection safeguard) on the simulated \
-             velocity ratio of the scene; |e - E| = {:.1e} there",
-            root.residual.abs()
+             velocity ratio of the scene; |e - E| = {} there",
+            brief(root.residual.abs(), "")
         )],
     })
+}
+
+/// A target e as a message echoes it: in short form, with the digits that keep it outside (0, 1] (1.0000001).
+pub(crate) fn given_target(target: f64) -> String {
+    crate::units::short_outside(target, |e| e > 0.0 && e <= 1.0)
 }
 
 /// A number as a reader wants it: plain for moderate magnitudes, scientific otherwise; either way the shortest

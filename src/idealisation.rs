@@ -8,6 +8,7 @@
 
 use crate::body::Body;
 use crate::geometry::effective_radius;
+use crate::units::{apart, brief, brief_digits, short};
 use nalgebra::Vector3;
 use serde::Serialize;
 
@@ -349,9 +350,11 @@ fn between_flights(measured: &Measured, flight: f64) -> Option<Verdict> {
     let duration = measured.duration?;
     verdict(duration, flight, CORRECTION, ("t_c / flight to the next contact", "s"), |ratio| {
         format!(
-            "the contact lasts {ratio:.3e} of the {flight:.3e} s flight to the next contact of its bodies, which the \
-             idealisation makes an instant between flights: the bodies' motion during the contact (under gravity, or \
-             towards the next contact) is left out in proportion"
+            "the contact lasts {} of the {} flight to the next contact of its bodies, which the idealisation makes \
+             an instant between flights: the bodies' motion during the contact (under gravity, or towards the next \
+             contact) is left out in proportion",
+            brief(ratio, ""),
+            brief(flight, "s")
         )
     })
 }
@@ -371,24 +374,25 @@ fn surrounded(bodies: [&Body; 2], measured: &Measured, around: &Surroundings) ->
         } else if !around.held {
             "gravity moves both free bodies alike and leaves their relative motion alone".to_string()
         } else {
-            format!("gravity along the normal ({along:.4} m/s²) gives {:.3e} of it", gravity / impulse)
+            format!("gravity along the normal ({}) gives {} of it", brief(along, "m/s²"), brief(gravity / impulse, ""))
         };
         let contacts = if around.others.is_empty() {
             "no other contact acts on its bodies meanwhile".to_string()
         } else {
             let list: Vec<String> = around.others.iter().map(|(k, _)| k.to_string()).collect();
             format!(
-                "contact{} {} on the same bodies give{} {:.3e} of it {}",
+                "contact{} {} on the same bodies give{} {} of it {}",
                 if list.len() > 1 { "s" } else { "" },
                 list.join(", "),
                 if list.len() > 1 { "" } else { "s" },
-                others / impulse,
+                brief(others / impulse, ""),
                 if around.whole { "(whole impulses: an upper bound)" } else { "during the overlap" }
             )
         };
         format!(
-            "other forces add {ratio:.3e} of the contact impulse while it lasts: {pull}; {contacts} — the \
-             idealisation's impact of two bodies alone, with one e, leaves them out"
+            "other forces add {} of the contact impulse while it lasts: {pull}; {contacts} — the idealisation's \
+             impact of two bodies alone, with one e, leaves them out",
+            brief(ratio, "")
         )
     })
 }
@@ -404,17 +408,23 @@ fn across_contacts(measured: &Measured, speeds: &Neighbours) -> Option<Verdict> 
         (None, None) => return None,
     };
     let slope = (high.2 / low.2).ln() / (high.1 / low.1).ln();
-    let name = |c: (usize, f64, f64)| {
+    let name = |c: (usize, f64, f64), e: &str| {
         let which = if c.0 == usize::MAX { "this contact".to_string() } else { format!("contact {}", c.0) };
-        format!("{:.6} at {:.4e} m/s in {which}", c.2, c.1)
+        format!("{e} at {} in {which}", brief(c.1, "m/s"))
+    };
+    let pair = match two_values(low.2, high.2) {
+        Ok((low_e, high_e)) => format!("{} and {}", name(low, &low_e), name(high, &high_e)),
+        Err((e, difference)) => {
+            format!("{} and {} alike (to {difference})", name(low, &e), name(high, "").trim_start())
+        }
     };
     verdict(slope, SLOPE_SCALE, SLOPE, ("d ln e / d ln v0", ""), |_| {
         let change = 100.0 * (2f64.powf(slope) - 1.0);
         format!(
-            "the pair's e is {} and {}: a slope of {slope:.3e}, so doubling the speed changes e by {change:.2} % — \
-             the idealisation's one e serves {}{}",
-            name(low),
-            name(high),
+            "the pair's e is {pair}: a slope of {}, so doubling the speed changes e by {} % — the idealisation's one e \
+             serves {}{}",
+            brief(slope, ""),
+            brief(change, ""),
             if slope.abs() < SLOPE_SCALE * SLOPE.holds_below { "all these speeds" } else { "one speed only" },
             if speeds.remapped {
                 " (the law's damping was mapped at each contact's own speed, which holds e by construction: what \
@@ -424,6 +434,16 @@ fn across_contacts(measured: &Measured, speeds: &Neighbours) -> Option<Verdict> 
             }
         )
     })
+}
+
+/// Two values of e for a meaning: each with the digits that tell them apart, up to six (0.79991 and 0.79993); closer
+/// than six digits show, `Err` with the one value they share and their difference ("0.98", "1.2e-14").
+fn two_values(a: f64, b: f64) -> Result<(String, String), (String, String)> {
+    if a != b && brief_digits(a, "", 6) == brief_digits(b, "", 6) {
+        Err((brief(a, ""), brief((b - a).abs(), "")))
+    } else {
+        Ok(apart(a, b, ""))
+    }
 }
 
 /// A verdict on `value` against `compared_with`; `None` for a measure that is not a finite number.
@@ -456,7 +476,7 @@ fn smaller_radius(bodies: [&Body; 2]) -> Option<f64> {
 /// direct impact matches the instantaneous impact with the simulated e to rounding).
 fn difference(measured: &Measured) -> String {
     measured.max_velocity_difference.filter(|dv| *dv > 1e-6 * measured.approach_speed).map_or(String::new(), |dv| {
-        format!("; the simulated velocities after differ from the instantaneous impact's by up to {dv:.3e} m/s")
+        format!("; the simulated velocities after differ from the instantaneous impact's by up to {}", brief(dv, "m/s"))
     })
 }
 
@@ -471,9 +491,11 @@ fn instantaneous(bodies: [&Body; 2], measured: &Measured) -> Option<Verdict> {
     let travel = before.max(after) * duration;
     verdict(travel, radius, CORRECTION, ("relative travel / radius", "m"), |ratio| {
         format!(
-            "the bodies travel {ratio:.3e} of the smaller radius relative to each other during the {duration:.3e} s \
-             contact, which the idealisation makes one instant at one place: a third body or a field acting \
-             meanwhile would meet them in between{}",
+            "the bodies travel {} of the smaller radius relative to each other during the {} contact, which the \
+             idealisation makes one instant at one place: a third body or a field acting meanwhile would meet them in \
+             between{}",
+            brief(ratio, ""),
+            brief(duration, "s"),
             // (With friction, the difference from the smooth instantaneous impact is mostly friction's: `smooth`.)
             if measured.friction == 0.0 { difference(measured) } else { String::new() }
         )
@@ -491,8 +513,9 @@ fn isolated(bodies: [&Body; 2], measured: &Measured) -> Option<Verdict> {
     verdict(gravity, impulse, CORRECTION, ("m g t_c / contact impulse", "N s"), |ratio| {
         format!(
             "the scene has no gravity; standard gravity on the heavier body, pressed through the contact by a support \
-             or a wall, would add {ratio:.3e} of the contact impulse and change the rebound by about as much (two \
-             bodies falling freely together would not feel it)"
+             or a wall, would add {} of the contact impulse and change the rebound by about as much (two bodies \
+             falling freely together would not feel it)",
+            brief(ratio, "")
         )
     })
 }
@@ -520,7 +543,10 @@ fn particles(bodies: [&Body; 2], measured: &Measured) -> Option<Verdict> {
     let (value, measure, what, consequence) =
         candidates.into_iter().fold(candidates[0], |worst, c| if c.0 > worst.0 { c } else { worst });
     verdict(value, radius, SHAPE, (measure, "m"), |ratio| {
-        format!("{what} is {ratio:.3e} of the smaller radius (the worst of d_max, a and R ω t_c): {consequence}")
+        format!(
+            "{what} is {} of the smaller radius (the worst of d_max, a and R ω t_c): {consequence}",
+            brief(ratio, "")
+        )
     })
 }
 
@@ -538,14 +564,16 @@ fn elastic(bodies: [&Body; 2], measured: &Measured) -> Option<Verdict> {
     verdict(pressure, YIELD_PRESSURE_FACTOR * yield_stress, YIELD, ("p0 / 1.6 Y", "Pa"), |ratio| {
         if ratio < 1.0 {
             format!(
-                "the peak contact pressure stays at {ratio:.3} of the pressure at which the weaker material begins \
-                 to yield (1.6 Y): no plastic flow, the elastic law holds"
+                "the peak contact pressure stays at {} of the pressure at which the weaker material begins to yield \
+                 (1.6 Y): no plastic flow, the elastic law holds",
+                brief(ratio, "")
             )
         } else {
             format!(
-                "the peak contact pressure reaches {ratio:.3} times the pressure at which the weaker material begins \
-                 to yield (1.6 Y): it flows plastically, dissipating energy an elastic law does not (an e below the \
-                 simulated one, falling with speed, as an elastic–plastic law such as Thornton's gives)"
+                "the peak contact pressure reaches {} times the pressure at which the weaker material begins to \
+                 yield (1.6 Y): it flows plastically, dissipating energy an elastic law does not (an e below the \
+                 simulated one, falling with speed, as an elastic–plastic law such as Thornton's gives)",
+                brief(ratio, "")
             )
         }
     })
@@ -560,15 +588,17 @@ fn yielding_law(pressure: f64, speed: f64, measured: &Measured) -> Option<Verdic
     verdict(elastic_pressure, pressure, YIELD, ("elastic p0 / p_y", "Pa"), |ratio| {
         if ratio < 1.0 {
             format!(
-                "below the yield speed ({speed:.4e} m/s) the contact stays elastic: its peak pressure is {ratio:.3} of \
-                 the yield pressure, e = 1"
+                "below the yield speed ({}) the contact stays elastic: its peak pressure is {} of the yield \
+                 pressure, e = 1",
+                brief(speed, "m/s"),
+                brief(ratio, "")
             )
         } else {
-            let e = e.map_or_else(|| "no rebound".to_string(), |e| format!("e = {e:.6}"));
+            let e = e.map_or_else(|| "no rebound".to_string(), |e| format!("e = {}", apart(e, 1.0, "").0));
             format!(
-                "the contact yields: an elastic one would press at {ratio:.3} times the yield pressure; the law \
-                 follows the plastic flow, and the dent it leaves costs the rebound: {e} where an elastic contact \
-                 gives 1"
+                "the contact yields: an elastic one would press at {} times the yield pressure; the law follows the \
+                 plastic flow, and the dent it leaves costs the rebound: {e} where an elastic contact gives 1",
+                brief(ratio, "")
             )
         }
     })
@@ -590,9 +620,10 @@ fn quasi_static(bodies: [&Body; 2], measured: &Measured) -> Option<Verdict> {
         .fold(None, |worst: Option<f64>, t| Some(worst.map_or(t, |w| w.max(t))))?;
     verdict(slowest, duration, SHAPE, ("2R/c / t_c", "s"), |ratio| {
         format!(
-            "an elastic wave crosses the body in {ratio:.3e} of the contact time: below a tenth the body is loaded \
+            "an elastic wave crosses the body in {} of the contact time: below a tenth the body is loaded \
              quasi-statically as Hertz assumes; near one, waves carry energy away (Hunter 1957) and vibrations \
-             remain after the impact"
+             remain after the impact",
+            brief(ratio, "")
         )
     })
 }
@@ -606,9 +637,14 @@ fn constant_e(measured: &Measured) -> Option<Verdict> {
     let slope = (faster / slower).ln() / ((1.0 + SPEED_STEP) / (1.0 - SPEED_STEP)).ln();
     verdict(slope, SLOPE_SCALE, SLOPE, ("d ln e / d ln v0", ""), |_| {
         let change = 100.0 * (2f64.powf(slope) - 1.0);
+        let both = match two_values(slower, faster) {
+            Ok((slower, faster)) => format!("{slower} at 0.9 and {faster} at 1.1 times the speed"),
+            Err((e, difference)) => format!("{e} at 0.9 and 1.1 times the speed alike (to {difference})"),
+        };
         format!(
-            "e is {slower:.6} at 0.9 and {faster:.6} at 1.1 times the speed: a slope of {slope:.3e}, so doubling the \
-             speed changes e by {change:.2} % — the idealisation's one e serves {}",
+            "e is {both}: a slope of {}, so doubling the speed changes e by {} % — the idealisation's one e serves {}",
+            brief(slope, ""),
+            brief(change, ""),
             if slope.abs() < SLOPE_SCALE * SLOPE.holds_below { "all nearby speeds" } else { "this speed only" }
         )
     })
@@ -636,16 +672,20 @@ fn smooth(bodies: [&Body; 2], measured: &Measured) -> Option<Verdict> {
     if by_impulse >= by_work {
         verdict(tangential, normal_impulse, CORRECTION, ("J_t / J_n", "N s"), |ratio| {
             format!(
-                "friction (mu = {mu}) gives a tangential impulse of {ratio:.3e} of the normal one, which the smooth \
+                "friction (mu = {}) gives a tangential impulse of {} of the normal one, which the smooth \
                  idealisation leaves out (oblique.rigid_body includes it){}",
+                short(mu),
+                brief(ratio, ""),
                 difference(measured)
             )
         })
     } else {
         verdict(work, measured.kinetic_before, CORRECTION, ("friction work / kinetic energy", "J"), |ratio| {
             format!(
-                "friction (mu = {mu}) dissipates {ratio:.3e} of the kinetic energy, which the smooth idealisation \
-                 leaves out (oblique.rigid_body includes it){}",
+                "friction (mu = {}) dissipates {} of the kinetic energy, which the smooth idealisation leaves out \
+                 (oblique.rigid_body includes it){}",
+                short(mu),
+                brief(ratio, ""),
                 difference(measured)
             )
         })
@@ -681,12 +721,12 @@ fn central(bodies: [&Body; 2], measured: &Measured) -> Option<Verdict> {
     let name = &bodies[i].name;
     let origin = if lever.pivoted { "pivot" } else { "mass centre" };
     verdict(lever.arm, lever.gyration, LEVER, ("b / k", "m"), |ratio| {
+        let (effective, whole) = apart(lever.effective_mass, lever.mass, "kg");
         format!(
-            "the normal passes {:.3e} m from {name}'s {origin} ({ratio:.3e} of its radius of gyration): {name} meets \
-             the contact with an effective mass of {:.4e} kg, not its {:.4e} kg, and the blow turns it{}",
-            lever.arm,
-            lever.effective_mass,
-            lever.mass,
+            "the normal passes {} from {name}'s {origin} ({} of its radius of gyration): {name} meets the contact with \
+             an effective mass of {effective}, not its {whole}, and the blow turns it{}",
+            brief(lever.arm, "m"),
+            brief(ratio, ""),
             difference(measured)
         )
     })

@@ -466,11 +466,12 @@ fn fixed_step_outcome(
         } else {
             "until the accurate path stopped: the bodies did not part"
         };
+        let (step, duration) = crate::units::apart(dt, duration, "s");
         return Err(refuse(
             "solver.dt",
             format!(
-                "dt = {dt:e} s is larger than the contact's duration {duration:.6e} s ({how}): a fixed-step scheme \
-                 needs steps inside the contact (DEM codes take dt below a tenth, usually a fiftieth, of it)"
+                "dt = {step} is larger than the contact's duration {duration} ({how}): a fixed-step scheme needs \
+                 steps inside the contact (DEM codes take dt below a tenth, usually a fiftieth, of it)"
             ),
         ));
     }
@@ -508,8 +509,9 @@ fn fixed_step_outcome(
         fixed_step::Ending::Settled => Ending::Event(1),
         fixed_step::Ending::TimeLimit => Ending::TimeLimit,
         fixed_step::Ending::Diverged => Ending::GaveUp(format!(
-            "the {} scheme diverged: dt = {dt:e} s is beyond its stability limit for this contact",
-            scheme.name()
+            "the {} scheme diverged: dt = {} is beyond its stability limit for this contact",
+            scheme.name(),
+            crate::units::brief(dt, "s")
         )),
     };
     let max_compression = run.max_compression.time / s.time;

@@ -17,6 +17,7 @@ use crate::scene::{
     ContactSpec, DampingSpec, FrictionCap, Parsed, Scene, SceneError, StiffnessSpec, TangentialStiffnessSpec,
     TangentialUnloading,
 };
+use crate::units::{apart, apart_vectors, brief, brief_vector, short};
 use nalgebra::Vector3;
 use std::path::Path;
 
@@ -141,10 +142,10 @@ impl Setup {
                 return fail(
                     key,
                     format!(
-                        "the effective masses at the contact ({:e} and {:e} kg) leave no motion along the normal: a \
+                        "the effective masses at the contact ({} and {}) leave no motion along the normal: a \
                          pivot on the line of the normal holds its body as if it were immovable",
-                        1.0 / inverse_masses[0],
-                        1.0 / inverse_masses[1]
+                        brief(1.0 / inverse_masses[0], "kg"),
+                        brief(1.0 / inverse_masses[1], "kg")
                     ),
                 );
             }
@@ -294,9 +295,11 @@ pub fn resolve_law(
                     return fail(
                         "contact.restitution",
                         format!(
-                            "no dashpot c of `hertz-dashpot` (exponent {exponent}, separation = \"{}\") gives e = {e} \
+                            "no dashpot c of `hertz-dashpot` (exponent {}, separation = \"{}\") gives e = {} \
                              at this contact's speed: e = 0 needs an infinite c; ask for a small positive e",
-                            separation.name()
+                            short(exponent),
+                            separation.name(),
+                            short(e)
                         ),
                     );
                 };
@@ -314,7 +317,7 @@ pub fn resolve_law(
         }
     };
     if !damping.is_finite() {
-        return fail(damping_key(contact), format!("the damping {damping} is not a finite number"));
+        return fail(damping_key(contact), format!("the damping {} is not a finite number", brief(damping, "")));
     }
     let tsuji_scale = if kind.family() == Family::Tsuji { (effective_mass * stiffness).sqrt() } else { 0.0 };
     let yield_penetration =
@@ -377,7 +380,10 @@ fn yield_penetration(contact: &ContactSpec, bodies: [&Body; 2], stiffness: f64) 
         return fail(
             "contact.yield_pressure",
             format!(
-                "the yield pressure {pressure:e} Pa gives no yield penetration (R* = {radius:e} m, K = {stiffness:e})"
+                "the yield pressure {} gives no yield penetration (R* = {}, K = {})",
+                brief(pressure, "Pa"),
+                brief(radius, "m"),
+                brief(stiffness, "N/m^1.5")
             ),
         );
     }
@@ -412,9 +418,11 @@ pub fn check_law(
         return fail(
             damping_key,
             format!(
-                "the damping is too heavy to simulate: its force is {ratio:e} times the elastic force at the \
-                 contact's own scales (at most {MAX_DAMPING_RATIO:e}; e would be below about 1e-10, and the \
-                 restitution creeps for longer than any integration can follow)"
+                "the damping is too heavy to simulate: its force is {} times the elastic force at the contact's own \
+                 scales (at most {}; e would be below about 1e-10, and the restitution creeps for longer than any \
+                 integration can follow)",
+                brief(ratio, ""),
+                brief(MAX_DAMPING_RATIO, "")
             ),
         );
     }
@@ -452,13 +460,12 @@ fn no_approach(scene: &Scene, normal: &Vector3<f64>, approach_speed: f64) -> Str
         (true, false) => "the scene's `contact.normal`",
         (false, false) => "the default normal (no `contact.normal` given)",
     };
+    let (first, second) = apart(a.velocity.dot(normal), b.velocity.dot(normal), "m/s");
     format!(
-        "the bodies do not approach along {which} {:?}: normal velocities {} m/s (body 1) and {} m/s (body 2) give \
-         an approach speed (v1 - v2)·n = {} m/s, which must be > 0",
-        normal.as_slice(),
-        a.velocity.dot(normal),
-        b.velocity.dot(normal),
-        approach_speed
+        "the bodies do not approach along {which} {}: normal velocities {first} (body 1) and {second} (body 2) give \
+         an approach speed (v1 - v2)·n = {}, which must be > 0",
+        brief_vector(normal.as_slice(), ""),
+        brief(approach_speed, "m/s")
     )
 }
 
@@ -475,9 +482,9 @@ fn check_finite_motion(bodies: &[Body; 2]) -> Result<(), SetupError> {
             return fail(
                 format!("bodies.{i}.velocity"),
                 format!(
-                    "the momentum or kinetic energy of a body of {:e} kg at {:?} m/s is outside double precision",
-                    body.mass,
-                    body.velocity.as_slice()
+                    "the momentum or kinetic energy of a body of {} at {} is outside double precision",
+                    brief(body.mass, "kg"),
+                    brief_vector(body.velocity.as_slice(), "m/s")
                 ),
             );
         }
@@ -485,10 +492,9 @@ fn check_finite_motion(bodies: &[Body; 2]) -> Result<(), SetupError> {
             return fail(
                 format!("bodies.{i}.angular_velocity"),
                 format!(
-                    "the rotational energy of a body of inertia {:e} kg m² spinning at {:?} rad/s is outside double \
-                     precision",
-                    body.inertia,
-                    body.angular_velocity.as_slice()
+                    "the rotational energy of a body of inertia {} spinning at {} is outside double precision",
+                    brief(body.inertia, "kg m²"),
+                    brief_vector(body.angular_velocity.as_slice(), "rad/s")
                 ),
             );
         }
@@ -616,13 +622,12 @@ fn eccentric_placement(scene: &Scene) -> Result<Placement, SetupError> {
         let turning = body.angular_velocity.cross(&arm);
         let size = body.velocity.norm().max(turning.norm());
         if (body.velocity - turning).norm() > 1e-9 * size {
+            let (turning, velocity) = apart_vectors(turning.as_slice(), body.velocity.as_slice(), "m/s");
             return fail(
                 format!("bodies.{i}.velocity"),
                 format!(
-                    "a body turning about its pivot moves with angular_velocity × (position - pivot) = {:?} m/s, \
-                     not {:?} m/s",
-                    turning.as_slice(),
-                    body.velocity.as_slice()
+                    "a body turning about its pivot moves with angular_velocity × (position - pivot) = {turning}, \
+                     not {velocity}"
                 ),
             );
         }
@@ -678,8 +683,9 @@ fn placement(scene: &Scene) -> Result<Placement, SetupError> {
                 PlacementProblem::Overlapping(overlap) => fail(
                     "bodies.1.position",
                     format!(
-                        "the bodies start overlapped by {overlap:e} m (more than {:e} of the smaller radius)",
-                        geometry::TOUCH_TOLERANCE
+                        "the bodies start overlapped by {} (more than {} of the smaller radius)",
+                        brief(overlap, "m"),
+                        brief(geometry::TOUCH_TOLERANCE, "")
                     ),
                 ),
                 PlacementProblem::NeverMeet => fail(
@@ -702,13 +708,10 @@ fn placement(scene: &Scene) -> Result<Placement, SetupError> {
             if let (true, Some(normal)) = (spheres, given)
                 && (normal - contact.normal).norm() > 1e-9
             {
+                let (given, centres) = apart_vectors(normal.as_slice(), contact.normal.as_slice(), "");
                 return fail(
                     "contact.normal",
-                    format!(
-                        "the given normal {:?} disagrees with the line of centres at first contact {:?}",
-                        normal.as_slice(),
-                        contact.normal.as_slice()
-                    ),
+                    format!("the given normal {given} disagrees with the line of centres at first contact {centres}"),
                 );
             }
             let t = contact.time;
@@ -738,9 +741,11 @@ fn check_scales(scales: &Scales) -> Result<(), SetupError> {
     fail(
         "bodies.0.velocity",
         format!(
-            "the contact's scales leave double precision (penetration scale {:e} m, time scale {:e} s, energy \
-             scale m* v0² = {:e} J): check the masses, velocities and stiffness",
-            scales.length, scales.time, scales.energy
+            "the contact's scales leave double precision (penetration scale {}, time scale {}, energy scale m* v0² = \
+             {}): check the masses, velocities and stiffness",
+            brief(scales.length, "m"),
+            brief(scales.time, "s"),
+            brief(scales.energy, "J")
         ),
     )
 }
@@ -762,10 +767,11 @@ fn check_size(contact: &ContactSpec, bodies: [&Body; 2], law: &ContactLaw, scale
         return fail(
             "contact.yield_pressure",
             format!(
-                "the contact yields too far for the bodies: at {} m/s its plastic penetration would be {plastic:e} m, \
-                 beyond the smaller radius {smallest:e} m (a yield pressure this low has the bodies pass through each \
-                 other)",
-                scales.speed
+                "the contact yields too far for the bodies: at {} its plastic penetration would be {}, beyond the \
+                 smaller radius {} (a yield pressure this low has the bodies pass through each other)",
+                brief(scales.speed, "m/s"),
+                brief(plastic, "m"),
+                brief(smallest, "m")
             ),
         );
     }
@@ -787,10 +793,12 @@ fn check_size(contact: &ContactSpec, bodies: [&Body; 2], law: &ContactLaw, scale
     fail(
         key,
         format!(
-            "the contact is too soft for the bodies: at {} m/s its elastic penetration would be {elastic:e} m, \
-             beyond the smaller radius {smallest:e} m (the bodies would pass through each other; a contact law \
-             describes penetrations far below the radii)",
-            scales.speed
+            "the contact is too soft for the bodies: at {} its elastic penetration would be {}, beyond the smaller \
+             radius {} (the bodies would pass through each other; a contact law describes penetrations far below the \
+             radii)",
+            brief(scales.speed, "m/s"),
+            brief(elastic, "m"),
+            brief(smallest, "m")
         ),
     )
 }
@@ -820,10 +828,12 @@ fn check_creep(law: &ContactLaw, effective_mass: f64, key: &str) -> Result<(), S
     fail(
         key,
         format!(
-            "the damping is too heavy to resolve with separation = \"force\": damping ratio zeta = {zeta:e} gives \
-             e = {e:e}, below {MIN_RESTITUTION:e} — a separation speed lost in the rounding of the bodies' \
-             velocities (zeta must stay below about 5e4; with separation = \"penetration\" such a contact never \
-             separates)"
+            "the damping is too heavy to resolve with separation = \"force\": damping ratio zeta = {} gives e = {}, \
+             below {} — a separation speed lost in the rounding of the bodies' velocities (zeta must stay below \
+             about 5e4; with separation = \"penetration\" such a contact never separates)",
+            brief(zeta, ""),
+            brief(e, ""),
+            brief(MIN_RESTITUTION, "")
         ),
     )
 }
@@ -845,14 +855,16 @@ fn graze(scene: &Scene, normal: &Vector3<f64>, approach: f64, tangential: &Vecto
     }
     let side = |body: &Body| (body.velocity - normal * body.velocity.dot(normal)).norm();
     let faster = usize::from(side(b) > side(a));
-    fail(
-        format!("bodies.{faster}.velocity"),
+    fail(format!("bodies.{faster}.velocity"), {
+        let (depth, resolution) = apart(depth, resolution, "m");
         format!(
-            "the bodies barely touch: closing at {approach:e} m/s while sliding across each other at {across:e} m/s, \
-             their free flight would overlap by at most {depth:e} m, below the resolution of their positions \
-             ({resolution:e} m, 1e-12 of the smaller radius): such a graze is beyond double precision"
-        ),
-    )
+            "the bodies barely touch: closing at {} while sliding across each other at {}, their free flight \
+                 would overlap by at most {depth}, below the resolution of their positions ({resolution}, 1e-12 of \
+                 the smaller radius): such a graze is beyond double precision",
+            brief(approach, "m/s"),
+            brief(across, "m/s")
+        )
+    })
 }
 
 /// K = (4/3) E* sqrt(R*), with the rules for rigid bodies and missing constants of

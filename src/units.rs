@@ -95,7 +95,31 @@ pub fn plain_digits(value: f64, digits: usize) -> String {
 /// A number as given, for inputs such as an exponent or a nominal e: [`plain`] without trailing zeros
 /// (1.5 -> "1.5", 0.8 -> "0.8", 1 -> "1", 1.5e-7 -> "1.5e-7").
 pub fn short(value: f64) -> String {
-    trim_zeros(&plain(value))
+    short_digits(value, DIGITS)
+}
+
+/// A value a user gave that breaks a rule, as a message echoes it: [`short`], with more digits (up to 17) where six
+/// would read as a value that keeps the rule — a restitution of 1.0000001 against [0, 1] is "1.0000001", not "1".
+/// (A value that keeps the rule is [`short`].)
+pub fn short_outside(value: f64, keeps_rule: impl Fn(f64) -> bool) -> String {
+    (DIGITS..=17)
+        .map(|digits| short_digits(value, digits))
+        .find(|text| !text.parse::<f64>().is_ok_and(&keeps_rule))
+        .unwrap_or_else(|| short(value))
+}
+
+/// A value a user gave, echoed exactly: [`short`], with as many more digits (up to 17) as it takes to read back as
+/// `value` — 0.1 -> "0.1", 1.00000000000001 -> "1.00000000000001", 1e300 -> "1e300".
+pub fn short_exact(value: f64) -> String {
+    (DIGITS..=17)
+        .map(|digits| short_digits(value, digits))
+        .find(|text| text.parse::<f64>().is_ok_and(|read| read == value))
+        .unwrap_or_else(|| short_digits(value, 17))
+}
+
+/// [`short`] with `digits` significant digits (at least 1): 1.0000001 with 8 digits -> "1.0000001".
+pub fn short_digits(value: f64, digits: usize) -> String {
+    trim_zeros(&plain_digits(value, digits))
 }
 
 /// Significant digits of a number in a message ([`brief`]).
@@ -107,24 +131,94 @@ pub const BRIEF_DIGITS: usize = 3;
 /// does not think in "Em/s" or "Gm"): beyond, the exponent form in the base unit ("9.2e18 m/s", "1e-100 m"); a unit that takes no prefix keeps its value in
 /// [`plain`] form ("1.09e10 N/m^1.5", "0.5"). Zero is "0 unit", infinities "inf unit", NaN "NaN unit".
 pub fn brief(value: f64, unit: &str) -> String {
+    brief_digits(value, unit, BRIEF_DIGITS)
+}
+
+/// [`brief`] with `digits` significant digits (at least 1), for a message that must tell close values apart
+/// ([`apart`]).
+pub fn brief_digits(value: f64, unit: &str, digits: usize) -> String {
+    let digits = digits.max(1);
     if !value.is_finite() || value == 0.0 {
         return with_unit(special(value), unit);
     }
-    let (_, _, exponent) = decompose(value, BRIEF_DIGITS);
-    let grams = if unit == "kg" { value.abs() * 1e3 } else { f64::NAN };
+    let text = match brief_prefix(value, unit, digits) {
+        // Rounded once, from the value's own digits (a mass below 1 kg from its grams).
+        Some((_, _, "g")) => prefixed(value * 1e3, "g", digits),
+        Some(_) => prefixed(value, unit, digits),
+        None => None,
+    };
+    trim_zeros(&text.unwrap_or_else(|| with_unit(plain_digits(value, digits), unit)))
+}
+
+/// The prefix [`brief_digits`] gives `value` in `unit`: its factor, the prefix and the unit it goes on ("g" for a
+/// mass below 1 kg); None where the value keeps the plain or exponent form.
+fn brief_prefix(value: f64, unit: &str, digits: usize) -> Option<(f64, &'static str, &'static str)> {
     // Pressures and stiffnesses are read in GPa and GN/m; other quantities beyond mega read better as powers of ten.
     let top = if matches!(unit, "Pa" | "N/m" | "N s/m") { 12 } else { 9 };
     let readable = |exponent: i32| (-12..top).contains(&exponent);
-    let text = if unit == "kg" && grams.is_finite() && decompose(grams, BRIEF_DIGITS).2 < 3 {
-        let exponent = decompose(grams, BRIEF_DIGITS).2;
-        if readable(exponent) { prefixed(value * 1e3, "g", BRIEF_DIGITS) } else { None }
-    } else if PREFIXABLE.contains(&unit) && readable(exponent) {
-        prefixed(value, unit, BRIEF_DIGITS)
+    let grams = value.abs() * 1e3;
+    let (base, exponent, scale) = if unit == "kg" {
+        let exponent = decompose(grams, digits).2;
+        if !grams.is_finite() || exponent >= 3 {
+            return None;
+        }
+        ("g", exponent, 1e-3)
     } else {
-        None
+        (*PREFIXABLE.iter().find(|&&u| u == unit)?, decompose(value, digits).2, 1.0)
     };
-    let text = text.unwrap_or_else(|| with_unit(plain_digits(value, BRIEF_DIGITS), unit));
-    trim_zeros(&text)
+    if !readable(exponent) {
+        return None;
+    }
+    let power = exponent.div_euclid(3) * 3;
+    let (_, prefix) = PREFIXES.iter().find(|(p, _)| *p == power)?;
+    Some((scale * 10f64.powi(power), prefix, base))
+}
+
+/// Two values of one quantity for a message that compares them: [`brief`] each, with more digits (up to 17) while
+/// their texts would read equal although the values differ — 1 and 1 + 1e-12 -> ("1 m", "1.000000000001 m").
+pub fn apart(a: f64, b: f64, unit: &str) -> (String, String) {
+    let mut digits = BRIEF_DIGITS;
+    loop {
+        let pair = (brief_digits(a, unit, digits), brief_digits(b, unit, digits));
+        if pair.0 != pair.1 || a == b || digits >= 17 || a.is_nan() || b.is_nan() {
+            return pair;
+        }
+        digits += 1;
+    }
+}
+
+/// A vector in a message: its components with three significant digits, in one unit with the prefix [`brief`]
+/// gives the largest of them — [0.001, 0, -0.0005] m/s -> "[1, 0, -0.5] mm/s"; a dimensionless one plain
+/// ("[0.707, 0.707, 0]").
+pub fn brief_vector(components: &[f64], unit: &str) -> String {
+    brief_vector_digits(components, unit, BRIEF_DIGITS)
+}
+
+/// Two vectors of one quantity for a message that compares them, as [`apart`] does for numbers: [`brief_vector`]
+/// each, with more digits while they would read equal although they differ.
+pub fn apart_vectors(a: &[f64], b: &[f64], unit: &str) -> (String, String) {
+    let mut digits = BRIEF_DIGITS;
+    loop {
+        let pair = (brief_vector_digits(a, unit, digits), brief_vector_digits(b, unit, digits));
+        if pair.0 != pair.1 || a == b || digits >= 17 {
+            return pair;
+        }
+        digits += 1;
+    }
+}
+
+fn brief_vector_digits(components: &[f64], unit: &str, digits: usize) -> String {
+    let largest = components.iter().fold(0.0f64, |m, x| if x.abs() > m || x.is_nan() { x.abs() } else { m });
+    let prefix = if largest.is_finite() && largest > 0.0 { brief_prefix(largest, unit, digits) } else { None };
+    let (scale, unit) = match prefix {
+        Some((scale, prefix, base)) => (scale, format!("{prefix}{base}")),
+        None => (1.0, unit.to_string()),
+    };
+    let shown: Vec<String> = components
+        .iter()
+        .map(|&x| if x.is_finite() && x != 0.0 { trim_zeros(&plain_digits(x / scale, digits)) } else { special(x) })
+        .collect();
+    with_unit(format!("[{}]", shown.join(", ")), &unit)
 }
 
 /// The number at the start of `text` without trailing zeros after its decimal point ("10.0 mm" -> "10 mm",
@@ -343,5 +437,48 @@ mod tests {
         assert_eq!(brief(0.0, "m"), "0 m");
         assert_eq!(brief(f64::INFINITY, "kg"), "inf kg");
         assert_eq!(brief(f64::NAN, "s"), "NaN s");
+    }
+
+    #[test]
+    fn close_values_in_a_message_are_told_apart() {
+        // 1 and 1 + 1e-12: equal at three digits, apart at thirteen.
+        assert_eq!(apart(1.0, 1.0 + 1e-12, "m"), ("1 m".to_string(), "1.000000000001 m".to_string()));
+        // 10 mm and 10.5 mm differ at three digits already.
+        assert_eq!(apart(0.01, 0.0105, "m"), ("10 mm".to_string(), "10.5 mm".to_string()));
+        // Equal values stay brief.
+        assert_eq!(apart(0.5, 0.5, ""), ("0.5".to_string(), "0.5".to_string()));
+        // 1.0000001 needs eight digits to differ from 1.
+        assert_eq!(short_digits(1.0000001, 8), "1.0000001");
+        assert_eq!(short_digits(1.0000001, 6), "1");
+        assert_eq!(brief_digits(0.0123456, "m", 5), "12.346 mm");
+        // Outside [0, 1] by 1e-7: eight digits; 2 is outside at once; 1e-11 is inside (short form).
+        assert_eq!(short_outside(1.0000001, |e| (0.0..=1.0).contains(&e)), "1.0000001");
+        assert_eq!(short_outside(2.0, |e| (0.0..=1.0).contains(&e)), "2");
+        assert_eq!(short_outside(1e-11, |e| (0.0..=1.0).contains(&e)), "1e-11");
+        // 0.1 reads back at once; 1 + 1e-14 needs fifteen digits; 1e300 its exponent form.
+        assert_eq!(short_exact(0.1), "0.1");
+        assert_eq!(short_exact(1.0 + 1e-14), "1.00000000000001");
+        assert_eq!(short_exact(1e300), "1e300");
+    }
+
+    #[test]
+    fn vectors_in_a_message_share_the_largest_component_s_prefix() {
+        // 1 mm/s is the largest: every component in mm/s.
+        assert_eq!(brief_vector(&[0.001, 0.0, -0.0005], "m/s"), "[1, 0, -0.5] mm/s");
+        // 1/sqrt(2) = 0.70710678...
+        assert_eq!(
+            brief_vector(&[std::f64::consts::FRAC_1_SQRT_2, std::f64::consts::FRAC_1_SQRT_2, 0.0], ""),
+            "[0.707, 0.707, 0]"
+        );
+        assert_eq!(brief_vector(&[1e200, 0.0, 0.0], "m/s"), "[1e200, 0, 0] m/s");
+        assert_eq!(brief_vector(&[0.0, 0.0, 0.0], "m/s"), "[0, 0, 0] m/s");
+        assert_eq!(brief_vector(&[f64::INFINITY, 1.0, f64::NAN], "m/s"), "[inf, 1, NaN] m/s");
+        // 2.5 rad/s takes no prefix.
+        assert_eq!(brief_vector(&[2.5, 0.0, 0.0], "rad/s"), "[2.5, 0, 0] rad/s");
+        // [1, 0, 0] and [1, 1e-9, 0]: the second component tells them apart at once.
+        assert_eq!(apart_vectors(&[1.0, 0.0, 0.0], &[1.0, 1e-9, 0.0], ""), ("[1, 0, 0]".into(), "[1, 1e-9, 0]".into()));
+        // 2 and 2 + 4e-9 m/s: ten digits.
+        let (a, b) = apart_vectors(&[2.0, 0.0, 0.0], &[2.0 + 4e-9, 0.0, 0.0], "m/s");
+        assert_eq!((a.as_str(), b.as_str()), ("[2, 0, 0] m/s", "[2.000000004, 0, 0] m/s"));
     }
 }

@@ -712,7 +712,7 @@ fn bodies_that_do_not_approach_are_rejected_naming_the_velocities() {
     );
     // No normal was given, so the default one was used: the message says so and names `contact.normal`.
     let test = "bodies_that_do_not_approach_are_rejected_naming_the_velocities";
-    assert_rejected(test, &text, "contact.normal", At::Line("[contact]"), &["0.75", "1.25", "default normal"]);
+    assert_rejected(test, &text, "contact.normal", At::Line("[contact]"), &["750 mm/s", "1.25 m/s", "default normal"]);
 }
 
 #[test]
@@ -819,13 +819,7 @@ fn a_given_normal_without_approach_is_rejected_naming_the_velocity_and_the_norma
     // The balls close along x, but the scene puts the contact normal along y: no approach along it.
     let text = balls_with(&with(HUNT_CROSSLEY, "normal = [0.0, 1.0, 0.0]"));
     let test = "a_given_normal_without_approach_is_rejected_naming_the_velocity_and_the_normal_used";
-    assert_rejected(
-        test,
-        &text,
-        "bodies.0.velocity",
-        At::Nth("velocity =", 1),
-        &["`contact.normal`", "[0.0, 1.0, 0.0]"],
-    );
+    assert_rejected(test, &text, "bodies.0.velocity", At::Nth("velocity =", 1), &["`contact.normal`", "[0, 1, 0]"]);
 }
 
 #[test]
@@ -924,6 +918,45 @@ fn a_contact_softer_than_the_bodies_are_large_is_rejected_naming_young() {
     let stiffness = "stiffness = 1e-30";
     let text = scene(LEFT_BALL, RIGHT_BALL, &format!("{HUNT_CROSSLEY}\n{stiffness}"));
     assert_rejected("a_soft_numeric_stiffness", &text, "contact.stiffness", At::Whole(stiffness), &["too soft"]);
+}
+
+/// Issue 33's example: a 30 g ball at 1 m/s on a wall with a Hertz contact of K = 0.03 N/m^1.5 would dent it by
+/// (5 m* v0² / (4 K))^(2/5) = 1.25^(2/5) = 1.0934 m, a hundred times its 10 mm radius. The message gives both as the
+/// report would, three significant digits with a prefix ("1.09 m", "10 mm"), not "1.0933620739432781e0 m" and
+/// "1e-2 m".
+#[test]
+fn a_contact_too_soft_for_its_radius_says_how_deep_as_the_report_would() {
+    let (mass, speed, stiffness, radius): (f64, f64, f64, f64) = (0.03, 1.0, 0.03, 0.01);
+    let depth = (5.0 * mass * speed * speed / (4.0 * stiffness)).powf(0.4);
+    // Three significant digits of a depth between 1 and 10 m are its two decimals; the radius is 10 mm.
+    assert!((1.0..10.0).contains(&depth), "{depth}");
+    let expected = format!("its elastic penetration would be {depth:.2} m, beyond the smaller radius 10 mm");
+    assert_eq!(expected, "its elastic penetration would be 1.09 m, beyond the smaller radius 10 mm");
+    assert!((radius * 1e3 - 10.0).abs() < 1e-12);
+    let ball = format!("radius = {radius}\nmass = {mass}\nvelocity = [{speed:?}, 0.0, 0.0]");
+    let contact = "law = \"hertz\"\nstiffness = 0.03";
+    let text = scene(&ball, "radius = inf\nmass = inf\nvelocity = [0.0, 0.0, 0.0]", contact);
+    let test = "a_contact_too_soft_for_its_radius";
+    assert_rejected(test, &text, "contact.stiffness", At::Whole("stiffness = 0.03"), &[&expected, "at 1 m/s"]);
+}
+
+/// A value a hair outside its range is echoed with the digits that show it outside: a restitution of 1.0000001 is
+/// not "1", a Poisson's ratio of 0.5000001 not "0.5", a tolerance of 0.0100000001 not "0.01" (each in [0, 1],
+/// (-1, 0.5] and [1e-14, 0.01] when rounded to six digits, as a value in short form is).
+#[test]
+fn a_value_a_hair_outside_its_range_is_echoed_with_the_digits_that_show_it() {
+    let restitution = "restitution = 1.0000001";
+    let text = scene(LEFT_BALL, RIGHT_BALL, &edit(HUNT_CROSSLEY, "restitution = 0.8", restitution));
+    let test = "a_restitution_a_hair_above_one";
+    assert_rejected(test, &text, "contact.restitution", At::Whole(restitution), &["got 1.0000001"]);
+    let poisson = "poisson = 0.5000001";
+    let text = scene(&edit(LEFT_BALL, "poisson = 0.3", poisson), RIGHT_BALL, HUNT_CROSSLEY);
+    let test = "a_poisson_ratio_a_hair_above_a_half";
+    assert_rejected(test, &text, "bodies.0.poisson", At::Whole(poisson), &["got 0.5000001"]);
+    let rtol = "rtol = 0.0100000001";
+    let text = format!("{}\n[solver]\n{rtol}\n", scene(LEFT_BALL, RIGHT_BALL, HUNT_CROSSLEY));
+    let test = "a_tolerance_a_hair_above_a_hundredth";
+    assert_rejected(test, &text, "solver.rtol", At::Whole(rtol), &["[1e-14, 0.01], got 0.0100000001"]);
 }
 
 /// A Tsuji contact ended by its force with a = 8.4e7 (zeta = a/sqrt(5) = 3.8e7, stress seed 424242's case 9628):

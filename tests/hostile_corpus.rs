@@ -248,6 +248,30 @@ fn corpus() -> Vec<Case> {
             None,
         ),
         case("zero_normal", plus("[contact.normal]\n"), None, None),
+        // Numbers the messages compute (issue 33): a dent deeper than the radius, bodies that start overlapped.
+        case(
+            "too_soft_for_the_radius",
+            swap("stiffness = 1e9", "stiffness = 0.03"),
+            Some("contact.stiffness"),
+            stiffness,
+        ),
+        case(
+            "bodies_start_overlapped",
+            {
+                let text = String::from_utf8(swap(
+                    "velocity = [1.0, 0.0, 0.0]",
+                    "velocity = [1.0, 0.0, 0.0]\nposition = [0.0, 0.0, 0.0]",
+                ))
+                .unwrap();
+                text.replace(
+                    "radius = inf\nmass = inf\nvelocity = [0.0, 0.0, 0.0]",
+                    "radius = 0.01\nmass = 0.03\nvelocity = [0.0, 0.0, 0.0]\nposition = [0.0199, 0.0, 0.0]",
+                )
+                .into_bytes()
+            },
+            Some("bodies.1.position"),
+            None,
+        ),
     ];
     // Hundreds of bodies.
     let mut many = String::from(BASE);
@@ -339,6 +363,187 @@ fn every_hostile_scene_exits_2_naming_the_problem() {
         }
     }
     assert!(failures.is_empty(), "{} hostile scenes mishandled:\n{}", failures.len(), failures.join("\n"));
+}
+
+/// The units `impact::units::brief` writes with an SI prefix, longest first (so that "m/s" is not read as "m"), with
+/// the decimal exponents of the values it gives a prefix: pico to mega (to giga for pressures and stiffnesses), and
+/// a mass from a picogram to a kilogram (it is written in grams below 1 kg).
+const PREFIXED: [(&str, std::ops::Range<i32>); 11] = [
+    ("N s/m", -12..12),
+    ("N s", -12..9),
+    ("N/m", -12..12),
+    ("m/s", -12..9),
+    ("Pa", -12..12),
+    ("kg", -15..0),
+    ("m", -12..9),
+    ("s", -12..9),
+    ("N", -12..9),
+    ("J", -12..9),
+    ("W", -12..9),
+];
+
+/// The unit that follows a number in a message (" 1e-2 m," -> "m"), if it is one that takes a prefix: the next word
+/// after one space, ending where no letter, digit or unit sign ("/", "^", "²") follows — so "m/s²", "N/m^1.5",
+/// "kg m²" and "s/m" are not read as "m/s", "N/m", "kg" or "s".
+fn prefixed_unit(after: &str) -> Option<(&'static str, std::ops::Range<i32>)> {
+    let rest = after.strip_prefix(' ')?;
+    PREFIXED.into_iter().find(|(unit, _)| {
+        rest.strip_prefix(unit).is_some_and(|tail| {
+            let next = tail.chars().next();
+            let ends = next.is_none_or(|c| !(c.is_alphanumeric() || "/^²³·".contains(c)));
+            ends && !(*unit == "kg" && tail.starts_with(" m²"))
+        })
+    })
+}
+
+/// The problems of the numbers in a message: more than six significant digits ("1.0933620739432781"), or an exponent
+/// form where the report would write a prefix ("1e-2 m" for 10 mm) or none at all ("1.09e0 m"). A number is a run of
+/// digits not glued to a word (not the 16 of "utf16", the 0 of "bodies.0.mass"), with a decimal part and an exponent
+/// if it has them; the significant digits of a whole number leave out its trailing zeros (a budget of 20000000 steps
+/// has one).
+fn number_problems(message: &str) -> Vec<String> {
+    let bytes = message.as_bytes();
+    let mut problems = Vec::new();
+    let mut i = 0;
+    while i < bytes.len() {
+        let glued = i > 0 && (bytes[i - 1].is_ascii_alphanumeric() || b"._`'".contains(&bytes[i - 1]));
+        if !bytes[i].is_ascii_digit() || glued {
+            i += 1;
+            continue;
+        }
+        let start = i;
+        while i < bytes.len() && bytes[i].is_ascii_digit() {
+            i += 1;
+        }
+        let mut digits = message[start..i].to_string();
+        let point = i + 1 < bytes.len() && bytes[i] == b'.' && bytes[i + 1].is_ascii_digit();
+        if point {
+            let from = i + 1;
+            i = from;
+            while i < bytes.len() && bytes[i].is_ascii_digit() {
+                i += 1;
+            }
+            digits.push_str(&message[from..i]);
+        }
+        let mut exponent = None;
+        let mut j = i;
+        if j < bytes.len() && bytes[j] == b'e' {
+            j += 1;
+            if j < bytes.len() && (bytes[j] == b'-' || bytes[j] == b'+') {
+                j += 1;
+            }
+            let from = j;
+            while j < bytes.len() && bytes[j].is_ascii_digit() {
+                j += 1;
+            }
+            if j > from && (j == bytes.len() || !bytes[j].is_ascii_alphabetic()) {
+                exponent = message[i + 1..j].parse::<i32>().ok();
+                i = j;
+            }
+        }
+        let token = &message[start..i];
+        let mut significant = digits.trim_start_matches('0');
+        if !point && exponent.is_none() {
+            significant = significant.trim_end_matches('0');
+        }
+        if significant.len() > 6 {
+            problems.push(format!("`{token}` has {} significant digits", significant.len()));
+        }
+        if let Some(exponent) = exponent {
+            let value: f64 = token.parse().unwrap_or(f64::NAN);
+            // The decimal exponent of the value at three significant digits, as a message rounds it.
+            let power = format!("{value:.2e}").split_once('e').and_then(|(_, p)| p.parse::<i32>().ok());
+            if exponent == 0 {
+                problems.push(format!("`{token}` has the exponent e0"));
+            } else if let (Some((unit, range)), Some(power)) = (prefixed_unit(&message[i..]), power)
+                && range.contains(&power)
+            {
+                problems.push(format!("`{token} {unit}` is in exponent form where a prefix reads better"));
+            }
+        }
+    }
+    problems
+}
+
+#[test]
+fn the_number_check_knows_a_bad_number_from_a_good_one() {
+    // The issue's example, and what it should read.
+    assert_eq!(number_problems("would be 1.0933620739432781e0 m, beyond the smaller radius 1e-2 m").len(), 3);
+    assert!(number_problems("would be 1.09 m, beyond the smaller radius 10 mm").is_empty());
+    // Dimensionless exponents, units without a prefix, a step budget, line numbers and keys pass.
+    let good = "e = 3.8e-5, atol / e = 2.6e-8 relative; budget of 20000000 steps at t = 1.23 s; K = 1.09e10 N/m^1.5; \
+                line 400017, key `bodies.0.mass`, utf16.toml; 9.2e18 m/s; 1e-100 m; 5e-20 kg; 2.5e-3 kg m²";
+    assert!(number_problems(good).is_empty(), "{:?}", number_problems(good));
+    // A time in exponent form with seven digits, a mass in kg below a kilogram, a pressure in the GPa range, seven
+    // digits, a damping in the kN s/m range.
+    for (bad, count) in [
+        ("at t = 1.234567e0 s", 2),
+        ("a body of 3e-2 kg", 1),
+        ("2.1e11 Pa", 1),
+        ("penetration 0.1234567 m", 1),
+        ("1.5e3 N s/m", 1),
+    ] {
+        assert_eq!(number_problems(bad).len(), count, "{bad}: {:?}", number_problems(bad));
+    }
+}
+
+/// Issue 33: every message prints its numbers as the report does (`impact::units::brief`), and every value a user
+/// gave in short form — no "1.0933620739432781e0 m" or "1e-2 m". Each hostile scene's message, and what the scenes
+/// of models/ print on stderr and in their reports' notes and verdicts, is scanned for numbers with more than six
+/// significant digits and for exponent forms the report would write with a prefix.
+#[test]
+fn messages_write_numbers_as_the_report_does() {
+    let scratch = Scratch::new("messages_write_numbers");
+    let folder = scratch.path().to_str().expect("a UTF-8 temp path").to_string();
+    let mut failures = Vec::new();
+    for case in corpus() {
+        let file = format!("{}.toml", case.name);
+        let path = scratch.path().join(&file);
+        fs::write(&path, &case.bytes).expect("write the scene");
+        let output = impact(scratch.path(), &["run", path.to_str().unwrap()]);
+        // (The file's path holds the test's process id: it is the program's to echo, not a number it computed.)
+        let stderr = String::from_utf8_lossy(&output.stderr).replace(&folder, "").replace(&file, "");
+        let problems = number_problems(&stderr);
+        if !problems.is_empty() {
+            failures.push(format!("{}: {} — {stderr}", case.name, problems.join(", ")));
+        }
+    }
+    let models = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("models");
+    let mut scenes: Vec<_> = fs::read_dir(&models).unwrap().map(|e| e.unwrap().path()).collect();
+    scenes.retain(|p| p.extension().is_some_and(|e| e == "toml"));
+    scenes.sort();
+    assert!(scenes.len() >= 20, "{} scenes in models/", scenes.len());
+    for scene in scenes {
+        let output = impact(scratch.path(), &["run", scene.to_str().unwrap(), "--json"]);
+        let name = scene.file_name().unwrap().to_string_lossy().to_string();
+        assert_eq!(output.status.code(), Some(0), "{name}: {}", String::from_utf8_lossy(&output.stderr));
+        let report: serde_json::Value = serde_json::from_slice(&output.stdout).expect("a JSON report");
+        let mut messages = vec![String::from_utf8_lossy(&output.stderr).to_string()];
+        collect_messages(&report, None, &mut messages);
+        assert!(messages.len() > 1 || name == "demo.toml", "{name}: no notes or verdicts found");
+        for message in messages {
+            let problems = number_problems(&message);
+            if !problems.is_empty() {
+                failures.push(format!("{name}: {} — {message}", problems.join(", ")));
+            }
+        }
+    }
+    assert!(
+        failures.is_empty(),
+        "{} messages with numbers not as the report writes them:\n{}",
+        failures.len(),
+        failures.join("\n")
+    );
+}
+
+/// The strings of a report's `notes` and of its verdicts' `meaning`, at any depth.
+fn collect_messages(value: &serde_json::Value, key: Option<&str>, out: &mut Vec<String>) {
+    match value {
+        serde_json::Value::Object(map) => map.iter().for_each(|(k, v)| collect_messages(v, Some(k), out)),
+        serde_json::Value::Array(items) => items.iter().for_each(|v| collect_messages(v, key, out)),
+        serde_json::Value::String(text) if matches!(key, Some("notes" | "meaning")) => out.push(text.clone()),
+        _ => {}
+    }
 }
 
 #[test]

@@ -3,7 +3,7 @@
 //! law's own published map would have given.
 
 use super::BadInput;
-use crate::calibrate::{Calibration, CalibrationError, Request, calibrate, readable};
+use crate::calibrate::{Calibration, CalibrationError, Request, calibrate, given_target, readable};
 use crate::law::{LawKind, Separation};
 use crate::scene::Scene;
 use crate::text::{MESSAGE_CHARS, cut};
@@ -102,7 +102,7 @@ fn located(error: CalibrationError, args: &CalibrateArgs) -> anyhow::Error {
     if error.is_bad_input() {
         let message = match (scene, &error) {
             (Some(path), _) => format!("{path}: {error}"),
-            (None, CalibrationError::Target(_)) => format!("--restitution {}: {error}", readable(args.restitution)),
+            (None, CalibrationError::Target(_)) => format!("--restitution {}: {error}", given_target(args.restitution)),
             (None, CalibrationError::ApproachSpeed(_)) => format!("--approach-speed: {error}"),
             (None, CalibrationError::NoDamping) => format!("{error} with --law"),
             (None, CalibrationError::NeedsScene(_)) => format!("{error} file (and --approach-speed to set its speed)"),

@@ -15,8 +15,11 @@ mod validate;
 
 use clap::{Parser, Subcommand};
 
-/// Simulate the collision of two bodies with a compliant contact law and measure what the instantaneous-impact
-/// idealisation hides. With no command, runs a built-in demonstration.
+/// Simulate impacts with compliant contact laws — one collision of two bodies, or a world of many bodies under
+/// gravity — and measure what the instantaneous-impact idealisation hides.
+///
+/// Every contact is followed through compression and restitution and set beside the textbook's instantaneous
+/// impact. With no command, runs a built-in demonstration (its report on the terminal, its figures in out/demo/).
 #[derive(Debug, Parser)]
 #[command(name = "impact", version, about)]
 pub struct Cli {
@@ -26,7 +29,7 @@ pub struct Cli {
 
 #[derive(Debug, Subcommand)]
 pub enum Command {
-    /// Simulate one scene file and print its report.
+    /// Simulate one scene file (one impact of two bodies, or a world of many) and print its report.
     Run(run::RunArgs),
     /// List the contact laws with their formulas, damping maps and sources.
     Models(models::ModelsArgs),

@@ -172,8 +172,9 @@ pub enum FastError {
     #[error("no maximum compression within {0} steps")]
     Compression(u64),
     #[error(
-        "the phase integrals could not be taken up to regularised time {0} (a zero of the penetration too near a \
-         Gauss panel's end, or a penetration that dips below zero inside the contact)"
+        "the phase integrals could not be taken up to regularised time {} (a zero of the penetration too near a \
+         Gauss panel's end, or a penetration that dips below zero inside the contact)",
+        crate::units::brief(*.0, "")
     )]
     Stalled(f64),
 }
@@ -192,7 +193,10 @@ pub fn simulate_normal(request: &Request) -> Result<Outcome, FastError> {
     let system = Regularised::new(&request.law, &request.scales)?;
     let tolerance = request.tolerance;
     if !(tolerance.is_finite() && tolerance > 0.0) {
-        return Err(FastError::Invalid(format!("tolerance {tolerance} must be finite and positive")));
+        return Err(FastError::Invalid(format!(
+            "tolerance {} must be finite and positive",
+            crate::units::short(tolerance)
+        )));
     }
     let eps = (tolerance * TOLERANCE_FACTOR).clamp(EPS_FLOOR, EPS_CEILING);
     let force_criterion = request.separation == Separation::Force && system.can_turn_tensile();

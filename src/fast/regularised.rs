@@ -203,28 +203,47 @@ impl Regularised {
         if !(positive(law.stiffness) && positive(n)) {
             return Err(FastError::Invalid(format!(
                 "stiffness {} and exponent {} must be finite and positive",
-                law.stiffness, n
+                crate::units::brief(law.stiffness, ""),
+                crate::units::short(n)
             )));
         }
         if !(law.damping.is_finite() && law.damping >= 0.0) {
-            return Err(FastError::Invalid(format!("damping {} must be finite and >= 0", law.damping)));
+            return Err(FastError::Invalid(format!(
+                "damping {} must be finite and >= 0",
+                crate::units::brief(law.damping, "")
+            )));
         }
         let units = [scales.length, scales.speed, scales.time, scales.force, scales.impulse, scales.energy];
         if !units.iter().all(|&u| positive(u)) {
-            return Err(FastError::Invalid(format!("the scales {scales:?} must be finite and positive")));
+            use crate::units::brief;
+            return Err(FastError::Invalid(format!(
+                "the scales must be finite and positive: length {}, speed {}, time {}, force {}, impulse {}, energy {}",
+                brief(scales.length, "m"),
+                brief(scales.speed, "m/s"),
+                brief(scales.time, "s"),
+                brief(scales.force, "N"),
+                brief(scales.impulse, "N s"),
+                brief(scales.energy, "J")
+            )));
         }
         // The scaled equations take K L^n = F0 (so that F/F0 = δ^n): the scales must be those of this law.
         let stiffness_unit = law.stiffness * scales.length.powf(n) / scales.force;
         if stiffness_unit.is_nan() || (stiffness_unit - 1.0).abs() > SCALE_MISMATCH {
             return Err(FastError::Invalid(format!(
-                "the scales are not those of this law: K L^n / F0 = {stiffness_unit} (expected 1)"
+                "the scales are not those of this law: K L^n / F0 = {} (expected 1)",
+                crate::units::apart(stiffness_unit, 1.0, "").0
             )));
         }
         let fixed_exponent = |expected: f64| {
             if n == expected {
                 Ok(())
             } else {
-                Err(FastError::Invalid(format!("the `{}` law needs exponent {expected}, not {n}", law.kind.name())))
+                Err(FastError::Invalid(format!(
+                    "the `{}` law needs exponent {}, not {}",
+                    law.kind.name(),
+                    crate::units::short(expected),
+                    crate::units::apart(n, expected, "").0
+                )))
             }
         };
         let v0 = scales.speed;

@@ -47,6 +47,6 @@ impl<const N: usize, M: Model<N>> ModelOf<Const<N>> for M {
 /// Why an integration failed.
 #[derive(Debug, thiserror::Error)]
 pub enum IntegrationError {
-    #[error("the integrator gave up at scaled time {time}: {reason}")]
+    #[error("the integrator gave up at scaled time {}: {reason}", crate::units::brief(*.time, ""))]
     Solver { time: f64, reason: String },
 }

@@ -9,6 +9,17 @@ use ode_solvers::dop853::Dop853;
 use ode_solvers::dopri5::Dopri5;
 use ode_solvers::{OutputType, System};
 
+/// Why ode_solvers stopped, in this program's words: its own text prints the scaled time with seventeen digits,
+/// which the caller gives as messages write numbers where it matters. ("stiff" in the words is what the callers
+/// read as a stiff stretch.)
+fn in_words(error: &SolverError) -> String {
+    match error {
+        SolverError::MaxNumStepReached { n_step, .. } => format!("more than {n_step} steps needed"),
+        SolverError::StepSizeUnderflow { .. } => "the step size underflowed".into(),
+        SolverError::StiffnessDetected { .. } => "stiffness detected".into(),
+    }
+}
+
 /// Error tolerances of the adaptive integrator, on the scaled state.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Tolerances {
@@ -355,7 +366,7 @@ where
                     SolverError::StiffnessDetected { .. } => {
                         Some("the problem became stiff for an explicit method".into())
                     }
-                    other => Some(other.to_string()),
+                    other => Some(in_words(&other)),
                 }
             }
         };
@@ -374,7 +385,7 @@ where
         // the run's budget (at least a thousand).
         let left = STEP_BUDGET.saturating_sub(self.counters.steps + self.counters.rejected_steps).max(1000);
         let solved = solve(self.scheme, adapter, self.tolerances, from.0, from.1.clone(), t, h, left);
-        let stats = solved.result.map_err(|error| IntegrationError::Solver { time: t, reason: error.to_string() })?;
+        let stats = solved.result.map_err(|error| IntegrationError::Solver { time: t, reason: in_words(&error) })?;
         self.add(&stats);
         Ok(solved.last.map_or_else(|| from.1.clone(), |(_, state)| state))
     }

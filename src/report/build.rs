@@ -15,6 +15,7 @@ use crate::law::Family;
 use crate::outcome::{Outcome, TIME_LIMIT, stiffness_causes};
 use crate::scene::{DampingSpec, Scene};
 use crate::setup::{Motion, Setup};
+use crate::units::{apart, brief, short};
 use nalgebra::Vector3;
 
 /// The report of one impact; with `trial` (the e of the same contact at 0.9 and 1.1 times the speed), its verdicts on
@@ -118,10 +119,13 @@ pub fn build(
         && let DampingSpec::Restitution(e) = scene.contact.damping
     {
         notes.push(format!(
-            "the dashpot c = {:.6e} N s/m was found by simulation: a root-find on the simulated e of this contact's \
-             normal motion at its approach speed {:.6e} m/s gives e = {e} there (`hertz-dashpot` with exponent {} has \
-             no closed-form map; docs/laws.md)",
-            setup.law.damping, setup.approach_speed, setup.law.exponent
+            "the dashpot c = {} was found by simulation: a root-find on the simulated e of this contact's normal \
+             motion at its approach speed {} gives e = {} there (`hertz-dashpot` with exponent {} has no closed-form \
+             map; docs/laws.md)",
+            brief(setup.law.damping, "N s/m"),
+            brief(setup.approach_speed, "m/s"),
+            short(e),
+            short(setup.law.exponent)
         ));
     }
     let oblique = if rigid { None } else { oblique(scene, setup, outcome, e_velocity, friction_work) };
@@ -129,16 +133,17 @@ pub fn build(
         let turned = |i: usize| end.orientations[i].angle().to_degrees();
         notes.push(format!(
             "rigid bodies struck off their centre or turning about a pivot: the contact spheres move with the bodies, \
-             which turned by {:.3e} and {:.3e} degrees during the contact; the exact references of a fixed normal and \
-             one effective mass do not apply (the instantaneous impact is the eccentric one)",
-            turned(0),
-            turned(1)
+             which turned by {} and {} degrees during the contact; the exact references of a fixed normal and one \
+             effective mass do not apply (the instantaneous impact is the eccentric one)",
+            brief(turned(0), ""),
+            brief(turned(1), "")
         ));
     }
     if let Some(turn) = oblique.as_ref().and_then(|o| o.normal_turn_deg).filter(|_| !fixed_normal) {
         notes.push(format!(
-            "the line of centres turned by {turn:.3e} degrees during the contact: the exact references of a fixed \
-             normal do not apply"
+            "the line of centres turned by {} degrees during the contact: the exact references of a fixed normal do \
+             not apply",
+            brief(turn, "")
         ));
     }
     // The bodies part at e v0: the separation time carries an error of about atol / e (in units of the contact's
@@ -147,26 +152,29 @@ pub fn build(
     // (No note at e = 0, whose resolution would be infinite: such bodies do not part at any speed.)
     if done && resolution > 1e-9 && resolution.is_finite() {
         notes.push(format!(
-            "the bodies part slowly (e = {e_velocity:.3e}): the contact's end, and so its duration, is resolved to \
-             about atol / e = {resolution:.1e} relative (a smaller [solver] atol sharpens it)"
+            "the bodies part slowly (e = {}): the contact's end, and so its duration, is resolved to about atol / e = \
+             {} relative (a smaller [solver] atol sharpens it)",
+            brief(e_velocity, ""),
+            brief(resolution, "")
         ));
     }
     if let Some(o) = oblique.as_ref().filter(|o| o.slid_off) {
         let share = end.normal_impulse / (setup.effective_mass * (setup.approach_speed - end.rate));
         notes.push(format!(
-            "the bodies slid off each other: the contact force made a fraction {:.3e} of the reversal of the normal \
-             velocity (its impulse {:.3e} N s against m* (v0 + separation speed)); the line of centres, turning by \
-             {:.3e} degrees as they slid past, did the rest — the instantaneous impacts, whose impulse alone \
-             reverses the normal velocity, do not describe such a graze",
-            share,
-            end.normal_impulse,
-            o.normal_turn_deg.unwrap_or(0.0)
+            "the bodies slid off each other: the contact force made a fraction {} of the reversal of the normal \
+             velocity (its impulse {} against m* (v0 + separation speed)); the line of centres, turning by {} degrees \
+             as they slid past, did the rest — the instantaneous impacts, whose impulse alone reverses the normal \
+             velocity, do not describe such a graze",
+            brief(share, ""),
+            brief(end.normal_impulse, "N s"),
+            brief(o.normal_turn_deg.unwrap_or(0.0), "")
         ));
     }
     if outcome.switches > 0 {
         notes.push(format!(
-            "the tangential force switched between the Coulomb limit and below it {} times",
-            outcome.switches
+            "the tangential force switched between the Coulomb limit and below it {} time{}",
+            outcome.switches,
+            if outcome.switches == 1 { "" } else { "s" }
         ));
     }
     let reference = if fixed_normal { accuracy::reference(scene, setup, measured, detail, &mut notes) } else { None };
@@ -311,14 +319,18 @@ fn fixed_step_note(report: &Report, method: &str, dt: f64) -> String {
     let (c, e) = (&report.contact, &report.energy);
     let steps = report.solver.steps;
     let mut note = format!(
-        "fixed-step scheme `{method}` at dt = {dt:.6e} s ({steps} steps): every quantity above is the scheme's, its \
-         events taken at the first step past them as the peer codes take them, its impulses the scheme's sums of \
-         its force kicks, and the reference errors are the scheme's errors"
+        "fixed-step scheme `{method}` at dt = {} ({steps} steps): every quantity above is the scheme's, its events \
+         taken at the first step past them as the peer codes take them, its impulses the scheme's sums of its force \
+         kicks, and the reference errors are the scheme's errors",
+        brief(dt, "s")
     );
     if let (Some(e_scheme), Some(e_accurate)) = (c.restitution_velocity_ratio, report.solver.restitution_continuous) {
+        let difference = e_scheme - e_accurate;
+        let (scheme, accurate) = apart(e_scheme, e_accurate, "");
+        let sign = if difference > 0.0 { "+" } else { "" };
         note.push_str(&format!(
-            "; e = {e_scheme:.6} against {e_accurate:.6} by the accurate path (difference {:+.3e})",
-            e_scheme - e_accurate
+            "; e = {scheme} against {accurate} by the accurate path (difference {sign}{})",
+            brief(difference, "")
         ));
     }
     if let (Some(after), Some(dissipated), Some(left), Some(work)) =
@@ -328,8 +340,9 @@ fn fixed_step_note(report: &Report, method: &str, dt: f64) -> String {
         let scale = report.effective_mass * report.approach_speed * report.approach_speed;
         note.push_str(&format!(
             "; its energy balance does not close exactly (the discrete elastic force does not return the law's \
-             elastic energy, and the damping's work is the scheme's sum): a gap of {gap:.3e} J, {:.3e} of m* v0²",
-            gap / scale
+             elastic energy, and the damping's work is the scheme's sum): a gap of {}, {} of m* v0²",
+            brief(gap, "J"),
+            brief(gap / scale, "")
         ));
     }
     note
@@ -506,9 +519,11 @@ fn stuck_note(outcome: &Outcome, frictional: bool) -> String {
         Ending::GaveUp(reason) => format!("the integration stopped ({reason}; {})", stiffness_causes(frictional)),
     };
     format!(
-        "the bodies did not separate: {how} {:.6e} s after first contact with penetration {:.6e} m and \
-         penetration rate {:.6e} m/s still in contact",
-        end.time, end.penetration, end.rate
+        "the bodies did not separate: {how} {} after first contact with penetration {} and penetration rate {} \
+         still in contact",
+        brief(end.time, "s"),
+        brief(end.penetration, "m"),
+        brief(end.rate, "m/s")
     )
 }
 

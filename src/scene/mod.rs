@@ -91,8 +91,35 @@ impl StiffnessSpec {
             toml::Value::String(s) if s == "hertz" => Ok(StiffnessSpec::Hertz),
             toml::Value::Float(k) => Ok(StiffnessSpec::Value(*k)),
             toml::Value::Integer(k) => Ok(StiffnessSpec::Value(*k as f64)),
-            other => Err(other.to_string()),
+            other => Err(echoed(other)),
         }
+    }
+}
+
+/// A TOML value as a message echoes it: as written, but each number in short form (TOML writes 1e9 back as
+/// "1000000000.0"; this as "1e9"): `{ value = 1e9 }`, `[1.5, "x"]`.
+/// Nesting deeper than a few levels, and more than a few entries, are elided ("[[[...]]]", "[1, 2, 3, ...]"): the
+/// message cuts it anyway.
+pub fn echoed(value: &toml::Value) -> String {
+    echoed_within(value, 4)
+}
+
+fn echoed_within(value: &toml::Value, depth: usize) -> String {
+    const ENTRIES: usize = 12;
+    let more = |count: usize| if count > ENTRIES { ", ..." } else { "" };
+    match value {
+        toml::Value::Float(x) => crate::units::short_exact(*x),
+        toml::Value::Array(_) | toml::Value::Table(_) if depth == 0 => "...".into(),
+        toml::Value::Array(items) => {
+            let shown: Vec<String> = items.iter().take(ENTRIES).map(|v| echoed_within(v, depth - 1)).collect();
+            format!("[{}{}]", shown.join(", "), more(items.len()))
+        }
+        toml::Value::Table(table) => {
+            let shown: Vec<String> =
+                table.iter().take(ENTRIES).map(|(k, v)| format!("{k} = {}", echoed_within(v, depth - 1))).collect();
+            format!("{{ {}{} }}", shown.join(", "), more(table.len()))
+        }
+        other => other.to_string(),
     }
 }
 

@@ -8,6 +8,7 @@ use super::{DampingSpec, Scene, SetupError, StiffnessSpec, TangentialStiffnessSp
 use crate::body::Body;
 use crate::law::damping::{MapError, check_restitution};
 use crate::law::{Family, MAX_EXPONENT, MIN_EXPONENT};
+use crate::units::{apart, brief, short, short_outside};
 use nalgebra::{Matrix3, Vector3};
 
 type Checked = Result<(), SetupError>;
@@ -41,17 +42,16 @@ pub(super) enum Allowed {
     Any,
 }
 
-/// A number as a message shows it: plain for ordinary sizes, in exponent form for huge or tiny ones (never three
-/// hundred digits).
-pub(super) fn shown(x: f64) -> String {
-    let size = x.abs();
-    if x.is_infinite() {
-        if x > 0.0 { "inf".into() } else { "-inf".into() }
-    } else if x == 0.0 || (1e-4..1e6).contains(&size) || x.is_nan() {
-        format!("{x}")
-    } else {
-        format!("{x:e}")
-    }
+/// A value a user gave, as a message echoes it: in short form ("0.8", "1.5e-7", "inf"; six significant digits at
+/// most, never three hundred), with more digits where six would read as a value that keeps the rule it breaks
+/// (a restitution of 1.0000001 is "1.0000001", not "1").
+fn shown_breaking(x: f64, keeps_rule: impl Fn(f64) -> bool) -> String {
+    short_outside(x, keeps_rule)
+}
+
+/// A value a user gave, in short form ([`shown_breaking`] for a value whose rule is a range).
+fn shown(x: f64) -> String {
+    short(x)
 }
 
 /// Checks that `x` is what `range` allows; the message says what was expected and what was given.
@@ -62,14 +62,14 @@ pub(super) fn number(key: impl std::fmt::Display, x: f64, range: Allowed) -> Che
     if x == f64::NEG_INFINITY {
         return fail(key, "-inf is not a valid value");
     }
-    let ok = match range {
+    let allowed = |x: f64| match range {
         Allowed::Positive => x.is_finite() && x > 0.0,
         Allowed::PositiveOrInfinite => x > 0.0,
         Allowed::NonNegative => x.is_finite() && x >= 0.0,
         Allowed::Fraction => (0.0..=1.0).contains(&x),
         Allowed::Any => x.is_finite(),
     };
-    if ok {
+    if allowed(x) {
         return Ok(());
     }
     let expected = match range {
@@ -79,7 +79,7 @@ pub(super) fn number(key: impl std::fmt::Display, x: f64, range: Allowed) -> Che
         Allowed::Fraction => "a number in [0, 1]",
         Allowed::Any => "a finite number",
     };
-    fail(key, format!("expected {expected}, got {}", shown(x)))
+    fail(key, format!("expected {expected}, got {}", shown_breaking(x, allowed)))
 }
 
 /// Every component finite.
@@ -101,13 +101,10 @@ fn inertia_tensor(key: impl std::fmt::Display + Copy, tensor: &Matrix3<f64>) -> 
     let size = tensor.abs().max();
     for (i, j) in [(0, 1), (0, 2), (1, 2)] {
         if (tensor[(i, j)] - tensor[(j, i)]).abs() > 1e-12 * size {
+            let (upper, lower) = apart(tensor[(i, j)], tensor[(j, i)], "kg m²");
             return fail(
                 key,
-                format!(
-                    "an inertia tensor is symmetric: entry [{i}][{j}] = {} but [{j}][{i}] = {}",
-                    shown(tensor[(i, j)]),
-                    shown(tensor[(j, i)])
-                ),
+                format!("an inertia tensor is symmetric: entry [{i}][{j}] = {upper} but [{j}][{i}] = {lower}"),
             );
         }
     }
@@ -118,21 +115,20 @@ fn inertia_tensor(key: impl std::fmt::Display + Copy, tensor: &Matrix3<f64>) -> 
             key,
             format!(
                 "an inertia tensor is positive definite: its principal moments are {}, {}, {} kg m² (each must be > 0)",
-                shown(moments[0]),
-                shown(moments[1]),
-                shown(moments[2])
+                brief(moments[0], ""),
+                brief(moments[1], ""),
+                brief(moments[2], "")
             ),
         );
     }
     let sum = moments.sum();
     if let Some(m) = moments.iter().find(|&&m| m > (sum - m) * (1.0 + 1e-12)) {
+        let (moment, others) = apart(*m, sum - m, "kg m²");
         return fail(
             key,
             format!(
-                "no mass distribution has the principal moment {} kg m² larger than the other two together ({}): \
-                 each principal moment is at most the sum of the other two",
-                shown(*m),
-                shown(sum - m)
+                "no mass distribution has the principal moment {moment} larger than the other two together \
+                 ({others}): each principal moment is at most the sum of the other two"
             ),
         );
     }
@@ -192,7 +188,12 @@ fn check_simulator_keys(contact: &super::ContactSpec) -> Checked {
                     format!(
                         "{what} (entry {}) must be {range} (MuJoCo's range), got {}",
                         ranges.iter().position(|r| r.0 == *what).unwrap_or(0),
-                        shown(*value)
+                        shown_breaking(*value, |x| match *what {
+                            "dmin" | "dmax" => (1e-4..=0.9999).contains(&x),
+                            "width" => x > 0.0 && x.is_finite(),
+                            "midpoint" => x > 0.0 && x < 1.0,
+                            _ => (1.0..1e6).contains(&x),
+                        })
                     ),
                 );
             }
@@ -227,8 +228,9 @@ pub fn check(scene: &Scene) -> Checked {
 fn check_solver(solver: &super::SolverSpec) -> Checked {
     for (key, x) in [("solver.rtol", solver.tolerances.rtol), ("solver.atol", solver.tolerances.atol)] {
         number(key, x, Allowed::Positive)?;
-        if !(1e-14..=1e-2).contains(&x) {
-            return fail(key, format!("expected a tolerance in [1e-14, 1e-2], got {x:e}"));
+        let tolerance = |x: f64| (1e-14..=1e-2).contains(&x);
+        if !tolerance(x) {
+            return fail(key, format!("expected a tolerance in [1e-14, 0.01], got {}", shown_breaking(x, tolerance)));
         }
     }
     let method = solver.method.name();
@@ -375,8 +377,9 @@ fn check_pair_at_start(scene: &super::WorldScene, i: usize, j: usize) -> Checked
         return fail(
             BodyKey(j, "position"),
             format!(
-                "bodies {i} and {j} start overlapped by {overlap:e} m (more than {:e} of the smaller radius)",
-                crate::geometry::TOUCH_TOLERANCE
+                "bodies {i} and {j} start overlapped by {} (more than {} of the smaller radius)",
+                brief(overlap, "m"),
+                brief(crate::geometry::TOUCH_TOLERANCE, "")
             ),
         );
     }
@@ -399,9 +402,9 @@ fn check_body(i: usize, body: &Body) -> Checked {
                 return fail(
                     key("density"),
                     format!(
-                        "the mass (4/3) pi r^3 density = {:e} kg of this radius and density is outside double \
-                         precision: give `mass` or check the radius",
-                        body.mass
+                        "the mass (4/3) pi r^3 density = {} of this radius and density is outside double precision: \
+                         give `mass` or check the radius",
+                        brief(body.mass, "kg")
                     ),
                 );
             }
@@ -463,8 +466,12 @@ fn check_body(i: usize, body: &Body) -> Checked {
     }
     if let Some(nu) = body.poisson {
         number(key("poisson"), nu, Allowed::Any)?;
-        if !(nu > -1.0 && nu <= 0.5) {
-            return fail(key("poisson"), format!("expected a number in (-1, 0.5], got {}", shown(nu)));
+        let poisson = |nu: f64| nu > -1.0 && nu <= 0.5;
+        if !poisson(nu) {
+            return fail(
+                key("poisson"),
+                format!("expected a number in (-1, 0.5], got {}", shown_breaking(nu, poisson)),
+            );
         }
     }
     Ok(())
@@ -477,9 +484,8 @@ fn exponent_in_range(n: f64) -> Checked {
     if range.contains(&n) {
         return Ok(());
     }
-    // Three digits would show 3.0001 as "3": a number just outside the range keeps the digits that put it there.
-    let brief = crate::units::brief(n, "");
-    let got = if brief.parse::<f64>().is_ok_and(|shown| range.contains(&shown)) { format!("{n}") } else { brief };
+    // (3.0001 in six digits would read "3": a number just outside the range keeps the digits that put it there.)
+    let got = short_outside(n, |shown| range.contains(&shown));
     fail(
         "contact.exponent",
         format!(
@@ -552,7 +558,10 @@ fn check_contact(contact: &super::ContactSpec) -> Checked {
             Ok(()) => {}
             Err(MapError::NoMap) => fail(
                 "contact.restitution",
-                format!("`{name}` is elastic: restitution must be 1 (or left out), got {e}"),
+                format!(
+                    "`{name}` is elastic: restitution must be 1 (or left out), got {}",
+                    shown_breaking(e, |e| e == 1.0)
+                ),
             )?,
             Err(MapError::UndefinedAtZero) => {
                 fail("contact.restitution", format!("the map of `{name}` ({}) is undefined at e = 0", law.info().map))?

@@ -190,7 +190,7 @@ fn inertia(src: &Source, key: &str, value: &At<toml::Value>) -> Checked<(Option<
             let mut tensor = Matrix3::zeros();
             for (i, row) in rows.iter().enumerate() {
                 let Some(row) = row.as_array().filter(|r| r.len() == 3 && r.iter().all(|v| scalar(v).is_some())) else {
-                    return Err(wrong(&value.get_ref().to_string()));
+                    return Err(wrong(&super::echoed(value.get_ref())));
                 };
                 for (j, v) in row.iter().enumerate() {
                     tensor[(i, j)] = scalar(v).unwrap_or(f64::NAN);
@@ -200,7 +200,7 @@ fn inertia(src: &Source, key: &str, value: &At<toml::Value>) -> Checked<(Option<
         }
         other => match scalar(other) {
             Some(number) => Ok((Some(number), None)),
-            None => Err(wrong(&other.to_string())),
+            None => Err(wrong(&super::echoed(other))),
         },
     }
 }
@@ -447,7 +447,7 @@ fn pair(src: &Source, k: usize, raw: &At<RawPair>, contact: &RawContact, count: 
             Some(&bodies.span()),
             format!(
                 "expected two 0-based body indices [i, j], got {}",
-                cut(&toml::Value::Array(bodies.get_ref().clone()).to_string())
+                cut(&super::echoed(&toml::Value::Array(bodies.get_ref().clone())))
             ),
         ));
     };
@@ -529,7 +529,7 @@ fn world(src: &Source, raw: &At<RawWorld>) -> Checked<WorldSpec> {
                         Some(&value.span()),
                         format!(
                             "expected a whole number from 1 to {MAX_CONTACTS_LIMIT}, got {}",
-                            cut(&value.get_ref().to_string())
+                            cut(&super::echoed(value.get_ref()))
                         ),
                     ));
                 }
@@ -702,7 +702,7 @@ fn contact_spec(
                 return Err(src.error(
                     &key("tangential_stiffness"),
                     Some(&value.span()),
-                    format!("expected \"mindlin\" or a number in N/m, got {}", cut(&other.to_string())),
+                    format!("expected \"mindlin\" or a number in N/m, got {}", cut(&super::echoed(other))),
                 ));
             }
         },

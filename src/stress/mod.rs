@@ -530,9 +530,10 @@ pub fn check_text(text: &str) -> Checked {
             && !class.contains("budget")
             && !class.contains("stiff")
         {
-            checks
-                .problems
-                .push(format!("did not separate although the exact contact ends after {duration:e} scaled time units"));
+            checks.problems.push(format!(
+                "did not separate although the exact contact ends after {} scaled time units",
+                crate::units::brief(duration, "")
+            ));
         }
         return (class, checks.errors, checks.problems);
     }
@@ -581,7 +582,8 @@ impl Checks {
     fn record(&mut self, quantity: &'static str, error: f64) {
         let limit = tolerance(quantity);
         if error.is_nan() || error > limit {
-            self.problems.push(format!("{quantity}: error {error:e} > {limit:e}"));
+            let (error, limit) = crate::units::apart(error, limit, "");
+            self.problems.push(format!("{quantity}: error {error} > {limit}"));
         }
         self.errors.push((quantity, error));
     }

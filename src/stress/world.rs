@@ -224,7 +224,8 @@ pub fn check(scene: &WorldScene, report: &WorldReport) -> (Vec<(&'static str, f6
         errors.push((quantity, error));
         let limit = super::tolerance(quantity);
         if error.is_nan() || error > limit {
-            problems.push(format!("{quantity}: {error:e} exceeds {limit:e}"));
+            let (error, limit) = crate::units::apart(error, limit, "");
+            problems.push(format!("{quantity}: {error} exceeds {limit}"));
         }
     };
     record("world.energy_balance", report.energy.balance.abs());

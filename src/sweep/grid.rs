@@ -104,18 +104,20 @@ impl Axis {
             let x = self.value(i);
             if !x.is_finite() {
                 return Err(usage(format!(
-                    "--vary {}: value {} of the range is {x}: keep START and STOP within double precision",
+                    "--vary {}: value {} of the range is {}: keep START and STOP within double precision",
                     self.spec,
-                    i + 1
+                    i + 1,
+                    crate::units::short(x)
                 )));
             }
             if previous == Some(x) {
                 return Err(usage(format!(
-                    "--vary {}: values {} and {} of the range are both {x} at 15 significant digits: widen the \
+                    "--vary {}: values {} and {} of the range are both {} at 15 significant digits: widen the \
                      range or give fewer values",
                     self.spec,
                     i,
-                    i + 1
+                    i + 1,
+                    crate::units::short_exact(x)
                 )));
             }
             previous = Some(x);
@@ -163,7 +165,7 @@ fn parse_list(spec: &str, list: &str) -> Result<Vec<f64>, SweepError> {
     let mut sorted = values.clone();
     sorted.sort_by(f64::total_cmp);
     if let Some(pair) = sorted.windows(2).find(|pair| pair[0] == pair[1]) {
-        return Err(usage(format!("--vary {spec}: the value {} is listed twice", pair[0])));
+        return Err(usage(format!("--vary {spec}: the value {} is listed twice", crate::units::short_exact(pair[0]))));
     }
     Ok(values)
 }
@@ -210,7 +212,8 @@ fn parse_range(spec: &str, range: &str, default: Spacing) -> Result<Values, Swee
     }
     if count > 1 && start == stop {
         return Err(usage(format!(
-            "--vary {spec}: START and STOP are equal, so the {count} values would all be {start}"
+            "--vary {spec}: START and STOP are equal, so the {count} values would all be {}",
+            crate::units::short_exact(start)
         )));
     }
     if spacing == Spacing::Geometric && (start == 0.0 || stop == 0.0 || (start < 0.0) != (stop < 0.0)) {

@@ -364,7 +364,10 @@ impl SceneKey {
 /// (the coordinate axis most perpendicular to the normal when it has none).
 fn turned(normal: [f64; 3], velocity: [f64; 3], body: usize, degrees: f64) -> Result<[f64; 3], String> {
     if !(0.0..90.0).contains(&degrees) {
-        return Err(format!("an angle of incidence in [0, 90) degrees, got {degrees}"));
+        return Err(format!(
+            "an angle of incidence in [0, 90) degrees, got {}",
+            crate::units::short_outside(degrees, |d| (0.0..90.0).contains(&d))
+        ));
     }
     let length = norm(normal);
     if !(length > 0.0 && length.is_finite()) {

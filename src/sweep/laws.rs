@@ -34,7 +34,7 @@ fn fixed_exponent(law: LawKind) -> Option<f64> {
 
 /// The units of K in K d^n.
 fn units(exponent: f64) -> String {
-    if exponent == 1.0 { "N/m".into() } else { format!("N/m^{exponent}") }
+    if exponent == 1.0 { "N/m".into() } else { format!("N/m^{}", crate::units::short(exponent)) }
 }
 
 fn as_number(value: &Value) -> Option<f64> {
@@ -64,10 +64,13 @@ pub fn apply(scene: &mut Table, law: LawKind, varied: &[SceneKey]) -> Result<(),
                 && !varies("stiffness")
             {
                 return Err(format!(
-                    "the scene's stiffness {k} is in {} (exponent {exponent}); `{}` fixes the exponent at {fixed}: \
-                     vary contact.stiffness or write a scene for this law",
+                    "the scene's stiffness {} is in {} (exponent {}); `{}` fixes the exponent at {}: vary \
+                     contact.stiffness or write a scene for this law",
+                    crate::units::short(k),
                     units(exponent),
-                    law.name()
+                    crate::units::short(exponent),
+                    law.name(),
+                    crate::units::short(fixed)
                 ));
             }
         }

@@ -61,7 +61,10 @@ pub fn plan(context: &Context) -> Result<Plan, TranslateError> {
         family if context.target.is_some() && family != Family::Plastic && family != Family::Impedance => {
             let ramp = RAMP_FRACTION * length;
             notes.push(super::substituted(context, Peer::Adams, "IMPACT's c_max"));
-            notes.push(format!("IMPACT's d is taken as {} m, a hundredth of the penetration scale.", number(ramp)));
+            notes.push(format!(
+                "IMPACT's d is taken as {}, a hundredth of the penetration scale.",
+                crate::units::brief(ramp, "m")
+            ));
             (ramp, Knob::Damping { scale: critical })
         }
         _ => {
@@ -74,11 +77,11 @@ pub fn plan(context: &Context) -> Result<Plan, TranslateError> {
         }
     };
     notes.push(format!(
-        "IMPACT's damping vanishes at first touch and rises as a cubic STEP to c_max at d = {} m: a d comparable \
-         with the deepest penetration ({} m is its scale here) changes e; ADAMS' integrator must resolve d \
-         (HMAX well below the contact time).",
-        number(ramp),
-        number(length)
+        "IMPACT's damping vanishes at first touch and rises as a cubic STEP to c_max at d = {}: a d comparable with \
+         the deepest penetration ({} is its scale here) changes e; ADAMS' integrator must resolve d (HMAX well below \
+         the contact time).",
+        crate::units::brief(ramp, "m"),
+        crate::units::brief(length, "m")
     ));
     let mapping = Impact { stiffness: law.stiffness, exponent: law.exponent, ramp, context: context.clone() };
     Ok(Plan { law: "IMPACT function".into(), mapping: Box::new(mapping), knob, notes, scheme: Peer::Adams.scheme() })

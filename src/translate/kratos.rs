@@ -135,8 +135,10 @@ pub fn plan(context: &Context) -> Result<Plan, TranslateError> {
         if let Some(e) = super::restitution(context, &typed, None)? {
             notes.push(format!(
                 "Kratos maps COEFFICIENT_OF_RESTITUTION to its damping by a fit (Thornton et al. 2013) that misses \
-                 its own contact near e = 1 (a nominal 0.98 gives 0.9724): typing the scene's restitution = {nominal} \
-                 would give {e:.6}; the value above is tuned to give {}.",
+                 its own contact near e = 1 (a nominal 0.98 gives 0.9724): typing the scene's restitution = {} would \
+                 give {}; the value above is tuned to give {}.",
+                crate::units::short(nominal),
+                short(e),
                 short(target)
             ));
         }

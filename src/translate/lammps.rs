@@ -231,7 +231,7 @@ pub fn granular(context: &Context) -> Result<(Granular, Knob, Vec<String>), Tran
                         format!(
                             "a = {} is at or beyond sqrt 5, where Tsuji's contact no longer rebounds at d = 0: \
                              LAMMPS' coeff_restitution has no e for it",
-                            law.damping
+                            crate::units::short_outside(law.damping, |a| a < 5f64.sqrt())
                         ),
                     )
                 })?),
@@ -244,10 +244,10 @@ pub fn granular(context: &Context) -> Result<(Granular, Knob, Vec<String>), Tran
             let eta = 3.0 * k * law.damping / (2.0 * context.mass);
             notes.push(format!(
                 "damping viscoelastic is this program's brilliantov law with A = 2 m* eta_n0 / (3 k_n) (that is \
-                 eta_n0 m* / (2 E*)): eta_n0 = {} 1/(s m) holds for this pair's m* = {} kg; another pair of a \
-                 LAMMPS run, with another m*, has another A.",
-                number(eta),
-                number(context.mass)
+                 eta_n0 m* / (2 E*)): eta_n0 = {} 1/(s m) holds for this pair's m* = {}; another pair of a LAMMPS \
+                 run, with another m*, has another A.",
+                short(eta),
+                crate::units::brief(context.mass, "kg")
             ));
             let knob = match context.target {
                 Some(_) => Knob::Damping { scale: 3.0 * k * critical / (context.mass * context.speed) },
@@ -286,8 +286,9 @@ pub fn granular(context: &Context) -> Result<(Granular, Knob, Vec<String>), Tran
             notes.push(format!(
                 "Use damping coeff_restitution, not damping tsuji: LAMMPS releases before 2 Sep 2026 (22 Jul 2025 \
                  among them) evaluate Tsuji's polynomial without its factor sqrt 2, so a nominal e = {} under \
-                 damping tsuji gives e = {old:.4}.",
-                short(nominal)
+                 damping tsuji gives e = {}.",
+                short(nominal),
+                crate::units::brief_digits(old, "", 4)
             ));
         }
     }

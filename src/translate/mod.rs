@@ -430,7 +430,9 @@ fn tune(
             let top = at(1.0)?;
             if top < target {
                 return Err(TranslateError::Unreachable(format!(
-                    "no nominal e reaches e = {target}: a nominal 1 gives {top:.6}"
+                    "no nominal e reaches e = {}: a nominal 1 gives {}",
+                    short(target),
+                    short(top)
                 )));
             }
             (f64::MIN_POSITIVE, 1.0, true)
@@ -443,14 +445,18 @@ fn tune(
                 grown += 1;
                 if grown > MAX_GROWTH {
                     return Err(TranslateError::Unreachable(format!(
-                        "no damping brings e down to {target}: e stays above it up to a damping of {high:e}"
+                        "no damping brings e down to {}: e stays above it up to a damping of {}",
+                        short(target),
+                        crate::units::brief(high, "")
                     )));
                 }
             }
             let undamped = at(0.0)?;
             if undamped < target {
                 return Err(TranslateError::Unreachable(format!(
-                    "no damping reaches e = {target}: without damping the peer already gives {undamped:.6}"
+                    "no damping reaches e = {}: without damping the peer already gives {}",
+                    short(target),
+                    short(undamped)
                 )));
             }
             (0.0, high, false)
@@ -485,7 +491,7 @@ pub fn translate(scene: &Scene, peer: Peer, dt: Option<f64>) -> Result<Translati
     {
         return Err(TranslateError::bad(
             "--dt",
-            format!("the time step must be a positive number of seconds, got {dt}"),
+            format!("the time step must be a positive number of seconds, got {}", crate::units::short(dt)),
         ));
     }
     let context = Context::new(scene, dt)?;
@@ -504,9 +510,11 @@ pub fn translate(scene: &Scene, peer: Peer, dt: Option<f64>) -> Result<Translati
         notes.insert(
             0,
             format!(
-                "The scene's restitution = {nominal} is `{}`'s nominal e: its map gives a contact whose e is \
-                 {target:.6}, and that is the e the translation reproduces.",
-                context.law.kind.name()
+                "The scene's restitution = {} is `{}`'s nominal e: its map gives a contact whose e is {}, and that is \
+                 the e the translation reproduces.",
+                crate::units::short(nominal),
+                context.law.kind.name(),
+                short(target)
             ),
         );
     }
@@ -528,19 +536,23 @@ pub fn translate(scene: &Scene, peer: Peer, dt: Option<f64>) -> Result<Translati
             return Err(TranslateError::bad(
                 "--dt",
                 format!(
-                    "dt = {dt:e} s takes more than {MAX_STEPS_PER_CONTACT:e} steps over the contact's {duration:.4e} s: \
-                     at such a step the scheme's e is the continuous one to about dt / t_c; translate without --dt"
+                    "dt = {} takes more than {} steps over the contact's {}: at such a step the scheme's e is the \
+                     continuous one to about dt / t_c; translate without --dt",
+                    crate::units::brief(dt, "s"),
+                    crate::units::brief(MAX_STEPS_PER_CONTACT, ""),
+                    crate::units::brief(duration, "s")
                 ),
             ));
         }
         if let Some(duration) = duration
             && dt > duration
         {
+            let (step, duration) = crate::units::apart(dt, duration, "s");
             return Err(TranslateError::bad(
                 "--dt",
                 format!(
-                    "dt = {dt:e} s is larger than the contact's duration {duration:.4e} s: {} would step over the \
-                     contact (DEM codes take a fiftieth of it or less)",
+                    "dt = {step} is larger than the contact's duration {duration}: {} would step over the contact (DEM \
+                     codes take a fiftieth of it or less)",
                     peer.title()
                 ),
             ));
@@ -564,12 +576,15 @@ pub fn translate(scene: &Scene, peer: Peer, dt: Option<f64>) -> Result<Translati
         let fixed = fixed_contact(&context.peer_scene(contact.clone()), contact.separation)?;
         if let Some((low, high)) = fixed.restitution_spread(scheme, dt, PHASES) {
             notes.push(format!(
-                "At dt = {dt:e} s the e of {} ({}) is {e:.6} with the first touch on a step boundary; over where \
-                 the touch falls within a step it runs from {low:.6} to {high:.6} ({PHASES} phases), against \
-                 {} in the continuous limit.",
+                "At dt = {} the e of {} ({}) is {} with the first touch on a step boundary; over where the touch falls \
+                 within a step it runs from {} to {} ({PHASES} phases), against {} in the continuous limit.",
+                crate::units::brief(dt, "s"),
                 peer.title(),
                 scheme.name(),
-                continuous.map_or("no separation".into(), |c| format!("{c:.6}")),
+                short(e),
+                short(low),
+                short(high),
+                continuous.map_or("no separation".into(), short),
             ));
         }
     }
@@ -586,8 +601,10 @@ pub fn translate(scene: &Scene, peer: Peer, dt: Option<f64>) -> Result<Translati
             && (reached - target).abs() > 1e-6
         {
             notes.push(format!(
-                "The target e = {target} is met only to {reached:.6}: the peer's e does not vary continuously with \
-                 its parameter at this step (a coarse step moves e in jumps)."
+                "The target e = {} is met only to {}: the peer's e does not vary continuously with its parameter at \
+                 this step (a coarse step moves e in jumps).",
+                short(target),
+                short(reached)
             ));
         }
     }
@@ -624,7 +641,8 @@ pub fn comment(text: &str) -> String {
     line.replace("--", "- -")
 }
 
-/// A number for a note: six significant digits.
+/// A number for a note that a user may type or compare (a peer's parameter, an e at a step): six significant digits,
+/// without trailing zeros ("0.824106", "0.5", "1.5e-7"; crate::units::short).
 pub fn short(value: f64) -> String {
-    crate::calibrate::readable(format!("{value:.5e}").parse().unwrap_or(value))
+    crate::units::short(value)
 }

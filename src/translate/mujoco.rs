@@ -104,23 +104,22 @@ pub fn plan(context: &Context) -> Result<Plan, TranslateError> {
             let (k, b) = (law.stiffness / mass * high * high, law.damping / mass * high);
             notes.push(format!(
                 "MuJoCo reads solref per unit mass of the contact (m* = {} kg here): at full impedance d_max = {} \
-                 this is a spring k = {} N/m and a dashpot c = {} N s/m, damping ratio b / (2 sqrt k) = {:.4}. \
+                 this is a spring k = {} N/m and a dashpot c = {} N s/m, damping ratio b / (2 sqrt k) = {}. \
                  Typing a physical k and c into solref's direct form instead changes that ratio by sqrt(m*).",
                 short(mass),
                 short(high),
                 short(k * mass),
                 short(b * mass),
-                b / (2.0 * k.sqrt())
+                crate::units::brief(b / (2.0 * k.sqrt()), "")
             ));
             if let Some(dt) = context.dt
                 && solref[0] > 0.0
                 && solref[0] < 2.0 * dt
             {
+                let (timeconst, twice) = crate::units::apart(solref[0], 2.0 * dt, "s");
                 notes.push(format!(
-                    "timeconst = {} s is below 2 dt = {} s: MuJoCo raises it to 2 dt (its `refsafe`), so at this \
-                     step the contact is softer than the scene's.",
-                    number(solref[0]),
-                    number(2.0 * dt)
+                    "timeconst = {timeconst} is below 2 dt = {twice}: MuJoCo raises it to 2 dt (its `refsafe`), so at \
+                     this step the contact is softer than the scene's."
                 ));
             }
             (Form::Given { solref, solimp }, Knob::Fixed(0.0))
@@ -133,15 +132,16 @@ pub fn plan(context: &Context) -> Result<Plan, TranslateError> {
                 "solref's direct form is per unit mass: [-k/m*, -c/m*] with m* = {} kg. Typed with the physical k \
                  and c (solref = \"{} {}\"), MuJoCo would give e = {}.",
                 short(mass),
-                number(-law.stiffness),
-                number(-law.damping),
-                wrong.map_or("no rebound".into(), |e| format!("{e:.4}"))
+                short(-law.stiffness),
+                short(-law.damping),
+                wrong.map_or("no rebound".into(), |e| crate::units::brief_digits(e, "", 4))
             ));
             if contact.separation == Separation::Penetration {
                 let own = super::restitution(context, &context.own_contact(), None)?;
                 let same = spec(context, [-law.stiffness / mass, -law.damping / mass], CONSTANT_SOLIMP);
                 let never_pulling = super::restitution(context, &same, None)?;
-                let shown = |e: Option<f64>| e.map_or("no rebound".to_string(), |e| format!("{e:.4}"));
+                let shown =
+                    |e: Option<f64>| e.map_or("no rebound".to_string(), |e| crate::units::brief_digits(e, "", 4));
                 notes.push(format!(
                     "The scene's spring–dashpot separates at d = 0 and pulls just before (e = {}); MuJoCo's contact \
                      never pulls, so the same k and c per unit mass give it a higher e ({}, continuous).",

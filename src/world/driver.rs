@@ -820,9 +820,11 @@ impl<'a> World<'a> {
                     if all_rest {
                         self.reason = Some(EndReason::AtRest);
                         self.notes.push(format!(
-                            "the bodies came to rest at t = {now:.6e} s: the energy of their motion about rest fell \
-                             below {AT_REST:e} of M V² = {:.3e} J",
-                            units.energy
+                            "the bodies came to rest at t = {}: the energy of their motion about rest fell below {} of \
+                             M V² = {}",
+                            crate::units::brief(now, "s"),
+                            crate::units::brief(AT_REST, ""),
+                            crate::units::brief(units.energy, "J")
                         ));
                         return Ok(());
                     }
@@ -835,10 +837,11 @@ impl<'a> World<'a> {
                 Watched::Rest => {
                     self.reason = Some(EndReason::AtRest);
                     self.notes.push(format!(
-                        "the bodies came to rest at t = {now:.6e} s: the energy of their motion about rest fell to \
-                         {:.1e} of M V² = {:.3e} J",
-                        motion / units.energy,
-                        units.energy
+                        "the bodies came to rest at t = {}: the energy of their motion about rest fell to {} of M V² = \
+                         {}",
+                        crate::units::brief(now, "s"),
+                        crate::units::brief(motion / units.energy, ""),
+                        crate::units::brief(units.energy, "J")
                     ));
                     return Ok(());
                 }
@@ -863,9 +866,11 @@ impl<'a> World<'a> {
                     record.switches += 1;
                     if record.switches >= crate::dynamics::contact::MAX_SWITCHES {
                         self.notes.push(format!(
-                            "contact {} switched between sticking and sliding {} times by t = {now:.6e} s: the run \
-                             stopped there",
-                            contact.record, record.switches
+                            "contact {} switched between sticking and sliding {} times by t = {}: the run stopped \
+                             there",
+                            contact.record,
+                            record.switches,
+                            crate::units::brief(now, "s")
                         ));
                         self.reason = Some(EndReason::StepBudget);
                         return Ok(());
@@ -895,13 +900,16 @@ impl<'a> World<'a> {
             // island found stiff ends the run.
             Ending::GaveUp(why) if why.contains("budget") || (rough && why.contains("stiff")) => {}
             Ending::GaveUp(why) => {
-                self.notes.push(format!("the integration stopped at t = {now:.6e} s: {why}"));
+                self.notes.push(format!("the integration stopped at t = {}: {why}", crate::units::brief(now, "s")));
                 self.reason = Some(EndReason::StepBudget);
                 return Ok(());
             }
         }
         if self.counters.steps + self.counters.rejected_steps > WORLD_STEP_BUDGET {
-            self.notes.push(format!("the run spent its budget of {WORLD_STEP_BUDGET} steps at t = {now:.6e} s"));
+            self.notes.push(format!(
+                "the run spent its budget of {WORLD_STEP_BUDGET} steps at t = {}",
+                crate::units::brief(now, "s")
+            ));
             self.reason = Some(EndReason::StepBudget);
             return Ok(());
         }
