@@ -302,13 +302,8 @@ impl<'a> World<'a> {
     /// The tolerance (m) within which bodies `i` and `j` count as touching: the rounding of their positions, and no
     /// less than the overlap a scene may start with (1e-12 of the smaller radius).
     fn touching(&self, i: usize, j: usize) -> f64 {
-        let size = |k: usize| {
-            let body = &self.scene.bodies[k];
-            let radius = if body.is_flat() { 0.0 } else { body.radius };
-            radius + self.states[k].position.abs().max()
-        };
         let (a, b) = (&self.scene.bodies[i], &self.scene.bodies[j]);
-        (64.0 * f64::EPSILON * (size(i) + size(j))).max(crate::geometry::TOUCH_TOLERANCE * a.radius.min(b.radius))
+        crate::geometry::touching_tolerance(a, &self.states[i].position, b, &self.states[j].position)
     }
 
     /// The next first touch in free flight among `pairs` (from the bodies' states now), within `left` s: its time
