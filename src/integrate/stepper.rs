@@ -112,6 +112,8 @@ where
     previous_values: Vec<f64>,
     /// The events' values at the newest point.
     values: Vec<f64>,
+    /// Accepted plus rejected steps this stepper may take over all its runs ([`STEP_BUDGET`] unless lowered).
+    budget: u64,
 }
 
 /// The stepper of a model of fixed size.
@@ -184,7 +186,13 @@ where
             record: record.then(Vec::new),
             previous_values: Vec::new(),
             values: Vec::new(),
+            budget: STEP_BUDGET,
         }
+    }
+
+    /// The same stepper with a budget of at most `budget` steps (a world's segment may take what its run has left).
+    pub fn with_budget(self, budget: u64) -> Self {
+        StepperOf { budget: budget.min(STEP_BUDGET), ..self }
     }
 
     /// The same stepper integrating with `scheme` (runs and re-steps alike).
@@ -328,7 +336,7 @@ where
             record: record.as_mut(),
         };
         let adapter = Adapter { model: self.model, watch: Some(&mut watch) };
-        let budget = STEP_BUDGET.saturating_sub(self.counters.steps + self.counters.rejected_steps);
+        let budget = self.budget.saturating_sub(self.counters.steps + self.counters.rejected_steps);
         let solved = solve(self.scheme, adapter, self.tolerances, t, y.clone(), t_end, first_step, budget);
         let (time, state) = solved.last.unwrap_or((t, y));
         let step = time - solved.before_last.unwrap_or(t);
@@ -350,7 +358,7 @@ where
                     // ode_solvers reports an underflow when its last step lands within rounding of the end.
                     SolverError::StepSizeUnderflow { x } if (t_end - x).abs() <= 1e-12 * t_end.abs().max(1.0) => None,
                     SolverError::MaxNumStepReached { .. } => {
-                        Some(format!("the budget of {STEP_BUDGET} steps was spent"))
+                        Some(format!("the budget of {} steps was spent", self.budget))
                     }
                     SolverError::StiffnessDetected { .. } => {
                         Some("the problem became stiff for an explicit method".into())
@@ -372,7 +380,7 @@ where
         let adapter = Adapter { model: self.model, watch: None };
         // A re-step inside one accepted step of a stiff contact may itself need many steps: it may use what is left of
         // the run's budget (at least a thousand).
-        let left = STEP_BUDGET.saturating_sub(self.counters.steps + self.counters.rejected_steps).max(1000);
+        let left = self.budget.saturating_sub(self.counters.steps + self.counters.rejected_steps).max(1000);
         let solved = solve(self.scheme, adapter, self.tolerances, from.0, from.1.clone(), t, h, left);
         let stats = solved.result.map_err(|error| IntegrationError::Solver { time: t, reason: error.to_string() })?;
         self.add(&stats);
