@@ -114,7 +114,13 @@ where
     values: Vec<f64>,
     /// Accepted plus rejected steps this stepper may take over all its runs ([`STEP_BUDGET`] unless lowered).
     budget: u64,
+    /// Told the time and the accepted steps so far every [`TICK_STEPS`] accepted steps, if given (a world run's
+    /// progress on a terminal).
+    tick: Option<&'m dyn Fn(f64, u64)>,
 }
+
+/// Accepted steps between two calls of a stepper's tick.
+pub const TICK_STEPS: u64 = 256;
 
 /// The stepper of a model of fixed size.
 pub type Stepper<'m, M, const N: usize> = StepperOf<'m, M, Const<N>>;
@@ -131,6 +137,11 @@ where
     values: &'w mut Vec<f64>,
     bracket: Option<(Point<D>, Point<D>)>,
     record: Option<&'w mut Vec<(f64, Vector<D>)>>,
+    /// The stepper's tick, the steps it had taken (accepted and rejected) when this run began, and the steps accepted
+    /// in it.
+    tick: Option<&'w dyn Fn(f64, u64)>,
+    taken_before: u64,
+    accepted: u64,
 }
 
 /// The `System` handed to the solver: the model plus, optionally, a watch for events.
@@ -154,6 +165,14 @@ where
         let Some(watch) = self.watch.as_deref_mut() else { return false };
         if let Some(record) = watch.record.as_deref_mut() {
             record.push((t, y.clone()));
+        }
+        watch.accepted += 1;
+        // (Counted over the stepper's runs: a run between two events may be only a few steps long.)
+        let taken = watch.taken_before + watch.accepted;
+        if let Some(tick) = watch.tick
+            && taken % TICK_STEPS == 0
+        {
+            tick(t, taken);
         }
         for (value, event) in watch.values.iter_mut().zip(watch.events) {
             *value = event.value(y);
@@ -187,7 +206,13 @@ where
             previous_values: Vec::new(),
             values: Vec::new(),
             budget: STEP_BUDGET,
+            tick: None,
         }
+    }
+
+    /// The same stepper telling `tick` the time and the steps taken every [`TICK_STEPS`] accepted steps.
+    pub fn with_tick(self, tick: &'m dyn Fn(f64, u64)) -> Self {
+        StepperOf { tick: Some(tick), ..self }
     }
 
     /// The same stepper with a budget of at most `budget` steps (a world's segment may take what its run has left).
@@ -334,6 +359,9 @@ where
             values: &mut values,
             bracket: None,
             record: record.as_mut(),
+            tick: self.tick,
+            taken_before: self.counters.steps + self.counters.rejected_steps,
+            accepted: 0,
         };
         let adapter = Adapter { model: self.model, watch: Some(&mut watch) };
         let budget = self.budget.saturating_sub(self.counters.steps + self.counters.rejected_steps);

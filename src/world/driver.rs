@@ -772,7 +772,18 @@ impl<'a> World<'a> {
         let tolerances = Tolerances { rtol: requested.rtol * factor, atol: requested.atol * factor };
         // (The segment may take what is left of the run's budget, at most one impact's.)
         let left = self.scene.world.max_steps.saturating_sub(self.work()).max(1);
+        // A long segment tells the progress watcher how far it has come as it goes.
+        let (time, ended, taken) = (self.time, self.ended, self.counters.steps + self.counters.rejected_steps);
+        let progress = self.progress;
+        let tick = move |t: f64, steps: u64| {
+            if let Some(progress) = progress {
+                progress.record(time + t * units.time, ended, taken + steps);
+            }
+        };
         let mut stepper = StepperOf::new(&island, tolerances, self.observer.is_some()).with_budget(left);
+        if progress.is_some() {
+            stepper = stepper.with_tick(&tick);
+        }
         let by_end = self.left() / units.time;
         let by_outside = outside_touch.as_ref().map_or(f64::INFINITY, |(delay, _)| delay / units.time);
         let by_list = self.list_holds(Some(&island)) / units.time;
