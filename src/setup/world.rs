@@ -51,8 +51,8 @@ impl SpeedInPlay {
         for i in 0..bodies.len() {
             for j in i + 1..bodies.len() {
                 let speed = length(&(bodies[i].velocity - bodies[j].velocity));
-                // (A speed that is not a number is the finite-motion rule's to refuse.)
-                if scene.interacts(i, j) && !(speed <= relative) {
+                // (Velocities are finite: a speed beyond double precision is inf, and the finite-motion rule's.)
+                if scene.interacts(i, j) && speed > relative {
                     (relative, pair) = (speed, Some([i, j]));
                 }
             }
