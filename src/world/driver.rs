@@ -228,8 +228,8 @@ impl<'a> World<'a> {
             return self.reason.is_some();
         }
         self.notes.push(format!(
-            "the run spent its budget of {} steps (world.max_steps) at t = {}: {} integration steps ({} rejected) and {} \
-             segments, flights and contacts taken at once; the report stops there",
+            "the run spent its budget of {} steps (world.max_steps) at t = {}: {} integration steps, {} of them \
+             rejected, and {} segments, flights and contacts taken at once; the report stops there",
             self.scene.world.max_steps,
             crate::units::brief(self.time, "s"),
             self.counters.steps + self.counters.rejected_steps,
