@@ -76,6 +76,29 @@ fn a_pair_faster_than_its_hertz_contact_can_hold_is_refused_before_any_work() {
 }
 
 #[test]
+fn a_pair_is_checked_no_faster_than_the_energy_in_play_could_move_it() {
+    // A ball of negligible mass M at V = 1e150 m/s strikes the first of two touching 33 g steel balls. The speed in
+    // play is V, but the energy in play, E = M V²/2, can give the other pair's relative motion at most
+    // sqrt(2 E / m*) (m* = m/2): the scene is refused only where that reaches the speed at which Hertz's penetration
+    // reaches the radius, E* = m* u*²/2 — and then by both pairs at once, since the light ball's own contact, at V,
+    // presses as deep (5 (2E) / (4 K))^(2/5) with the same K.
+    let (radius, mass, speed) = (0.01, 0.0329, 1e150);
+    let critical = mass / 2.0 * speed_for_depth(mass / 2.0, hertz_stiffness(STEEL, radius / 2.0), radius).powi(2) / 2.0;
+    let scene = |energy: f64| {
+        format!(
+            "[world]\n\n{}{}{}[contact]\nlaw = \"hertz\"\n",
+            sphere(radius, 2.0 * energy / (speed * speed), [0.0; 3], [speed, 0.0, 0.0], STEEL),
+            sphere(radius, mass, [0.02, 0.0, 0.0], [0.0; 3], STEEL),
+            sphere(radius, mass, [0.04, 0.0, 0.0], [0.0; 3], STEEL)
+        )
+    };
+    // (Checked at the speed in play, 1e150 m/s, the two 33 g balls' contact would be refused at any energy.)
+    assert!(read(&scene(0.98 * critical)).is_ok(), "{:?}", read(&scene(0.98 * critical)).err());
+    let refused = read(&scene(1.02 * critical)).expect_err("beyond the critical energy");
+    assert!(refused.contains("too soft"), "{refused}");
+}
+
+#[test]
 fn the_speed_in_play_counts_a_fall_through_the_scene_s_height() {
     // A ball at rest above a floor: its contact's speed in play is the fall from its centre's height h to the floor,
     // u = sqrt(2 g h). The contact is refused beyond the h at which Hertz's penetration at u reaches the radius:

@@ -288,6 +288,8 @@ fn run_world(args: &RunArgs, scene: &WorldScene) -> anyhow::Result<()> {
     // A run its budget stopped did not finish what the scene asked: its report and outputs, complete up to where it
     // stopped, are written, and the status says so (exit 1).
     if simulation.report.world.end_reason == crate::world::record::EndReason::StepBudget.name() {
+        // (The report first, then the message: stdout is written out before stderr says why the status is 1.)
+        std::io::Write::flush(&mut std::io::stdout())?;
         anyhow::bail!(
             "{}: the world run stopped before its end at t = {} (world.end_reason = \"step_budget\"): its report's notes \
              say why; the report and outputs above stop there",

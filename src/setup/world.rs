@@ -1,12 +1,13 @@
 //! The physics-level rules of a world scene (docs/world.md#limits), checked before any work: every rule one impact
 //! applies to its two bodies and their contact ([`super::Setup::new`]), applied to every movable body and to every
-//! pair that can touch — with its own `[[pair]]` law — and the rules a world adds because its positions are
-//! absolute and its clock runs from t = 0.
+//! pair that can touch — with its own `[[pair]]` law — and the rule a world adds because its positions are absolute:
+//! a contact must penetrate deeper than their rounding.
 //!
 //! A contact's rules that depend on its speed (its scales inside double precision, a damping not too heavy to
 //! simulate, an elastic penetration below the radii) are checked at the speed in play ([`SpeedInPlay`]): the largest
-//! relative speed of two bodies in the scene as given, plus what gravity adds over the scene's height. A contact that
-//! comes faster in the run (a light ball launched by a heavy one) is checked again when it begins.
+//! relative speed of two bodies in the scene as given, plus what gravity adds over the scene's height, capped for each
+//! pair by what the energy in play could give it. A contact that comes faster in the run (a light ball launched by a
+//! heavy one) is checked again when it begins.
 
 use super::{check_law, friction_of, resolve_law};
 use crate::body::Body;
@@ -28,8 +29,8 @@ fn length(v: &Vector3<f64>) -> f64 {
 }
 
 /// The fastest approach the scene's own motion and gravity give two of its bodies, m/s: the largest relative speed
-/// of two bodies that can touch, plus the speed of a fall through the scene's height. Each contact's speed-dependent
-/// rules are checked there before the run.
+/// of two bodies that can touch, plus the speed of a fall through the scene's height — and, for a pair, never more
+/// than the energy in play could give it. Each contact's speed-dependent rules are checked there before the run.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SpeedInPlay {
     /// The largest |v_i - v_j| over the pairs that can touch, m/s.
@@ -41,6 +42,9 @@ pub struct SpeedInPlay {
     pub height: f64,
     /// The speed of a fall through that height, sqrt(2 |g| height), m/s.
     pub fall: f64,
+    /// The energy in play, J: the kinetic energy of the movable bodies and gravity's work on them through the
+    /// scene's height; infinite when an immovable body moves (a moving wall gives energy without bound).
+    pub energy: f64,
 }
 
 impl SpeedInPlay {
@@ -68,7 +72,21 @@ impl SpeedInPlay {
         } else {
             0.0
         };
-        SpeedInPlay { relative, pair, height, fall: (2.0 * g * height).sqrt() }
+        let moving_wall = bodies.iter().any(|b| b.is_immovable() && b.velocity != Vector3::zeros());
+        let energy = if moving_wall {
+            f64::INFINITY
+        } else {
+            let movable = || bodies.iter().filter(|b| !b.is_immovable());
+            movable().map(|b| b.kinetic_energy(&b.velocity, &b.angular_velocity) + b.mass * g * height).sum()
+        };
+        SpeedInPlay { relative, pair, height, fall: (2.0 * g * height).sqrt(), energy }
+    }
+
+    /// The speed at which a pair of effective mass `effective_mass` (kg) is checked, m/s: the speed in play, or the
+    /// speed the energy in play could give the pair's relative motion, sqrt(2 E / m*), if smaller (a light body among
+    /// fast heavy ones: a 1e-300 kg ball at 1e150 m/s cannot launch two 33 g balls at 1e150 m/s).
+    pub fn for_pair(&self, effective_mass: f64) -> f64 {
+        self.speed().min((2.0 * self.energy / effective_mass).sqrt())
     }
 
     /// The speed, m/s.
@@ -92,6 +110,23 @@ impl SpeedInPlay {
             String::new()
         };
         format!("the speed in play, {} ({relative}{fall})", brief(self.speed(), "m/s"))
+    }
+
+    /// The speed of a pair of effective mass `effective_mass` (kg) and where it comes from, for a message.
+    pub fn describe_pair(&self, effective_mass: f64) -> String {
+        let speed = self.for_pair(effective_mass);
+        // (Told only where it is the smaller by more than rounding: a light ball's own contact has both.)
+        if speed < (1.0 - 1e-9) * self.speed() {
+            format!(
+                "{}, the most the energy in play, {}, could give the pair (sqrt(2 E / m*), m* = {}; {})",
+                brief(speed, "m/s"),
+                brief(self.energy, "J"),
+                brief(effective_mass, "kg"),
+                self.describe()
+            )
+        } else {
+            self.describe()
+        }
     }
 }
 
@@ -155,7 +190,7 @@ pub fn check(scene: &WorldScene) -> Result<(), SetupError> {
             *makes.entry(key).or_insert(next)
         })
         .collect();
-    let mut deepest: HashMap<(Option<usize>, usize, usize), f64> = HashMap::new();
+    let mut deepest: HashMap<(Option<usize>, usize, usize), Option<f64>> = HashMap::new();
     for i in 0..bodies.len() {
         for j in i + 1..bodies.len() {
             if !scene.interacts(i, j) {
@@ -174,6 +209,8 @@ pub fn check(scene: &WorldScene) -> Result<(), SetupError> {
                     depth
                 }
             };
+            // (A pair the energy in play cannot move relative to each other has no contact to resolve.)
+            let Some(depth) = depth else { continue };
             let (xa, xb) = (a.position.unwrap_or_default(), b.position.unwrap_or_default());
             let rounding = geometry::touching_tolerance(a, &xa, b, &xb);
             if depth < rounding {
@@ -186,7 +223,7 @@ pub fn check(scene: &WorldScene) -> Result<(), SetupError> {
                          holds absolute positions, and such a contact is lost in their rounding (a scene of the two \
                          bodies alone measures it from its first contact)",
                         brief(depth, "m"),
-                        play.describe(),
+                        play.describe_pair(geometry::effective_mass(a, b).unwrap_or(f64::NAN)),
                         brief(rounding, "m")
                     ),
                 );
@@ -285,13 +322,18 @@ fn check_flight(scene: &WorldScene, speed: f64) -> Result<(), SetupError> {
     Ok(())
 }
 
-/// One impact's rules of the contact of bodies `i` and `j` at the speed in play — its law resolved, its scales inside
-/// double precision, its damping simulable, its elastic (or plastic) penetration below the smaller radius, its
-/// friction formed — renamed to the world's keys; its deepest penetration there, m.
-fn check_contact(scene: &WorldScene, i: usize, j: usize, play: &SpeedInPlay) -> Result<f64, SetupError> {
+/// One impact's rules of the contact of bodies `i` and `j` at their speed in play ([`SpeedInPlay::for_pair`]) — its
+/// law resolved, its scales inside double precision, its damping simulable, its elastic (or plastic) penetration
+/// below the smaller radius, its friction formed — renamed to the world's keys; its deepest penetration there, m
+/// (`None` for a pair no energy can move).
+fn check_contact(scene: &WorldScene, i: usize, j: usize, play: &SpeedInPlay) -> Result<Option<f64>, SetupError> {
     let (a, b) = (&scene.bodies[i], &scene.bodies[j]);
     let (spec, _) = scene.contact_of(i, j);
-    let speed = play.speed();
+    let effective_mass = geometry::effective_mass(a, b).expect("bodies that can touch are not both immovable");
+    let speed = play.for_pair(effective_mass);
+    if speed.is_nan() || speed <= 0.0 {
+        return Ok(None);
+    }
     let rename = |error: SetupError| scene.rename(i, j, error);
     // A rule broken at the speed in play says which speed that is.
     let at_play = |error: SetupError| {
@@ -301,11 +343,10 @@ fn check_contact(scene: &WorldScene, i: usize, j: usize, play: &SpeedInPlay) -> 
             message: format!(
                 "{} — the contact of bodies {i} and {j}, checked at {} (docs/world.md#limits)",
                 error.message,
-                play.describe()
+                play.describe_pair(effective_mass)
             ),
         }
     };
-    let effective_mass = geometry::effective_mass(a, b).expect("bodies that can touch are not both immovable");
     let law = resolve_law(spec, [a, b], effective_mass, speed).map_err(at_play)?;
     check_law(spec, [a, b], &law, effective_mass, speed).map_err(at_play)?;
     friction_of(spec, [a, b], effective_mass).map_err(rename)?;
@@ -317,5 +358,5 @@ fn check_contact(scene: &WorldScene, i: usize, j: usize, play: &SpeedInPlay) -> 
     } else {
         0.0
     };
-    Ok(elastic.max(plastic))
+    Ok(Some(elastic.max(plastic)))
 }
