@@ -229,7 +229,8 @@ impl<'a> World<'a> {
         }
         self.notes.push(format!(
             "the run spent its budget of {} steps (world.max_steps) at t = {}: {} integration steps, {} of them \
-             rejected, and {} segments, flights and contacts taken at once; the report stops there",
+             rejected, and {} segments, flights and contacts taken at once; the report stops there (a larger \
+             max_steps goes further)",
             self.scene.world.max_steps,
             crate::units::brief(self.time, "s"),
             self.counters.steps + self.counters.rejected_steps,
