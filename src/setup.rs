@@ -21,6 +21,8 @@ use crate::units::{apart, apart_vectors, brief, brief_vector, short};
 use nalgebra::Vector3;
 use std::path::Path;
 
+pub mod world;
+
 /// A broken physics-level rule: the key at fault and what is wrong (the type of the scene's own value rules, which
 /// it shares).
 use crate::scene::SetupError;
@@ -249,13 +251,15 @@ pub fn load_any(path: &Path) -> Result<Parsed, SceneError> {
     parse_any(&text, path)
 }
 
-/// Validates scene text of either kind (for a two-body scene, the physics-level rules of [`Setup`] too); `path` names
-/// the source in errors and gives the default title.
+/// Validates scene text of either kind with its physics-level rules: those of [`Setup`] for a two-body scene, those of
+/// [`world::check`] for a world; `path` names the source in errors and gives the default title.
 pub fn parse_any(text: &str, path: &Path) -> Result<Parsed, SceneError> {
     let read = crate::scene::read_any(text, path)?;
-    if let Parsed::Impact(scene) = &read.scene {
-        Setup::new(scene).map_err(|error| read.located(error))?;
+    match &read.scene {
+        Parsed::Impact(scene) => Setup::new(scene).map(|_| ()),
+        Parsed::World(scene) => world::check(scene),
     }
+    .map_err(|error| read.located(error))?;
     Ok(read.scene)
 }
 
