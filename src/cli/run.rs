@@ -94,6 +94,15 @@ pub fn run(args: &RunArgs) -> anyhow::Result<()> {
     for name in written {
         eprintln!("wrote {name}");
     }
+    // An integration that gave up did not finish the impact: its report and outputs, complete up to where it
+    // stopped, are written, and the status says so (exit 1), as a world run's spent budget does.
+    if let Some(reason) = &simulation.report.solver.gave_up {
+        std::io::Write::flush(&mut std::io::stdout())?;
+        anyhow::bail!(
+            "{}: the integration gave up before the bodies separated ({reason}): the report above stops there",
+            args.scene.display()
+        );
+    }
     Ok(())
 }
 
