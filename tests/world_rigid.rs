@@ -510,3 +510,70 @@ fn a_tumbling_body_flies_as_eulers_equations_keeping_its_angular_momentum() {
     assert!(norm(sub(x1, x)) < 1e-12, "x {x1:?} vs {x:?}");
     assert!(number(&report["energy"]["balance"]).abs() < 1e-9);
 }
+
+/// The sequential model strikes a rod's lower end as the instantaneous eccentric impact with the contact's own e and
+/// Coulomb friction (docs/references.md#rigid-bodies-with-several-contacts), solved here for the planar rod: with the
+/// contact point at r = (-(L/2) cos θ, 0, -(L/2) sin θ - ρ) from the mass centre (ρ the end sphere's radius), an
+/// impulse P = (P_x, 0, P_z) from the floor gives v_G' = v_G + P/M and ω_y' = (r_z P_x - r_x P_z)/I_G, and the point
+/// then moves at (v_Gx' + ω' r_z, v_Gz' - ω' r_x). Smooth, P_x = 0 and the point's normal velocity is reversed times
+/// e. Rough with μ = 1 and no sideways motion, it sticks: the 2×2 system of a point stopped across the normal and
+/// reversed along it, its P inside the cone (checked). With μ = 0.1 and the rod moving sideways at 3 m/s, it slides
+/// throughout: P = J_n (n - μ s) along the initial slip s = +x, J_n from the normal restitution, and the slip keeps its
+/// sense (checked). Without gravity and with one contact, the model's velocities after are these.
+#[test]
+fn the_sequential_model_strikes_a_rods_end_as_the_eccentric_impact_with_coulomb_friction() {
+    let (v, degrees) = (1.0, 40.0);
+    for (friction, sideways) in [(0.0, 0.0), (1.0, 0.0), (0.1, 3.0)] {
+        let mut rod = inclined_rod(degrees, v, 1e-3);
+        rod.velocity = [sideways, 0.0, -v];
+        let text = format!(
+            "title = \"rod's end\"\n[world]\nmax_contacts = 1\n\n{}\n{FLOOR}\n[contact]\nlaw = \"hunt-crossley\"\n\
+             restitution = 0.8\nfriction = {friction:?}\n",
+            rod.toml()
+        );
+        let report = run(&text);
+        let first = &report["contacts"][0];
+        assert_eq!(first["spheres"], serde_json::json!([1, null]), "{first}");
+        let e = number(&first["restitution_velocity_ratio"]);
+        let (mass, inertia, theta) = (rod.mass, rod.across(), f64::to_radians(degrees));
+        let (rx, rz) = (-rod.length / 2.0 * theta.cos(), -rod.length / 2.0 * theta.sin() - rod.radius);
+        // The point's velocity after an impulse (px, pz): linear in it.
+        let after = |px: f64, pz: f64| {
+            let spin = (rz * px - rx * pz) / inertia;
+            let (gx, gz) = (sideways + px / mass, -v + pz / mass);
+            ((gx, gz, spin), (gx + spin * rz, gz - spin * rx))
+        };
+        let (px, pz) = if friction == 0.0 {
+            // u_z(0, pz) = e v: u_z is affine in pz.
+            let (_, (_, u0)) = after(0.0, 0.0);
+            let (_, (_, u1)) = after(0.0, 1.0);
+            (0.0, (e * v - u0) / (u1 - u0))
+        } else if sideways == 0.0 {
+            // u_x = 0, u_z = e v: Cramer's rule on the affine map's columns.
+            let (_, (x0, z0)) = after(0.0, 0.0);
+            let (_, (xa, za)) = after(1.0, 0.0);
+            let (_, (xb, zb)) = after(0.0, 1.0);
+            let (a, b, c, d) = (xa - x0, xb - x0, za - z0, zb - z0);
+            let (f, g) = (-x0, e * v - z0);
+            let det = a * d - b * c;
+            let (px, pz) = ((f * d - b * g) / det, (a * g - f * c) / det);
+            assert!(px.abs() <= friction * pz, "the reference must stick: P = ({px}, {pz})");
+            (px, pz)
+        } else {
+            // P = J_n (-μ, 1): u_z(J_n) = e v.
+            let (_, (_, u0)) = after(0.0, 0.0);
+            let (_, (_, u1)) = after(-friction, 1.0);
+            let jn = (e * v - u0) / (u1 - u0);
+            let (_, (slip, _)) = after(-friction * jn, jn);
+            assert!(slip > 0.0, "the reference must slide throughout: slip after {slip}");
+            (-friction * jn, jn)
+        };
+        let ((gx, gz, spin), _) = after(px, pz);
+        let model = &report["sequential"]["simulated_e"];
+        let velocity = vector(&model["velocity_after"][0]);
+        let turning = vector(&model["angular_velocity_after"][0]);
+        let expected = [gx, 0.0, gz];
+        assert!(norm(sub(velocity, expected)) < 1e-9 * v, "μ {friction}: v_G' {velocity:?} vs {expected:?}");
+        assert!(norm(sub(turning, [0.0, spin, 0.0])) < 1e-9 * spin.abs(), "μ {friction}: ω' {turning:?} vs {spin}");
+    }
+}
