@@ -157,6 +157,17 @@ fn a_rod_dropped_at_an_angle_strikes_with_the_closed_form_of_its_end_then_with_i
         let v_b = add(vector(after), cross(turning, r_b));
         assert!((v_b[2] - other).abs() < tolerance * speed, "{degrees}°: v_B {v_b:?} vs {other}");
         // The point of first touch: under the lower sphere's centre.
+        // Judged `central` with the rod's own lever: the normal passes (L/2) cos θ from the mass centre, its radius
+        // of gyration about that moment's axis L/√12, its effective mass M/(1 + 3 cos²θ) (docs/idealisation.md).
+        let central = &first["idealisation"]["central"];
+        assert!(relative(number(&central["value"]), length / 2.0 * theta.cos()) < 1e-9, "{degrees}°: {central}");
+        assert!(relative(number(&central["compared_with"]), length / 12f64.sqrt()) < 1e-9, "{degrees}°: {central}");
+        assert_eq!(central["verdict"], "fails", "{degrees}°: {central}");
+        // (The meaning gives the effective mass to three digits: "... an effective mass of 61.5 g, not ...".)
+        let meaning = central["meaning"].as_str().unwrap();
+        let grams: f64 =
+            meaning.split("effective mass of ").nth(1).and_then(|t| t.split(" g").next()).unwrap().parse().unwrap();
+        assert!(relative(grams * 1e-3, effective) < 5e-3, "{degrees}°: {meaning} vs {effective} kg");
         let point = vector(&first["point"]);
         let expected = [-length / 2.0 * theta.cos(), 0.0, 0.0];
         assert!(norm(sub(point, expected)) < 1e-9, "{degrees}°: point {point:?} vs {expected:?}");
@@ -247,6 +258,16 @@ fn a_rod_dropped_flat_on_hertz_ends_makes_each_end_the_contact_of_half_its_mass(
         assert!(relative(number(&c["max_penetration"]), depth) < 1e-7, "δ_m {} vs {depth}", c["max_penetration"]);
         assert!(relative(number(&c["duration"]), duration) < 1e-7, "t_c {} vs {duration}", c["duration"]);
         assert!(relative(number(&c["max_force"]), k * depth.powf(1.5)) < 1e-7, "peak {}", c["max_force"]);
+    }
+    // Neither end is isolated: the other end's impulse, the same, acts on the rod all through (no gravity here); and
+    // neither is central: the normal passes L/2 from the mass centre, the rod's radius of gyration about y is L/√12.
+    for c in contacts {
+        let isolated = &c["idealisation"]["isolated"];
+        assert!((number(&isolated["ratio"]) - 1.0).abs() < 1e-6, "{isolated}");
+        assert_eq!(isolated["verdict"], "fails", "{isolated}");
+        let central = &c["idealisation"]["central"];
+        assert!(relative(number(&central["value"]), rod.length / 2.0) < 1e-9, "{central}");
+        assert!(relative(number(&central["compared_with"]), rod.length / 12f64.sqrt()) < 1e-9, "{central}");
     }
     let body = &report["bodies"][0];
     assert!(relative(vector(&body["velocity_after"])[2], v) < 1e-9, "{body}");

@@ -527,9 +527,47 @@ fn measured(scene: &WorldScene, record: &ContactRecord, c: &WorldContact) -> Mea
         max_velocity_difference: None,
         speed_trial: SpeedTrial { slower: None, faster: None },
         yielding: yielding.flatten(),
-        // (A world refuses eccentric bodies: every body of a world is central.)
-        levers: [None, None],
+        levers: [0, 1].map(|side| lever(scene, record, side)),
     }
+}
+
+/// How side `side`'s body of a contact meets its normal at first touch, for the `central` verdict: a rigid body's
+/// lever arm of the normal about its origin (mass centre or pivot), its radius of gyration about the axis of that
+/// moment with the inertia turned as the body was then, and its effective mass at the contact point
+/// (docs/world.md#rigid-bodies). `None` for a sphere or a wall, whose normal passes through its centre.
+fn lever(scene: &WorldScene, record: &ContactRecord, side: usize) -> Option<crate::idealisation::Lever> {
+    let body = &scene.bodies[record.bodies[side]];
+    if !body.is_rigid() {
+        return None;
+    }
+    let orientation = record.orientations_before[side];
+    let origin = record.point - record.levers[side];
+    let centre = match body.pivot {
+        Some(pivot) => pivot + orientation * (body.position.unwrap_or_default() - pivot),
+        None => origin,
+    };
+    let rigid = crate::eccentric::RigidBody {
+        mass: body.mass,
+        inertia: crate::world::island::turned_inertia(body, &orientation),
+        centre,
+        velocity: Vector3::zeros(),
+        spin: Vector3::zeros(),
+        pivot: body.pivot,
+    };
+    // (The normal's moment: the arm to the contact point differs from the arm to the sphere's centre by a multiple
+    // of the normal.)
+    let moment = record.levers[side].cross(&record.normal);
+    let arm = moment.norm();
+    let inertia = rigid.inertia_about_pivot();
+    let about =
+        if arm > 0.0 { moment.dot(&(inertia * moment)) / (arm * arm) } else { inertia.symmetric_eigenvalues().min() };
+    Some(crate::idealisation::Lever {
+        arm,
+        gyration: (about / body.mass).sqrt(),
+        effective_mass: 1.0 / rigid.inverse_effective_mass(&record.point, &record.normal),
+        mass: body.mass,
+        pivoted: body.pivot.is_some(),
+    })
 }
 
 /// The energy a contact's tangential force dissipated, J: what it took from the motion, less what its spring still
