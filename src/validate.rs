@@ -107,6 +107,18 @@ pub fn cases() -> Vec<Case> {
             run: struck_rod,
         },
         Case {
+            name: "rod-flat",
+            about: "a rod of two end spheres dropped flat on Hertz ends: each end Hertz's contact of M/2 \
+                    (models/rod-dropped-flat.toml)",
+            run: rod_flat,
+        },
+        Case {
+            name: "rod-angle",
+            about: "a rod dropped at 30 degrees strikes with its lower end as rigid-body theory has it \
+                    (models/rod-chatter.toml)",
+            run: rod_angle,
+        },
+        Case {
             name: "cradle-3",
             about: "three touching Hertzian balls struck by one (Herrmann & Schmälzle 1981)",
             run: cradle_3,
@@ -286,6 +298,77 @@ fn struck_rod(case: &'static str) -> Result<Vec<Row>, String> {
         row(case, "rod's spin after, rad/s", spin_after[2], 7.5, source, ROD),
         row(case, "1 + ball velocity after / 3 m/s", 1.0 + after(&report, 0)?[0] / 3.0, 1.0, source, ROD),
         row(case, "kinetic energy after, J", kinetic_after, energy.kinetic_before, "energy conserved (elastic)", 1e-9),
+    ])
+}
+
+/// A rod of two end spheres dropped exactly flat on a floor without gravity (models/rod-dropped-flat.toml): both ends
+/// touch at once, the rod does not turn, and each end is Hertz's contact of one end sphere (R = 5 mm) on the floor
+/// with the effective mass M/2 (docs/references.md#rigid-bodies-with-several-contacts):
+/// `d_m = (15 (M/2) v²/(16 E* √R))^(2/5)`, `t_c = 2.9432751843 d_m/v`, `F_m = (4/3) E* √R d_m^(3/2)`
+/// (docs/references.md#elastic-hertz-contact); elastic, the rod rebounds at v.
+fn rod_flat(case: &'static str) -> Result<Vec<Row>, String> {
+    let report = world(include_str!("../models/rod-dropped-flat.toml"))?;
+    if report.contacts.len() != 2 {
+        return Err(format!("{} contacts, expected the two ends", report.contacts.len()));
+    }
+    let (mass, radius, young, poisson) = (0.2_f64, 0.005_f64, 2.1e11_f64, 0.3_f64);
+    let v = -report.bodies[0].velocity_before[2];
+    let e_star = young / (2.0 * (1.0 - poisson * poisson));
+    let depth = (15.0 * (mass / 2.0) * v * v / (16.0 * e_star * radius.sqrt())).powf(0.4);
+    let source = "Hertz's closed form for one end of effective mass M/2 (docs/references.md#elastic-hertz-contact)";
+    let mut rows = Vec::new();
+    for (k, c) in report.contacts.iter().enumerate() {
+        let end = if c.spheres[0] == Some(0) { "+x" } else { "-x" };
+        let duration = c.duration.ok_or("an end did not separate")?;
+        rows.push(row(case, format!("{end} end's duration, s"), duration, 2.9432751843 * depth / v, source, TIGHT));
+        rows.push(row(case, format!("{end} end's deepest penetration, m"), c.max_penetration, depth, source, TIGHT));
+        let peak = 4.0 / 3.0 * e_star * radius.sqrt() * depth.powf(1.5);
+        rows.push(row(case, format!("{end} end's peak force, N"), c.max_force, peak, source, TIGHT));
+        rows.push(row(
+            case,
+            format!("contact {k} starts with the other, s"),
+            c.start_time,
+            1e-3,
+            "the drop: 1 mm at v",
+            1e-9,
+        ));
+    }
+    let rod = &report.bodies[0];
+    let symmetry = "symmetry: an elastic rebound at v without turning";
+    rows.push(row(case, "rod's rebound / v", rod.velocity_after[2] / v, 1.0, symmetry, 1e-9));
+    let turning = rod.angular_velocity_after.iter().map(|w| w.abs()).fold(0.0, f64::max);
+    rows.push(row(case, "1 + its spin after x (L/2) / v", 1.0 + turning * 0.1 / v, 1.0, symmetry, 1e-9));
+    Ok(rows)
+}
+
+/// The first contact of a rod dropped at θ = 30° on a smooth floor (models/rod-chatter.toml): its lower end strikes
+/// with `m_eff = M/(1 + 3 cos²θ)`, `J = (1 + e) m_eff v`, `v_G' = -v + J/M`, `ω' = 6 J cos θ/(M L)` and the other end
+/// then moves at `v_B = -v + (1 + e) v (1 - 3 cos²θ)/(1 + 3 cos²θ)`
+/// (docs/references.md#rigid-bodies-with-several-contacts), with the contact's simulated e and v its approach speed. The compliant rod turns by `ω' t_c` (about 3e-3
+/// rad) during the contact and gravity adds `g t_c` (3.6e-4 of v): the tolerance, 1e-2, is a few times that.
+fn rod_angle(case: &'static str) -> Result<Vec<Row>, String> {
+    let report = world(include_str!("../models/rod-chatter.toml"))?;
+    let first = report.contacts.first().ok_or("no contact")?;
+    if first.spheres != [Some(1), None] {
+        return Err(format!("the lower end should strike first, not sphere {:?}", first.spheres));
+    }
+    let (mass, length, theta) = (0.2_f64, 0.2_f64, 30_f64.to_radians());
+    let v = first.approach_speed;
+    let e = first.restitution_velocity_ratio.ok_or("the first contact has no e")?;
+    let c2 = theta.cos().powi(2);
+    let impulse = (1.0 + e) * mass / (1.0 + 3.0 * c2) * v;
+    let centre = -v + impulse / mass;
+    let spin = 6.0 * impulse * theta.cos() / (mass * length);
+    let other = -v + (1.0 + e) * v * (1.0 - 3.0 * c2) / (1.0 + 3.0 * c2);
+    let after = first.velocities_after.as_ref().ok_or("the first contact did not separate")?[0];
+    let turning = first.angular_velocities_after.as_ref().ok_or("the first contact did not separate")?[0];
+    // The other end at (L/2)(cos θ, 0, sin θ) from the mass centre: v_B = v_G + ω × r_B, its z component.
+    let v_b = after[2] - turning[1] * length / 2.0 * theta.cos();
+    let source = "rigid-body impact of the rod's end with the contact's e (docs/references.md)";
+    Ok(vec![
+        row(case, "mass centre's velocity after, m/s", after[2], centre, source, 1e-2),
+        row(case, "rod's spin after, rad/s", turning[1], spin, source, 1e-2),
+        row(case, "upper end's velocity after, m/s", v_b, other, source, 1e-2),
     ])
 }
 
