@@ -124,6 +124,11 @@ pub fn cases() -> Vec<Case> {
             run: dumbbell,
         },
         Case {
+            name: "hung-rod-swing",
+            about: "the hung rod released from 30 degrees under gravity into a ball at rest (models/hung-rod-swing.toml)",
+            run: hung_rod_swing,
+        },
+        Case {
             name: "cradle-3",
             about: "three touching Hertzian balls struck by one (Herrmann & Schmälzle 1981)",
             run: cradle_3,
@@ -413,6 +418,32 @@ fn dumbbell(case: &'static str) -> Result<Vec<Row>, String> {
             "energy conserved (elastic)",
             1e-9,
         ),
+    ])
+}
+
+/// The hung rod (M = 8 kg, L = 1.2 m, I_O = M L²/3 about its pivot) released at rest from φ = 30° under gravity
+/// (models/hung-rod-swing.toml): at the bottom of its swing, where it meets the ball at rest, energy gives
+/// `ω = sqrt(2 M g (L/2)(1 - cos φ)/I_O)` and its end moves at ω L. The blow is the hung rod's eccentric impact with
+/// `m_eff = I_O/L²` and the contact's e: `J = (1 + e) ω L m_b m_eff/(m_b + m_eff)`, the ball leaves at J/m_b and the
+/// rod turns on at `ω - J L/I_O` (docs/references.md#eccentric-impact). The rod turns by 2e-4 rad during the blow: 1e-6.
+fn hung_rod_swing(case: &'static str) -> Result<Vec<Row>, String> {
+    let report = world(include_str!("../models/hung-rod-swing.toml"))?;
+    let blow = report.contacts.iter().find(|c| c.bodies == [0, 1]).ok_or("the rod never reached the ball")?;
+    let (mass, length, ball, g, phi) = (8.0_f64, 1.2_f64, 2.0_f64, 9.81_f64, 30_f64.to_radians());
+    let about_pivot = mass * length * length / 3.0;
+    let spin = (2.0 * mass * g * length / 2.0 * (1.0 - phi.cos()) / about_pivot).sqrt();
+    let e = blow.restitution_velocity_ratio.ok_or("the blow did not separate")?;
+    let effective = about_pivot / (length * length);
+    let impulse = (1.0 + e) * spin * length * ball * effective / (ball + effective);
+    let after = blow.velocities_after.as_ref().ok_or("the blow did not separate")?;
+    let turning = blow.angular_velocities_after.as_ref().ok_or("the blow did not separate")?;
+    let swing = "the swing under gravity: energy, by hand";
+    let source = "the hung rod's eccentric impact with the contact's e, by hand (docs/references.md#eccentric-impact)";
+    Ok(vec![
+        row(case, "the rod's end speed at the ball, m/s", blow.approach_speed, spin * length, swing, TIGHT),
+        row(case, "e of the blow", e, 0.8, "Kelvin–Voigt's exact e (docs/references.md#kelvin-voigt)", ROD),
+        row(case, "ball's velocity after, m/s", after[1][0], impulse / ball, source, ROD),
+        row(case, "rod's spin after, rad/s", turning[0][2], spin - impulse * length / about_pivot, source, ROD),
     ])
 }
 
