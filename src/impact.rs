@@ -421,7 +421,7 @@ fn fast_outcome(
         switches: 0,
         tensile_impulse: f64::NAN,
         counters: Counters { steps: fast.steps, rejected_steps: 0, evaluations: fast.force_evaluations },
-        method: "taylor",
+        method: if fast.first_integral { "first-integral" } else { "taylor" },
         restitution: Some((fast.restitution_impulse * s.impulse, fast.restitution_work * s.energy)),
         note,
         fixed_step: None,
