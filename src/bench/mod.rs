@@ -16,6 +16,7 @@
 
 pub mod baselines;
 pub mod cases;
+pub mod oblique;
 pub mod worlds;
 
 use crate::fast::{Quantities, Request};
