@@ -150,3 +150,79 @@ fn the_world_study_measures_errors_that_follow_the_tolerance() {
     assert!(csv.starts_with("case,tolerance,error,seconds,steps,contacts\n"), "{csv}");
     assert_eq!(csv.lines().count(), 5);
 }
+
+/// The peers' scene (`scripts/peer-hunt-crossley.toml`, what scripts/peers.sh sweeps) is a scene the program takes,
+/// and its e and its maximum penetration are the exact ones of its scaled units (m* = K = v0 = 1, n = 3/2,
+/// x = alpha v0 = 0.5): e from the relation x (1 + e) = ln((1 + x)/(1 - e x)) and dmax from
+/// dmax^(5/2) = (5/2)(x - ln(1 + x))/x², both solved here. A sweep of e alone over it (the first integral)
+/// writes the same e.
+#[test]
+fn the_peers_scene_runs_and_gives_the_exact_e() {
+    let scratch = Scratch::new("peers-scene");
+    let scene = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scripts/peer-hunt-crossley.toml");
+    let scene = scene.to_str().expect("a path");
+    let output = impact(scratch.path(), &["run", scene, "--json"]);
+    assert_success(&output);
+    let report: serde_json::Value = serde_json::from_slice(&output.stdout).expect("JSON");
+    let x: f64 = 0.5;
+    // Bisection on the exact relation (its left side minus its right grows with e up to 1/x).
+    let (mut low, mut high) = (0.0_f64, 1.0_f64);
+    for _ in 0..200 {
+        let mid = 0.5 * (low + high);
+        if x * (1.0 + mid) - (1.0 + x).ln() + (1.0 - mid * x).ln() > 0.0 {
+            low = mid;
+        } else {
+            high = mid;
+        }
+    }
+    let e = 0.5 * (low + high);
+    let dmax = (2.5 * (x - x.ln_1p()) / (x * x)).powf(0.4);
+    let contact = &report["contact"];
+    let got = contact["restitution_velocity_ratio"].as_f64().expect("e");
+    assert_close("e", got, e, 1e-10);
+    assert_close("dmax", contact["max_penetration"].as_f64().expect("dmax"), dmax, 1e-10);
+    let sweep = impact(
+        scratch.path(),
+        &["sweep", scene, "--vary", "contact.damping=0.5", "--columns", "restitution_velocity_ratio,steps", "--out", "e.csv"],
+    );
+    assert_success(&sweep);
+    let csv = scratch.read("e.csv");
+    let row: Vec<&str> = csv.lines().nth(1).expect("a row").split(',').collect();
+    assert_close("e of the sweep", row[4].parse().expect("e"), e, 1e-14);
+    assert_eq!(row[5], "0", "the first integral takes no step: {csv}");
+}
+
+/// `impact bench --oblique`: the frictional cases on the general path and their frictionless twins (the wall's on
+/// the fast path), each row's error against the run at 1e-13 within what its tolerance allows; the CSV has a row per
+/// case, path and tolerance. Accuracy, not speed.
+#[test]
+fn the_oblique_study_measures_frictional_impacts_beside_their_twins() {
+    let scratch = Scratch::new("oblique");
+    let output = impact(scratch.path(), &["bench", "--oblique", "--quick", "--out", "study"]);
+    assert_success(&output);
+    let text = stdout(&output);
+    assert!(text.contains("chung-ooi test 4 at 45 deg") && text.contains("vs twin"), "{text}");
+    let csv = scratch.read("study/bench-oblique.csv");
+    let mut lines = csv.lines();
+    let header: Vec<&str> = lines.next().expect("a header").split(',').collect();
+    let column = |name: &str| header.iter().position(|c| *c == name).expect("a column");
+    let rows: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();
+    // Three cases, two paths, two tolerances.
+    assert_eq!(rows.len(), 12, "{csv}");
+    for row in &rows {
+        let (path, method) = (row[column("path")], row[column("method")]);
+        let wall = row[column("case")].starts_with("chung-ooi");
+        match path {
+            "general" => assert_eq!(method, "dop853", "{row:?}"),
+            "frictionless" => assert_eq!(method, if wall { "taylor" } else { "dop853" }, "{row:?}"),
+            other => panic!("unknown path {other}"),
+        }
+        let tolerance: f64 = row[column("tolerance")].parse().expect("a tolerance");
+        let error: f64 = row[column("error")].parse().expect("an error");
+        assert!(error > 0.0 && error <= 100.0 * tolerance, "{row:?}");
+        let seconds: f64 = row[column("seconds_per_impact")].parse().expect("a time");
+        assert!(seconds > 0.0, "{row:?}");
+    }
+    let refused = impact(scratch.path(), &["bench", "--oblique", "--worlds", "--out", "study"]);
+    assert_eq!(refused.status.code(), Some(2), "{}", describe(&refused));
+}

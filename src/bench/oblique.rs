@@ -23,8 +23,7 @@ pub const REFERENCE_TOLERANCE: f64 = 1e-13;
 pub const TOLERANCES: [f64; 5] = [1e-6, 1e-8, 1e-9, 1e-10, 1e-11];
 pub const QUICK_TOLERANCES: [f64; 2] = [1e-6, 1e-10];
 
-/// An oblique case: its name, its scene text without `[solver]`, and its friction coefficient (the frictionless
-/// twin sets it to zero).
+/// An oblique case: its name (no comma: it is a CSV cell) and its scene text without `[solver]`.
 #[derive(Debug, Clone)]
 pub struct ObliqueCase {
     pub name: &'static str,
@@ -60,7 +59,7 @@ pub fn cases() -> Vec<(ObliqueCase, String)> {
     vec![
         (ObliqueCase { name: "chung-ooi test 4 at 45 deg (sliding)", text: test4(45.0, 0.092) }, test4(45.0, 0.0)),
         (ObliqueCase { name: "chung-ooi test 4 at 10 deg (sticking)", text: test4(10.0, 0.092) }, test4(10.0, 0.0)),
-        (ObliqueCase { name: "two free spheres with spin, mu = 0.3", text: spinning_spheres(0.3) }, spinning_spheres(0.0)),
+        (ObliqueCase { name: "two free spheres with spin (mu 0.3)", text: spinning_spheres(0.3) }, spinning_spheres(0.0)),
     ]
 }
 
