@@ -192,9 +192,10 @@ fn the_peers_scene_runs_and_gives_the_exact_e() {
     assert_eq!(row[5], "0", "the first integral takes no step: {csv}");
 }
 
-/// `impact bench --oblique`: the frictional cases on the general path and their frictionless twins (the wall's on
-/// the fast path), each row's error against the run at 1e-13 within what its tolerance allows; the CSV has a row per
-/// case, path and tolerance. Accuracy, not speed.
+/// `impact bench --oblique`: the frictional cases on the path `auto` takes (a sphere on a wall in regularised time)
+/// and on the 3-D model in physical time, and their frictionless twins (the wall's on the fast path), each row's
+/// error against the run at 1e-13 within what its tolerance allows; the CSV has a row per case, path and
+/// tolerance. Accuracy, not speed.
 #[test]
 fn the_oblique_study_measures_frictional_impacts_beside_their_twins() {
     let scratch = Scratch::new("oblique");
@@ -207,13 +208,14 @@ fn the_oblique_study_measures_frictional_impacts_beside_their_twins() {
     let header: Vec<&str> = lines.next().expect("a header").split(',').collect();
     let column = |name: &str| header.iter().position(|c| *c == name).expect("a column");
     let rows: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();
-    // Three cases, two paths, two tolerances.
-    assert_eq!(rows.len(), 12, "{csv}");
+    // Three cases, three paths, two tolerances.
+    assert_eq!(rows.len(), 18, "{csv}");
     for row in &rows {
         let (path, method) = (row[column("path")], row[column("method")]);
         let wall = row[column("case")].starts_with("chung-ooi");
         match path {
-            "general" => assert_eq!(method, "dop853", "{row:?}"),
+            "auto" => assert_eq!(method, if wall { "dop853-regularised" } else { "dop853" }, "{row:?}"),
+            "dop853" => assert_eq!(method, "dop853", "{row:?}"),
             "frictionless" => assert_eq!(method, if wall { "taylor" } else { "dop853" }, "{row:?}"),
             other => panic!("unknown path {other}"),
         }

@@ -87,7 +87,7 @@ fn oblique(args: &BenchArgs, outputs: Vec<Destination>) -> anyhow::Result<()> {
     let tolerances: &[f64] = if args.quick { &oblique::QUICK_TOLERANCES } else { &oblique::TOLERANCES };
     let timing = if args.quick { bench::Timing::QUICK } else { bench::Timing::FULL };
     let machine = bench::machine();
-    let bar = progress(2 * cases.len() * tolerances.len());
+    let bar = progress(3 * cases.len() * tolerances.len());
     let rows = oblique::study(&cases, tolerances, timing, |row| {
         bar.set_message(format!("{} at {:e}", row.case, row.tolerance));
         bar.inc(1);
