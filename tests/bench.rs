@@ -208,8 +208,8 @@ fn the_oblique_study_measures_frictional_impacts_beside_their_twins() {
     let header: Vec<&str> = lines.next().expect("a header").split(',').collect();
     let column = |name: &str| header.iter().position(|c| *c == name).expect("a column");
     let rows: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();
-    // Three cases, three paths, two tolerances.
-    assert_eq!(rows.len(), 18, "{csv}");
+    // Five cases, three paths (four for two spheres: their central twin), two tolerances.
+    assert_eq!(rows.len(), 34, "{csv}");
     for row in &rows {
         let (path, method) = (row[column("path")], row[column("method")]);
         let wall = row[column("case")].starts_with("chung-ooi");
@@ -217,6 +217,7 @@ fn the_oblique_study_measures_frictional_impacts_beside_their_twins() {
             "auto" => assert_eq!(method, if wall { "dop853-regularised" } else { "dop853" }, "{row:?}"),
             "dop853" => assert_eq!(method, "dop853", "{row:?}"),
             "frictionless" => assert_eq!(method, if wall { "taylor" } else { "dop853" }, "{row:?}"),
+            "central" => assert!(!wall && method == "taylor", "{row:?}"),
             other => panic!("unknown path {other}"),
         }
         let tolerance: f64 = row[column("tolerance")].parse().expect("a tolerance");

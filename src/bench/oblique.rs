@@ -1,9 +1,9 @@
 //! Frictional oblique impacts in the work–precision study (`impact bench --oblique`, docs/numerics.md#oblique-impacts):
-//! Chung & Ooi's test 4 (an alumina sphere on a rigid wall, Tsuji's law, mu = 0.092) at 45° (it slides throughout)
-//! and at 10° (its slip comes to rest and the Mindlin spring takes over), and two free steel spheres with spin
-//! (Hunt–Crossley, mu = 0.3, the line of centres turning), each on the general path (the only one that covers
-//! friction) at a sweep of tolerances, beside the same contact without friction on the normal fast path — what the
-//! issue's goal measures a frictional impact against.
+//! Chung & Ooi's test 4 (an alumina sphere on a rigid wall, Tsuji's law, mu = 0.092) at 45° (it slides throughout),
+//! at 10° (its slip comes to rest and the Mindlin spring takes over) and at 30° with a spin about two axes, and two
+//! free steel spheres with and without spin (Hunt–Crossley, mu = 0.3, the line of centres turning), each on the
+//! path `auto` takes and on the 3-D model in physical time at a sweep of tolerances, beside the same contact without
+//! friction (for the wall on the normal fast path) — what the issue's goal measures a frictional impact against.
 //!
 //! The error of a run is the largest difference, from a run of the same scene at [`REFERENCE_TOLERANCE`], of the
 //! bodies' velocities and of their spins times their radii after the impact, over the approach speed; the time is
@@ -28,13 +28,24 @@ pub const QUICK_TOLERANCES: [f64; 2] = [1e-6, 1e-10];
 pub struct ObliqueCase {
     pub name: &'static str,
     pub text: String,
+    /// For two spheres, the same bodies meeting head-on at the same normal approach speed, without spin or
+    /// friction: the normal contact on the normal fast path, which the issue's goal measures a frictional impact
+    /// against (a wall case's frictionless twin is that already).
+    pub central: Option<String>,
 }
 
 /// Chung & Ooi's test 4 at `degrees` from the normal (3.9 m/s; e = 0.98 by Tsuji's exact map), `friction` mu.
 fn test4(degrees: f64, friction: f64) -> String {
+    spinning_test4(degrees, friction, [0.0; 3])
+}
+
+/// Test 4 with the sphere spinning at `spin` (rad/s) before the impact.
+fn spinning_test4(degrees: f64, friction: f64, spin: [f64; 3]) -> String {
     let (sin, cos) = degrees.to_radians().sin_cos();
+    let [a, b, c] = spin;
     format!(
-        "[[bodies]]\nradius = 0.0025\ndensity = 4000\nvelocity = [{}, 0.0, {}]\nyoung = 3.8e11\npoisson = 0.23\n\n\
+        "[[bodies]]\nradius = 0.0025\ndensity = 4000\nvelocity = [{}, 0.0, {}]\nangular_velocity = [{a:?}, {b:?}, {c:?}]\n\
+         young = 3.8e11\npoisson = 0.23\n\n\
          [[bodies]]\nradius = inf\nmass = inf\nvelocity = [0.0, 0.0, 0.0]\nyoung = inf\n\n\
          [contact]\nlaw = \"tsuji\"\nrestitution = 0.98\nfriction = {friction}\nnormal = [0.0, 0.0, -1.0]\n",
         3.9 * sin,
@@ -45,21 +56,42 @@ fn test4(degrees: f64, friction: f64) -> String {
 /// Two free steel spheres (10 and 15 mm) meeting at 30° with spins about two axes, Hunt–Crossley with e = 0.8,
 /// `friction` mu.
 fn spinning_spheres(friction: f64) -> String {
+    spheres(friction, [[0.0, 20.0, 60.0], [15.0, 0.0, -30.0]])
+}
+
+/// The same two spheres with the spins `spins` (rad/s).
+fn spheres(friction: f64, spins: [[f64; 3]; 2]) -> String {
+    spheres_moving(friction, spins, [[1.0, 0.5, 0.1], [-0.5, 0.0, 0.0]])
+}
+
+/// The two spheres with the spins `spins` (rad/s) and the velocities `velocities` (m/s; the normal is x).
+fn spheres_moving(friction: f64, spins: [[f64; 3]; 2], velocities: [[f64; 3]; 2]) -> String {
+    let ([a, b, c], [d, e, f]) = (spins[0], spins[1]);
+    let ([u, v, w], [x, y, z]) = (velocities[0], velocities[1]);
     format!(
-        "[[bodies]]\nradius = 0.01\ndensity = 7850\nvelocity = [1.0, 0.5, 0.1]\nangular_velocity = [0.0, 20.0, 60.0]\n\
+        "[[bodies]]\nradius = 0.01\ndensity = 7850\nvelocity = [{u:?}, {v:?}, {w:?}]\nangular_velocity = [{a:?}, {b:?}, {c:?}]\n\
          young = 2.1e11\npoisson = 0.3\n\n\
-         [[bodies]]\nradius = 0.015\ndensity = 7850\nvelocity = [-0.5, 0.0, 0.0]\nangular_velocity = [15.0, 0.0, -30.0]\n\
+         [[bodies]]\nradius = 0.015\ndensity = 7850\nvelocity = [{x:?}, {y:?}, {z:?}]\nangular_velocity = [{d:?}, {e:?}, {f:?}]\n\
          young = 2.1e11\npoisson = 0.3\n\n\
          [contact]\nlaw = \"hunt-crossley\"\nrestitution = 0.8\nfriction = {friction}\nnormal = [1.0, 0.0, 0.0]\n"
     )
 }
 
+/// The spin of test 4's spinning case (rad/s): backspin about the axis across the plane of incidence and a drilling
+/// spin about the normal (the sphere's rim at about 1.25 and 0.5 m/s, beside the 1.95 m/s tangential approach).
+const SPIN: [f64; 3] = [0.0, -500.0, 200.0];
+
 /// The cases of the study, each with its frictionless twin's text.
 pub fn cases() -> Vec<(ObliqueCase, String)> {
+    let wall = |name, text| ObliqueCase { name, text, central: None };
+    let central = || Some(spheres_moving(0.0, [[0.0; 3]; 2], [[1.0, 0.0, 0.0], [-0.5, 0.0, 0.0]]));
+    let pair = |name, text| ObliqueCase { name, text, central: central() };
     vec![
-        (ObliqueCase { name: "chung-ooi test 4 at 45 deg (sliding)", text: test4(45.0, 0.092) }, test4(45.0, 0.0)),
-        (ObliqueCase { name: "chung-ooi test 4 at 10 deg (sticking)", text: test4(10.0, 0.092) }, test4(10.0, 0.0)),
-        (ObliqueCase { name: "two free spheres with spin (mu 0.3)", text: spinning_spheres(0.3) }, spinning_spheres(0.0)),
+        (wall("chung-ooi test 4 at 45 deg (sliding)", test4(45.0, 0.092)), test4(45.0, 0.0)),
+        (wall("chung-ooi test 4 at 10 deg (sticking)", test4(10.0, 0.092)), test4(10.0, 0.0)),
+        (wall("chung-ooi test 4 at 30 deg with spin", spinning_test4(30.0, 0.092, SPIN)), spinning_test4(30.0, 0.0, SPIN)),
+        (pair("two free spheres with spin (mu 0.3)", spinning_spheres(0.3)), spinning_spheres(0.0)),
+        (pair("two free spheres without spin (mu 0.3)", spheres(0.3, [[0.0; 3]; 2])), spheres(0.0, [[0.0; 3]; 2])),
     ]
 }
 
@@ -68,9 +100,10 @@ pub fn cases() -> Vec<(ObliqueCase, String)> {
 pub struct ObliqueRow {
     pub case: &'static str,
     /// `auto` (the path `[solver] method = "auto"` takes with friction: a sphere on a wall in regularised time,
-    /// two spheres on the 3-D model), `dop853` (the 3-D model in physical time, as `method = "dop853"` forces it) or
+    /// two spheres on the 3-D model), `dop853` (the 3-D model in physical time, as `method = "dop853"` forces it),
     /// `frictionless` (the same contact without friction, on the path `auto` takes: the normal fast path for the
-    /// wall, the 3-D model for the turning spheres).
+    /// wall, the 3-D model for the turning spheres) or, for two spheres, `central` (their head-on twin on the
+    /// normal fast path, [`ObliqueCase::central`]).
     pub path: &'static str,
     pub method: &'static str,
     pub tolerance: f64,
@@ -113,9 +146,12 @@ pub fn study(
 ) -> Result<Vec<ObliqueRow>, String> {
     let mut rows = Vec::new();
     for (case, frictionless) in cases {
-        for (path, text, method) in
-            [("auto", &case.text, "auto"), ("dop853", &case.text, "dop853"), ("frictionless", frictionless, "auto")]
-        {
+        let mut paths = vec![("auto", &case.text, "auto"), ("dop853", &case.text, "dop853")];
+        paths.push(("frictionless", frictionless, "auto"));
+        if let Some(central) = &case.central {
+            paths.push(("central", central, "auto"));
+        }
+        for (path, text, method) in paths {
             // (The reference is the 3-D model in physical time at 1e-13: the path every other is held to.)
             let (scene, setup) = prepared(text, REFERENCE_TOLERANCE, "dop853")?;
             let reference = crate::impact::outcome(&scene, &setup).map_err(|e| format!("{}: {e}", case.name))?;
@@ -157,21 +193,25 @@ pub fn csv(rows: &[ObliqueRow]) -> String {
     text
 }
 
-/// The summary: each case's rows side by side, and the ratio of each frictional run's time to its frictionless
-/// twin's at the same tolerance.
+/// The summary: each case's rows side by side, the ratio of each frictional run's time to its frictionless twin's
+/// at the same tolerance, and to the normal fast path's (the wall's frictionless twin, the spheres' central one).
 pub fn table(rows: &[ObliqueRow]) -> String {
     let mut text = format!(
-        "{:<40} {:<12} {:<14} {:>9} {:>9} {:>11} {:>7} {:>9}\n",
-        "case", "path", "method", "tolerance", "error", "µs/impact", "steps", "vs twin"
+        "{:<40} {:<12} {:<18} {:>9} {:>9} {:>11} {:>7} {:>8} {:>10}\n",
+        "case", "path", "method", "tolerance", "error", "µs/impact", "steps", "vs twin", "vs normal"
     );
+    let find = |r: &ObliqueRow, path: &str| {
+        rows.iter().find(|t| t.case == r.case && t.path == path && t.tolerance == r.tolerance).map(|t| t.seconds)
+    };
     for r in rows {
-        let twin = rows.iter().find(|t| t.case == r.case && t.path == "frictionless" && t.tolerance == r.tolerance);
-        let ratio = match twin {
-            Some(t) if r.path != "frictionless" => format!("{:.0}x", r.seconds / t.seconds),
+        let frictional = r.path == "auto" || r.path == "dop853";
+        let ratio = |twin: Option<f64>| match twin {
+            Some(seconds) if frictional => format!("{:.0}x", r.seconds / seconds),
             _ => String::new(),
         };
+        let normal = find(r, "central").or_else(|| find(r, "frictionless").filter(|_| r.case.starts_with("chung")));
         text.push_str(&format!(
-            "{:<40} {:<12} {:<14} {:>9.0e} {:>9.1e} {:>11.2} {:>7} {:>9}\n",
+            "{:<40} {:<12} {:<18} {:>9.0e} {:>9.1e} {:>11.2} {:>7} {:>8} {:>10}\n",
             r.case,
             r.path,
             r.method,
@@ -179,7 +219,8 @@ pub fn table(rows: &[ObliqueRow]) -> String {
             r.error,
             r.seconds * 1e6,
             r.steps,
-            ratio
+            ratio(find(r, "frictionless")),
+            ratio(normal)
         ));
     }
     text
@@ -197,6 +238,14 @@ mod tests {
             let (_, setup) = prepared(&case.text, 1e-10, "auto").unwrap();
             assert_eq!(setup.motion, crate::setup::Motion::Full, "{}", case.name);
             assert!(setup.friction.is_some(), "{}", case.name);
+            if let Some(central) = &case.central {
+                let (scene, central_setup) = prepared(central, 1e-10, "auto").unwrap();
+                assert_eq!(central_setup.motion, crate::setup::Motion::Normal, "{}", case.name);
+                assert!(central_setup.friction.is_none() && scene.bodies.iter().all(|b| b.angular_velocity.norm() == 0.0));
+                // The same normal approach speed as the oblique case.
+                let (_, oblique) = prepared(&case.text, 1e-10, "auto").unwrap();
+                assert!((central_setup.approach_speed - oblique.approach_speed).abs() < 1e-15, "{}", case.name);
+            }
             let (scene, twin_setup) = prepared(&twin, 1e-10, "auto").unwrap();
             assert!(twin_setup.friction.is_none(), "{}", case.name);
             if case.name.starts_with("chung-ooi") {
@@ -205,9 +254,9 @@ mod tests {
                 let degrees = (v.x.hypot(v.y) / -v.z).atan().to_degrees();
                 assert!(case.name.contains(&format!("at {} deg", degrees.round())), "{}: {degrees}", case.name);
                 assert!((v.norm() - 3.9).abs() < 1e-12);
-            } else {
-                assert!(scene.bodies.iter().all(|b| b.angular_velocity.norm() > 0.0));
             }
+            let spinning = scene.bodies.iter().any(|b| b.angular_velocity.norm() > 0.0);
+            assert_eq!(spinning, case.name.contains("with spin"), "{}", case.name);
         }
     }
 }

@@ -53,7 +53,7 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
         );
     }
     if args.oblique && !args.cases.is_empty() {
-        return Err(BadInput("--case selects the single-impact cases; --oblique runs its three cases".into()).into());
+        return Err(BadInput("--case selects the single-impact cases; --oblique runs its own cases".into()).into());
     }
     let names: &[&str] = if args.worlds {
         &WORLD_OUTPUTS
@@ -87,7 +87,8 @@ fn oblique(args: &BenchArgs, outputs: Vec<Destination>) -> anyhow::Result<()> {
     let tolerances: &[f64] = if args.quick { &oblique::QUICK_TOLERANCES } else { &oblique::TOLERANCES };
     let timing = if args.quick { bench::Timing::QUICK } else { bench::Timing::FULL };
     let machine = bench::machine();
-    let bar = progress(3 * cases.len() * tolerances.len());
+    let paths: usize = cases.iter().map(|(case, _)| 3 + usize::from(case.central.is_some())).sum();
+    let bar = progress(paths * tolerances.len());
     let rows = oblique::study(&cases, tolerances, timing, |row| {
         bar.set_message(format!("{} at {:e}", row.case, row.tolerance));
         bar.inc(1);
