@@ -183,7 +183,16 @@ fn the_peers_scene_runs_and_gives_the_exact_e() {
     assert_close("dmax", contact["max_penetration"].as_f64().expect("dmax"), dmax, 1e-10);
     let sweep = impact(
         scratch.path(),
-        &["sweep", scene, "--vary", "contact.damping=0.5", "--columns", "restitution_velocity_ratio,steps", "--out", "e.csv"],
+        &[
+            "sweep",
+            scene,
+            "--vary",
+            "contact.damping=0.5",
+            "--columns",
+            "restitution_velocity_ratio,steps",
+            "--out",
+            "e.csv",
+        ],
     );
     assert_success(&sweep);
     let csv = scratch.read("e.csv");

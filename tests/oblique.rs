@@ -773,11 +773,10 @@ fn a_sphere_on_a_wall_in_regularised_time_agrees_with_the_general_path() {
         // on; their sum does not.
         let energy = reference.energy.kinetic_before;
         let left = |r: &Report| r.energy.elastic_left_at_separation.unwrap_or(0.0);
-        let friction = (oa.friction_work.unwrap_or(0.0) + left(&regularised)
-            - ob.friction_work.unwrap_or(0.0)
-            - left(&reference))
-            .abs()
-            / energy;
+        let friction =
+            (oa.friction_work.unwrap_or(0.0) + left(&regularised) - ob.friction_work.unwrap_or(0.0) - left(&reference))
+                .abs()
+                / energy;
         errors.push(("friction work and energy left", friction));
         let lost = |r: &Report| r.energy.dissipated.expect("D") + left(r);
         errors.push(("dissipated and left", (lost(&regularised) - lost(&reference)).abs() / energy));

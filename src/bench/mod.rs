@@ -227,7 +227,10 @@ impl Runner {
             }
             (Method::FirstIntegral, Setting::Tolerance(tolerance)) => {
                 let asked = Quantities { time: false, ..Quantities::MOTION };
-                Ok(Runner::FirstIntegral(Request { quantities: Quantities { peak: true, ..asked }, ..case.request(tolerance) }))
+                Ok(Runner::FirstIntegral(Request {
+                    quantities: Quantities { peak: true, ..asked },
+                    ..case.request(tolerance)
+                }))
             }
             (Method::Dop853 | Method::Dopri5, Setting::Tolerance(rtol)) => {
                 let text = case.scene_text(method.name(), rtol);

@@ -89,7 +89,10 @@ pub fn cases() -> Vec<(ObliqueCase, String)> {
     vec![
         (wall("chung-ooi test 4 at 45 deg (sliding)", test4(45.0, 0.092)), test4(45.0, 0.0)),
         (wall("chung-ooi test 4 at 10 deg (sticking)", test4(10.0, 0.092)), test4(10.0, 0.0)),
-        (wall("chung-ooi test 4 at 30 deg with spin", spinning_test4(30.0, 0.092, SPIN)), spinning_test4(30.0, 0.0, SPIN)),
+        (
+            wall("chung-ooi test 4 at 30 deg with spin", spinning_test4(30.0, 0.092, SPIN)),
+            spinning_test4(30.0, 0.0, SPIN),
+        ),
         (pair("two free spheres with spin (mu 0.3)", spinning_spheres(0.3)), spinning_spheres(0.0)),
         (pair("two free spheres without spin (mu 0.3)", spheres(0.3, [[0.0; 3]; 2])), spheres(0.0, [[0.0; 3]; 2])),
     ]
@@ -160,8 +163,8 @@ pub fn study(
                 let (scene, setup) = prepared(text, tolerance, method)?;
                 let out = crate::impact::outcome(&scene, &setup).map_err(|e| format!("{}: {e}", case.name))?;
                 let got = after(&scene, &out.end);
-                let error = got.iter().zip(&exact).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max)
-                    / setup.approach_speed;
+                let error =
+                    got.iter().zip(&exact).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max) / setup.approach_speed;
                 let (seconds, _) = median_seconds(|| crate::impact::outcome(&scene, &setup).ok(), timing);
                 let row = ObliqueRow {
                     case: case.name,
@@ -241,7 +244,9 @@ mod tests {
             if let Some(central) = &case.central {
                 let (scene, central_setup) = prepared(central, 1e-10, "auto").unwrap();
                 assert_eq!(central_setup.motion, crate::setup::Motion::Normal, "{}", case.name);
-                assert!(central_setup.friction.is_none() && scene.bodies.iter().all(|b| b.angular_velocity.norm() == 0.0));
+                assert!(
+                    central_setup.friction.is_none() && scene.bodies.iter().all(|b| b.angular_velocity.norm() == 0.0)
+                );
                 // The same normal approach speed as the oblique case.
                 let (_, oblique) = prepared(&case.text, 1e-10, "auto").unwrap();
                 assert!((central_setup.approach_speed - oblique.approach_speed).abs() < 1e-15, "{}", case.name);

@@ -143,7 +143,13 @@ mod tests {
             let h = 1.0 / f64::from(m);
             let sum: f64 = (0..=m)
                 .map(|i| {
-                    let weight = if i == 0 || i == m { 1.0 } else if i % 2 == 1 { 4.0 } else { 2.0 };
+                    let weight = if i == 0 || i == m {
+                        1.0
+                    } else if i % 2 == 1 {
+                        4.0
+                    } else {
+                        2.0
+                    };
                     weight * f(f64::from(i) * h)
                 })
                 .sum();

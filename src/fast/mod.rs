@@ -196,8 +196,7 @@ pub fn covers(law: &ContactLaw) -> bool {
 /// asked (the hysteresis family without the time: [`first_integral`]), by the Taylor integration otherwise.
 pub fn simulate_normal(request: &Request) -> Result<Outcome, FastError> {
     let system = Regularised::new(&request.law, &request.scales)?;
-    if first_integral::covers(&system, request.quantities) && request.tolerance.is_finite() && request.tolerance > 0.0
-    {
+    if first_integral::covers(&system, request.quantities) && request.tolerance.is_finite() && request.tolerance > 0.0 {
         return Ok(first_integral::impact(&system, request.quantities));
     }
     simulate_system(system, request)
