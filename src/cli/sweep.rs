@@ -6,7 +6,7 @@ use super::paths::{Origin, Paths};
 use crate::files::{self, Destination, OutputFile, Staging};
 use crate::output::sweep_figure;
 use crate::scene::SceneError;
-use crate::sweep::grid::{Axis, Grid, Spacing};
+use crate::sweep::grid::Spacing;
 use crate::sweep::shard::Shard;
 use crate::sweep::table::{self, Status};
 use crate::sweep::{self as sweeps, Sweep, SweepError};
@@ -76,8 +76,7 @@ pub(super) fn bad(error: SweepError) -> anyhow::Error {
     }
 }
 
-/// More threads than this only add start-up cost (a machine of this project's kind has 2 cores).
-const MAX_THREADS: usize = 256;
+use crate::sweep::MAX_THREADS;
 
 pub fn run(args: &SweepArgs) -> anyhow::Result<()> {
     let shard = args.shard.as_deref().map(Shard::parse).transpose().map_err(bad)?;
@@ -108,11 +107,10 @@ pub fn run(args: &SweepArgs) -> anyhow::Result<()> {
     if crate::scene::is_world(&text) {
         return world(args, &text, spacing);
     }
-    let laws = sweeps::parse_laws(&args.law).map_err(bad)?;
-    let axes = args.vary.iter().map(|spec| Axis::parse(spec, spacing)).collect::<Result<Vec<_>, _>>().map_err(bad)?;
-    let grid = Grid::new(axes).map_err(bad)?;
+    let mut sweep =
+        Sweep::from_arguments(&args.scene, text, &args.vary, args.log, &args.law, &args.columns).map_err(bad)?;
     if args.map.is_some() {
-        sweeps::map::check(grid.axes.len(), laws.len()).map_err(bad)?;
+        sweeps::map::check(sweep.grid.axes.len(), sweep.laws.len()).map_err(bad)?;
     }
     let mut paths = Paths::default();
     paths.input(format!("the scene file {} being read", args.scene.display()), &args.scene);
@@ -125,10 +123,6 @@ pub fn run(args: &SweepArgs) -> anyhow::Result<()> {
         Some(path) => Some((path, paths.output(format!("--map {}", path.display()), Origin::CommandLine, path)?)),
         None => None,
     };
-    let mut sweep = Sweep::new(&args.scene, text, grid, laws).map_err(bad)?;
-    if !args.columns.is_empty() {
-        sweep.select(table::Columns::parse(&args.columns).map_err(bad)?);
-    }
     if map.is_some() {
         // The map reads the verdicts from the CSV: they are added to its columns (and computed for its rows only).
         let mut columns = sweep.columns().clone();
