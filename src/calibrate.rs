@@ -216,7 +216,10 @@ pub fn from_arguments(
     let law = match law {
         Some(name) => Some(LawKind::from_name(name).ok_or_else(|| {
             let name = crate::text::cut(name, crate::text::MESSAGE_CHARS);
-            Refusal::BadInput(format!("unknown law `{name}` for --law; expected one of {}", LawKind::names().join(", ")))
+            Refusal::BadInput(format!(
+                "unknown law `{name}` for --law; expected one of {}",
+                LawKind::names().join(", ")
+            ))
         })?),
         None => None,
     };
@@ -226,7 +229,9 @@ pub fn from_arguments(
         Some("force") => Some(Separation::Force),
         Some(other) => {
             let other = crate::text::cut(other, crate::text::MESSAGE_CHARS);
-            return Err(Refusal::BadInput(format!("--separation must be \"penetration\" or \"force\", got \"{other}\"")));
+            return Err(Refusal::BadInput(format!(
+                "--separation must be \"penetration\" or \"force\", got \"{other}\""
+            )));
         }
     };
     let (scene, shown) = match scene {

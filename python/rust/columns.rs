@@ -9,10 +9,16 @@ use pyo3::types::PyString;
 pub enum Cells {
     Numbers(Vec<f64>),
     /// Codes into the distinct strings.
-    Texts { codes: Vec<u32>, strings: Vec<String> },
+    Texts {
+        codes: Vec<u32>,
+        strings: Vec<String>,
+    },
 }
 
 pub type TextColumns = Vec<(String, Cells)>;
+
+/// Columns as Python sees them: each name with its numpy array.
+pub type PyColumns<'py> = Vec<(String, Bound<'py, PyAny>)>;
 
 /// The columns of CSV text written by the core (a history, a world's series): a column whose every non-empty cell is
 /// a number is numbers (an empty cell NaN), any other is text. Cells hold no quotes or commas (the history's and the
@@ -68,7 +74,7 @@ pub fn text_array<'py>(py: Python<'py>, codes: &[u32], strings: &[String]) -> Bo
 }
 
 /// The columns as (name, numpy array) pairs, moved into numpy.
-pub fn to_python(py: Python<'_>, columns: TextColumns) -> PyResult<Vec<(String, Bound<'_, PyAny>)>> {
+pub fn to_python(py: Python<'_>, columns: TextColumns) -> PyResult<PyColumns<'_>> {
     Ok(columns
         .into_iter()
         .map(|(name, cells)| {

@@ -60,10 +60,7 @@ fn translate(py: Python<'_>, kind: &str, scene: &Bound<'_, PyAny>, to: &str, dt:
                 let scene = match source.parse()? {
                     Parsed::Impact(scene) => scene,
                     Parsed::World(_) => {
-                        let error = impact::scene::SceneError::file(
-                            source.path(),
-                            impact::translate::WORLD_AS_A_WHOLE,
-                        );
+                        let error = impact::scene::SceneError::file(source.path(), impact::translate::WORLD_AS_A_WHOLE);
                         return Err(source.failure(error));
                     }
                 };
@@ -72,9 +69,7 @@ fn translate(py: Python<'_>, kind: &str, scene: &Bound<'_, PyAny>, to: &str, dt:
                     TranslateError::Bad { key, message } if key.starts_with("--") => {
                         Failure::Value(format!("{key}: {message}"))
                     }
-                    TranslateError::Bad { key, message } => {
-                        source.located(impact::scene::SetupError { key, message })
-                    }
+                    TranslateError::Bad { key, message } => source.located(impact::scene::SetupError { key, message }),
                     TranslateError::Simulation(error) => run::impact_failure(&source, error),
                     other => Failure::Simulation(format!("{}: {other}", source.path().display())),
                 })?;
@@ -111,11 +106,12 @@ fn calibrate(
                     None => None,
                 };
                 let calibration =
-                    from_arguments(law.as_deref(), restitution, approach_speed, separation.as_deref(), scene)
-                        .map_err(|refusal| match refusal {
+                    from_arguments(law.as_deref(), restitution, approach_speed, separation.as_deref(), scene).map_err(
+                        |refusal| match refusal {
                             Refusal::BadInput(message) => Failure::Value(message),
                             Refusal::Failed(message) => Failure::Simulation(message),
-                        })?;
+                        },
+                    )?;
                 serde_json::to_string_pretty(&calibration).map_err(|e| Failure::Simulation(e.to_string()))
             })
         })

@@ -2,7 +2,7 @@
 //! core made it (the report, the history) and handed to Python as views: the JSON text `impact run --json` prints,
 //! the readable table, the history's columns, the figures as SVG.
 
-use crate::columns::{self, TextColumns};
+use crate::columns::{self, PyColumns, TextColumns};
 use crate::errors::{Failure, guarded};
 use crate::scene::Source;
 use impact::history::Recording;
@@ -129,7 +129,7 @@ impl Run {
 
     /// The history's columns by name, in the CSV's order (`impact run --csv`'s, or a world's series), or None when no
     /// history was recorded.
-    fn history<'py>(&self, py: Python<'py>) -> PyResult<Option<Vec<(String, Bound<'py, PyAny>)>>> {
+    fn history<'py>(&self, py: Python<'py>) -> PyResult<Option<PyColumns<'py>>> {
         let text = match &self.ran {
             Ran::Impact { simulation, .. } => simulation.history.as_ref().map(output::csv::render),
             Ran::World { series, .. } => series.clone(),
@@ -165,8 +165,7 @@ impl Run {
             Ran::World { scene, simulation, .. } => {
                 // (The figures need the run's instants: the world is run again, watched.)
                 let mut trace = WorldTrace::new();
-                impact::world_run::simulate_observed(scene, &mut trace)
-                    .map_err(|e| world_failure(&self.source, e))?;
+                impact::world_run::simulate_observed(scene, &mut trace).map_err(|e| world_failure(&self.source, e))?;
                 Ok(output::world_figures::names(&simulation.report)
                     .into_iter()
                     .map(|name| (name.to_string(), output::world_figures::svg(name, &simulation.report, &trace)))

@@ -44,9 +44,8 @@ impl Source {
             }),
             "dict" => {
                 let table = table(value, "")?;
-                let text = toml::to_string(&table).map_err(|error| {
-                    dict_error(None, format!("cannot be written as TOML: {error}"))
-                })?;
+                let text = toml::to_string(&table)
+                    .map_err(|error| dict_error(None, format!("cannot be written as TOML: {error}")))?;
                 Ok(Source { text, label: PathBuf::from("<dict>"), origin: Origin::Dict })
             }
             _ => Err(type_error(value)),

@@ -64,17 +64,12 @@ pub fn run(args: &CalibrateArgs) -> anyhow::Result<()> {
         Some(path) => Some((Scene::load(path)?, path.display().to_string())),
         None => None,
     };
-    let calibration = from_arguments(
-        args.law.as_deref(),
-        args.restitution,
-        args.approach_speed,
-        args.separation.as_deref(),
-        scene,
-    )
-    .map_err(|refusal| match refusal {
-        Refusal::BadInput(message) => anyhow::Error::new(BadInput(message)),
-        Refusal::Failed(message) => anyhow::anyhow!(message),
-    })?;
+    let calibration =
+        from_arguments(args.law.as_deref(), args.restitution, args.approach_speed, args.separation.as_deref(), scene)
+            .map_err(|refusal| match refusal {
+            Refusal::BadInput(message) => anyhow::Error::new(BadInput(message)),
+            Refusal::Failed(message) => anyhow::anyhow!(message),
+        })?;
     let text = if args.json { serde_json::to_string_pretty(&calibration)? + "\n" } else { render(&calibration) };
     print!("{text}");
     Ok(())

@@ -38,7 +38,10 @@ pub enum Kind {
 pub enum Data {
     Numbers(Vec<f64>),
     /// Codes into `strings`, one per row.
-    Texts { codes: Vec<u32>, strings: Vec<String> },
+    Texts {
+        codes: Vec<u32>,
+        strings: Vec<String>,
+    },
 }
 
 /// One column: its name (the CSV header's), how it is written, its cells.
@@ -55,7 +58,11 @@ impl Column {
     }
 
     fn texts(name: &str) -> Column {
-        Column { name: name.to_string(), kind: Kind::Text, data: Data::Texts { codes: Vec::new(), strings: Vec::new() } }
+        Column {
+            name: name.to_string(),
+            kind: Kind::Text,
+            data: Data::Texts { codes: Vec::new(), strings: Vec::new() },
+        }
     }
 
     /// Number of rows.
