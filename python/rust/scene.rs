@@ -97,6 +97,11 @@ fn dict_error(key: Option<&str>, message: String) -> Failure {
     }
 }
 
+/// Deepest nesting of dicts and lists a scene may have: a scene's deepest value is an inertia tensor in a list of
+/// tables (four levels); a deeper one (or a dict that holds itself) is refused before the conversion, which recurses,
+/// could exhaust the stack.
+const MAX_DEPTH: usize = 32;
+
 fn joined(path: &str, part: &str) -> String {
     if path.is_empty() { part.to_string() } else { format!("{path}.{part}") }
 }
@@ -123,6 +128,13 @@ fn table(value: &Bound<'_, PyAny>, path: &str) -> Result<toml::Table, Failure> {
 /// A Python value as a TOML value: bool, int, float, str, a list or tuple (or a numpy array, through `tolist`) as an
 /// array, a dict as a table. `None` and other types have no TOML form: the error names the key.
 fn toml_value(value: &Bound<'_, PyAny>, path: &str) -> Result<toml::Value, Failure> {
+    if path.split('.').count() > MAX_DEPTH {
+        let shown = impact::text::cut(path, impact::text::MESSAGE_CHARS);
+        return Err(dict_error(
+            None,
+            format!("`{shown}` is nested more than {MAX_DEPTH} deep (a dict or list that holds itself?)"),
+        ));
+    }
     if value.is_instance_of::<PyBool>() {
         return Ok(toml::Value::Boolean(value.extract::<bool>().unwrap_or(false)));
     }

@@ -167,6 +167,18 @@ def test_translate_calibrate_validate_refuse_bad_arguments():
         impact.validate("no-such-case")
 
 
+def test_a_dict_nested_without_end_is_a_scene_error_not_a_crash():
+    deep = [1.0]
+    for _ in range(100_000):
+        deep = [deep]
+    with pytest.raises(impact.SceneError, match="nested"):
+        impact.run(_with(("bodies", 0, "velocity"), deep))
+    selfish = _with(("title",), "x")
+    selfish["contact"]["itself"] = selfish["contact"]
+    with pytest.raises(impact.SceneError, match="nested"):
+        impact.run(selfish)
+
+
 def test_a_panic_never_escapes_as_a_panic_exception():
     # The corpus' biggest inputs and deepest nesting, as text: whatever the core does, Python sees SceneError.
     deep = "[contact]\nlaw = " + "[" * 10000 + "]" * 10000 + "\n"
