@@ -188,3 +188,18 @@ def test_a_panic_never_escapes_as_a_panic_exception():
             "contact": {"law": "hertz", "stiffness": 1e-308}}
     with pytest.raises((impact.SceneError, impact.SimulationError)):
         impact.run(huge)
+
+
+def test_what_exits_1_is_a_simulation_error(command, tmp_path):
+    # LAMMPS' velocity Verlet at a step of 1 µs (a fifth of this contact) cannot give e = 0.9999 with any nominal e:
+    # the command exits 1, Python raises SimulationError with its message.
+    scene = tmp_path / "near-elastic.toml"
+    text = (MODELS / "tsuji-dem-alumina.toml").read_text()
+    scene.write_text("\n".join("restitution = 0.9999" if l.startswith("restitution =") else l
+                               for l in text.splitlines()) + "\n")
+    done = command("translate", scene, "--to", "lammps", "--dt", "1e-6", "--json", check=False)
+    assert done.returncode == 1
+    with pytest.raises(impact.SimulationError) as caught:
+        impact.translate(scene, "lammps", dt=1e-6)
+    assert isinstance(caught.value, RuntimeError)
+    assert done.stderr.strip() == f"impact: {caught.value}"
