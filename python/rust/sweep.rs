@@ -9,6 +9,7 @@ use impact::files::{Destination, OutputFile};
 use impact::sweep::columns::{Data, Table};
 use impact::sweep::merge::{ShardFile, merge as merge_shards};
 use impact::sweep::shard::Shard;
+use impact::sweep::world::WorldSweep;
 use impact::sweep::{MAX_THREADS, Sweep, SweepError};
 use numpy::PyArray1;
 use numpy::ndarray::ArrayView1;
@@ -27,14 +28,16 @@ const CSV_ROWS: usize = 1 << 16;
 #[pyclass(frozen, module = "impact._impact")]
 pub struct SweepTable {
     table: Table,
+    /// The CSV as the core wrote it, for a world sweep (whose text cells the table does not re-quote).
+    raw: Option<String>,
     /// Each text column's numpy array of `str`, made when first asked for.
     texts: Mutex<Vec<Option<Py<PyAny>>>>,
 }
 
 impl SweepTable {
-    fn new(table: Table) -> SweepTable {
+    fn new(table: Table, raw: Option<String>) -> SweepTable {
         let texts = Mutex::new((0..table.columns.len()).map(|_| None).collect());
-        SweepTable { table, texts }
+        SweepTable { table, raw, texts }
     }
 }
 
@@ -71,69 +74,125 @@ pub fn sweep(
             n => n.map(|n| n as usize),
         };
         let source = Source::from_python(kind, scene)?;
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads.unwrap_or(0))
+            .build()
+            .map_err(|error| Failure::Simulation(format!("cannot start the worker threads: {error}")))?;
         if impact::scene::is_world(&source.text) {
-            return Err(world_sweep());
+            return world_sweep(py, &source, &vary, log, &laws, &columns, shard, &pool, progress.as_ref());
         }
         let sweep = guarded(|| {
             Sweep::from_arguments(&source.label, source.text.clone(), &vary, log, &laws, &columns)
                 .map_err(|error| sweep_failure(&source, error))
         })?;
-        let pool = rayon::ThreadPoolBuilder::new()
-            .num_threads(threads.unwrap_or(0))
-            .build()
-            .map_err(|error| Failure::Simulation(format!("cannot start the worker threads: {error}")))?;
         let total = sweep.rows();
         let indices = sweep.indices(shard);
         let count = indices.len();
         let mut table = Table::new(&sweep.keys(), sweep.columns(), shard.map(|s| (s, total, sweep.fingerprint())));
         table.reserve(count);
-        let stop = AtomicBool::new(false);
-        let done = AtomicUsize::new(0);
-        let mut interrupted: Option<PyErr> = None;
-        let computed = py.detach(|| {
-            std::thread::scope(|scope| {
-                let worker = scope.spawn(|| {
-                    guarded(|| {
-                        let _ = sweep.stream_until(
-                            indices,
-                            &pool,
-                            &stop,
-                            |rows| {
-                                done.fetch_add(rows, Ordering::Relaxed);
-                            },
-                            |row| row,
-                            |row| {
-                                table.push(&row);
-                                Ok::<(), std::convert::Infallible>(())
-                            },
-                        );
-                        Ok(())
-                    })
-                });
-                let mut last = Instant::now();
-                while !worker.is_finished() {
-                    std::thread::sleep(Duration::from_millis(5));
-                    if last.elapsed() < POLL {
-                        continue;
-                    }
-                    last = Instant::now();
-                    if let Err(error) = Python::attach(|py| watch(py, progress.as_ref(), &done, count)) {
-                        stop.store(true, Ordering::Relaxed);
-                        interrupted = Some(error);
-                        break;
-                    }
-                }
-                worker.join().unwrap_or_else(|_| Err(Failure::Simulation("the sweep's thread failed".into())))
-            })
-        });
-        if let Some(error) = interrupted {
-            return Err(Failure::Interrupted(error));
-        }
-        computed?;
-        Python::attach(|py| watch(py, progress.as_ref(), &done, count))?;
-        Ok(SweepTable::new(table))
+        watched(py, progress.as_ref(), count, |stop, done| {
+            let _ = sweep.stream_until(
+                indices,
+                &pool,
+                stop,
+                |rows| {
+                    done.fetch_add(rows, Ordering::Relaxed);
+                },
+                |row| row,
+                |row| {
+                    table.push(&row);
+                    Ok::<(), std::convert::Infallible>(())
+                },
+            );
+            Ok(())
+        })?;
+        Ok(SweepTable::new(table, None))
     })();
     outcome.map_err(|failure| failure.into_pyerr(py))
+}
+
+/// Runs `work` (the core's loop, given the stop flag it checks and the count of rows done it adds to) on a thread
+/// of its own with the GIL released, while this thread looks for Ctrl-C and reports progress every [`POLL`]; Ctrl-C
+/// sets the flag, waits for the loop to stop and raises KeyboardInterrupt.
+fn watched<F>(py: Python<'_>, progress: Option<&Py<PyAny>>, count: usize, work: F) -> Result<(), Failure>
+where
+    F: FnOnce(&AtomicBool, &AtomicUsize) -> Result<(), Failure> + Send,
+{
+    let stop = AtomicBool::new(false);
+    let done = AtomicUsize::new(0);
+    let mut interrupted: Option<PyErr> = None;
+    let computed = py.detach(|| {
+        std::thread::scope(|scope| {
+            let worker = scope.spawn(|| guarded(|| work(&stop, &done)));
+            let mut last = Instant::now();
+            while !worker.is_finished() {
+                std::thread::sleep(Duration::from_millis(5));
+                if last.elapsed() < POLL {
+                    continue;
+                }
+                last = Instant::now();
+                if let Err(error) = Python::attach(|py| watch(py, progress, &done, count)) {
+                    stop.store(true, Ordering::Relaxed);
+                    interrupted = Some(error);
+                    break;
+                }
+            }
+            worker.join().unwrap_or_else(|_| Err(Failure::Simulation("the sweep's thread failed".into())))
+        })
+    });
+    if let Some(error) = interrupted {
+        return Err(Failure::Interrupted(error));
+    }
+    computed?;
+    watch(py, progress, &done, count)?;
+    Ok(())
+}
+
+/// A sweep of a world scene (`impact sweep` of a world: docs/world.md#sweeps): no `--law` or `--shard`, as the
+/// command; its rows are the core's CSV lines, kept as written (they are the file) and read into the table.
+#[allow(clippy::too_many_arguments)]
+fn world_sweep(
+    py: Python<'_>,
+    source: &Source,
+    vary: &[String],
+    log: bool,
+    laws: &[String],
+    columns: &[String],
+    shard: Option<Shard>,
+    pool: &rayon::ThreadPool,
+    progress: Option<&Py<PyAny>>,
+) -> Result<SweepTable, Failure> {
+    for (given, option) in [(!laws.is_empty(), "laws"), (shard.is_some(), "shard")] {
+        if given {
+            return Err(Failure::Value(format!("{option} is not taken by a sweep of a world scene (yet)")));
+        }
+    }
+    let sweep = WorldSweep::from_arguments(&source.label, &source.text, vary, log, columns)
+        .map_err(|error| sweep_failure(source, error))?;
+    let count = sweep.rows();
+    let mut lines: Vec<String> = Vec::with_capacity(count);
+    watched(py, progress, count, |stop, done| {
+        let _ = sweep.stream_until(
+            (0..count).collect(),
+            pool,
+            stop,
+            |rows| {
+                done.fetch_add(rows, Ordering::Relaxed);
+            },
+            |row| {
+                lines.push(row.line);
+                Ok(())
+            },
+        );
+        Ok(())
+    })?;
+    let header = sweep.header();
+    let table = Table::from_lines(&header, &lines);
+    let mut text = header + "\n";
+    for line in &lines {
+        text.push_str(line);
+    }
+    Ok(SweepTable::new(table, Some(text)))
 }
 
 /// Looks for Ctrl-C (raising KeyboardInterrupt) and reports progress.
@@ -145,8 +204,8 @@ fn watch(py: Python<'_>, progress: Option<&Py<PyAny>>, done: &AtomicUsize, total
     Ok(())
 }
 
-/// The number of rows of the whole sweep, its arguments and scene checked as [`sweep`] checks them (nothing runs):
-/// what an executor's shards are cut from.
+/// The number of rows of the whole sweep, and whether the scene is a world, its arguments and scene checked as
+/// [`sweep`] checks them (nothing runs): what an executor's shards are cut from.
 #[pyfunction]
 #[pyo3(signature = (kind, scene, vary, log = false, laws = Vec::new(), columns = Vec::new()))]
 pub fn sweep_rows(
@@ -157,25 +216,21 @@ pub fn sweep_rows(
     log: bool,
     laws: Vec<String>,
     columns: Vec<String>,
-) -> PyResult<usize> {
+) -> PyResult<(usize, bool)> {
     let outcome = (|| {
         let source = Source::from_python(kind, scene)?;
         if impact::scene::is_world(&source.text) {
-            return Err(world_sweep());
+            return WorldSweep::from_arguments(&source.label, &source.text, &vary, log, &columns)
+                .map(|sweep| (sweep.rows(), true))
+                .map_err(|error| sweep_failure(&source, error));
         }
         guarded(|| {
             Sweep::from_arguments(&source.label, source.text.clone(), &vary, log, &laws, &columns)
-                .map(|sweep| sweep.rows())
+                .map(|sweep| (sweep.rows(), false))
                 .map_err(|error| sweep_failure(&source, error))
         })
     })();
     outcome.map_err(|failure| failure.into_pyerr(py))
-}
-
-fn world_sweep() -> Failure {
-    Failure::Value(
-        "a sweep of a world scene is not offered in Python yet: use `impact sweep` (docs/world.md#sweeps)".into(),
-    )
 }
 
 /// Joins the CSV texts of a sweep's shards (`names` for messages) as `impact merge` does.
@@ -189,7 +244,7 @@ pub fn merge(py: Python<'_>, texts: Vec<String>, names: Vec<String>) -> PyResult
             Table::from_merged(&merged).map_err(|e| Failure::Value(e.to_string()))
         })
     });
-    outcome.map(SweepTable::new).map_err(|failure| failure.into_pyerr(py))
+    outcome.map(|table| SweepTable::new(table, None)).map_err(|failure| failure.into_pyerr(py))
 }
 
 #[pymethods]
@@ -236,6 +291,9 @@ impl SweepTable {
 
     /// The whole CSV text, as `impact sweep --out` writes it (a shard's with its first line).
     fn csv(&self, py: Python<'_>) -> String {
+        if let Some(raw) = &self.raw {
+            return raw.clone();
+        }
         py.detach(|| {
             let mut text = String::new();
             self.table.write_csv(0..self.table.rows(), &mut text);
@@ -254,16 +312,19 @@ impl SweepTable {
         // (Row 0 brings the header: an empty table still writes it.)
         loop {
             let end = (start + CSV_ROWS).min(rows);
-            let written = py.detach(|| {
-                let mut text = String::new();
-                self.table.write_csv(start..end, &mut text);
-                output.write_bytes(text.as_bytes())
+            let written = py.detach(|| match &self.raw {
+                Some(raw) => output.write_bytes(raw.as_bytes()),
+                None => {
+                    let mut text = String::new();
+                    self.table.write_csv(start..end, &mut text);
+                    output.write_bytes(text.as_bytes())
+                }
             });
             written.map_err(io)?;
             // Ctrl-C drops the unfinished output, which removes its temporary file.
             py.check_signals()?;
             start = end;
-            if start >= rows {
+            if start >= rows || self.raw.is_some() {
                 break;
             }
         }

@@ -153,3 +153,39 @@ def test_a_bad_scene_is_a_scene_error(tmp_path):
     assert caught.value.path == str(bad)
     assert caught.value.key == "contact.nonsense"
     assert caught.value.line is not None
+
+
+def test_a_world_sweep_is_the_commands(command, tmp_path):
+    # The cradle's gap (docs/world.md#sweeps): touching, the last ball leaves at Herrmann & Schmälzle's 0.9945 v0;
+    # half a millimetre apart, the contacts are apart and it leaves at the sequential model's 1 m/s.
+    scene = MODELS / "newtons-cradle-gaps.toml"
+    vary = {"bodies.2.position.0": [0.04001, 0.04002, 0.04003, 0.0405]}
+    columns = ["bodies.2.velocity_after.0", "contacts.1.overlapping.0", "world.end_reason"]
+    out = tmp_path / "gaps.csv"
+    command("sweep", scene, "--vary", "bodies.2.position.0=0.04001,0.04002,0.04003,0.0405", "--columns",
+            ",".join(columns), "--out", out)
+    sweep = impact.sweep(scene, vary, columns=columns, progress=False)
+    header, rows = _read(out)
+    _same_cells(sweep, header, rows)
+    assert sweep.csv().encode() == out.read_bytes()
+    sweep.to_csv(tmp_path / "mine.csv")
+    assert (tmp_path / "mine.csv").read_bytes() == out.read_bytes()
+    last = sweep.columns["bodies.2.velocity_after.0"]
+    assert last[0] == pytest.approx(0.9945, abs=1e-4) and last[3] == pytest.approx(1.0, abs=1e-9)
+    assert sweep.columns["world.end_reason"].dtype == object
+
+
+def test_a_world_sweep_takes_no_laws_shards_or_executor():
+    scene = MODELS / "newtons-cradle-gaps.toml"
+    vary = {"bodies.2.position.0": "0.04001,0.0405"}
+    with pytest.raises(ValueError, match="laws"):
+        impact.sweep(scene, vary, laws="hertz", progress=False)
+    with pytest.raises(ValueError, match="shard"):
+        impact.sweep(scene, vary, shard="1/2", progress=False)
+
+    class Pool:
+        def submit(self, *args):
+            raise AssertionError("nothing should be sent")
+
+    with pytest.raises(ValueError, match="world"):
+        impact.sweep(scene, vary, executor=Pool(), progress=False)

@@ -6,7 +6,6 @@ use super::paths::{Origin, Paths};
 use crate::files::{self, Destination, OutputFile, Staging};
 use crate::output::sweep_figure;
 use crate::scene::SceneError;
-use crate::sweep::grid::Spacing;
 use crate::sweep::shard::Shard;
 use crate::sweep::table::{self, Status};
 use crate::sweep::{self as sweeps, Sweep, SweepError};
@@ -101,11 +100,10 @@ pub fn run(args: &SweepArgs) -> anyhow::Result<()> {
         )
         .into());
     }
-    let spacing = if args.log { Spacing::Geometric } else { Spacing::Linear };
     let text = std::fs::read_to_string(&args.scene)
         .map_err(|error| SceneError::file(&args.scene, format!("cannot read the scene: {error}")))?;
     if crate::scene::is_world(&text) {
-        return world(args, &text, spacing);
+        return world(args, &text);
     }
     let mut sweep =
         Sweep::from_arguments(&args.scene, text, &args.vary, args.log, &args.law, &args.columns).map_err(bad)?;
@@ -204,7 +202,7 @@ pub fn run(args: &SweepArgs) -> anyhow::Result<()> {
 }
 
 /// The sweep of a world scene (docs/world.md#sweeps): its rows stream into `--out` in index order.
-fn world(args: &SweepArgs, text: &str, spacing: Spacing) -> anyhow::Result<()> {
+fn world(args: &SweepArgs, text: &str) -> anyhow::Result<()> {
     for (given, option) in [
         (!args.law.is_empty(), "--law"),
         (args.shard.is_some(), "--shard"),
@@ -215,13 +213,8 @@ fn world(args: &SweepArgs, text: &str, spacing: Spacing) -> anyhow::Result<()> {
             return Err(BadInput(format!("{option} is not taken by a sweep of a world scene (yet)")).into());
         }
     }
-    let axes = args
-        .vary
-        .iter()
-        .map(|spec| crate::sweep::grid::parse_world(spec, spacing))
-        .collect::<Result<Vec<_>, _>>()
+    let sweep = crate::sweep::world::WorldSweep::from_arguments(&args.scene, text, &args.vary, args.log, &args.columns)
         .map_err(bad)?;
-    let sweep = crate::sweep::world::WorldSweep::new(&args.scene, text, axes, &args.columns).map_err(bad)?;
     let mut paths = Paths::default();
     paths.input(format!("the scene file {} being read", args.scene.display()), &args.scene);
     let out = paths.output(format!("--out {}", args.out.display()), Origin::CommandLine, &args.out)?;

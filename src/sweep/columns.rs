@@ -218,6 +218,50 @@ impl Table {
         Ok(table)
     }
 
+    /// The table of a world sweep's CSV lines (`header`, then one line per row with its line end): `index` a count,
+    /// `status` text, every other column numbers where each of its cells is empty or a number written as this
+    /// module writes it, text otherwise (a report's strings and booleans).
+    pub fn from_lines(header: &str, lines: &[String]) -> Table {
+        let names = table::split(header);
+        let rows: Vec<Vec<String>> = lines.iter().map(|line| table::split(line.trim_end_matches('\n'))).collect();
+        let cell = |row: &Vec<String>, k: usize| row.get(k).cloned().unwrap_or_default();
+        let numeric = |k: usize| {
+            rows.iter().all(|row| {
+                let text = cell(row, k);
+                text.is_empty()
+                    || text.parse::<f64>().is_ok_and(|x| {
+                        let mut again = String::new();
+                        table::push_number(&mut again, x);
+                        again == text
+                    })
+            })
+        };
+        let columns: Vec<Column> = names
+            .iter()
+            .enumerate()
+            .map(|(k, name)| match k {
+                0 => Column::numbers(name, Kind::Count),
+                1 => Column::texts(name),
+                _ if numeric(k) => Column::numbers(name, Kind::Number),
+                _ => Column::texts(name),
+            })
+            .collect();
+        let lookup = vec![HashMap::new(); columns.len()];
+        let mut table = Table { columns, comment: String::new(), lookup };
+        table.reserve(rows.len());
+        for row in &rows {
+            for k in 0..table.columns.len() {
+                let text = cell(row, k);
+                match table.columns[k].kind {
+                    Kind::Text => table.push_text(k, &text),
+                    _ if text.is_empty() => table.push_number(k, EMPTY),
+                    _ => table.push_number(k, text.parse().unwrap_or(f64::NAN)),
+                }
+            }
+        }
+        table
+    }
+
     /// The CSV text of rows `rows` (all: `0..self.rows()`), appended to `out` (the comment and header first when
     /// `rows` starts at 0): the bytes `impact sweep --out` writes for the same sweep.
     pub fn write_csv(&self, rows: std::ops::Range<usize>, out: &mut String) {

@@ -113,7 +113,9 @@ def _workers(executor: Any) -> int:
 def _on_executor(executor: Any, kind: str, scene: Any, specs: List[str], laws: List[str], columns: List[str],
                  threads: Optional[int], progress: Optional[bool], shards: Optional[int]) -> Sweep:
     # Checked here, before anything is sent: a bad scene or argument is the caller's error, with its file and line.
-    rows = _impact.sweep_rows(kind, scene, specs, False, laws, columns)
+    rows, world = _impact.sweep_rows(kind, scene, specs, False, laws, columns)
+    if world:
+        raise ValueError("executor: a sweep of a world scene is not cut into shards (yet); run it here")
     if kind == "path":
         # Workers need not see the caller's files: the scene goes as its text.
         with open(scene, encoding="utf-8") as file:
