@@ -120,6 +120,15 @@ pub fn touch_arms(a: &Body, b: &Body, normal: &Vector3<f64>) -> [Vector3<f64>; 2
 /// Relative tolerance (of the smaller radius) within which bodies count as just touching.
 pub const TOUCH_TOLERANCE: f64 = 1e-12;
 
+/// The gap or overlap (m) within which bodies `a` and `b` of a world, their centres (a flat body: a point of its face)
+/// at `xa` and `xb`, count as touching: the rounding of their absolute coordinates — 64 units in the last place of
+/// each body's radius plus its largest coordinate — and no less than the overlap a scene may start with
+/// ([`TOUCH_TOLERANCE`] of the smaller radius). Below it a world cannot tell touching from apart.
+pub fn touching_tolerance(a: &Body, xa: &Vector3<f64>, b: &Body, xb: &Vector3<f64>) -> f64 {
+    let size = |body: &Body, x: &Vector3<f64>| (if body.is_flat() { 0.0 } else { body.radius }) + x.abs().max();
+    (64.0 * f64::EPSILON * (size(a, xa) + size(b, xb))).max(TOUCH_TOLERANCE * a.radius.min(b.radius))
+}
+
 /// First contact of two placed bodies moving at constant velocity. `wall_normal` is the scene's normal,
 /// used for the plane of a flat body. At most one body may be flat.
 pub fn first_contact(a: &Body, b: &Body, wall_normal: &Vector3<f64>) -> Result<FirstContact, PlacementProblem> {

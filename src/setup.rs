@@ -21,6 +21,8 @@ use crate::units::{apart, apart_vectors, brief, brief_vector, short};
 use nalgebra::Vector3;
 use std::path::Path;
 
+pub mod world;
+
 /// A broken physics-level rule: the key at fault and what is wrong (the type of the scene's own value rules, which
 /// it shares).
 use crate::scene::SetupError;
@@ -105,6 +107,10 @@ fn fail<T>(key: impl Into<String>, message: impl Into<String>) -> Result<T, Setu
 /// Relative size (of the approach speed) below which a velocity across the normal counts as zero.
 const ACROSS_TOLERANCE: f64 = 1e-12;
 
+/// Relative size (of the bodies' speeds) of a velocity across the normal that is the rounding of the velocities
+/// themselves: the relative velocity's components are each within a few ulps of the larger speed.
+const ROUNDING: f64 = 16.0 * f64::EPSILON;
+
 /// Largest dissipative-to-elastic force ratio at the contact's own scales (alpha v0 for the hysteresis family,
 /// about 2 zeta for Kelvin–Voigt, a for Tsuji): beyond it e is below about 1e-10 and the restitution creeps for
 /// longer than any integration can follow, so the scene is refused rather than left to a step-size underflow.
@@ -155,11 +161,25 @@ impl Setup {
         };
         let law = resolve_law(&scene.contact, [a, b], effective_mass, approach_speed)?;
         let scales = check_law(&scene.contact, [a, b], &law, effective_mass, approach_speed)?;
+        // A velocity across the normal at the rounding of the bodies' own velocities is none: a common motion far
+        // faster than the relative one (stress case 9579 of seed 8675309 moves at 740 m/s and closes at 1.3 um/s)
+        // leaves its rounding across the normal, and the ratios of the report's oblique section would be ratios of
+        // rounding ("tangential restitution, centres 473545").
+        let rounding = |across: Vector3<f64>, scale: f64| {
+            if across.norm() <= ROUNDING * scale { Vector3::zeros() } else { across }
+        };
+        let speeds = a.velocity.norm() + b.velocity.norm();
         let tangential_velocity = {
             let relative = b.velocity - a.velocity;
-            relative - normal * relative.dot(&normal)
+            rounding(relative - normal * relative.dot(&normal), speeds)
         };
-        let initial_slip = if eccentric { Vector3::zeros() } else { contact_point_slip(&scene.bodies, &normal) };
+        let initial_slip = if eccentric {
+            Vector3::zeros()
+        } else {
+            let [arm_a, arm_b] = Setup::lever_arms(&scene.bodies, &normal);
+            let turning = a.angular_velocity.cross(&arm_a).norm() + b.angular_velocity.cross(&arm_b).norm();
+            rounding(contact_point_slip(&scene.bodies, &normal), speeds + turning)
+        };
         let friction = friction(scene, effective_mass)?;
         let coupled = friction.is_some() && initial_slip.norm() > ACROSS_TOLERANCE * approach_speed;
         let turning = !a.is_flat() && !b.is_flat() && tangential_velocity.norm() > ACROSS_TOLERANCE * approach_speed;
@@ -249,13 +269,15 @@ pub fn load_any(path: &Path) -> Result<Parsed, SceneError> {
     parse_any(&text, path)
 }
 
-/// Validates scene text of either kind (for a two-body scene, the physics-level rules of [`Setup`] too); `path` names
-/// the source in errors and gives the default title.
+/// Validates scene text of either kind with its physics-level rules: those of [`Setup`] for a two-body scene, those of
+/// [`world::check`] for a world; `path` names the source in errors and gives the default title.
 pub fn parse_any(text: &str, path: &Path) -> Result<Parsed, SceneError> {
     let read = crate::scene::read_any(text, path)?;
-    if let Parsed::Impact(scene) = &read.scene {
-        Setup::new(scene).map_err(|error| read.located(error))?;
+    match &read.scene {
+        Parsed::Impact(scene) => Setup::new(scene).map(|_| ()),
+        Parsed::World(scene) => world::check(scene),
     }
+    .map_err(|error| read.located(error))?;
     Ok(read.scene)
 }
 

@@ -19,13 +19,7 @@ pub struct WorldSimulation {
 
 /// Runs a world scene and builds its report.
 pub fn simulate(scene: &WorldScene) -> Result<WorldSimulation, WorldError> {
-    if let Some(simulation) = as_one_impact(scene)? {
-        return Ok(simulation);
-    }
-    let clock = Instant::now();
-    let outcome = driver::run(scene)?;
-    let report = crate::report::world::build(scene, &outcome, clock.elapsed().as_secs_f64());
-    Ok(WorldSimulation { report, outcome: Some(outcome) })
+    simulate_watched(scene, driver::Watchers::default())
 }
 
 /// Runs a world scene with `observer` shown every instant of its series (never as one impact: a series needs the
@@ -34,8 +28,22 @@ pub fn simulate_observed(
     scene: &WorldScene,
     observer: &mut dyn record::Observer,
 ) -> Result<WorldSimulation, WorldError> {
+    simulate_watched(scene, driver::Watchers { observer: Some(observer), progress: None })
+}
+
+/// Runs a world scene with its watchers (an observer of its series: never as one impact, since a series needs the
+/// world's own run; a progress count, which a world of two bodies run as one impact leaves untold).
+pub fn simulate_watched<'a>(
+    scene: &'a WorldScene,
+    watchers: driver::Watchers<'a>,
+) -> Result<WorldSimulation, WorldError> {
+    if watchers.observer.is_none()
+        && let Some(simulation) = as_one_impact(scene)?
+    {
+        return Ok(simulation);
+    }
     let clock = Instant::now();
-    let outcome = driver::run_observed(scene, observer)?;
+    let outcome = driver::run_watched(scene, watchers)?;
     let report = crate::report::world::build(scene, &outcome, clock.elapsed().as_secs_f64());
     Ok(WorldSimulation { report, outcome: Some(outcome) })
 }

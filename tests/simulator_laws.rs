@@ -46,12 +46,7 @@ fn independent_e(m: f64, speed: f64, time_scale: f64, steps: f64, end: End, forc
     let (mut d, mut v) = (0.0f64, speed);
     let mut turned = false;
     for _ in 0..100_000_000u64 {
-        let (k1d, k1v) = (v, acceleration(d, v));
-        let (k2d, k2v) = (v + 0.5 * h * k1v, acceleration(d + 0.5 * h * k1d, v + 0.5 * h * k1v));
-        let (k3d, k3v) = (v + 0.5 * h * k2v, acceleration(d + 0.5 * h * k2d, v + 0.5 * h * k2v));
-        let (k4d, k4v) = (v + h * k3v, acceleration(d + h * k3d, v + h * k3v));
-        let next_d = d + h / 6.0 * (k1d + 2.0 * k2d + 2.0 * k3d + k4d);
-        let next_v = v + h / 6.0 * (k1v + 2.0 * k2v + 2.0 * k3v + k4v);
+        let (next_d, next_v) = rk4_step(d, v, h, &acceleration);
         turned |= next_v < 0.0;
         let (g0, g1) = (ending(d, v), ending(next_d, next_v));
         if turned && g0 > 0.0 && g1 <= 0.0 {
@@ -61,6 +56,15 @@ fn independent_e(m: f64, speed: f64, time_scale: f64, steps: f64, end: End, forc
         (d, v) = (next_d, next_v);
     }
     panic!("the independent integration did not separate");
+}
+
+/// One classical Runge–Kutta step of d'' = `acceleration(d, d')` from (d, v) over h.
+fn rk4_step(d: f64, v: f64, h: f64, acceleration: &dyn Fn(f64, f64) -> f64) -> (f64, f64) {
+    let (k1d, k1v) = (v, acceleration(d, v));
+    let (k2d, k2v) = (v + 0.5 * h * k1v, acceleration(d + 0.5 * h * k1d, v + 0.5 * h * k1v));
+    let (k3d, k3v) = (v + 0.5 * h * k2v, acceleration(d + 0.5 * h * k2d, v + 0.5 * h * k2v));
+    let (k4d, k4v) = (v + h * k3v, acceleration(d + h * k3d, v + h * k3v));
+    (d + h / 6.0 * (k1d + 2.0 * k2d + 2.0 * k3d + k4d), v + h / 6.0 * (k1v + 2.0 * k2v + 2.0 * k3v + k4v))
 }
 
 /// MuJoCo's impedance (its `getimpedance`), written out: x = d / width; y = x^p / m^(p-1) up to the midpoint m,
@@ -359,12 +363,7 @@ fn independent_force_end(m: f64, speed: f64, time_scale: f64, steps: f64, force:
     let acceleration = |d: f64, v: f64| -force(d.max(0.0), v) / m;
     let (mut d, mut v) = (0.0f64, speed);
     for _ in 0..100_000_000u64 {
-        let (k1d, k1v) = (v, acceleration(d, v));
-        let (k2d, k2v) = (v + 0.5 * h * k1v, acceleration(d + 0.5 * h * k1d, v + 0.5 * h * k1v));
-        let (k3d, k3v) = (v + 0.5 * h * k2v, acceleration(d + 0.5 * h * k2d, v + 0.5 * h * k2v));
-        let (k4d, k4v) = (v + h * k3v, acceleration(d + h * k3d, v + h * k3v));
-        let next_d = d + h / 6.0 * (k1d + 2.0 * k2d + 2.0 * k3d + k4d);
-        let next_v = v + h / 6.0 * (k1v + 2.0 * k2v + 2.0 * k3v + k4v);
+        let (next_d, next_v) = rk4_step(d, v, h, &acceleration);
         let (g0, g1) = (force(d, v), force(next_d, next_v));
         if v < 0.0 && g0 > 0.0 && g1 <= 0.0 {
             let s = g0 / (g0 - g1);

@@ -20,7 +20,42 @@ fn creeping_restitution_ends_with_a_note_within_the_step_budget() {
         assert!(work <= STEP_BUDGET + 1000, "{contact}: {work} steps");
         assert!(report.notes.iter().any(|n| n.contains("did not separate")), "{contact}: {:?}", report.notes);
         assert!(report.contact.max_penetration.is_finite() && report.contact.max_force.is_finite());
+        let why = report.solver.gave_up.as_deref().unwrap_or_else(|| panic!("{contact}: the integration gave up"));
+        assert!(why.contains("budget") || why.contains("stiff"), "{contact}: {why}");
     }
+}
+
+#[test]
+fn an_impact_whose_integration_gave_up_writes_its_report_and_exits_1() {
+    // The creeping Hunt–Crossley contact above, from the command: the JSON report (its bodies in contact, the reason
+    // in solver.gave_up) on stdout, the reason on stderr, status 1 — an impact the integration could not finish
+    // is not a success. A contact that dies out (critically damped Kelvin–Voigt, which never separates at d = 0)
+    // ends on its own terms: status 0, no reason.
+    let scratch = common::binary::Scratch::new("gave_up");
+    let scene = |contact: &str| {
+        format!(
+            "[[bodies]]\nradius = 1.0\nmass = 1.0\nvelocity = [1.0, 0.0, 0.0]\n\n[[bodies]]\nradius = inf\nmass = inf\n\
+             velocity = [0.0, 0.0, 0.0]\n\n[contact]\n{contact}\n\n[solver]\nmethod = \"dop853\"\n"
+        )
+    };
+    let creeping = scratch.scene("creeping.toml", &scene("law = \"hunt-crossley\"\ndamping = 1e6\nstiffness = 1e6"));
+    let output = common::binary::impact(scratch.path(), &["run", &creeping, "--json"]);
+    assert_eq!(output.status.code(), Some(1), "{}", common::binary::describe(&output));
+    let report: serde_json::Value = serde_json::from_str(&common::binary::stdout(&output)).expect("the JSON report");
+    assert_eq!(report["contact"]["separated"], false);
+    assert!(report["solver"]["gave_up"].as_str().is_some_and(|why| why.contains("budget")), "{}", report["solver"]);
+    assert!(common::binary::stderr(&output).contains("gave up"), "{}", common::binary::describe(&output));
+    let settled = scratch.scene(
+        "settled.toml",
+        &scene(
+            "law = \"kelvin-voigt\"\nrestitution = 0.0\nstiffness = 1e6\nexponent = 1.0\nseparation = \"penetration\"",
+        ),
+    );
+    let output = common::binary::impact(scratch.path(), &["run", &settled, "--json"]);
+    assert_eq!(output.status.code(), Some(0), "{}", common::binary::describe(&output));
+    let report: serde_json::Value = serde_json::from_str(&common::binary::stdout(&output)).expect("the JSON report");
+    assert_eq!(report["contact"]["separated"], false);
+    assert!(report["solver"]["gave_up"].is_null(), "{}", report["solver"]);
 }
 
 #[test]

@@ -7,6 +7,7 @@ mod gallery;
 mod merge;
 mod models;
 pub mod paths;
+mod progress;
 pub mod run;
 mod stress;
 pub mod sweep;

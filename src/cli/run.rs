@@ -93,6 +93,15 @@ pub fn run(args: &RunArgs) -> anyhow::Result<()> {
     for name in written {
         eprintln!("wrote {name}");
     }
+    // An integration that gave up did not finish the impact: its report and outputs, complete up to where it
+    // stopped, are written, and the status says so (exit 1), as a world run's spent budget does.
+    if let Some(reason) = &simulation.report.solver.gave_up {
+        std::io::Write::flush(&mut std::io::stdout())?;
+        anyhow::bail!(
+            "{}: the integration gave up before the bodies separated ({reason}): the report above stops there",
+            args.scene.display()
+        );
+    }
     Ok(())
 }
 
@@ -233,11 +242,11 @@ fn run_world(args: &RunArgs, scene: &WorldScene) -> anyhow::Result<()> {
     let simulation = {
         let observed = series.is_some() || trace.is_some();
         let mut observers = Both { series: series.as_mut(), trace: trace.as_mut() };
-        let run = if observed {
-            crate::world_run::simulate_observed(scene, &mut observers)
-        } else {
-            crate::world_run::simulate(scene)
-        };
+        let run = super::progress::watched(&scene.world, |progress| {
+            let observer: Option<&mut dyn crate::world::record::Observer> =
+                if observed { Some(&mut observers) } else { None };
+            crate::world_run::simulate_watched(scene, crate::world::driver::Watchers { observer, progress })
+        });
         run.map_err(|error| match error {
             crate::world::WorldError::Setup(error) => anyhow::Error::new(crate::scene::located(&args.scene, error)),
             other => anyhow::Error::new(other),
@@ -276,6 +285,18 @@ fn run_world(args: &RunArgs, scene: &WorldScene) -> anyhow::Result<()> {
         if !streamed {
             eprintln!("wrote {name}");
         }
+    }
+    // A run its budget stopped did not finish what the scene asked: its report and outputs, complete up to where it
+    // stopped, are written, and the status says so (exit 1).
+    if simulation.report.world.end_reason == crate::world::record::EndReason::StepBudget.name() {
+        // (The report first, then the message: stdout is written out before stderr says why the status is 1.)
+        std::io::Write::flush(&mut std::io::stdout())?;
+        anyhow::bail!(
+            "{}: the world run stopped before its end at t = {} (world.end_reason = \"step_budget\"): its report's notes \
+             say why; the report and outputs above stop there",
+            args.scene.display(),
+            crate::units::brief(simulation.report.world.end_time, "s")
+        );
     }
     Ok(())
 }

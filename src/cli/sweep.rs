@@ -225,7 +225,7 @@ fn world(args: &SweepArgs, text: &str) -> anyhow::Result<()> {
     }
     let mut csv = OutputFile::create(&out)?;
     csv.write_bytes((sweep.header() + "\n").as_bytes())?;
-    let (mut rows, mut ok) = (0usize, 0usize);
+    let (mut rows, mut ok, mut stopped) = (0usize, 0usize, 0usize);
     sweep.stream(
         (0..sweep.rows()).collect(),
         &pool,
@@ -233,12 +233,14 @@ fn world(args: &SweepArgs, text: &str) -> anyhow::Result<()> {
         |row| {
             rows += 1;
             ok += usize::from(row.ok);
+            stopped += usize::from(row.stopped);
             csv.write_bytes(row.line.as_bytes())
         },
     )?;
     bar.finish_and_clear();
     csv.finish()?;
-    eprintln!("wrote {} ({rows} rows: {ok} ok, {} errors)", out.shown(), rows - ok);
+    let budget = if stopped > 0 { format!(", {stopped} stopped by their step budget") } else { String::new() };
+    eprintln!("wrote {} ({rows} rows: {ok} ok{budget}, {} errors)", out.shown(), rows - ok - stopped);
     Ok(())
 }
 

@@ -123,7 +123,15 @@ where
     previous_values: Vec<f64>,
     /// The events' values at the newest point.
     values: Vec<f64>,
+    /// Accepted plus rejected steps this stepper may take over all its runs ([`STEP_BUDGET`] unless lowered).
+    budget: u64,
+    /// Told the time and the accepted steps so far every [`TICK_STEPS`] accepted steps, if given (a world run's
+    /// progress on a terminal).
+    tick: Option<&'m dyn Fn(f64, u64)>,
 }
+
+/// Accepted steps between two calls of a stepper's tick.
+pub const TICK_STEPS: u64 = 256;
 
 /// The stepper of a model of fixed size.
 pub type Stepper<'m, M, const N: usize> = StepperOf<'m, M, Const<N>>;
@@ -140,6 +148,11 @@ where
     values: &'w mut Vec<f64>,
     bracket: Option<(Point<D>, Point<D>)>,
     record: Option<&'w mut Vec<(f64, Vector<D>)>>,
+    /// The stepper's tick, the steps it had taken (accepted and rejected) when this run began, and the steps accepted
+    /// in it.
+    tick: Option<&'w dyn Fn(f64, u64)>,
+    taken_before: u64,
+    accepted: u64,
 }
 
 /// The `System` handed to the solver: the model plus, optionally, a watch for events.
@@ -163,6 +176,14 @@ where
         let Some(watch) = self.watch.as_deref_mut() else { return false };
         if let Some(record) = watch.record.as_deref_mut() {
             record.push((t, y.clone()));
+        }
+        watch.accepted += 1;
+        // (Counted over the stepper's runs: a run between two events may be only a few steps long.)
+        let taken = watch.taken_before + watch.accepted;
+        if let Some(tick) = watch.tick
+            && taken % TICK_STEPS == 0
+        {
+            tick(t, taken);
         }
         for (value, event) in watch.values.iter_mut().zip(watch.events) {
             *value = event.value(y);
@@ -195,7 +216,19 @@ where
             record: record.then(Vec::new),
             previous_values: Vec::new(),
             values: Vec::new(),
+            budget: STEP_BUDGET,
+            tick: None,
         }
+    }
+
+    /// The same stepper telling `tick` the time and the steps taken every [`TICK_STEPS`] accepted steps.
+    pub fn with_tick(self, tick: &'m dyn Fn(f64, u64)) -> Self {
+        StepperOf { tick: Some(tick), ..self }
+    }
+
+    /// The same stepper with a budget of at most `budget` steps (a world's segment may take what its run has left).
+    pub fn with_budget(self, budget: u64) -> Self {
+        StepperOf { budget: budget.min(STEP_BUDGET), ..self }
     }
 
     /// The same stepper integrating with `scheme` (runs and re-steps alike).
@@ -337,9 +370,12 @@ where
             values: &mut values,
             bracket: None,
             record: record.as_mut(),
+            tick: self.tick,
+            taken_before: self.counters.steps + self.counters.rejected_steps,
+            accepted: 0,
         };
         let adapter = Adapter { model: self.model, watch: Some(&mut watch) };
-        let budget = STEP_BUDGET.saturating_sub(self.counters.steps + self.counters.rejected_steps);
+        let budget = self.budget.saturating_sub(self.counters.steps + self.counters.rejected_steps);
         let solved = solve(self.scheme, adapter, self.tolerances, t, y.clone(), t_end, first_step, budget);
         let (time, state) = solved.last.unwrap_or((t, y));
         let step = time - solved.before_last.unwrap_or(t);
@@ -361,7 +397,7 @@ where
                     // ode_solvers reports an underflow when its last step lands within rounding of the end.
                     SolverError::StepSizeUnderflow { x } if (t_end - x).abs() <= 1e-12 * t_end.abs().max(1.0) => None,
                     SolverError::MaxNumStepReached { .. } => {
-                        Some(format!("the budget of {STEP_BUDGET} steps was spent"))
+                        Some(format!("the budget of {} steps was spent", self.budget))
                     }
                     SolverError::StiffnessDetected { .. } => {
                         Some("the problem became stiff for an explicit method".into())
@@ -383,7 +419,7 @@ where
         let adapter = Adapter { model: self.model, watch: None };
         // A re-step inside one accepted step of a stiff contact may itself need many steps: it may use what is left of
         // the run's budget (at least a thousand).
-        let left = STEP_BUDGET.saturating_sub(self.counters.steps + self.counters.rejected_steps).max(1000);
+        let left = self.budget.saturating_sub(self.counters.steps + self.counters.rejected_steps).max(1000);
         let solved = solve(self.scheme, adapter, self.tolerances, from.0, from.1.clone(), t, h, left);
         let stats = solved.result.map_err(|error| IntegrationError::Solver { time: t, reason: in_words(&error) })?;
         self.add(&stats);

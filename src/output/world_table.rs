@@ -85,7 +85,7 @@ fn world(report: &WorldReport) -> Section {
         "max_contacts" => "its number of contacts (max_contacts)",
         "no_more_contacts" => "no two bodies can touch any more",
         "at_rest" => "the bodies came to rest",
-        "step_budget" => "the step budget was spent",
+        "step_budget" => "stopped before its end: its step budget, or an integration that could not go on (notes)",
         other => other,
     };
     section.row("the run ended at", format!("t = {} ({why})", engineering(w.end_time, "s")));

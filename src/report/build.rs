@@ -239,6 +239,10 @@ pub fn build(
             rejected_steps: outcome.counters.rejected_steps,
             force_evaluations: outcome.counters.evaluations,
             wall_time_s: wall_time,
+            gave_up: match &outcome.ending {
+                Ending::GaveUp(reason) if !done => Some(reason.clone()),
+                _ => None,
+            },
         },
         notes,
     };

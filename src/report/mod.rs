@@ -298,6 +298,10 @@ pub struct SolverReport {
     pub force_evaluations: u64,
     /// Wall-clock time of the run (setup, integration, report), s; NaN where it was not measured (a sweep row).
     pub wall_time_s: f64,
+    /// Why the integration gave up before the contact ended (its step budget spent, equations too stiff for the
+    /// smallest step), an addition: the report stops where it did, and `impact run` exits 1 after writing it; null
+    /// when the run ended on the contact's own terms (separated, settled, or its time limit reached).
+    pub gave_up: Option<String>,
 }
 
 /// A number for a note about a quantity that could not be formed from it: as people read it ("0 N", "1.2e-300 J"), or

@@ -25,6 +25,7 @@ pub struct RawWorld {
     pub gravity: Option<At<Vec<f64>>>,
     pub end_time: Option<At<f64>>,
     pub max_contacts: Option<At<toml::Value>>,
+    pub max_steps: Option<At<toml::Value>>,
     pub damping_map: Option<At<String>>,
     pub skin: Option<At<f64>>,
 }

@@ -5,7 +5,7 @@
 //! spans the conversion records for every key.
 
 use super::file::{At, RawBody, RawContact, RawOutput, RawPair, RawScene, RawSolver, RawWorld};
-use super::world::{DampingMap, MAX_CONTACTS_LIMIT, PairSpec, WorldScene, WorldSpec};
+use super::world::{DampingMap, MAX_CONTACTS_LIMIT, MAX_STEPS_LIMIT, PairSpec, WorldScene, WorldSpec};
 use super::{
     ContactSpec, DampingSpec, FrictionCap, Method, OutputSpec, Parsed, Scene, SceneError, SetupError, SolverSpec,
     StiffnessSpec, TangentialStiffnessSpec, TangentialUnloading,
@@ -517,25 +517,22 @@ fn world(src: &Source, raw: &At<RawWorld>) -> Checked<WorldSpec> {
     let gravity =
         raw.gravity.as_ref().map(|g| vector(src, "world.gravity", g)).transpose()?.unwrap_or(defaults.gravity);
     let end_time = raw.end_time.as_ref().map(|t| number(src, "world.end_time", t));
-    let max_contacts = match &raw.max_contacts {
-        None => defaults.max_contacts,
+    let count = |key: &str, value: &Option<At<toml::Value>>, default: u64, limit: u64| match value {
+        None => Ok(default),
         Some(value) => {
-            src.note("world.max_contacts", &value.span());
+            src.note(key, &value.span());
             match value.get_ref().as_integer() {
-                Some(n) if n >= 1 && (n as u64) <= MAX_CONTACTS_LIMIT => n as u64,
-                _ => {
-                    return Err(src.error(
-                        "world.max_contacts",
-                        Some(&value.span()),
-                        format!(
-                            "expected a whole number from 1 to {MAX_CONTACTS_LIMIT}, got {}",
-                            cut(&super::echoed(value.get_ref()))
-                        ),
-                    ));
-                }
+                Some(n) if n >= 1 && (n as u64) <= limit => Ok(n as u64),
+                _ => Err(src.error(
+                    key,
+                    Some(&value.span()),
+                    format!("expected a whole number from 1 to {limit}, got {}", cut(&super::echoed(value.get_ref()))),
+                )),
             }
         }
     };
+    let max_contacts = count("world.max_contacts", &raw.max_contacts, defaults.max_contacts, MAX_CONTACTS_LIMIT)?;
+    let max_steps = count("world.max_steps", &raw.max_steps, defaults.max_steps, MAX_STEPS_LIMIT)?;
     let damping_map = match &raw.damping_map {
         None => defaults.damping_map,
         Some(name) => {
@@ -551,7 +548,7 @@ fn world(src: &Source, raw: &At<RawWorld>) -> Checked<WorldSpec> {
         }
     };
     let skin = raw.skin.as_ref().map(|s| number(src, "world.skin", s));
-    Ok(WorldSpec { gravity, end_time, max_contacts, damping_map, skin })
+    Ok(WorldSpec { gravity, end_time, max_contacts, max_steps, damping_map, skin })
 }
 
 fn parse_error(src: &Source, error: &toml::de::Error) -> SceneError {

@@ -45,6 +45,9 @@ pub struct WorldSpec {
     pub end_time: Option<f64>,
     /// The run stops when this many contacts have ended.
     pub max_contacts: u64,
+    /// The run's budget of work: integration steps (accepted and rejected), each segment, flight and contact taken at
+    /// once counting as one more; a run that spends it stops with a note (docs/world.md#budgets).
+    pub max_steps: u64,
     /// How a damping map that depends on the approach speed applies to a pair's successive contacts.
     pub damping_map: DampingMap,
     /// The neighbour list's skin, m (`None`: the default, docs/world.md#neighbours; infinite: every pair).
@@ -81,12 +84,19 @@ pub const MAX_CONTACTS_LIMIT: u64 = 10_000_000;
 /// The default of `[world] max_contacts`.
 pub const DEFAULT_MAX_CONTACTS: u64 = 1000;
 
+/// The default of `[world] max_steps`: twenty million steps, a few minutes of a small island's integration.
+pub const DEFAULT_MAX_STEPS: u64 = 20_000_000;
+
+/// The largest `[world] max_steps`: ten billion steps, about a day of a small island's integration.
+pub const MAX_STEPS_LIMIT: u64 = 10_000_000_000;
+
 impl Default for WorldSpec {
     fn default() -> Self {
         WorldSpec {
             gravity: Vector3::zeros(),
             end_time: None,
             max_contacts: DEFAULT_MAX_CONTACTS,
+            max_steps: DEFAULT_MAX_STEPS,
             damping_map: DampingMap::EachContact,
             skin: None,
         }

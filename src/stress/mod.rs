@@ -853,11 +853,15 @@ fn check(scene: &Scene, report: &Report, flight: Option<f64>, checks: &mut Check
             (0..2).map(|i| (simulated(i) - ideal[i]).amax()).fold(0.0, f64::max)
         };
         checks.record("rigid_body.velocity_after", velocity_error(largest(&after, &rigid.velocity_after)));
+        // A spin's error as the velocity it gives the contact point, within the velocities' own rounding: the
+        // friction impulse's direction is the slip's, whose rounding is the velocities' (a common motion at 740 m/s
+        // closing at 1.3 um/s, case 9579 of seed 8675309, turns it by 1e-7 rad).
         let radius = report.bodies.iter().map(|b| b.radius).fold(f64::INFINITY, f64::min);
         let spin_scale = (0..2).map(|i| spin_before(i).norm().max(spin_after(i).norm())).fold(0.0, f64::max);
         let difference = largest(&spin_after, &rigid.angular_velocity_after);
-        let spin_error = (difference - 8.0 * f64::EPSILON * spin_scale).max(0.0);
-        checks.record("rigid_body.angular_velocity_after", spin_error * radius / v0);
+        let rounding = 8.0 * f64::EPSILON * (speed_scale + spin_scale * radius);
+        let spin_error = (difference * radius - rounding).max(0.0);
+        checks.record("rigid_body.angular_velocity_after", spin_error / v0);
     }
 
     // First contact from free flight.

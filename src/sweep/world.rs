@@ -42,12 +42,18 @@ pub struct WorldSweep {
     columns: Vec<String>,
 }
 
-/// One row: its index, its status (`ok`, or `error: KEY: why`), its cells.
+/// One row: its index, its status (`ok`; `step budget`, a run its budget stopped, its cells the report's where it
+/// stopped; or `error: KEY: why`), its cells.
 pub struct WorldRow {
     pub index: usize,
     pub ok: bool,
+    /// The run spent its budget (`[world] max_steps`) before its end.
+    pub stopped: bool,
     pub line: String,
 }
+
+/// The status of a row whose run its budget stopped.
+pub const STOPPED: &str = "step budget";
 
 impl WorldSweep {
     /// The sweep of the world scene `text` (read from `path`) over the grid of `axes` (each key's values; the
@@ -131,10 +137,13 @@ impl WorldSweep {
         let mut line = format!("{index},");
         let mut cells: Vec<String> = values.iter().map(|&v| number(v)).collect();
         let outcome = self.run(&values);
-        let ok = outcome.is_ok();
+        let stopped = outcome.as_ref().is_ok_and(|report| {
+            report["world"]["end_reason"].as_str() == Some(crate::world::record::EndReason::StepBudget.name())
+        });
+        let ok = outcome.is_ok() && !stopped;
         match outcome {
             Ok(report) => {
-                line.push_str("ok");
+                line.push_str(if stopped { STOPPED } else { "ok" });
                 cells.extend(self.columns.iter().map(|column| cell(&report, column)));
             }
             Err(why) => {
@@ -147,7 +156,7 @@ impl WorldSweep {
             line.push_str(&cell);
         }
         line.push('\n');
-        WorldRow { index, ok, line }
+        WorldRow { index, ok, stopped, line }
     }
 
     /// The report of the point `values` as JSON, or why there is none (`KEY: why`).

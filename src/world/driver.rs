@@ -11,7 +11,8 @@ use super::broad::{Neighbours, skin};
 use super::flight::{Kinematic, acceleration, first_touch};
 use super::island::{ActiveContact, Island, Units};
 use super::record::{
-    Compression, ContactRecord, ContactSample, EndReason, Ending as ContactEnding, Observer, Stop, WorldOutcome,
+    Compression, ContactRecord, ContactSample, EndReason, Ending as ContactEnding, Observer, Progress, Stop,
+    WorldOutcome,
 };
 use crate::dynamics::contact::{Mode, Tangential};
 use crate::geometry::Meeting;
@@ -33,8 +34,9 @@ pub enum WorldError {
     Integration(#[from] IntegrationError),
 }
 
-/// The most accepted and rejected steps one world run may take over all its segments.
-pub const WORLD_STEP_BUDGET: u64 = 20_000_000;
+/// The default budget of one world run (`[world] max_steps`): accepted and rejected steps over all its segments, each
+/// segment, flight and contact taken at once counting as one more (docs/world.md#budgets).
+pub const WORLD_STEP_BUDGET: u64 = crate::scene::world::DEFAULT_MAX_STEPS;
 
 /// Scaled length of a segment, in the island's time units, after which it is restarted (a long resting contact
 /// goes on in fresh segments, each with its own step budget).
@@ -57,19 +59,32 @@ const PROBE: f64 = 1e-6;
 /// place (the floor of the quiet bounds).
 const ROUNDING: f64 = 4.0 * f64::EPSILON;
 
+/// What watches a run besides its outcome: an observer of its series, a count of how far it has come.
+#[derive(Default)]
+pub struct Watchers<'a> {
+    /// Shown every instant of the run's series.
+    pub observer: Option<&'a mut dyn Observer>,
+    /// Told the scene time, the contacts ended and the steps taken as each segment or flight ends.
+    pub progress: Option<&'a Progress>,
+}
+
 /// The run of a world scene.
 pub fn run(scene: &WorldScene) -> Result<WorldOutcome, WorldError> {
-    let mut world = World::new(scene, None);
-    world.go()?;
-    Ok(world.finish())
+    run_watched(scene, Watchers::default())
 }
 
 /// The run of a world scene, with `observer` shown every instant of its series.
 pub fn run_observed(scene: &WorldScene, observer: &mut dyn Observer) -> Result<WorldOutcome, WorldError> {
-    let mut world = World::new(scene, Some(observer));
+    run_watched(scene, Watchers { observer: Some(observer), progress: None })
+}
+
+/// The run of a world scene, with its watchers.
+pub fn run_watched<'a>(scene: &'a WorldScene, watchers: Watchers<'a>) -> Result<WorldOutcome, WorldError> {
+    let mut world = World::new(scene, watchers);
     world.show_now();
     world.go()?;
     world.show_now();
+    world.tell();
     Ok(world.finish())
 }
 
@@ -144,10 +159,17 @@ struct World<'a> {
     reason: Option<EndReason>,
     notes: Vec<String>,
     observer: Option<&'a mut dyn Observer>,
+    progress: Option<&'a Progress>,
+    /// Segments, flights and contacts taken at once so far: each counts as one step of the run's budget.
+    passes: u64,
+    /// Pairs whose touch began no contact (a graze at the rounding of the velocities) at scene time `grazed_at`: not
+    /// taken again at that instant.
+    grazed: BTreeSet<[usize; 2]>,
+    grazed_at: f64,
 }
 
 impl<'a> World<'a> {
-    fn new(scene: &'a WorldScene, observer: Option<&'a mut dyn Observer>) -> Self {
+    fn new(scene: &'a WorldScene, watchers: Watchers<'a>) -> Self {
         let states: Vec<Kinematic> = scene
             .bodies
             .iter()
@@ -178,8 +200,59 @@ impl<'a> World<'a> {
             neighbours,
             reason: None,
             notes: Vec::new(),
-            observer,
+            observer: watchers.observer,
+            progress: watchers.progress,
+            passes: 0,
+            grazed: BTreeSet::new(),
+            grazed_at: f64::NAN,
         }
+    }
+
+    /// Tells the progress watcher, if any, how far the run has come.
+    fn tell(&self) {
+        if let Some(progress) = self.progress {
+            progress.record(self.time, self.ended, self.counters.steps + self.counters.rejected_steps);
+        }
+    }
+
+    /// The work the run has done against its budget: integration steps, accepted and rejected, and its passes.
+    fn work(&self) -> u64 {
+        self.counters.steps + self.counters.rejected_steps + self.passes
+    }
+
+    /// Counts one more pass (a segment, a flight, a contact taken at once) and whether the run has spent its budget
+    /// (`[world] max_steps`); if it has, the run ends with a note.
+    fn pass(&mut self) -> bool {
+        self.passes += 1;
+        if self.reason.is_some() || self.work() < self.scene.world.max_steps {
+            return self.reason.is_some();
+        }
+        self.notes.push(format!(
+            "the run spent its budget of {} steps (world.max_steps) at t = {}: {} integration steps, {} of them \
+             rejected, and {} segments, flights and contacts taken at once; the report stops there (a larger \
+             max_steps goes further)",
+            self.scene.world.max_steps,
+            crate::units::brief(self.time, "s"),
+            self.counters.steps + self.counters.rejected_steps,
+            self.counters.rejected_steps,
+            self.passes
+        ));
+        self.reason = Some(EndReason::StepBudget);
+        true
+    }
+
+    /// Whether the touch of bodies `i` and `j` began no contact at this very instant.
+    fn grazed(&self, i: usize, j: usize) -> bool {
+        self.grazed_at == self.time && self.grazed.contains(&[i, j])
+    }
+
+    /// Notes that the touch of bodies `i` and `j` began no contact now.
+    fn graze(&mut self, i: usize, j: usize) {
+        if self.grazed_at != self.time {
+            self.grazed.clear();
+            self.grazed_at = self.time;
+        }
+        self.grazed.insert([i, j]);
     }
 
     /// Shows the observer the world now (no contact forces: between islands, or at the run's ends).
@@ -302,13 +375,8 @@ impl<'a> World<'a> {
     /// The tolerance (m) within which bodies `i` and `j` count as touching: the rounding of their positions, and no
     /// less than the overlap a scene may start with (1e-12 of the smaller radius).
     fn touching(&self, i: usize, j: usize) -> f64 {
-        let size = |k: usize| {
-            let body = &self.scene.bodies[k];
-            let radius = if body.is_flat() { 0.0 } else { body.radius };
-            radius + self.states[k].position.abs().max()
-        };
         let (a, b) = (&self.scene.bodies[i], &self.scene.bodies[j]);
-        (64.0 * f64::EPSILON * (size(i) + size(j))).max(crate::geometry::TOUCH_TOLERANCE * a.radius.min(b.radius))
+        crate::geometry::touching_tolerance(a, &self.states[i].position, b, &self.states[j].position)
     }
 
     /// The next first touch in free flight among `pairs` (from the bodies' states now), within `left` s: its time
@@ -334,6 +402,10 @@ impl<'a> World<'a> {
 
     fn go(&mut self) -> Result<(), WorldError> {
         while self.reason.is_none() {
+            self.tell();
+            if self.pass() {
+                break;
+            }
             // A list nearly spent is rebuilt before the next flight or segment (which would end at once).
             let reach = self.neighbours.reach();
             if (0..self.states.len()).any(|k| self.neighbours.margin(k, &self.states[k].position) < reach / 8.0) {
@@ -358,6 +430,9 @@ impl<'a> World<'a> {
         // Pairs that grazed at the rounding of their velocities fly on, out of this flight's search.
         let mut grazed: Vec<(usize, usize)> = Vec::new();
         loop {
+            if !grazed.is_empty() && self.pass() {
+                return Ok(());
+            }
             let left = self.left();
             let holds = self.list_holds(None);
             let pairs: Vec<(usize, usize)> =
@@ -373,6 +448,9 @@ impl<'a> World<'a> {
                     self.show_flight(holds);
                     self.advance(holds);
                     self.relist();
+                    if self.pass() {
+                        return Ok(());
+                    }
                     continue;
                 }
             }
@@ -600,7 +678,8 @@ impl<'a> World<'a> {
             })
             .collect();
         // Pairs with no body in the island fly freely: the segment stops at their next first touch.
-        let outside: Vec<(usize, usize)> = all.iter().copied().filter(|p| !inside(p)).collect();
+        let outside: Vec<(usize, usize)> =
+            all.iter().copied().filter(|&(i, j)| !inside(&(i, j)) && !self.grazed(i, j)).collect();
         let outside_touch = self.next_touch(&outside, self.left());
         // Groups that come to rest: one an immovable body holds is frozen; free ones end the run when every movable
         // body not frozen is in them.
@@ -692,7 +771,20 @@ impl<'a> World<'a> {
         // midpoint and width, ADAMS' cubic step at d_max).
         let factor = 0.1 * isl.contacts.iter().map(|c| c.law.tolerance_factor()).fold(1.0, f64::min);
         let tolerances = Tolerances { rtol: requested.rtol * factor, atol: requested.atol * factor };
-        let mut stepper = StepperOf::new(&island, tolerances, self.observer.is_some());
+        // (The segment may take what is left of the run's budget, at most one impact's.)
+        let left = self.scene.world.max_steps.saturating_sub(self.work()).max(1);
+        // A long segment tells the progress watcher how far it has come as it goes.
+        let (time, ended, taken) = (self.time, self.ended, self.counters.steps + self.counters.rejected_steps);
+        let progress = self.progress;
+        let tick = move |t: f64, steps: u64| {
+            if let Some(progress) = progress {
+                progress.record(time + t * units.time, ended, taken + steps);
+            }
+        };
+        let mut stepper = StepperOf::new(&island, tolerances, self.observer.is_some()).with_budget(left);
+        if progress.is_some() {
+            stepper = stepper.with_tick(&tick);
+        }
         let by_end = self.left() / units.time;
         let by_outside = outside_touch.as_ref().map_or(f64::INFINITY, |(delay, _)| delay / units.time);
         let by_list = self.list_holds(Some(&island)) / units.time;
@@ -802,6 +894,7 @@ impl<'a> World<'a> {
         drop(events);
         drop(functions);
         drop(island);
+        let before = self.time;
         self.time = now;
 
         match end.ending {
@@ -885,13 +978,28 @@ impl<'a> World<'a> {
                 return Ok(());
             }
             Ending::TimeLimit if horizon == by_outside => {
-                // Two bodies outside the island touch: their contact begins (and joins the island).
+                // Two bodies outside the island touch: their contact begins (and joins the island); a touch that
+                // begins none (a graze) is not taken again at this instant.
                 for (i, j) in outside_touch.map(|(_, pairs)| pairs).unwrap_or_default() {
-                    self.begin(i, j, Some(units.speed), None)?;
+                    if !self.begin(i, j, Some(units.speed), None)? {
+                        self.graze(i, j);
+                    }
                 }
             }
             // A body outside the island reached the bound of the neighbour list.
             Ending::TimeLimit if horizon == by_list => self.relist(),
+            // A long segment that left the clock where it was: the island's time unit is below the clock's rounding,
+            // and no number of segments would move it on.
+            Ending::TimeLimit if now == before => {
+                self.notes.push(format!(
+                    "at t = {} the island's time unit, {}, is below the rounding of the scene's clock: a segment of \
+                     {SEGMENT_TIME} units left the clock where it was, and the run stopped there",
+                    crate::units::brief(now, "s"),
+                    crate::units::brief(units.time, "s")
+                ));
+                self.reason = Some(EndReason::StepBudget);
+                return Ok(());
+            }
             // A long segment: go on in a fresh one.
             Ending::TimeLimit => {}
             // A segment that spent its own step budget goes on in a fresh one (the run's budget decides). So does a
@@ -905,14 +1013,6 @@ impl<'a> World<'a> {
                 return Ok(());
             }
         }
-        if self.counters.steps + self.counters.rejected_steps > WORLD_STEP_BUDGET {
-            self.notes.push(format!(
-                "the run spent its budget of {WORLD_STEP_BUDGET} steps at t = {}",
-                crate::units::brief(now, "s")
-            ));
-            self.reason = Some(EndReason::StepBudget);
-            return Ok(());
-        }
         self.settle_simultaneous(units.speed)?;
         if self.ended >= scene.world.max_contacts && self.reason.is_none() {
             self.reason = Some(EndReason::MaxContacts);
@@ -924,6 +1024,9 @@ impl<'a> World<'a> {
     /// positions): taken at once, each as its own event.
     fn settle_simultaneous(&mut self, speed: f64) -> Result<(), WorldError> {
         loop {
+            if self.pass() {
+                return Ok(());
+            }
             // (Without a live contact the island is gone: flight finds what touches next.)
             let live = self.live();
             if self.ended >= self.scene.world.max_contacts || live.is_empty() {
@@ -948,7 +1051,10 @@ impl<'a> World<'a> {
             });
             let active: BTreeSet<[usize; 2]> = self.active.iter().map(|c| c.pair).collect();
             let touching = self.neighbours.pairs.iter().copied().find(|&(i, j)| {
-                if active.contains(&[i, j]) || (island.slot(i).is_none() && island.slot(j).is_none()) {
+                if active.contains(&[i, j])
+                    || (island.slot(i).is_none() && island.slot(j).is_none())
+                    || self.grazed(i, j)
+                {
                     return false;
                 }
                 let state = island.pair_state(i, j, &scene.meeting(i, j), &y);
@@ -960,7 +1066,10 @@ impl<'a> World<'a> {
                 self.finish_contact(c, rate)?;
             } else if let Some((i, j)) = touching {
                 let pushed = self.pressed.contains(&[i, j]);
-                self.begin(i, j, Some(speed), Some(pushed))?;
+                if !self.begin(i, j, Some(speed), Some(pushed))? {
+                    // A touch that begins no contact is not taken again at this instant.
+                    self.graze(i, j);
+                }
             } else if let Some(group) = self.quiet_group() {
                 self.quiet(&group)?;
             } else {

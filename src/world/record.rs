@@ -5,6 +5,7 @@ use crate::integrate::Counters;
 use crate::law::{ContactLaw, Separation};
 use nalgebra::Vector3;
 use std::collections::{BTreeMap, BTreeSet};
+use std::sync::atomic::{AtomicU64, Ordering};
 
 /// One contact as it happened.
 #[derive(Debug, Clone, PartialEq)]
@@ -181,6 +182,41 @@ pub struct ContactSample {
 pub trait Observer {
     /// Every body's state and the active contacts at scene time `time` (s).
     fn instant(&mut self, time: f64, bodies: &[Kinematic], contacts: &[ContactSample]);
+}
+
+/// How far a run has come, for a view that shows it while the run goes on (a terminal's progress line): the scene
+/// time, the contacts ended and the steps taken, stored by the driver as each segment or flight ends. Relaxed atomics:
+/// a reader on another thread sees recent values, each whole, and the driver pays three stores per segment.
+#[derive(Debug, Default)]
+pub struct Progress {
+    /// The scene time's bits (an `f64`), s.
+    time: AtomicU64,
+    contacts: AtomicU64,
+    steps: AtomicU64,
+}
+
+impl Progress {
+    /// Stores scene time `time` (s), `contacts` ended and `steps` taken (accepted and rejected).
+    pub fn record(&self, time: f64, contacts: u64, steps: u64) {
+        self.time.store(time.to_bits(), Ordering::Relaxed);
+        self.contacts.store(contacts, Ordering::Relaxed);
+        self.steps.store(steps, Ordering::Relaxed);
+    }
+
+    /// The scene time last stored, s.
+    pub fn time(&self) -> f64 {
+        f64::from_bits(self.time.load(Ordering::Relaxed))
+    }
+
+    /// The contacts ended, as last stored.
+    pub fn contacts(&self) -> u64 {
+        self.contacts.load(Ordering::Relaxed)
+    }
+
+    /// The steps taken, as last stored.
+    pub fn steps(&self) -> u64 {
+        self.steps.load(Ordering::Relaxed)
+    }
 }
 
 /// A list of indices for a note, its middle left out when long.
