@@ -203,3 +203,52 @@ def test_what_exits_1_is_a_simulation_error(command, tmp_path):
         impact.translate(scene, "lammps", dt=1e-6)
     assert isinstance(caught.value, RuntimeError)
     assert done.stderr.strip() == f"impact: {caught.value}"
+
+
+CREEPING = (
+    "[[bodies]]\nradius = 1.0\nmass = 1.0\nvelocity = [1.0, 0.0, 0.0]\n\n[[bodies]]\nradius = inf\nmass = inf\n"
+    "velocity = [0.0, 0.0, 0.0]\n\n[contact]\nlaw = \"hunt-crossley\"\ndamping = 1e6\nstiffness = 1e6\n\n"
+    "[solver]\nmethod = \"dop853\"\n"
+)
+
+
+def test_an_impact_whose_integration_gave_up_is_a_simulation_error_holding_its_report(command, tmp_path):
+    # A Hunt–Crossley contact damped so heavily (alpha = 1e6 s/m at 1 m/s) that the ball creeps into the wall: the
+    # command writes the report and exits 1; Python raises SimulationError whose report is the command's.
+    path = tmp_path / "creeping.toml"
+    path.write_text(CREEPING)
+    done = command("run", path, "--json", check=False)
+    assert done.returncode == 1, done.stderr
+    with pytest.raises(impact.SimulationError) as caught:
+        impact.run(path)
+    error = caught.value
+    assert "gave up" in str(error)
+    assert error.report is not None
+    assert error.report["contact"]["separated"] is False
+    assert error.report["solver"]["gave_up"] == json.loads(done.stdout)["solver"]["gave_up"]
+
+
+def test_a_world_its_step_budget_stopped_is_a_simulation_error_holding_its_report(command, tmp_path):
+    # The ball stack falls onto the floor, which takes more than 40 steps: the command exits 1 with the report.
+    stack = (MODELS / "ball-stack.toml").read_text().replace("max_contacts = 2", "max_contacts = 2\nmax_steps = 40")
+    path = tmp_path / "stack.toml"
+    path.write_text(stack)
+    done = command("run", path, "--json", check=False)
+    assert done.returncode == 1, done.stderr
+    with pytest.raises(impact.SimulationError) as caught:
+        impact.run(path)
+    report = caught.value.report
+    assert report["world"]["end_reason"] == "step_budget"
+    assert report["world"]["end_time"] == json.loads(done.stdout)["world"]["end_time"]
+    assert "step budget" in str(caught.value) or "step_budget" in str(caught.value)
+
+
+def test_a_settled_impact_is_no_error():
+    # A critically damped Kelvin–Voigt contact dies out at d = 0 without separating: it ends on its own terms.
+    settled = CREEPING.replace(
+        'law = "hunt-crossley"\ndamping = 1e6\nstiffness = 1e6',
+        'law = "kelvin-voigt"\nrestitution = 0.0\nstiffness = 1e6\nexponent = 1.0\nseparation = "penetration"',
+    )
+    report = impact.run(settled)
+    assert report["contact"]["separated"] is False
+    assert report["solver"]["gave_up"] is None

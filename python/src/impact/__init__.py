@@ -40,14 +40,37 @@ def run(scene: Any, *, history: bool = False, samples: Optional[int] = None) -> 
     ``scene``: a path (str or os.PathLike), TOML text (a str with a newline, starting with ``[`` or with a ``key =``
     line) or a dict shaped like the TOML. ``history=True`` records the contact history (the integrator's steps and
     the located events; a world: its series); ``samples=N`` records N instants evenly spaced over the contact instead.
-    Raises SceneError for a scene the command refuses, SimulationError for a run that cannot finish.
+    Raises SceneError for a scene the command refuses, SimulationError for a run that cannot finish (where the
+    command writes its report and exits 1: the integration gave up, a world's step budget was spent; the report, up
+    to where the run stopped, is the error's ``report``).
     """
     kind, value = kind_of(scene)
     if not isinstance(history, bool):
         raise TypeError(f"history: expected a bool, got {type(history).__name__}")
     if samples is not None and (not isinstance(samples, int) or isinstance(samples, bool)):
         raise TypeError(f"samples: expected an int, got {type(samples).__name__}")
-    return Report(_impact.run(kind, value, history, samples))
+    report = Report(_impact.run(kind, value, history, samples))
+    unfinished = _unfinished(report)
+    if unfinished is not None:
+        raise SimulationError(unfinished, report=report)
+    return report
+
+
+def _unfinished(report: Report) -> Optional[str]:
+    """Why the run did not finish what the scene asked (where the command writes the report and exits 1), or None."""
+    solver = report.get("solver")
+    if solver is not None and solver.get("gave_up") is not None:
+        return (
+            f"the integration gave up before the bodies separated ({solver['gave_up']}): "
+            "the report (error.report) stops there"
+        )
+    world = report.get("world")
+    if world is not None and world.get("end_reason") == "step_budget":
+        return (
+            f"the world run stopped before its end at t = {world['end_time']:.6g} s (world.end_reason = "
+            '"step_budget"): its report\'s notes say why; the report (error.report) stops there'
+        )
+    return None
 
 
 def translate(scene: Any, to: str, *, dt: Optional[float] = None) -> Dict[str, Any]:

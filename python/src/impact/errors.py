@@ -1,7 +1,7 @@
 """The exceptions of impact: a bad scene (what the command refuses with exit status 2) and a run that cannot finish
 (exit status 1). Bad arguments are ValueError, values of the wrong type TypeError, as everywhere in Python."""
 
-from typing import Optional
+from typing import Any, Optional
 
 __all__ = ["SceneError", "SimulationError"]
 
@@ -39,4 +39,15 @@ def _scene_error(text, path, line, key, message):
 
 class SimulationError(RuntimeError):
     """A run that cannot finish (the integrator's step budget spent, a world ended by its budget, ...): the command
-    exits with status 1 for these."""
+    exits with status 1 for these.
+
+    ``report``: where the run did produce a report up to where it stopped (the command writes it before exiting 1),
+    that ``impact.Report``; otherwise None.
+    """
+
+    def __init__(self, text: str, *, report: Optional[Any] = None) -> None:
+        super().__init__(text)
+        self.report = report
+
+    def __reduce__(self):  # a Dask worker's error reaches the caller as it was raised (its report is not sent)
+        return (SimulationError, (self.args[0],))
