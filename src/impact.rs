@@ -72,6 +72,21 @@ pub fn simulate(scene: &Scene, recording: Recording) -> Result<Simulation, Simul
     )
 }
 
+/// Instants per figure curve: enough for a smooth line at the figure's width.
+pub const FIGURE_SAMPLES: usize = 600;
+
+/// The history a run's figures are drawn from: the simulation's own when it is a uniform one of at least
+/// [`FIGURE_SAMPLES`] instants, else a run of the scene recording that many (`None` only if that run recorded none).
+pub fn figure_history<'a>(
+    scene: &Scene,
+    simulation: &'a Simulation,
+) -> Result<Option<std::borrow::Cow<'a, History>>, SimulationError> {
+    Ok(match &simulation.history {
+        Some(history) if history.samples.len() >= FIGURE_SAMPLES => Some(std::borrow::Cow::Borrowed(history)),
+        _ => simulate(scene, Recording::Uniform(FIGURE_SAMPLES))?.history.map(std::borrow::Cow::Owned),
+    })
+}
+
 /// Simulates the scene's impact, computing what `options` ask for.
 pub fn simulate_with(scene: &Scene, options: Options) -> Result<Simulation, SimulationError> {
     let clock = Instant::now();
