@@ -203,6 +203,88 @@ impl CalibrationError {
     }
 }
 
+/// A calibration asked for by name, as `impact calibrate` and Python's `impact.calibrate` take it: `law` and
+/// `separation` spelled as in a scene (`None`: the scene's), `scene` already read (its path for messages in
+/// `shown`). Bad input is [`Refusal::BadInput`] (exit 2), with the command's message.
+pub fn from_arguments(
+    law: Option<&str>,
+    restitution: f64,
+    approach_speed: Option<f64>,
+    separation: Option<&str>,
+    scene: Option<(Scene, String)>,
+) -> Result<Calibration, Refusal> {
+    let law = match law {
+        Some(name) => Some(LawKind::from_name(name).ok_or_else(|| {
+            let name = crate::text::cut(name, crate::text::MESSAGE_CHARS);
+            Refusal::BadInput(format!(
+                "unknown law `{name}` for --law; expected one of {}",
+                LawKind::names().join(", ")
+            ))
+        })?),
+        None => None,
+    };
+    let separation = match separation {
+        None => None,
+        Some("penetration") => Some(Separation::Penetration),
+        Some("force") => Some(Separation::Force),
+        Some(other) => {
+            let other = crate::text::cut(other, crate::text::MESSAGE_CHARS);
+            return Err(Refusal::BadInput(format!(
+                "--separation must be \"penetration\" or \"force\", got \"{other}\""
+            )));
+        }
+    };
+    let (scene, shown) = match scene {
+        Some((scene, shown)) => (Some(scene), Some(shown)),
+        None => (None, None),
+    };
+    let law = match (law, &scene) {
+        (Some(law), _) => law,
+        (None, Some(scene)) => scene.contact.law,
+        (None, None) => return Err(Refusal::BadInput("give --law LAW (or a SCENE whose law to calibrate)".into())),
+    };
+    let request = Request { law, restitution, approach_speed, separation, scene };
+    calibrate(&request).map_err(|error| Refusal::of(error, shown.as_deref(), restitution))
+}
+
+/// Why [`from_arguments`] gave no calibration, in the command's words.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum Refusal {
+    /// The arguments or the scene (exit status 2).
+    #[error("{0}")]
+    BadInput(String),
+    /// The calibration could not finish (exit status 1): the message, with the scene's path before it if any.
+    #[error("{0}")]
+    Failed(String),
+}
+
+impl Refusal {
+    /// The error as a message naming the scene where it concerns the scene.
+    fn of(error: CalibrationError, scene: Option<&str>, restitution: f64) -> Refusal {
+        let about_scene = matches!(
+            error,
+            CalibrationError::Incompatible(_) | CalibrationError::Unattainable(_) | CalibrationError::Simulation(_)
+        );
+        let scene = scene.filter(|_| about_scene);
+        if error.is_bad_input() {
+            return Refusal::BadInput(match (scene, &error) {
+                (Some(path), _) => format!("{path}: {error}"),
+                (None, CalibrationError::Target(_)) => format!("--restitution {}: {error}", given_target(restitution)),
+                (None, CalibrationError::ApproachSpeed(_)) => format!("--approach-speed: {error}"),
+                (None, CalibrationError::NoDamping) => format!("{error} with --law"),
+                (None, CalibrationError::NeedsScene(_)) => {
+                    format!("{error} file (and --approach-speed to set its speed)")
+                }
+                (None, _) => error.to_string(),
+            });
+        }
+        Refusal::Failed(match scene {
+            Some(path) => format!("{path}: {error}"),
+            None => error.to_string(),
+        })
+    }
+}
+
 /// Finds the damping of `request.law` that gives `request.restitution` (see the module docs for the method).
 pub fn calibrate(request: &Request) -> Result<Calibration, CalibrationError> {
     let (law, target) = (request.law, request.restitution);

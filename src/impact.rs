@@ -10,6 +10,7 @@ use crate::dynamics::ContactModel;
 use crate::dynamics::normal::NormalContact;
 use crate::dynamics::pair::PairContact;
 use crate::dynamics::rigid::RigidContact;
+use crate::dynamics::wall::WallContact;
 use crate::fast::Quantities;
 use crate::fixed_step;
 use crate::history::{History, Recording};
@@ -69,6 +70,21 @@ pub fn simulate(scene: &Scene, recording: Recording) -> Result<Simulation, Simul
         scene,
         Options { recording, reference: ReferenceDetail::Full, quantities: Quantities::ALL, idealisation: true },
     )
+}
+
+/// Instants per figure curve: enough for a smooth line at the figure's width.
+pub const FIGURE_SAMPLES: usize = 600;
+
+/// The history a run's figures are drawn from: the simulation's own when it is a uniform one of at least
+/// [`FIGURE_SAMPLES`] instants, else a run of the scene recording that many (`None` only if that run recorded none).
+pub fn figure_history<'a>(
+    scene: &Scene,
+    simulation: &'a Simulation,
+) -> Result<Option<std::borrow::Cow<'a, History>>, SimulationError> {
+    Ok(match &simulation.history {
+        Some(history) if history.samples.len() >= FIGURE_SAMPLES => Some(std::borrow::Cow::Borrowed(history)),
+        _ => simulate(scene, Recording::Uniform(FIGURE_SAMPLES))?.history.map(std::borrow::Cow::Owned),
+    })
 }
 
 /// Simulates the scene's impact, computing what `options` ask for.
@@ -178,9 +194,37 @@ fn through_phases(
     }
     match setup.motion {
         Motion::Normal => run(&normal, scene, setup.contact_time, recording),
-        Motion::Full => run(&PairContact::new(&scene.bodies, &setup), scene, setup.contact_time, recording),
+        Motion::Full => {
+            // `auto` integrates a frictional sphere on a wall in regularised time, where its forces are smooth
+            // (dynamics/wall.rs), when its law has neither memory nor kinks; a run that does not end in a separation
+            // is run again as the general path runs it, so that how a contact ends is that path's to say.
+            if method == Method::Auto
+                && recording == Recording::Off
+                && smooth_in_regularised_time(&setup.law)
+                && let Some(wall) = WallContact::new(&scene.bodies, &setup)
+                && let Ok((mut outcome, None)) = run(&wall, scene, setup.contact_time, Recording::Off)
+                && outcome.separated
+                && outcome.ending == Ending::Event(0)
+            {
+                outcome.method = REGULARISED;
+                return Ok((outcome, None));
+            }
+            run(&PairContact::new(&scene.bodies, &setup), scene, setup.contact_time, recording)
+        }
         Motion::Rigid => run(&RigidContact::new(&scene.bodies, &setup), scene, setup.contact_time, recording),
     }
+}
+
+/// The report's `solver.method` for a frictional sphere on a wall integrated in regularised time
+/// ([`WallContact`]).
+pub const REGULARISED: &str = "dop853-regularised";
+
+/// Whether a law's force, times `dt/dσ = d^(3/4)`, is smooth through the edges of a contact in the wall model's
+/// regularised time: every law without memory or kinks (a yielding law, MuJoCo's impedance and ADAMS' step have
+/// them, and take the general path).
+fn smooth_in_regularised_time(law: &crate::law::ContactLaw) -> bool {
+    use crate::law::Family;
+    !matches!(law.kind.family(), Family::Plastic | Family::Impedance | Family::Ramp)
 }
 
 /// The phases of one impact over `model`.
@@ -321,7 +365,7 @@ fn run<const N: usize, M: ContactModel<N>>(
     let peak = model.snapshot(peak_time, &peak_state);
     // The first located rest of the slip (at first contact for a frictional contact that starts without slip).
     let slip_rest = |crossings: &[Crossing<N>], index: usize| {
-        crossings.iter().find(|c| c.event == index).map(|c| c.time * model.scales().time)
+        crossings.iter().find(|c| c.event == index).map(|c| model.time_of(c.time, &c.state) * model.scales().time)
     };
     let slip_rest_time = match (frictional, slipping) {
         (false, _) => None,
@@ -346,7 +390,7 @@ fn run<const N: usize, M: ContactModel<N>>(
         separated,
         ending,
         below_limit_duration: (phases.below_limit
-            + phases.below_limit_since.map_or(0.0, |since| released.time - since))
+            + phases.below_limit_since.map_or(0.0, |since| model.time_of(released.time, &released.state) - since))
             * model.scales().time,
         slip_rest_time,
         switches: phases.switches,
@@ -421,7 +465,7 @@ fn fast_outcome(
         switches: 0,
         tensile_impulse: f64::NAN,
         counters: Counters { steps: fast.steps, rejected_steps: 0, evaluations: fast.force_evaluations },
-        method: "taylor",
+        method: if fast.first_integral { "first-integral" } else { "taylor" },
         restitution: Some((fast.restitution_impulse * s.impulse, fast.restitution_work * s.energy)),
         note,
         fixed_step: None,
@@ -653,10 +697,12 @@ impl Phases<'_> {
             let mut switched = end.state;
             model.switch(&mut switched);
             self.switches += 1;
+            // (In physical time: a model in regularised time carries it as a state.)
+            let now = model.time_of(end.time, &end.state);
             if model.sliding(&switched) {
-                self.below_limit += self.below_limit_since.take().map_or(0.0, |since| end.time - since);
+                self.below_limit += self.below_limit_since.take().map_or(0.0, |since| now - since);
             } else {
-                self.below_limit_since = Some(end.time);
+                self.below_limit_since = Some(now);
             }
             // The record keeps the switched state at this time (the last noted point of a time wins).
             stepper.note(end.time, switched);

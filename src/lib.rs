@@ -1,6 +1,9 @@
 //! impact: simulate the collision of two bodies with a compliant contact law and measure what the
 //! instantaneous-impact idealisation hides.
 
+/// The crate's version (the command's `--version`, Python's `impact.__version__`).
+pub const VERSION: &str = env!("CARGO_PKG_VERSION");
+
 pub mod bench;
 pub mod body;
 pub mod calibrate;

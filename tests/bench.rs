@@ -14,7 +14,7 @@ fn the_study_writes_its_table_and_figure() {
     assert_success(&output);
     let text = stdout(&output);
     assert!(text.contains("machine:") && text.contains("load average"), "{text}");
-    for method in ["taylor", "taylor-motion", "dop853", "dopri5", "rk4", "verlet"] {
+    for method in ["taylor", "taylor-motion", "first-integral", "dop853", "dopri5", "rk4", "verlet"] {
         assert!(text.lines().any(|l| l.starts_with(method)), "{method} missing from the summary:\n{text}");
     }
     let csv = scratch.read("study/bench.csv");
@@ -25,9 +25,9 @@ fn the_study_writes_its_table_and_figure() {
     }
     let column = |name: &str| header.iter().position(|c| *c == name).expect("a column");
     let rows: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();
-    // Quick: the fast path at 3 tolerances (every quantity, and the motion alone), Dop853 and Dopri5 at 2, RK4 and
-    // Verlet at 2 step counts; one case.
-    assert_eq!(rows.len(), 14, "{csv}");
+    // Quick: the fast path at 3 tolerances (every quantity, and the motion alone), the first integral once (Hertz is
+    // of its family), Dop853 and Dopri5 at 2, RK4 and Verlet at 2 step counts; one case.
+    assert_eq!(rows.len(), 15, "{csv}");
     for row in &rows {
         assert_eq!(row.len(), header.len(), "{row:?}");
         assert_eq!(row[column("case")], "hertz n=1.5");
@@ -39,10 +39,13 @@ fn the_study_writes_its_table_and_figure() {
         // The largest error is the largest of the quantities' own; the motion alone has none for the times and the
         // peak force (empty cells), every other method one for each.
         let motion = row[column("method")] == "taylor-motion";
+        let untimed = row[column("method")] == "first-integral";
         let mut own = 0.0_f64;
         for name in ["error_e", "error_dmax", "error_t0", "error_tc", "error_fmax", "error_jd", "error_jr"] {
             let cell = row[column(name)];
-            if motion && ["error_t0", "error_tc", "error_fmax"].contains(&name) {
+            if (motion && ["error_t0", "error_tc", "error_fmax"].contains(&name))
+                || (untimed && ["error_t0", "error_tc"].contains(&name))
+            {
                 assert_eq!(cell, "", "{name}: {row:?}");
             } else {
                 own = own.max(cell.parse().expect("an error"));
@@ -53,6 +56,8 @@ fn the_study_writes_its_table_and_figure() {
         let tolerance = row[column("tolerance")];
         let bound = match (row[column("method")], tolerance) {
             ("taylor" | "taylor-motion", _) => 10.0 * tolerance.parse::<f64>().expect("a tolerance") + 1e-14,
+            // Closed forms and a root, to rounding.
+            ("first-integral", _) => 1e-14,
             ("dop853" | "dopri5", _) => 1e3 * tolerance.parse::<f64>().expect("a tolerance"),
             ("rk4", _) => 1e-5,
             // Events at the first step past them: a time late by up to a step of tc/N.
@@ -144,4 +149,92 @@ fn the_world_study_measures_errors_that_follow_the_tolerance() {
     let csv = worlds::csv(&rows);
     assert!(csv.starts_with("case,tolerance,error,seconds,steps,contacts\n"), "{csv}");
     assert_eq!(csv.lines().count(), 5);
+}
+
+/// The peers' scene (`scripts/peer-hunt-crossley.toml`, what scripts/peers.sh sweeps) is a scene the program takes,
+/// and its e and its maximum penetration are the exact ones of its scaled units (m* = K = v0 = 1, n = 3/2,
+/// x = alpha v0 = 0.5): e from the relation x (1 + e) = ln((1 + x)/(1 - e x)) and dmax from
+/// dmax^(5/2) = (5/2)(x - ln(1 + x))/x², both solved here. A sweep of e alone over it (the first integral)
+/// writes the same e.
+#[test]
+fn the_peers_scene_runs_and_gives_the_exact_e() {
+    let scratch = Scratch::new("peers-scene");
+    let scene = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scripts/peer-hunt-crossley.toml");
+    let scene = scene.to_str().expect("a path");
+    let output = impact(scratch.path(), &["run", scene, "--json"]);
+    assert_success(&output);
+    let report: serde_json::Value = serde_json::from_slice(&output.stdout).expect("JSON");
+    let x: f64 = 0.5;
+    // Bisection on the exact relation (its left side minus its right grows with e up to 1/x).
+    let (mut low, mut high) = (0.0_f64, 1.0_f64);
+    for _ in 0..200 {
+        let mid = 0.5 * (low + high);
+        if x * (1.0 + mid) - (1.0 + x).ln() + (1.0 - mid * x).ln() > 0.0 {
+            low = mid;
+        } else {
+            high = mid;
+        }
+    }
+    let e = 0.5 * (low + high);
+    let dmax = (2.5 * (x - x.ln_1p()) / (x * x)).powf(0.4);
+    let contact = &report["contact"];
+    let got = contact["restitution_velocity_ratio"].as_f64().expect("e");
+    assert_close("e", got, e, 1e-10);
+    assert_close("dmax", contact["max_penetration"].as_f64().expect("dmax"), dmax, 1e-10);
+    let sweep = impact(
+        scratch.path(),
+        &[
+            "sweep",
+            scene,
+            "--vary",
+            "contact.damping=0.5",
+            "--columns",
+            "restitution_velocity_ratio,steps",
+            "--out",
+            "e.csv",
+        ],
+    );
+    assert_success(&sweep);
+    let csv = scratch.read("e.csv");
+    let row: Vec<&str> = csv.lines().nth(1).expect("a row").split(',').collect();
+    assert_close("e of the sweep", row[4].parse().expect("e"), e, 1e-14);
+    assert_eq!(row[5], "0", "the first integral takes no step: {csv}");
+}
+
+/// `impact bench --oblique`: the frictional cases on the path `auto` takes (a sphere on a wall in regularised time)
+/// and on the 3-D model in physical time, and their frictionless twins (the wall's on the fast path), each row's
+/// error against the run at 1e-13 within what its tolerance allows; the CSV has a row per case, path and
+/// tolerance. Accuracy, not speed.
+#[test]
+fn the_oblique_study_measures_frictional_impacts_beside_their_twins() {
+    let scratch = Scratch::new("oblique");
+    let output = impact(scratch.path(), &["bench", "--oblique", "--quick", "--out", "study"]);
+    assert_success(&output);
+    let text = stdout(&output);
+    assert!(text.contains("chung-ooi test 4 at 45 deg") && text.contains("vs twin"), "{text}");
+    let csv = scratch.read("study/bench-oblique.csv");
+    let mut lines = csv.lines();
+    let header: Vec<&str> = lines.next().expect("a header").split(',').collect();
+    let column = |name: &str| header.iter().position(|c| *c == name).expect("a column");
+    let rows: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();
+    // Five cases, three paths (four for two spheres: their central twin), two tolerances.
+    assert_eq!(rows.len(), 34, "{csv}");
+    for row in &rows {
+        let (path, method) = (row[column("path")], row[column("method")]);
+        let wall = row[column("case")].starts_with("chung-ooi");
+        match path {
+            "auto" => assert_eq!(method, if wall { "dop853-regularised" } else { "dop853" }, "{row:?}"),
+            "dop853" => assert_eq!(method, "dop853", "{row:?}"),
+            "frictionless" => assert_eq!(method, if wall { "taylor" } else { "dop853" }, "{row:?}"),
+            "central" => assert!(!wall && method == "taylor", "{row:?}"),
+            other => panic!("unknown path {other}"),
+        }
+        let tolerance: f64 = row[column("tolerance")].parse().expect("a tolerance");
+        let error: f64 = row[column("error")].parse().expect("an error");
+        assert!(error > 0.0 && error <= 100.0 * tolerance, "{row:?}");
+        let seconds: f64 = row[column("seconds_per_impact")].parse().expect("a time");
+        assert!(seconds > 0.0, "{row:?}");
+    }
+    let refused = impact(scratch.path(), &["bench", "--oblique", "--worlds", "--out", "study"]);
+    assert_eq!(refused.status.code(), Some(2), "{}", describe(&refused));
 }

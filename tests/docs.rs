@@ -467,7 +467,8 @@ fn shell_commands() -> Vec<(String, String)> {
 }
 
 /// The command as a shell runs it with the built `impact` first on the PATH: `cargo run --release [-- ARGS]` is
-/// `impact [ARGS]`; the other cargo commands (`test`, `install`, `bench`) are not the program's and are left out.
+/// `impact [ARGS]`; the other cargo commands (`test`, `install`, `bench`) and pip's are not the program's and are left
+/// out.
 fn as_program(command: &str) -> Option<String> {
     if let Some(args) = command.strip_prefix("cargo run --release --") {
         return Some(format!("impact{args}"));
@@ -476,7 +477,8 @@ fn as_program(command: &str) -> Option<String> {
         assert!(rest.is_empty() || rest.trim_start().starts_with('#'), "unexpected cargo options: {command}");
         return Some(format!("impact{rest}"));
     }
-    if command.starts_with("cargo ") {
+    // (`pip install ./python` builds the Python package: .ci/run runs it, and python/tests its examples.)
+    if command.starts_with("cargo ") || command.starts_with("pip ") {
         return None;
     }
     assert!(

@@ -4,7 +4,7 @@
 mod fast_support;
 
 use fast_support::{Case, QUANTITIES, errors, reference_cases};
-use impact::fast::{Ending, FastError, Outcome, Quantities, Request, covers, simulate_normal};
+use impact::fast::{Ending, FastError, Outcome, Quantities, Request, covers, simulate_normal, simulate_taylor};
 use impact::law::{ContactLaw, LawKind, Separation};
 use impact::reference;
 use impact::scales::Scales;
@@ -187,10 +187,11 @@ fn quantities_left_out_are_nan_and_the_rest_within_the_tolerance() {
 }
 
 /// What a run computes besides the motion (the time over panels of steps, the dissipation a rule a step, the force
-/// peak inside its step) never shortens or adds a step: a run asked for every quantity takes the very steps of one
-/// asked for the motion alone, so that e, the impulses and the maximum penetration are the same numbers, bit for
-/// bit, whatever a caller asks for (a sweep writing e alone reports the e of `impact run`). Random impacts of every
-/// covered family, both separation criteria, tolerances from 1e-4 to 1e-13.
+/// peak inside its step) never shortens or adds a step: a Taylor integration asked for every quantity takes the
+/// very steps of one asked for the motion alone, so that e, the impulses and the maximum penetration are the same
+/// numbers, bit for bit, whatever a caller asks for. Random impacts of every covered family, both separation
+/// criteria, tolerances from 1e-4 to 1e-13. (Without the time, the hysteresis family takes its first integral
+/// instead: [`the_first_integral_agrees_with_a_tight_integration`].)
 #[test]
 fn what_is_asked_for_never_changes_the_steps() {
     let mut random = Random(0x5851_f42d_4c95_7f2d);
@@ -208,8 +209,8 @@ fn what_is_asked_for_never_changes_the_steps() {
                 separation: if random.next() < 0.5 { Separation::Force } else { Separation::Penetration },
             },
         };
-        let all = simulate_normal(&case.request(tolerance)).unwrap();
-        let motion = simulate_normal(&Request { quantities: Quantities::MOTION, ..case.request(tolerance) }).unwrap();
+        let all = simulate_taylor(&case.request(tolerance)).unwrap();
+        let motion = simulate_taylor(&Request { quantities: Quantities::MOTION, ..case.request(tolerance) }).unwrap();
         let what = format!("{} at {tolerance:e}", case.name());
         assert_eq!((all.steps, all.ending), (motion.steps, motion.ending), "{what}");
         for (a, b) in [
@@ -221,6 +222,85 @@ fn what_is_asked_for_never_changes_the_steps() {
         ] {
             assert_eq!(a.to_bits(), b.to_bits(), "{what}: {a} vs {b}");
         }
+    }
+}
+
+/// Without the time, the hysteresis family's impact comes from its exact first integral (src/fast/first_integral.rs):
+/// e, the maximum penetration, both impulses and works, the dissipation and the peak force, for every subset of
+/// what may be asked without the time, against the Taylor integration at tolerance 1e-13 (an independent method:
+/// it integrates the equations of motion), over random dampings `x` from 1e-6 to the first integral's limit 1e3
+/// and exponents from 1 to 3. What was not asked for is NaN; no step is taken. Asked for the time, or beyond the
+/// limit, the integration runs.
+#[test]
+fn the_first_integral_agrees_with_a_tight_integration() {
+    let mut random = Random(0x2545_f491_4f6c_dd1d);
+    let mut worst: f64 = 0.0;
+    for i in 0..200 {
+        let x = if i == 0 { 0.0 } else { random.log_uniform(1e-6, 1e3) };
+        let n = random.uniform(1.0, 3.0);
+        let case = if x == 0.0 { Case::Elastic { n } } else { Case::Hysteresis { x, n } };
+        let tight = simulate_taylor(&case.request(1e-13)).unwrap();
+        for subset in 0..4 {
+            let asked = Quantities { time: false, peak: subset & 1 != 0, dissipation: subset & 2 != 0 };
+            let out = simulate_normal(&Request { quantities: asked, ..case.request(1e-10) }).unwrap();
+            let what = format!("{} ({asked:?})", case.name());
+            assert!(out.first_integral && out.steps == 0 && out.separated, "{what}");
+            assert_eq!(out.ending, Ending::Separated, "{what}");
+            assert!(out.max_compression.time.is_nan() && out.end.time.is_nan() && out.peak_force_time.is_nan());
+            let mut pairs = vec![
+                ("e", -out.end.rate, -tight.end.rate),
+                ("dmax", out.max_compression.penetration, tight.max_compression.penetration),
+                ("Jc", out.max_compression.impulse, tight.max_compression.impulse),
+                ("Jr", out.restitution_impulse, tight.restitution_impulse),
+                ("J", out.end.impulse, tight.end.impulse),
+                ("Wr", out.restitution_work, tight.restitution_work),
+                ("W", out.end.work, tight.end.work),
+                ("Fc", out.max_compression.force, tight.max_compression.force),
+                ("Ec", out.max_compression.elastic, tight.max_compression.elastic),
+            ];
+            if asked.peak {
+                pairs.push(("Fmax", out.peak_force, tight.peak_force));
+            } else {
+                assert!(out.peak_force.is_nan(), "{what}");
+            }
+            if asked.dissipation && x > 0.0 {
+                pairs.push(("Dc", out.max_compression.dissipated, tight.max_compression.dissipated));
+                pairs.push(("D", out.end.dissipated, tight.end.dissipated));
+            } else if !asked.dissipation {
+                assert!(out.end.dissipated.is_nan() && out.max_compression.dissipated.is_nan(), "{what}");
+            }
+            for (name, got, want) in pairs {
+                // (The kinetic energy lost, which the integration takes as a difference `(1 - v²)/2`, against the
+                // energy in play: a light damping's is accurate to 1e-16 of that, not of itself.)
+                let error = if name == "W" { (got - want).abs() / 0.5 } else { rel(got, want) };
+                worst = worst.max(error);
+                assert!(error < 1e-11, "{what}: {name} {got} vs {want} ({error:e})");
+            }
+        }
+        // Asked for the time, the integration runs.
+        let timed = simulate_normal(&case.request(1e-10)).unwrap();
+        assert!(!timed.first_integral && timed.steps > 0, "{}", case.name());
+    }
+    // Beyond its limit the first integral does not answer: the creep's ending is the integration's to say.
+    let heavy = Case::Hysteresis { x: 2e3, n: 1.5 };
+    let out = simulate_normal(&Request { quantities: Quantities::MOTION, ..heavy.request(1e-10) }).unwrap();
+    assert!(!out.first_integral && out.steps > 0);
+    assert!(worst > 0.0, "the comparison compared nothing");
+}
+
+/// The first integral's e, maximum penetration and peak force against the Hunt–Crossley table of
+/// docs/references.md (11–13 digits).
+#[test]
+fn the_first_integral_matches_the_quadrature_table() {
+    for [x, n, e, dmax, _, _, fmax] in HUNT_CROSSLEY_TABLE {
+        let asked = Quantities { time: false, peak: true, dissipation: true };
+        let out = simulate_normal(&Request { quantities: asked, ..Case::Hysteresis { x, n }.request(1e-10) }).unwrap();
+        assert!(out.first_integral);
+        for (got, want) in [(-out.end.rate, e), (out.max_compression.penetration, dmax), (out.peak_force, fmax)] {
+            assert!(rel(got, want) < 1e-10, "x = {x}, n = {n}: {got} vs {want}");
+        }
+        // The energy lost is the kinetic energy's: (1 - e²)/2 of m* v0².
+        assert!(rel(out.end.dissipated, 0.5 * (1.0 - e * e)) < 1e-11, "x = {x}");
     }
 }
 

@@ -406,6 +406,23 @@ fn the_corpus_has_at_least_sixty_hostile_scenes() {
     assert_eq!(output.status.code(), Some(0), "{}", String::from_utf8_lossy(&output.stderr));
 }
 
+/// The corpus as files for the Python package's tests (python/tests/test_errors.py runs each through `impact.run`):
+/// `target/hostile-corpus/NAME.toml` and `manifest.json`, a list of `{ "name", "file", "key", "line" }` with the key
+/// and line each message must name (null where none is asserted).
+#[test]
+fn the_corpus_is_written_for_the_python_tests() {
+    let folder = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("target").join("hostile-corpus");
+    fs::create_dir_all(&folder).expect("create target/hostile-corpus");
+    let mut manifest = Vec::new();
+    for case in corpus() {
+        let file = format!("{}.toml", case.name);
+        fs::write(folder.join(&file), &case.bytes).expect("write a hostile scene");
+        manifest.push(serde_json::json!({ "name": case.name, "file": file, "key": case.key, "line": case.line }));
+    }
+    let text = serde_json::to_string_pretty(&manifest).expect("the manifest as JSON");
+    fs::write(folder.join("manifest.json"), text).expect("write the manifest");
+}
+
 #[test]
 fn every_hostile_scene_exits_2_naming_the_problem() {
     let scratch = Scratch::new("every_hostile_scene");

@@ -146,8 +146,12 @@ fn each_column_alone_equals_the_full_rows_cell() {
                         };
                         assert!((a - b).abs() <= 1e-9 * scale, "{name}: {a} alone, {b} in the full row\n{text}");
                     }
-                    // The work done (steps, force evaluations) depends on what is computed.
-                    (Cell::Count(a), Cell::Count(b)) => assert!(a > 0 && b > 0, "{name}"),
+                    // The work done (steps, force evaluations) depends on what is computed: a central Hunt–Crossley
+                    // row that shows no time takes the first integral, without a step.
+                    (Cell::Count(a), Cell::Count(b)) => {
+                        let first_integral = text.contains("hunt-crossley") && !text.contains("friction");
+                        assert!(b > 0 && (a > 0) != first_integral, "{name}: {a} alone, {b} in the full row\n{text}");
+                    }
                     (a, b) => assert_eq!(a, b, "{name}\n{text}"),
                 }
             }

@@ -16,6 +16,7 @@
 
 pub mod baselines;
 pub mod cases;
+pub mod oblique;
 pub mod worlds;
 
 use crate::fast::{Quantities, Request};
@@ -83,9 +84,13 @@ fn largest(errors: &[f64]) -> f64 {
 pub enum Method {
     /// The Taylor-series fast path ([`crate::fast::simulate_normal`]) at a tolerance.
     Taylor,
-    /// The fast path asked for the motion alone ([`crate::fast::Quantities::MOTION`]: what a sweep writing e
-    /// computes): measured on e, the maximum penetration and both impulses (V0), not on the times or the peak force.
+    /// The Taylor integration asked for the motion alone ([`crate::fast::Quantities::MOTION`]): measured on e, the
+    /// maximum penetration and both impulses (V0), not on the times or the peak force.
     TaylorMotion,
+    /// The hysteresis family's exact first integral ([`crate::fast::simulate_normal`] asked for everything but the
+    /// time: what a sweep writing e, the impulses or the peak force computes for these laws), on the Hunt–Crossley
+    /// and Hertz cases alone: measured on e, the maximum penetration, the peak force and both impulses.
+    FirstIntegral,
     /// The general path with Dop853 at `rtol` (`atol = rtol / 100`).
     Dop853,
     /// The general path with Dopri5 at `rtol` (`atol = rtol / 100`).
@@ -97,14 +102,22 @@ pub enum Method {
 }
 
 impl Method {
-    pub const ALL: [Method; 6] =
-        [Method::Taylor, Method::TaylorMotion, Method::Dop853, Method::Dopri5, Method::Rk4, Method::Verlet];
+    pub const ALL: [Method; 7] = [
+        Method::Taylor,
+        Method::TaylorMotion,
+        Method::FirstIntegral,
+        Method::Dop853,
+        Method::Dopri5,
+        Method::Rk4,
+        Method::Verlet,
+    ];
 
     /// The name in the CSV.
     pub fn name(self) -> &'static str {
         match self {
             Method::Taylor => "taylor",
             Method::TaylorMotion => "taylor-motion",
+            Method::FirstIntegral => "first-integral",
             Method::Dop853 => "dop853",
             Method::Dopri5 => "dopri5",
             Method::Rk4 => "rk4",
@@ -117,6 +130,7 @@ impl Method {
         match self {
             Method::Taylor => "Taylor series, regularised (fast path)",
             Method::TaylorMotion => "the same, the motion alone (error over e, dmax, V0, Jr)",
+            Method::FirstIntegral => "first integral, Hunt-Crossley and Hertz (e, dmax, Fmax, V0, Jr)",
             Method::Dop853 => "Dop853 (ode_solvers), events re-stepped",
             Method::Dopri5 => "Dopri5 (ode_solvers), events re-stepped",
             Method::Rk4 => "RK4, fixed step, events located",
@@ -128,8 +142,14 @@ impl Method {
     pub fn measures(self) -> [bool; 7] {
         match self {
             Method::TaylorMotion => [true, true, false, false, false, true, true],
+            Method::FirstIntegral => [true, true, false, false, true, true, true],
             _ => [true; 7],
         }
+    }
+
+    /// Whether the method runs `case` (the first integral answers for the hysteresis family alone).
+    pub fn covers(self, case: &Case) -> bool {
+        self != Method::FirstIntegral || matches!(case, Case::HuntCrossley { .. } | Case::Hertz { .. })
     }
 }
 
@@ -177,6 +197,8 @@ pub fn settings(quick: bool) -> Vec<(Method, Setting)> {
     };
     let mut all: Vec<(Method, Setting)> = taylor.iter().map(|&s| (Method::Taylor, s)).collect();
     all.extend(taylor.iter().map(|&s| (Method::TaylorMotion, s)));
+    // (Exact to rounding whatever the tolerance: one setting.)
+    all.push((Method::FirstIntegral, Setting::Tolerance(1e-10)));
     for method in [Method::Dop853, Method::Dopri5] {
         all.extend(general.iter().map(|&s| (method, s)));
     }
@@ -190,6 +212,7 @@ pub fn settings(quick: bool) -> Vec<(Method, Setting)> {
 /// once: the scene is read and resolved here).
 pub enum Runner {
     Taylor(Request),
+    FirstIntegral(Request),
     General(Box<(Scene, Setup)>),
     Rk4(baselines::Fixed),
     Verlet(baselines::Fixed),
@@ -201,6 +224,13 @@ impl Runner {
             (Method::Taylor, Setting::Tolerance(tolerance)) => Ok(Runner::Taylor(case.request(tolerance))),
             (Method::TaylorMotion, Setting::Tolerance(tolerance)) => {
                 Ok(Runner::Taylor(Request { quantities: Quantities::MOTION, ..case.request(tolerance) }))
+            }
+            (Method::FirstIntegral, Setting::Tolerance(tolerance)) => {
+                let asked = Quantities { time: false, ..Quantities::MOTION };
+                Ok(Runner::FirstIntegral(Request {
+                    quantities: Quantities { peak: true, ..asked },
+                    ..case.request(tolerance)
+                }))
             }
             (Method::Dop853 | Method::Dopri5, Setting::Tolerance(rtol)) => {
                 let text = case.scene_text(method.name(), rtol);
@@ -217,8 +247,15 @@ impl Runner {
     /// One impact: what it measured and the force evaluations it took.
     pub fn run(&self) -> Result<(Measured, u64), String> {
         match self {
-            Runner::Taylor(request) => {
-                let out = crate::fast::simulate_normal(request).map_err(|e| e.to_string())?;
+            Runner::Taylor(request) | Runner::FirstIntegral(request) => {
+                let out = match self {
+                    Runner::FirstIntegral(_) => crate::fast::simulate_normal(request),
+                    _ => crate::fast::simulate_taylor(request),
+                }
+                .map_err(|e| e.to_string())?;
+                if matches!(self, Runner::FirstIntegral(_)) != out.first_integral {
+                    return Err("the first integral does not answer for this case".into());
+                }
                 if !out.separated {
                     return Err(format!("the fast path did not separate ({:?})", out.ending));
                 }
@@ -231,7 +268,8 @@ impl Runner {
                     deformation_impulse: out.max_compression.impulse,
                     restitution_impulse: out.restitution_impulse,
                 };
-                Ok((measured, out.force_evaluations))
+                // (The first integral evaluates no force: counted as one, its closed forms.)
+                Ok((measured, out.force_evaluations.max(1)))
             }
             Runner::General(prepared) => {
                 let (scene, setup) = &**prepared;
@@ -375,7 +413,7 @@ pub fn measure(case: &Case, method: Method, setting: Setting, timing: Timing) ->
 pub fn study(cases: &[Case], plan: &[(Method, Setting)], timing: Timing, mut done: impl FnMut(&Row)) -> Vec<Row> {
     let mut rows = Vec::with_capacity(cases.len() * plan.len());
     for &(method, setting) in plan {
-        for case in cases {
+        for case in cases.iter().filter(|case| method.covers(case)) {
             let row = measure(case, method, setting, timing);
             done(&row);
             rows.push(row);

@@ -20,6 +20,9 @@ const OUTPUTS: [&str; 3] = ["bench.csv", "bench.png", "bench.svg"];
 /// The files the world study (`--worlds`) writes into its folder.
 const WORLD_OUTPUTS: [&str; 3] = ["bench-worlds.csv", "bench-worlds.png", "bench-worlds.svg"];
 
+/// The file the oblique study (`--oblique`) writes into its folder.
+const OBLIQUE_OUTPUTS: [&str; 1] = ["bench-oblique.csv"];
+
 #[derive(Debug, Args)]
 pub struct BenchArgs {
     /// A short run: four cases (one per law family), a few settings per method, fewer repeats.
@@ -35,6 +38,11 @@ pub struct BenchArgs {
     /// and the 5-ball cradle at a sweep of tolerances, each against a run at 1e-13 (bench-worlds.csv, .png, .svg).
     #[arg(long)]
     pub worlds: bool,
+    /// Frictional oblique impacts instead: Chung & Ooi's test 4 at 45 and 10 degrees and two free spheres with spin,
+    /// at a sweep of tolerances against a run at 1e-13, beside the same contacts without friction
+    /// (bench-oblique.csv).
+    #[arg(long, conflicts_with = "worlds")]
+    pub oblique: bool,
 }
 
 pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
@@ -44,7 +52,16 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
             BadInput("--case selects the single-impact cases; --worlds runs its two scenes whole".into()).into()
         );
     }
-    let names = if args.worlds { WORLD_OUTPUTS } else { OUTPUTS };
+    if args.oblique && !args.cases.is_empty() {
+        return Err(BadInput("--case selects the single-impact cases; --oblique runs its own cases".into()).into());
+    }
+    let names: &[&str] = if args.worlds {
+        &WORLD_OUTPUTS
+    } else if args.oblique {
+        &OBLIQUE_OUTPUTS
+    } else {
+        &OUTPUTS
+    };
     let mut paths = Paths::default();
     let outputs: Vec<Destination> = names
         .iter()
@@ -54,7 +71,43 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
             paths.output(label, Origin::CommandLine, &path)
         })
         .collect::<anyhow::Result<_>>()?;
-    if args.worlds { worlds(args, outputs) } else { study(args, outputs) }
+    if args.worlds {
+        worlds(args, outputs)
+    } else if args.oblique {
+        oblique(args, outputs)
+    } else {
+        study(args, outputs)
+    }
+}
+
+/// The oblique study (`--oblique`) into `outputs` ([`OBLIQUE_OUTPUTS`]).
+fn oblique(args: &BenchArgs, outputs: Vec<Destination>) -> anyhow::Result<()> {
+    use crate::bench::oblique;
+    let cases = oblique::cases();
+    let tolerances: &[f64] = if args.quick { &oblique::QUICK_TOLERANCES } else { &oblique::TOLERANCES };
+    let timing = if args.quick { bench::Timing::QUICK } else { bench::Timing::FULL };
+    let machine = bench::machine();
+    let paths: usize = cases.iter().map(|(case, _)| 3 + usize::from(case.central.is_some())).sum();
+    let bar = progress(paths * tolerances.len());
+    let rows = oblique::study(&cases, tolerances, timing, |row| {
+        bar.set_message(format!("{} at {:e}", row.case, row.tolerance));
+        bar.inc(1);
+    })
+    .map_err(|why| anyhow::anyhow!("impact bench --oblique: {why}"))?;
+    bar.finish_and_clear();
+    let csv = oblique::csv(&rows);
+    let mut file = OutputFile::create(&outputs[0])?;
+    file.write_bytes(csv.as_bytes())?;
+    file.finish()?;
+    println!("machine: {machine} (at the start); load average at the end {}", bench::load_average());
+    println!(
+        "error: the largest difference of a velocity or a spin times its radius after the impact from a run at \
+         tolerance {:e}, over the approach speed\n",
+        oblique::REFERENCE_TOLERANCE
+    );
+    print!("{}", oblique::table(&rows));
+    println!("\nwrote {}", outputs[0].shown());
+    Ok(())
 }
 
 /// A progress bar of `len` steps on standard error (drawn only on a terminal).

@@ -3,10 +3,8 @@
 //! law's own published map would have given.
 
 use super::BadInput;
-use crate::calibrate::{Calibration, CalibrationError, Request, calibrate, given_target, readable};
-use crate::law::{LawKind, Separation};
+use crate::calibrate::{Calibration, Refusal, from_arguments, readable};
 use crate::scene::Scene;
-use crate::text::{MESSAGE_CHARS, cut};
 use clap::Args;
 use std::fmt::Write as _;
 use std::path::PathBuf;
@@ -62,59 +60,19 @@ Examples:
   impact calibrate models/viscoelastic-spheres.toml --restitution 0.7 --json";
 
 pub fn run(args: &CalibrateArgs) -> anyhow::Result<()> {
-    let law = match &args.law {
-        Some(name) => Some(LawKind::from_name(name).ok_or_else(|| {
-            let name = cut(name, MESSAGE_CHARS);
-            BadInput(format!("unknown law `{name}` for --law; expected one of {}", LawKind::names().join(", ")))
-        })?),
+    let scene = match &args.scene {
+        Some(path) => Some((Scene::load(path)?, path.display().to_string())),
         None => None,
     };
-    let separation = match args.separation.as_deref() {
-        None => None,
-        Some("penetration") => Some(Separation::Penetration),
-        Some("force") => Some(Separation::Force),
-        Some(other) => {
-            let other = cut(other, MESSAGE_CHARS);
-            return Err(BadInput(format!("--separation must be \"penetration\" or \"force\", got \"{other}\"")).into());
-        }
-    };
-    let scene = args.scene.as_deref().map(Scene::load).transpose()?;
-    let law = match (law, &scene) {
-        (Some(law), _) => law,
-        (None, Some(scene)) => scene.contact.law,
-        (None, None) => return Err(BadInput("give --law LAW (or a SCENE whose law to calibrate)".into()).into()),
-    };
-    let request =
-        Request { law, restitution: args.restitution, approach_speed: args.approach_speed, separation, scene };
-    let calibration = calibrate(&request).map_err(|error| located(error, args))?;
+    let calibration =
+        from_arguments(args.law.as_deref(), args.restitution, args.approach_speed, args.separation.as_deref(), scene)
+            .map_err(|refusal| match refusal {
+            Refusal::BadInput(message) => anyhow::Error::new(BadInput(message)),
+            Refusal::Failed(message) => anyhow::anyhow!(message),
+        })?;
     let text = if args.json { serde_json::to_string_pretty(&calibration)? + "\n" } else { render(&calibration) };
     print!("{text}");
     Ok(())
-}
-
-/// The error as a message naming the scene where it concerns the scene; bad input exits with status 2.
-fn located(error: CalibrationError, args: &CalibrateArgs) -> anyhow::Error {
-    let about_scene = matches!(
-        error,
-        CalibrationError::Incompatible(_) | CalibrationError::Unattainable(_) | CalibrationError::Simulation(_)
-    );
-    let scene = args.scene.as_ref().filter(|_| about_scene).map(|path| path.display().to_string());
-    if error.is_bad_input() {
-        let message = match (scene, &error) {
-            (Some(path), _) => format!("{path}: {error}"),
-            (None, CalibrationError::Target(_)) => format!("--restitution {}: {error}", given_target(args.restitution)),
-            (None, CalibrationError::ApproachSpeed(_)) => format!("--approach-speed: {error}"),
-            (None, CalibrationError::NoDamping) => format!("{error} with --law"),
-            (None, CalibrationError::NeedsScene(_)) => format!("{error} file (and --approach-speed to set its speed)"),
-            (None, _) => error.to_string(),
-        };
-        return BadInput(message).into();
-    }
-    let error = anyhow::Error::new(error);
-    match scene {
-        Some(path) => error.context(path),
-        None => error,
-    }
 }
 
 /// The readable summary.

@@ -32,8 +32,7 @@ pub struct RunArgs {
     pub plot: Option<PathBuf>,
 }
 
-/// Instants per figure curve: enough for a smooth line at the figure's width.
-pub const FIGURE_SAMPLES: usize = 600;
+pub use crate::impact::FIGURE_SAMPLES;
 
 /// Most instants `--samples` may ask for. A million is far beyond what a figure or a quadrature of one contact
 /// needs (the integrator itself takes a few hundred steps), and each instant costs about 0.3 kB while the series
@@ -195,17 +194,10 @@ fn figures(
 pub fn write_outputs(scene: &Scene, simulation: &Simulation, plan: &Plan) -> anyhow::Result<Vec<String>> {
     let mut pending: Vec<OutputFile> = Vec::new();
     if let Some(figures) = &plan.figures {
-        let smooth = matches!(simulation.history.as_ref().map(|h| h.samples.len()), Some(n) if n >= FIGURE_SAMPLES);
-        let resampled;
-        let history = match (&simulation.history, smooth) {
-            (Some(history), true) => history,
-            _ => {
-                resampled = simulate(scene, Recording::Uniform(FIGURE_SAMPLES))?.history;
-                resampled.as_ref().ok_or_else(|| anyhow::anyhow!("no history was recorded for the figures"))?
-            }
-        };
+        let history = crate::impact::figure_history(scene, simulation)?
+            .ok_or_else(|| anyhow::anyhow!("no history was recorded for the figures"))?;
         let staging = Staging::inside(&figures.folder)?;
-        for staged in output::figures::write_all(&simulation.report, history, staging.path())? {
+        for staged in output::figures::write_all(&simulation.report, &history, staging.path())? {
             let name = staged.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
             let destination = match figures.files.iter().find(|(planned, _)| *planned == name) {
                 Some((_, destination)) => destination.clone(),

@@ -6,7 +6,6 @@ use super::paths::{Origin, Paths};
 use crate::files::{self, Destination, OutputFile, Staging};
 use crate::output::sweep_figure;
 use crate::scene::SceneError;
-use crate::sweep::grid::{Axis, Grid, Spacing};
 use crate::sweep::shard::Shard;
 use crate::sweep::table::{self, Status};
 use crate::sweep::{self as sweeps, Sweep, SweepError};
@@ -76,8 +75,7 @@ pub(super) fn bad(error: SweepError) -> anyhow::Error {
     }
 }
 
-/// More threads than this only add start-up cost (a machine of this project's kind has 2 cores).
-const MAX_THREADS: usize = 256;
+use crate::sweep::MAX_THREADS;
 
 pub fn run(args: &SweepArgs) -> anyhow::Result<()> {
     let shard = args.shard.as_deref().map(Shard::parse).transpose().map_err(bad)?;
@@ -102,17 +100,15 @@ pub fn run(args: &SweepArgs) -> anyhow::Result<()> {
         )
         .into());
     }
-    let spacing = if args.log { Spacing::Geometric } else { Spacing::Linear };
     let text = std::fs::read_to_string(&args.scene)
         .map_err(|error| SceneError::file(&args.scene, format!("cannot read the scene: {error}")))?;
     if crate::scene::is_world(&text) {
-        return world(args, &text, spacing);
+        return world(args, &text);
     }
-    let laws = sweeps::parse_laws(&args.law).map_err(bad)?;
-    let axes = args.vary.iter().map(|spec| Axis::parse(spec, spacing)).collect::<Result<Vec<_>, _>>().map_err(bad)?;
-    let grid = Grid::new(axes).map_err(bad)?;
+    let mut sweep =
+        Sweep::from_arguments(&args.scene, text, &args.vary, args.log, &args.law, &args.columns).map_err(bad)?;
     if args.map.is_some() {
-        sweeps::map::check(grid.axes.len(), laws.len()).map_err(bad)?;
+        sweeps::map::check(sweep.grid.axes.len(), sweep.laws.len()).map_err(bad)?;
     }
     let mut paths = Paths::default();
     paths.input(format!("the scene file {} being read", args.scene.display()), &args.scene);
@@ -125,10 +121,6 @@ pub fn run(args: &SweepArgs) -> anyhow::Result<()> {
         Some(path) => Some((path, paths.output(format!("--map {}", path.display()), Origin::CommandLine, path)?)),
         None => None,
     };
-    let mut sweep = Sweep::new(&args.scene, text, grid, laws).map_err(bad)?;
-    if !args.columns.is_empty() {
-        sweep.select(table::Columns::parse(&args.columns).map_err(bad)?);
-    }
     if map.is_some() {
         // The map reads the verdicts from the CSV: they are added to its columns (and computed for its rows only).
         let mut columns = sweep.columns().clone();
@@ -210,7 +202,7 @@ pub fn run(args: &SweepArgs) -> anyhow::Result<()> {
 }
 
 /// The sweep of a world scene (docs/world.md#sweeps): its rows stream into `--out` in index order.
-fn world(args: &SweepArgs, text: &str, spacing: Spacing) -> anyhow::Result<()> {
+fn world(args: &SweepArgs, text: &str) -> anyhow::Result<()> {
     for (given, option) in [
         (!args.law.is_empty(), "--law"),
         (args.shard.is_some(), "--shard"),
@@ -221,13 +213,8 @@ fn world(args: &SweepArgs, text: &str, spacing: Spacing) -> anyhow::Result<()> {
             return Err(BadInput(format!("{option} is not taken by a sweep of a world scene (yet)")).into());
         }
     }
-    let axes = args
-        .vary
-        .iter()
-        .map(|spec| crate::sweep::grid::parse_world(spec, spacing))
-        .collect::<Result<Vec<_>, _>>()
+    let sweep = crate::sweep::world::WorldSweep::from_arguments(&args.scene, text, &args.vary, args.log, &args.columns)
         .map_err(bad)?;
-    let sweep = crate::sweep::world::WorldSweep::new(&args.scene, text, axes, &args.columns).map_err(bad)?;
     let mut paths = Paths::default();
     paths.input(format!("the scene file {} being read", args.scene.display()), &args.scene);
     let out = paths.output(format!("--out {}", args.out.display()), Origin::CommandLine, &args.out)?;

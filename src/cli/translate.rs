@@ -5,7 +5,6 @@ use super::BadInput;
 use crate::impact::SimulationError;
 use crate::scene::{Parsed, SceneError, SetupError, located};
 use crate::setup::load_any;
-use crate::text::{MESSAGE_CHARS, cut};
 use crate::translate::{Peer, TranslateError, Translation, input, translate};
 use clap::Args;
 use std::fmt::Write as _;
@@ -52,11 +51,7 @@ Examples:
   impact translate models/newtons-cradle-3.toml --to lammps --input out/cradle-lammps";
 
 pub fn run(args: &TranslateArgs) -> anyhow::Result<()> {
-    let Some(peer) = Peer::from_name(&args.to) else {
-        let names: Vec<_> = Peer::ALL.iter().map(|peer| peer.name()).collect();
-        let to = cut(&args.to, MESSAGE_CHARS);
-        return Err(BadInput(format!("--to: unknown program `{to}`; expected one of {}", names.join(", "))).into());
-    };
+    let peer = Peer::named(&args.to).map_err(BadInput)?;
     if args.input.is_some() && peer != Peer::Lammps {
         return Err(BadInput("--input writes a LAMMPS input: use it with --to lammps".into()).into());
     }
@@ -85,12 +80,7 @@ pub fn run(args: &TranslateArgs) -> anyhow::Result<()> {
         }
         Parsed::World(world) => {
             let Some(folder) = args.input.as_ref().filter(|_| peer == Peer::Lammps) else {
-                return Err(SceneError::file(
-                    &args.scene,
-                    "a world's contacts meet at many speeds: translate it as a whole LAMMPS input with --to lammps \
-                     --input DIR, or translate one of its contacts as a two-body scene",
-                )
-                .into());
+                return Err(SceneError::file(&args.scene, crate::translate::WORLD_AS_A_WHOLE).into());
             };
             let written = input::for_world(&world, args.dt.or(world.solver.dt)).map_err(located)?;
             input::write(folder, &args.scene, &written).map_err(located)?;

@@ -14,6 +14,7 @@ pub mod contact;
 pub mod normal;
 pub mod pair;
 pub mod rigid;
+pub mod wall;
 
 use crate::integrate::{Model, State};
 use nalgebra::{UnitQuaternion, Vector3};
@@ -112,6 +113,11 @@ pub trait ContactModel<const N: usize>: Model<N> {
     fn kinks(&self, compressing: bool) -> crate::law::Kinks;
     /// The contact and the bodies at scaled time `t` and state `y`, in SI units.
     fn snapshot(&self, t: f64, y: &State<N>) -> Snapshot;
+    /// The physical time (in T) at the integration variable `t` and state `y`: `t` itself, but for a model integrated
+    /// in a regularised time ([`wall::WallContact`]), which carries the time as a state.
+    fn time_of(&self, t: f64, _y: &State<N>) -> f64 {
+        t
+    }
 }
 
 /// The unit of the dissipated-energy state, in m* v0²: the damping's size delta at the contact's scales

@@ -16,7 +16,8 @@ const CHUNK: usize = 1 << 20;
 /// Writes the rows of each instant into an output file (atomically: the file appears when [`SeriesWriter::finish`]
 /// succeeds).
 pub struct SeriesWriter {
-    file: OutputFile,
+    /// `None`: the text is kept in memory ([`SeriesWriter::in_memory`]).
+    file: Option<OutputFile>,
     text: String,
     /// The first failure to write, kept to be reported at the end (an observer cannot stop the run).
     error: Option<FileError>,
@@ -25,12 +26,23 @@ pub struct SeriesWriter {
 impl SeriesWriter {
     /// A writer into `file`, its header written.
     pub fn new(file: OutputFile) -> SeriesWriter {
-        SeriesWriter { file, text: COLUMNS.join(",") + "\n", error: None }
+        SeriesWriter { file: Some(file), text: COLUMNS.join(",") + "\n", error: None }
+    }
+
+    /// A writer that keeps the whole series as text (Python's `Report.history` of a world), for [`SeriesWriter::text`].
+    pub fn in_memory() -> SeriesWriter {
+        SeriesWriter { file: None, text: COLUMNS.join(",") + "\n", error: None }
+    }
+
+    /// The series written so far, as CSV text, of a writer [`SeriesWriter::in_memory`].
+    pub fn text(&self) -> &str {
+        &self.text
     }
 
     fn flush(&mut self) {
+        let Some(file) = &mut self.file else { return };
         if self.error.is_none()
-            && let Err(error) = self.file.write_bytes(self.text.as_bytes())
+            && let Err(error) = file.write_bytes(self.text.as_bytes())
         {
             self.error = Some(error);
         }
@@ -40,9 +52,13 @@ impl SeriesWriter {
     /// Writes what is left and publishes the file; the first error of the run, if any.
     pub fn finish(mut self) -> Result<OutputFile, FileError> {
         self.flush();
-        match self.error {
-            Some(error) => Err(error),
-            None => Ok(self.file),
+        match (self.error, self.file) {
+            (Some(error), _) => Err(error),
+            (None, Some(file)) => Ok(file),
+            (None, None) => Err(FileError::Write {
+                path: "memory".into(),
+                source: std::io::Error::other("a series kept in memory has no file to finish"),
+            }),
         }
     }
 }
@@ -57,7 +73,7 @@ impl Observer for SeriesWriter {
         for c in contacts {
             let _ = writeln!(self.text, "{time:e},contact,{},,,,,,,{:e},{:e}", c.index, c.penetration, c.force);
         }
-        if self.text.len() >= CHUNK {
+        if self.text.len() >= CHUNK && self.file.is_some() {
             self.flush();
         }
     }

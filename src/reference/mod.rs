@@ -24,6 +24,7 @@ pub use hunt_crossley::{hunt_crossley_chi, hunt_crossley_loss, hunt_crossley_res
 pub use hysteresis::hysteresis_contact;
 pub use kelvin_voigt::{kelvin_voigt, kelvin_voigt_zeta};
 pub use numerics::beta;
+pub(crate) use numerics::phi2;
 pub use roots::{Bracket, Root, Stop, illinois};
 pub use thornton::{thornton, thornton_restitution, thornton_yield_speed};
 pub use tsuji::{tsuji, tsuji_damping};

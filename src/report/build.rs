@@ -266,6 +266,11 @@ pub fn build(
 fn energy_balance(e: &super::EnergyReport) -> Option<f64> {
     let (after, dissipated, left, work) =
         (e.kinetic_after?, e.dissipated?, e.elastic_left_at_separation?, e.work_of_immovable_bodies?);
+    // A dissipation the run was not asked for (a sweep row without its column: NaN, never shown) leaves no balance
+    // to close, and no note to form.
+    if dissipated.is_nan() {
+        return None;
+    }
     let largest = [e.kinetic_before, work.abs(), after, dissipated.abs(), left.abs()].into_iter().fold(0.0, f64::max);
     (largest > 0.0).then(|| (e.kinetic_before + work - after - dissipated - left) / largest)
 }

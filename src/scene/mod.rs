@@ -64,6 +64,12 @@ pub fn located(path: &Path, error: SetupError) -> SceneError {
     validate::located(&text, path, error)
 }
 
+/// A rule found broken while running a scene that came as text (Python's `impact.run` of TOML text or a dict),
+/// located in that text.
+pub fn located_in(text: &str, path: &Path, error: SetupError) -> SceneError {
+    validate::located(text, path, error)
+}
+
 /// How the law's damping is given.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum DampingSpec {

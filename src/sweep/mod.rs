@@ -8,6 +8,7 @@
 //! `i`, whatever part of the sweep ([`shard`]) or however many threads compute it. [`table`] writes the CSV,
 //! [`merge`] joins shards, [`figure`] turns a sweep's CSV into the data of its figure.
 
+pub mod columns;
 pub mod figure;
 pub mod grid;
 pub mod key;
@@ -30,6 +31,7 @@ use rayon::prelude::*;
 use shard::Shard;
 use std::borrow::Cow;
 use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicBool, Ordering};
 use table::{Cell, Columns, Row, Status};
 
 /// Why a sweep cannot start (bad arguments, a scene file that is not TOML) or shards cannot be merged.
@@ -47,6 +49,10 @@ pub enum SweepError {
 /// stream to the file as they are computed, so memory does not limit a sweep; this bounds what a file's header may
 /// claim and keeps a sweep's file (about 0.5 kB a row) and its merge within one machine's disk and memory.
 pub const MAX_ROWS: usize = 100_000_000;
+
+/// Most worker threads a sweep takes (`--threads`, Python's `threads`): more only add start-up cost (a machine of
+/// this project's kind has 2 cores).
+pub const MAX_THREADS: usize = 256;
 
 /// Rows computed together by [`Sweep::stream`]: enough to keep every core busy past the slowest row of a chunk and
 /// to make the pause between chunks rare (a million rows took 4 % longer in chunks of 1024 on this project's 2-core
@@ -96,6 +102,28 @@ pub fn parse_laws(names: &[String]) -> Result<Vec<LawKind>, SweepError> {
 }
 
 impl Sweep {
+    /// The sweep `impact sweep` runs (and Python's `impact.sweep`): the scene `text` read from `path`, each `--vary`
+    /// spec (`KEY=START:STOP:COUNT[:log|:lin]` or `KEY=V1,V2,...`; geometric ranges by default under `log`), the
+    /// `--law` names and the `--columns` names (empty: the defaults), checked in the command's order.
+    pub fn from_arguments(
+        path: &Path,
+        text: String,
+        vary: &[String],
+        log: bool,
+        laws: &[String],
+        columns: &[String],
+    ) -> Result<Sweep, SweepError> {
+        let spacing = if log { grid::Spacing::Geometric } else { grid::Spacing::Linear };
+        let laws = parse_laws(laws)?;
+        let axes = vary.iter().map(|spec| grid::Axis::parse(spec, spacing)).collect::<Result<Vec<_>, _>>()?;
+        let grid = Grid::new(axes)?;
+        let mut sweep = Sweep::new(path, text, grid, laws)?;
+        if !columns.is_empty() {
+            sweep.select(Columns::parse(columns)?);
+        }
+        Ok(sweep)
+    }
+
     /// Checks a sweep before any work: the scene text is TOML, the varied keys fit this scene, the size is sane.
     /// The scene's values are checked per point (a file may leave out what the sweep sets).
     pub fn new(path: &Path, text: String, grid: Grid, laws: Vec<LawKind>) -> Result<Sweep, SweepError> {
@@ -301,6 +329,21 @@ impl Sweep {
         pool: &rayon::ThreadPool,
         done: impl Fn(usize) + Sync,
         shape: impl Fn(Row) -> T + Sync,
+        write: impl FnMut(T) -> Result<(), E> + Send,
+    ) -> Result<(), E> {
+        self.stream_until(indices, pool, &AtomicBool::new(false), done, shape, write)
+    }
+
+    /// [`Sweep::stream`] that stops soon after `stop` is set (by another thread: Python's Ctrl-C): the rows not yet
+    /// started are skipped, the chunk being computed is dropped, and nothing more reaches `write` (which has then
+    /// received a prefix of the rows, in order). The caller reads `stop` to know whether the run finished.
+    pub fn stream_until<T: Send, E: Send>(
+        &self,
+        indices: impl Iterator<Item = usize>,
+        pool: &rayon::ThreadPool,
+        stop: &AtomicBool,
+        done: impl Fn(usize) + Sync,
+        shape: impl Fn(Row) -> T + Sync,
         mut write: impl FnMut(T) -> Result<(), E> + Send,
     ) -> Result<(), E> {
         let (send, receive) = std::sync::mpsc::sync_channel::<Vec<T>>(1);
@@ -318,8 +361,14 @@ impl Sweep {
             while indices.peek().is_some() {
                 chunk.clear();
                 chunk.extend(indices.by_ref().take(CHUNK));
-                let rows: Vec<T> =
-                    pool.install(|| chunk.par_iter().map(|&index| shape(self.evaluate(index))).collect());
+                // (A row is checked before it starts: a chunk of slow rows stops within one row's time.)
+                let rows: Option<Vec<T>> = pool.install(|| {
+                    chunk
+                        .par_iter()
+                        .map(|&index| (!stop.load(Ordering::Relaxed)).then(|| shape(self.evaluate(index))))
+                        .collect()
+                });
+                let Some(rows) = rows.filter(|_| !stop.load(Ordering::Relaxed)) else { break };
                 done(rows.len());
                 // The writer has stopped on an error: it is returned below.
                 if send.send(rows).is_err() {

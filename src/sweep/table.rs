@@ -497,7 +497,7 @@ fn exponent_of(bytes: &[u8]) -> i32 {
 }
 
 /// Appends a cell as CSV: quoted when it holds a comma, a quote or a line break (RFC 4180).
-fn push_quoted(out: &mut String, text: &str) {
+pub fn push_quoted(out: &mut String, text: &str) {
     if text.contains([',', '"', '\n', '\r']) {
         out.push('"');
         out.push_str(&text.replace('"', "\"\""));

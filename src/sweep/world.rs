@@ -178,16 +178,46 @@ impl WorldSweep {
         serde_json::to_value(&simulation.report).map_err(|error| error.to_string())
     }
 
+    /// The sweep `impact sweep` runs of a world scene (and Python's `impact.sweep`): each `--vary` spec read by
+    /// [`super::grid::parse_world`] (geometric ranges by default under `log`), then [`WorldSweep::new`].
+    pub fn from_arguments(
+        path: &Path,
+        text: &str,
+        vary: &[String],
+        log: bool,
+        columns: &[String],
+    ) -> Result<WorldSweep, SweepError> {
+        let spacing = if log { super::grid::Spacing::Geometric } else { super::grid::Spacing::Linear };
+        let axes = vary.iter().map(|spec| super::grid::parse_world(spec, spacing)).collect::<Result<Vec<_>, _>>()?;
+        WorldSweep::new(path, text, axes, columns)
+    }
+
     /// Computes `indices` on `pool` in chunks, handing each row to `take` in index order.
     pub fn stream(
         &self,
         indices: Vec<usize>,
         pool: &rayon::ThreadPool,
+        done: impl FnMut(usize),
+        take: impl FnMut(WorldRow) -> Result<(), crate::files::FileError>,
+    ) -> Result<(), crate::files::FileError> {
+        self.stream_until(indices, pool, &std::sync::atomic::AtomicBool::new(false), done, take)
+    }
+
+    /// [`WorldSweep::stream`] that stops soon after `stop` is set (Python's Ctrl-C): rows not yet started are
+    /// skipped, the chunk being computed is dropped, and `take` has received a prefix of the rows.
+    pub fn stream_until(
+        &self,
+        indices: Vec<usize>,
+        pool: &rayon::ThreadPool,
+        stop: &std::sync::atomic::AtomicBool,
         mut done: impl FnMut(usize),
         mut take: impl FnMut(WorldRow) -> Result<(), crate::files::FileError>,
     ) -> Result<(), crate::files::FileError> {
+        use std::sync::atomic::Ordering;
         for chunk in indices.chunks(CHUNK) {
-            let rows: Vec<WorldRow> = pool.install(|| chunk.par_iter().map(|&i| self.row(i)).collect());
+            let rows: Option<Vec<WorldRow>> = pool
+                .install(|| chunk.par_iter().map(|&i| (!stop.load(Ordering::Relaxed)).then(|| self.row(i))).collect());
+            let Some(rows) = rows.filter(|_| !stop.load(Ordering::Relaxed)) else { break };
             done(rows.len());
             for row in rows {
                 take(row)?;

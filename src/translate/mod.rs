@@ -87,6 +87,15 @@ impl Peer {
         Peer::ALL.into_iter().find(|peer| peer.name() == name)
     }
 
+    /// The program named `name` (`--to`), or the command's message for a name it does not know.
+    pub fn named(name: &str) -> Result<Peer, String> {
+        Peer::from_name(name).ok_or_else(|| {
+            let names: Vec<_> = Peer::ALL.iter().map(|peer| peer.name()).collect();
+            let to = crate::text::cut(name, crate::text::MESSAGE_CHARS);
+            format!("--to: unknown program `{to}`; expected one of {}", names.join(", "))
+        })
+    }
+
     /// The fixed-step scheme the program integrates a contact with, when it has one this program runs: LAMMPS' and
     /// LIGGGHTS' velocity Verlet, MuJoCo's and Kratos' semi-implicit Euler, Drake's implicit Euler (its discrete SAP
     /// contact; its continuous point contact has none). ADAMS' integrators adapt their step: `None`.
@@ -324,6 +333,10 @@ pub struct Translation {
     pub restitution_at_dt: Option<f64>,
     pub notes: Vec<String>,
 }
+
+/// Why a world scene is refused unless it is written as a whole LAMMPS input.
+pub const WORLD_AS_A_WHOLE: &str = "a world's contacts meet at many speeds: translate it as a whole LAMMPS input with \
+    --to lammps --input DIR, or translate one of its contacts as a two-body scene";
 
 /// Why a translation could not be made.
 #[derive(Debug, thiserror::Error)]

@@ -1,0 +1,161 @@
+//! The hysteresis family's impact without a time integration, where no time is asked for: its exact first
+//! integral (docs/numerics.md#the-first-integral).
+//!
+//! For `F = K d^n (1 + alpha d')` the relative motion `m* v dv/dt = -F v` gives, scaled (`x = alpha v0`),
+//! `v dv/(1 + x v) = -d^n dd`: with `w² = d^(n+1)` (the fast path's `w`) and `p = (n+1)/2`,
+//! `w²/(2p) = G(1) - G(v)`, `G(v) = ∫_0^v u/(1 + x u) du = v² φ₂(x v)`, `φ₂(u) = (u - ln(1+u))/u²`. So
+//!
+//! * maximum compression (`v = 0`): `w² = (n+1) φ₂(x)`, and the penetration `δ = w^(2/(n+1))`;
+//! * separation (`w = 0` again): `G(-e) = G(1)`, the exact relation of `e(x)` (`reference::hunt_crossley_restitution`),
+//!   the same for every `n`;
+//! * the force never pulls (`1 + x v` stays positive: `v' = 0` on the line `1 + x v = 0`), so the contact ends at
+//!   zero penetration whichever separation is named;
+//! * the impulses are the changes of the relative momentum, `1` and `e`; the works `1/2` and `-e²/2`; the elastic
+//!   energy at maximum compression `w²/(n+1) = φ₂(x)`, and the dissipation `x ∫_0^1 u²/(1 + x u) du` in
+//!   compression, `(1 - e²)/2` over the contact;
+//! * the force peak, where `n v = x w²` ([`super::Regularised::peak_function`]), is the root in `(0, 1)` of
+//!   `n v - x (n+1) (φ₂(x) - v² φ₂(x v))`, increasing in `v` (safeguarded Newton).
+//!
+//! Everything is a closed form or a scalar root to rounding (about 1e-16 relative), for a few hundred
+//! nanoseconds; only the times need the integration. The path is taken for dampings up to [`MAX_DAMPING`]: beyond
+//! it the restitution creeps for long, and how it ends (the time limit, the step budget, a contact whose motion
+//! dies out) is the integrator's to say.
+
+use super::regularised::{Form, Regularised};
+use super::{Ending, Outcome, PhasePoint, Quantities};
+use crate::reference::{hunt_crossley_loss, hunt_crossley_restitution, phi2};
+
+/// Largest scaled damping `x = alpha v0` the first integral answers for (e = 6.9e-3 there, a contact of about 10
+/// elastic time units; the creep that the time limit can stop begins orders of magnitude beyond).
+pub const MAX_DAMPING: f64 = 1e3;
+
+/// Whether [`impact`] answers for `system` when `quantities` are asked: a hysteresis law (Hertz's elastic one
+/// included) with `x <= MAX_DAMPING`, and no time asked for.
+pub fn covers(system: &Regularised, quantities: Quantities) -> bool {
+    system.form == Form::Hysteresis && !quantities.time && system.damping <= MAX_DAMPING
+}
+
+/// The impact of a hysteresis law from its first integral (see the module): what [`covers`] admits.
+pub fn impact(system: &Regularised, quantities: Quantities) -> Outcome {
+    let (x, n) = (system.damping, system.exponent);
+    let e = hunt_crossley_restitution(x);
+    // 1 - e without cancellation, for the energies lost near e = 1 (its series below x = 0.05; `e` itself above).
+    let loss = if x < 0.05 { hunt_crossley_loss(x) } else { 1.0 - e };
+    let elastic = phi2(x);
+    let w = ((n + 1.0) * elastic).sqrt();
+    let penetration = system.penetration(w);
+    let if_asked = |asked: bool, value: f64| if asked { value } else { f64::NAN };
+    let max_compression = PhasePoint {
+        time: f64::NAN,
+        penetration,
+        rate: 0.0,
+        impulse: 1.0,
+        work: 0.5,
+        dissipated: if_asked(quantities.dissipation, x * compression_loss(x)),
+        elastic,
+        force: system.force_at(w, penetration, 0.0),
+    };
+    let lost = 0.5 * loss * (1.0 + e);
+    let end = PhasePoint {
+        time: f64::NAN,
+        penetration: 0.0,
+        rate: -e,
+        impulse: 1.0 + e,
+        work: lost,
+        dissipated: if_asked(quantities.dissipation, lost),
+        elastic: 0.0,
+        force: 0.0,
+    };
+    let peak_force = if !quantities.peak {
+        f64::NAN
+    } else if x == 0.0 {
+        max_compression.force
+    } else {
+        let v = peak_rate(x, n, elastic);
+        let w = ((n + 1.0) * (elastic - v * v * phi2(x * v))).max(0.0).sqrt();
+        system.force(w, v)
+    };
+    Outcome {
+        max_compression,
+        end,
+        restitution_impulse: e,
+        restitution_work: 0.5 * e * e,
+        peak_force,
+        peak_force_time: f64::NAN,
+        separated: true,
+        ending: Ending::Separated,
+        steps: 0,
+        force_evaluations: 0,
+        order: 0,
+        first_integral: true,
+    }
+}
+
+/// `∫_0^1 u²/(1 + x u) du` (the compression's dissipation over `x`): its series `Σ (-x)^k/(k+3)` for `x <= 1/4`,
+/// `(ln(1+x) - x + x²/2)/x³` beyond (a cancellation of at most 4 ulps there).
+fn compression_loss(x: f64) -> f64 {
+    if x <= 0.25 {
+        // 30 terms: the first omitted one is below 0.25^30/33 < 1e-19.
+        (0..30).rev().fold(0.0, |acc, k| acc * -x + 1.0 / f64::from(k + 3))
+    } else {
+        (x.ln_1p() - x + 0.5 * x * x) / (x * x * x)
+    }
+}
+
+/// The rate at the force peak: the root in `(0, 1)` of `h(v) = n v - x (n+1) (φ₂(x) - v² φ₂(x v))`
+/// (`h(0) < 0 < h(1) = n`, `h' = n + x (n+1) v/(1 + x v) > 0`), by Newton's method kept inside a shrinking bracket.
+fn peak_rate(x: f64, n: f64, elastic: f64) -> f64 {
+    let h = |v: f64| n * v - x * (n + 1.0) * (elastic - v * v * phi2(x * v));
+    let (mut low, mut high) = (0.0_f64, 1.0_f64);
+    // Light damping peaks near v = x (n+1)/(2n), heavy near 1.
+    let mut v = (x * (n + 1.0) / (2.0 * n)).min(0.5);
+    for _ in 0..60 {
+        let value = h(v);
+        if value == 0.0 {
+            return v;
+        }
+        if value < 0.0 {
+            low = v;
+        } else {
+            high = v;
+        }
+        let slope = n + x * (n + 1.0) * v / (1.0 + x * v);
+        let next = v - value / slope;
+        let next = if next > low && next < high { next } else { 0.5 * (low + high) };
+        if (next - v).abs() <= 2.0 * f64::EPSILON * v {
+            return next;
+        }
+        v = next;
+    }
+    v
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The compression's dissipation over x against a composite Simpson rule of its integrand written here.
+    #[test]
+    fn compression_loss_is_its_integral() {
+        for x in [1e-8, 1e-3, 0.1, 0.25, 0.2500001, 0.7, 3.0, 40.0, 1e3] {
+            let f = |u: f64| u * u / (1.0 + x * u);
+            let m = 20_000;
+            let h = 1.0 / f64::from(m);
+            let sum: f64 = (0..=m)
+                .map(|i| {
+                    let weight = if i == 0 || i == m {
+                        1.0
+                    } else if i % 2 == 1 {
+                        4.0
+                    } else {
+                        2.0
+                    };
+                    weight * f(f64::from(i) * h)
+                })
+                .sum();
+            let simpson = sum * h / 3.0;
+            let got = compression_loss(x);
+            assert!((got / simpson - 1.0).abs() < 1e-12, "x = {x}: {got} vs {simpson}");
+        }
+    }
+}
