@@ -44,12 +44,26 @@ pub struct Body {
     /// whose peak pressure reaches 1.6 Y (Johnson, Contact Mechanics, ch. 11). Used by the `elastic` verdict and by
     /// the `thornton` law.
     pub yield_stress: Option<f64>,
+    /// The scene's `[[bodies.spheres]]`: the contact spheres of a clump, fixed to the body (empty for a body of one
+    /// `radius`, whose one sphere sits at its `contact_offset`). A clump's `radius` is its bounding radius, the
+    /// largest |offset| + r (docs/world.md#rigid-bodies).
+    pub spheres: Vec<ContactSphere>,
+}
+
+/// One contact sphere of a body: its centre relative to the mass centre (m, scene axes at t = 0) and its radius (m).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ContactSphere {
+    pub offset: Vector3<f64>,
+    pub radius: f64,
 }
 
 impl Body {
     /// Re-derives what follows from the written values: the mass from `density` and the radius, the inertia of a
     /// solid sphere unless one was given. (A sweep that changes a radius or a mass calls this.)
     pub fn resolve(&mut self) {
+        if !self.spheres.is_empty() {
+            self.radius = self.spheres.iter().map(|s| length(&s.offset) + s.radius).fold(0.0, f64::max);
+        }
         if let Some(density) = self.density {
             self.mass = density * 4.0 / 3.0 * std::f64::consts::PI * self.radius.powi(3);
         }
@@ -66,7 +80,25 @@ impl Body {
     pub fn is_eccentric(&self) -> bool {
         let anisotropic =
             self.inertia_tensor.is_some_and(|t| (t - Matrix3::identity() * (t.trace() / 3.0)).norm() > 0.0);
-        self.contact_offset != Vector3::zeros() || self.pivot.is_some() || anisotropic
+        let off_centre = self.spheres.len() > 1 || self.spheres.iter().any(|s| s.offset != Vector3::zeros());
+        self.contact_offset != Vector3::zeros() || self.pivot.is_some() || anisotropic || off_centre
+    }
+
+    /// The body's contact spheres (offsets from the mass centre in scene axes at t = 0, m; radii, m): its
+    /// `[[bodies.spheres]]`, or the one sphere of its `radius` at its `contact_offset` (a flat body's: radius inf).
+    pub fn contact_spheres(&self) -> Vec<ContactSphere> {
+        if self.spheres.is_empty() {
+            vec![ContactSphere { offset: self.contact_offset, radius: self.radius }]
+        } else {
+            self.spheres.clone()
+        }
+    }
+
+    /// Whether, in a world, the body's orientation is integrated: a movable body that turns (finite mass and inertia)
+    /// and is eccentric — a sphere off its mass centre, several spheres, a pivot, or an inertia that differs between
+    /// axes. Every other body is a sphere whose orientation nobody reads (docs/world.md#rigid-bodies).
+    pub fn is_rigid(&self) -> bool {
+        !self.is_immovable() && self.rotates() && self.is_eccentric()
     }
 
     /// The inertia tensor about the mass centre in scene axes at t = 0, kg m²: the scene's tensor or moments, or the
@@ -146,6 +178,12 @@ impl Body {
         let poisson = self.poisson?;
         Some((1.0 - poisson * poisson) / young)
     }
+}
+
+/// The length of `v` without overflow or underflow in its squares.
+fn length(v: &Vector3<f64>) -> f64 {
+    let largest = v.amax();
+    if largest == 0.0 || !largest.is_finite() { largest } else { largest * (v / largest).norm() }
 }
 
 /// Velocities of two bodies after a normal impulse `impulse` (N s, compressive positive) along the unit `normal`

@@ -509,6 +509,7 @@ pub fn default_scene(law: LawKind, approach_speed: f64, separation: Separation) 
         young: None,
         poisson: None,
         yield_stress: None,
+        spheres: Vec::new(),
     };
     let exponent = if law.family() == Family::Linear { 1.0 } else { 1.5 };
     Scene {

@@ -160,3 +160,103 @@ pub fn positive_definite(matrix: &Matrix3<f64>) -> bool {
         matrix.cholesky().is_some()
     }
 }
+
+/// How an instantaneous impact with friction went (docs/references.md#rigid-bodies-with-several-contacts).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Slide {
+    /// No friction.
+    Smooth,
+    /// The sticking impulse lay inside the friction cone: the contact points leave without slip.
+    Sticks,
+    /// It did not: the impulse slid, `J_n (n - mu s)` along the initial slip `s`.
+    Slides,
+}
+
+/// The instantaneous impact of two rigid bodies at a point with Coulomb friction: what they carry away.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FrictionalImpact {
+    /// The impulse on body 2 (body 1 receives its opposite), N s.
+    pub impulse: Vector3<f64>,
+    pub slide: Slide,
+    pub velocities_after: [Vector3<f64>; 2],
+    pub spins_after: [Vector3<f64>; 2],
+    /// The impulse each body's pivot passes to it, N s (zero for a free body).
+    pub pivot_impulses: [Vector3<f64>; 2],
+}
+
+/// The inverse inertia of `body` at the contact point `point` (docs/references.md#rigid-bodies-with-several-contacts), 1/kg: the velocity change of
+/// the body's material point at `point` per unit impulse there, `K = (1/M) 1 - [r]× I⁻¹ [r]×` with `r` from the mass
+/// centre (about a pivot, `-[r_O]× I_O⁻¹ [r_O]×`); zero for an immovable body.
+pub fn point_compliance(body: &RigidBody, point: &Vector3<f64>) -> Matrix3<f64> {
+    if body.mass.is_infinite() {
+        return Matrix3::zeros();
+    }
+    let arm = point - body.pivot.unwrap_or(body.centre);
+    let cross = arm.cross_matrix();
+    let turning = -cross * inverse_inertia(&body.inertia_about_pivot()) * cross;
+    if body.pivot.is_some() { turning } else { turning + Matrix3::identity() / body.mass }
+}
+
+/// The instantaneous impact of `bodies` touching at `point` along the unit `normal` (body 1 to body 2), with Newton's
+/// restitution `e` on the contact points' normal velocities and Coulomb friction `friction` (docs/references.md#rigid-bodies-with-several-contacts):
+/// the sticking impulse brings the whole relative velocity of the points to `e v_n` along the normal; where it leaves
+/// the friction cone, the impulse slides, `J_n (n - mu s)` along the initial slip `s` of body 2's point relative to
+/// body 1's, with `J_n` from the normal restitution. With `friction = 0` it is [`eccentric_impact`]. `None` when the
+/// points do not approach or neither body can move there.
+pub fn frictional_impact(
+    bodies: &[RigidBody; 2],
+    point: &Vector3<f64>,
+    normal: &Vector3<f64>,
+    e: f64,
+    friction: f64,
+) -> Option<FrictionalImpact> {
+    let relative = bodies[1].point_velocity(point) - bodies[0].point_velocity(point);
+    let approach = -relative.dot(normal);
+    let compliance = point_compliance(&bodies[0], point) + point_compliance(&bodies[1], point);
+    let normal_compliance = normal.dot(&(compliance * normal));
+    if !(approach > 0.0 && normal_compliance > 0.0) {
+        return None;
+    }
+    let smooth = normal * ((1.0 + e) * approach / normal_compliance);
+    let (impulse, slide) = if friction == 0.0 {
+        (smooth, Slide::Smooth)
+    } else {
+        // The impulse that leaves the points without slip, separating at e v_n.
+        let target = normal * (e * approach) - relative;
+        let sticking = compliance.try_inverse().map(|inverse| inverse * target);
+        let inside = |p: &Vector3<f64>| {
+            let along = p.dot(normal);
+            along >= 0.0 && (p - normal * along).norm() <= friction * along * (1.0 + 1e-12)
+        };
+        match sticking {
+            Some(p) if inside(&p) => (p, Slide::Sticks),
+            _ => {
+                // The slip of body 2's point relative to body 1's; without one, the way the sticking impulse would
+                // have rubbed.
+                let across = relative - normal * relative.dot(normal);
+                let direction = if across.norm() > 0.0 {
+                    across / across.norm()
+                } else {
+                    let rub = sticking.map_or(Vector3::zeros(), |p| -(p - normal * p.dot(normal)));
+                    if rub.norm() > 0.0 { rub / rub.norm() } else { Vector3::zeros() }
+                };
+                let line = normal - direction * friction;
+                let along = normal.dot(&(compliance * line));
+                if along > 0.0 {
+                    (line * ((1.0 + e) * approach / along), Slide::Slides)
+                } else {
+                    (sticking.unwrap_or(smooth), Slide::Sticks)
+                }
+            }
+        }
+    };
+    let (v1, w1, p1) = bodies[0].after(&-impulse, point);
+    let (v2, w2, p2) = bodies[1].after(&impulse, point);
+    Some(FrictionalImpact {
+        impulse,
+        slide,
+        velocities_after: [v1, v2],
+        spins_after: [w1, w2],
+        pivot_impulses: [p1, p2],
+    })
+}

@@ -63,10 +63,15 @@ impl Meeting {
     /// How bodies `a` (body `i`) and `b` (body `j`) meet, with their faces: a flat body's unit face normal, `None`
     /// for a sphere (a world scene's `faces`).
     pub fn between(a: &Body, face_a: Option<Vector3<f64>>, b: &Body, face_b: Option<Vector3<f64>>) -> Meeting {
+        Meeting::of_radii(a.radius, face_a, b.radius, face_b)
+    }
+
+    /// How two contact spheres of radii `a` and `b` (m) meet, with their bodies' faces (`None` for a sphere).
+    pub fn of_radii(a: f64, face_a: Option<Vector3<f64>>, b: f64, face_b: Option<Vector3<f64>>) -> Meeting {
         match (face_a, face_b) {
-            (Some(face), _) => Meeting::Face { face, radius: b.radius, sign: 1.0 },
-            (_, Some(face)) => Meeting::Face { face, radius: a.radius, sign: -1.0 },
-            _ => Meeting::Spheres { reach: a.radius + b.radius },
+            (Some(face), _) => Meeting::Face { face, radius: b, sign: 1.0 },
+            (_, Some(face)) => Meeting::Face { face, radius: a, sign: -1.0 },
+            _ => Meeting::Spheres { reach: a + b },
         }
     }
 

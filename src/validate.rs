@@ -107,6 +107,28 @@ pub fn cases() -> Vec<Case> {
             run: struck_rod,
         },
         Case {
+            name: "rod-flat",
+            about: "a rod of two end spheres dropped flat on Hertz ends: each end Hertz's contact of M/2 \
+                    (models/rod-dropped-flat.toml)",
+            run: rod_flat,
+        },
+        Case {
+            name: "rod-angle",
+            about: "a rod dropped at 30 degrees strikes with its lower end as rigid-body theory has it \
+                    (models/rod-chatter.toml)",
+            run: rod_angle,
+        },
+        Case {
+            name: "dumbbell",
+            about: "a dumbbell of two balls struck at one by a third, elastic, in a world (models/struck-dumbbell.toml)",
+            run: dumbbell,
+        },
+        Case {
+            name: "hung-rod-swing",
+            about: "the hung rod released from 30 degrees under gravity into a ball at rest (models/hung-rod-swing.toml)",
+            run: hung_rod_swing,
+        },
+        Case {
             name: "cradle-3",
             about: "three touching Hertzian balls struck by one (Herrmann & Schmälzle 1981)",
             run: cradle_3,
@@ -286,6 +308,142 @@ fn struck_rod(case: &'static str) -> Result<Vec<Row>, String> {
         row(case, "rod's spin after, rad/s", spin_after[2], 7.5, source, ROD),
         row(case, "1 + ball velocity after / 3 m/s", 1.0 + after(&report, 0)?[0] / 3.0, 1.0, source, ROD),
         row(case, "kinetic energy after, J", kinetic_after, energy.kinetic_before, "energy conserved (elastic)", 1e-9),
+    ])
+}
+
+/// A rod of two end spheres dropped exactly flat on a floor without gravity (models/rod-dropped-flat.toml): both ends
+/// touch at once, the rod does not turn, and each end is Hertz's contact of one end sphere (R = 5 mm) on the floor
+/// with the effective mass M/2 (docs/references.md#rigid-bodies-with-several-contacts):
+/// `d_m = (15 (M/2) v²/(16 E* √R))^(2/5)`, `t_c = 2.9432751843 d_m/v`, `F_m = (4/3) E* √R d_m^(3/2)`
+/// (docs/references.md#elastic-hertz-contact); elastic, the rod rebounds at v.
+fn rod_flat(case: &'static str) -> Result<Vec<Row>, String> {
+    let report = world(include_str!("../models/rod-dropped-flat.toml"))?;
+    if report.contacts.len() != 2 {
+        return Err(format!("{} contacts, expected the two ends", report.contacts.len()));
+    }
+    let (mass, radius, young, poisson) = (0.2_f64, 0.005_f64, 2.1e11_f64, 0.3_f64);
+    let v = -report.bodies[0].velocity_before[2];
+    let e_star = young / (2.0 * (1.0 - poisson * poisson));
+    let depth = (15.0 * (mass / 2.0) * v * v / (16.0 * e_star * radius.sqrt())).powf(0.4);
+    let source = "Hertz's closed form for one end of effective mass M/2 (docs/references.md#elastic-hertz-contact)";
+    let mut rows = Vec::new();
+    for (k, c) in report.contacts.iter().enumerate() {
+        let end = if c.spheres[0] == Some(0) { "+x" } else { "-x" };
+        let duration = c.duration.ok_or("an end did not separate")?;
+        rows.push(row(case, format!("{end} end's duration, s"), duration, 2.9432751843 * depth / v, source, TIGHT));
+        rows.push(row(case, format!("{end} end's deepest penetration, m"), c.max_penetration, depth, source, TIGHT));
+        let peak = 4.0 / 3.0 * e_star * radius.sqrt() * depth.powf(1.5);
+        rows.push(row(case, format!("{end} end's peak force, N"), c.max_force, peak, source, TIGHT));
+        rows.push(row(
+            case,
+            format!("contact {k} starts with the other, s"),
+            c.start_time,
+            1e-3,
+            "the drop: 1 mm at v",
+            1e-9,
+        ));
+    }
+    let rod = &report.bodies[0];
+    let symmetry = "symmetry: an elastic rebound at v without turning";
+    rows.push(row(case, "rod's rebound / v", rod.velocity_after[2] / v, 1.0, symmetry, 1e-9));
+    let turning = rod.angular_velocity_after.iter().map(|w| w.abs()).fold(0.0, f64::max);
+    rows.push(row(case, "1 + its spin after x (L/2) / v", 1.0 + turning * 0.1 / v, 1.0, symmetry, 1e-9));
+    Ok(rows)
+}
+
+/// The first contact of a rod dropped at θ = 30° on a smooth floor (models/rod-chatter.toml): its lower end strikes
+/// with `m_eff = M/(1 + 3 cos²θ)`, `J = (1 + e) m_eff v`, `v_G' = -v + J/M`, `ω' = 6 J cos θ/(M L)` and the other end
+/// then moves at `v_B = -v + (1 + e) v (1 - 3 cos²θ)/(1 + 3 cos²θ)`
+/// (docs/references.md#rigid-bodies-with-several-contacts), with the contact's simulated e and v its approach speed. The compliant rod turns by `ω' t_c` (about 3e-3
+/// rad) during the contact and gravity adds `g t_c` (3.6e-4 of v): the tolerance, 1e-2, is a few times that.
+fn rod_angle(case: &'static str) -> Result<Vec<Row>, String> {
+    let report = world(include_str!("../models/rod-chatter.toml"))?;
+    let first = report.contacts.first().ok_or("no contact")?;
+    if first.spheres != [Some(1), None] {
+        return Err(format!("the lower end should strike first, not sphere {:?}", first.spheres));
+    }
+    let (mass, length, theta) = (0.2_f64, 0.2_f64, 30_f64.to_radians());
+    let v = first.approach_speed;
+    let e = first.restitution_velocity_ratio.ok_or("the first contact has no e")?;
+    let c2 = theta.cos().powi(2);
+    let impulse = (1.0 + e) * mass / (1.0 + 3.0 * c2) * v;
+    let centre = -v + impulse / mass;
+    let spin = 6.0 * impulse * theta.cos() / (mass * length);
+    let other = -v + (1.0 + e) * v * (1.0 - 3.0 * c2) / (1.0 + 3.0 * c2);
+    let after = first.velocities_after.as_ref().ok_or("the first contact did not separate")?[0];
+    let turning = first.angular_velocities_after.as_ref().ok_or("the first contact did not separate")?[0];
+    // The other end at (L/2)(cos θ, 0, sin θ) from the mass centre: v_B = v_G + ω × r_B, its z component.
+    let v_b = after[2] - turning[1] * length / 2.0 * theta.cos();
+    let source = "rigid-body impact of the rod's end with the contact's e (docs/references.md)";
+    Ok(vec![
+        row(case, "mass centre's velocity after, m/s", after[2], centre, source, 1e-2),
+        row(case, "rod's spin after, rad/s", turning[1], spin, source, 1e-2),
+        row(case, "upper end's velocity after, m/s", v_b, other, source, 1e-2),
+    ])
+}
+
+/// A dumbbell (two 0.25 kg balls 0.2 m apart, I = 5.08e-3 kg m² across its axis) struck at one ball, across its
+/// axis, by a 0.25 kg ball at 2 m/s, elastic (models/struck-dumbbell.toml): the eccentric impact
+/// (docs/references.md#eccentric-impact) with `1/m_eff = 1/M + (L/2)²/I`, `J = 2 v m_b m_eff/(m_b + m_eff)`; the
+/// dumbbell's centre leaves at J/M turning at J (L/2)/I, the ball at v - J/m_b. The dumbbell turns by about 1e-3 rad
+/// during the blow, and its geometry (the normal, the lever) changes by the square of that: 1e-6, and 1e-4 for the
+/// ball's small velocity after (a difference of two velocities 250 times larger).
+fn dumbbell(case: &'static str) -> Result<Vec<Row>, String> {
+    let report = world(include_str!("../models/struck-dumbbell.toml"))?;
+    let (mass, inertia, half, ball, v) = (0.5_f64, 5.08e-3_f64, 0.1_f64, 0.25_f64, 2.0_f64);
+    let effective = 1.0 / (1.0 / mass + half * half / inertia);
+    let impulse = 2.0 * v * ball * effective / (ball + effective);
+    let source = "the eccentric impact of the struck end, by hand (docs/references.md#eccentric-impact)";
+    let contact = report.contacts.first().ok_or("no contact")?;
+    let e = contact.restitution_velocity_ratio.ok_or("the blow did not separate")?;
+    let dumbbell = &report.bodies[0];
+    let energy = &report.energy;
+    Ok(vec![
+        row(case, "e of the elastic blow", e, 1.0, "Hertz's contact is elastic: e = 1", ROD),
+        row(case, "dumbbell's centre velocity after, m/s", dumbbell.velocity_after[1], impulse / mass, source, ROD),
+        row(
+            case,
+            "dumbbell's spin after, rad/s",
+            dumbbell.angular_velocity_after[2],
+            impulse * half / inertia,
+            source,
+            1e-5,
+        ),
+        row(case, "ball's velocity after, m/s", report.bodies[1].velocity_after[1], v - impulse / ball, source, 1e-4),
+        row(
+            case,
+            "kinetic energy after, J",
+            energy.kinetic_after,
+            energy.kinetic_before,
+            "energy conserved (elastic)",
+            1e-9,
+        ),
+    ])
+}
+
+/// The hung rod (M = 8 kg, L = 1.2 m, I_O = M L²/3 about its pivot) released at rest from φ = 30° under gravity
+/// (models/hung-rod-swing.toml): at the bottom of its swing, where it meets the ball at rest, energy gives
+/// `ω = sqrt(2 M g (L/2)(1 - cos φ)/I_O)` and its end moves at ω L. The blow is the hung rod's eccentric impact with
+/// `m_eff = I_O/L²` and the contact's e: `J = (1 + e) ω L m_b m_eff/(m_b + m_eff)`, the ball leaves at J/m_b and the
+/// rod turns on at `ω - J L/I_O` (docs/references.md#eccentric-impact). The rod turns by 2e-4 rad during the blow: 1e-6.
+fn hung_rod_swing(case: &'static str) -> Result<Vec<Row>, String> {
+    let report = world(include_str!("../models/hung-rod-swing.toml"))?;
+    let blow = report.contacts.iter().find(|c| c.bodies == [0, 1]).ok_or("the rod never reached the ball")?;
+    let (mass, length, ball, g, phi) = (8.0_f64, 1.2_f64, 2.0_f64, 9.81_f64, 30_f64.to_radians());
+    let about_pivot = mass * length * length / 3.0;
+    let spin = (2.0 * mass * g * length / 2.0 * (1.0 - phi.cos()) / about_pivot).sqrt();
+    let e = blow.restitution_velocity_ratio.ok_or("the blow did not separate")?;
+    let effective = about_pivot / (length * length);
+    let impulse = (1.0 + e) * spin * length * ball * effective / (ball + effective);
+    let after = blow.velocities_after.as_ref().ok_or("the blow did not separate")?;
+    let turning = blow.angular_velocities_after.as_ref().ok_or("the blow did not separate")?;
+    let swing = "the swing under gravity: energy, by hand";
+    let source = "the hung rod's eccentric impact with the contact's e, by hand (docs/references.md#eccentric-impact)";
+    Ok(vec![
+        row(case, "the rod's end speed at the ball, m/s", blow.approach_speed, spin * length, swing, TIGHT),
+        row(case, "e of the blow", e, 0.8, "Kelvin–Voigt's exact e (docs/references.md#kelvin-voigt)", ROD),
+        row(case, "ball's velocity after, m/s", after[1][0], impulse / ball, source, ROD),
+        row(case, "rod's spin after, rad/s", turning[0][2], spin - impulse * length / about_pivot, source, ROD),
     ])
 }
 

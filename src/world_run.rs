@@ -52,12 +52,13 @@ pub fn simulate_watched<'a>(
 /// before any end time (otherwise the world's driver takes it).
 fn as_one_impact(scene: &WorldScene) -> Result<Option<WorldSimulation>, WorldError> {
     // (A frictional pair runs in the world's driver too: its report then has the rigid-body frictional sequential model
-    // beside it, the same for every world.)
+    // beside it, the same for every world. So does a rigid body, which may strike again as it turns.)
     let (contact, _) = scene.contact_of(0, 1);
     if scene.bodies.len() != 2
         || scene.world.gravity != nalgebra::Vector3::zeros()
         || !scene.interacts(0, 1)
         || contact.friction > 0.0
+        || scene.bodies.iter().any(|b| b.is_eccentric() || !b.spheres.is_empty())
     {
         return Ok(None);
     }

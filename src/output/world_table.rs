@@ -98,11 +98,16 @@ fn world(report: &WorldReport) -> Section {
 fn contacts(report: &WorldReport) -> Section {
     let mut section = Section::new("contacts (times in the scene's time; e by velocities and by impulses)");
     let count = report.contacts.len();
+    let rigid = rigid(report);
     each_shown(&mut section, count, |section, index| {
-        section.row(
-            format!("{index}: bodies {} and {}", report.contacts[index].bodies[0], report.contacts[index].bodies[1]),
-            line(&report.contacts[index]),
-        );
+        let c = &report.contacts[index];
+        let mut label = format!("{index}: bodies {} and {}", c.bodies[0], c.bodies[1]);
+        if rigid {
+            // Which sphere of each body (a face for a flat body): a rod's two ends are two contacts of one pair.
+            let [a, b] = c.spheres.map(|s| s.map_or("face".to_string(), |k| k.to_string()));
+            label += &format!(", spheres {a} and {b}");
+        }
+        section.row(label, line(c));
     });
     if count == 0 {
         section.heading("none");
@@ -137,6 +142,13 @@ fn line(c: &WorldContact) -> String {
     )
 }
 
+/// Whether the world has rigid bodies the table should say more of: a contact of a body's second (or later) sphere,
+/// or a body that ended turned. The table then names each contact's spheres and each body's orientation.
+fn rigid(report: &WorldReport) -> bool {
+    report.contacts.iter().any(|c| c.spheres.iter().any(|s| s.is_some_and(|k| k > 0)))
+        || report.bodies.iter().any(|b| b.orientation_after != [1.0, 0.0, 0.0, 0.0])
+}
+
 /// Whether any body spins, before or after: the table then shows the angular velocities too.
 fn spinning(report: &WorldReport) -> bool {
     report.bodies.iter().any(|b| b.angular_velocity_before != [0.0; 3] || b.angular_velocity_after != [0.0; 3])
@@ -144,6 +156,7 @@ fn spinning(report: &WorldReport) -> bool {
 
 fn bodies(report: &WorldReport) -> Section {
     let spinning = spinning(report);
+    let rigid = rigid(report);
     let mut section = Section::new("bodies (before, and when the run ended)");
     each_shown(&mut section, report.bodies.len(), |section, index| {
         let body = &report.bodies[index];
@@ -158,6 +171,11 @@ fn bodies(report: &WorldReport) -> Section {
         if spinning && body.mass.is_finite() {
             section.row("  angular velocity before", vector(&body.angular_velocity_before, "rad/s"));
             section.row("  angular velocity after", vector(&body.angular_velocity_after, "rad/s"));
+        }
+        if rigid && body.mass.is_finite() {
+            let q: Vec<String> = body.orientation_after.iter().map(|&c| plain(c)).collect();
+            section.row("  orientation after", format!("[{}] (w, x, y, z)", q.join(", ")));
+            section.row("  angular momentum after", vector(&body.angular_momentum_after, "N m s"));
         }
     });
     section

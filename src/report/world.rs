@@ -8,7 +8,7 @@ use crate::law::Separation;
 use crate::scene::{DampingSpec, WorldScene};
 use crate::world::record::{Compression, ContactRecord, WorldOutcome};
 use crate::world::sequential::{Sequential, sequential};
-use nalgebra::Vector3;
+use nalgebra::{UnitQuaternion, Vector3};
 use serde::Serialize;
 
 /// Everything a world run measured.
@@ -50,6 +50,11 @@ pub struct WorldSection {
 pub struct WorldContact {
     /// Scene indices [i, j]; the normal points from body i to body j.
     pub bodies: [usize; 2],
+    /// The sphere of each body that touches, [a, b]: its index among the body's `[[bodies.spheres]]` (0 for a body of
+    /// one sphere), null for a flat body's face.
+    pub spheres: [Option<usize>; 2],
+    /// The contact point at first touch, m (scene coordinates).
+    pub point: Vec3,
     /// The law's name (an addition).
     pub law: &'static str,
     /// The damping parameter it used, in the law's units (an addition).
@@ -127,6 +132,11 @@ pub struct WorldBody {
     pub velocity_after: Vec3,
     pub angular_velocity_after: Vec3,
     pub position_after: Vec3,
+    /// The body's orientation at the end of the run, a unit quaternion [w, x, y, z] from the scene axes at t = 0
+    /// ([1, 0, 0, 0] for a body whose orientation nobody reads: a sphere, a wall).
+    pub orientation_after: [f64; 4],
+    /// Its angular momentum about its mass centre at the end of the run, kg m²/s.
+    pub angular_momentum_after: Vec3,
 }
 
 /// Energies of the whole run, J. `kinetic_before + gravity_work + work_of_immovable_bodies = kinetic_after +
@@ -183,6 +193,23 @@ fn vec3(v: &Vector3<f64>) -> Vec3 {
     [v.x, v.y, v.z]
 }
 
+/// A unit quaternion as [w, x, y, z].
+fn quaternion(q: &UnitQuaternion<f64>) -> [f64; 4] {
+    [q.w, q.i, q.j, q.k]
+}
+
+/// A body's angular momentum about its mass centre, kg m²/s, spinning at `spin` (rad/s) turned by `orientation` from
+/// the scene axes at t = 0 (its inertia tensor turns with it); zero for a body that does not turn.
+fn spin_momentum(body: &crate::body::Body, spin: &Vector3<f64>, orientation: &UnitQuaternion<f64>) -> Vector3<f64> {
+    if body.is_immovable() || !body.rotates() || *spin == Vector3::zeros() {
+        return Vector3::zeros();
+    }
+    match body.inertia_tensor {
+        Some(_) => crate::world::island::turned_inertia(body, orientation) * spin,
+        None => spin * body.inertia,
+    }
+}
+
 /// The report of a world run.
 pub fn build(scene: &WorldScene, outcome: &WorldOutcome, wall_time: f64) -> WorldReport {
     let mut contacts: Vec<WorldContact> = outcome.contacts.iter().map(contact).collect();
@@ -204,6 +231,8 @@ pub fn build(scene: &WorldScene, outcome: &WorldOutcome, wall_time: f64) -> Worl
             velocity_after: vec3(&end.velocity),
             angular_velocity_after: vec3(&end.spin),
             position_after: vec3(&end.position),
+            orientation_after: quaternion(&end.orientation),
+            angular_momentum_after: vec3(&spin_momentum(body, &end.spin, &end.orientation)),
         })
         .collect();
     let nominal = |record: &ContactRecord| {
@@ -328,6 +357,8 @@ fn contact(record: &ContactRecord) -> WorldContact {
     };
     WorldContact {
         bodies: record.bodies,
+        spheres: record.spheres,
+        point: vec3(&record.point),
         law: record.law.kind.name(),
         damping: record.law.damping,
         damping_map_speed: record.map_speed,
@@ -496,9 +527,47 @@ fn measured(scene: &WorldScene, record: &ContactRecord, c: &WorldContact) -> Mea
         max_velocity_difference: None,
         speed_trial: SpeedTrial { slower: None, faster: None },
         yielding: yielding.flatten(),
-        // (A world refuses eccentric bodies: every body of a world is central.)
-        levers: [None, None],
+        levers: [0, 1].map(|side| lever(scene, record, side)),
     }
+}
+
+/// How side `side`'s body of a contact meets its normal at first touch, for the `central` verdict: a rigid body's
+/// lever arm of the normal about its origin (mass centre or pivot), its radius of gyration about the axis of that
+/// moment with the inertia turned as the body was then, and its effective mass at the contact point
+/// (docs/world.md#rigid-bodies). `None` for a sphere or a wall, whose normal passes through its centre.
+fn lever(scene: &WorldScene, record: &ContactRecord, side: usize) -> Option<crate::idealisation::Lever> {
+    let body = &scene.bodies[record.bodies[side]];
+    if !body.is_rigid() {
+        return None;
+    }
+    let orientation = record.orientations_before[side];
+    let origin = record.point - record.levers[side];
+    let centre = match body.pivot {
+        Some(pivot) => pivot + orientation * (body.position.unwrap_or_default() - pivot),
+        None => origin,
+    };
+    let rigid = crate::eccentric::RigidBody {
+        mass: body.mass,
+        inertia: crate::world::island::turned_inertia(body, &orientation),
+        centre,
+        velocity: Vector3::zeros(),
+        spin: Vector3::zeros(),
+        pivot: body.pivot,
+    };
+    // (The normal's moment: the arm to the contact point differs from the arm to the sphere's centre by a multiple
+    // of the normal.)
+    let moment = record.levers[side].cross(&record.normal);
+    let arm = moment.norm();
+    let inertia = rigid.inertia_about_pivot();
+    let about =
+        if arm > 0.0 { moment.dot(&(inertia * moment)) / (arm * arm) } else { inertia.symmetric_eigenvalues().min() };
+    Some(crate::idealisation::Lever {
+        arm,
+        gyration: (about / body.mass).sqrt(),
+        effective_mass: 1.0 / rigid.inverse_effective_mass(&record.point, &record.normal),
+        mass: body.mass,
+        pivoted: body.pivot.is_some(),
+    })
 }
 
 /// The energy a contact's tangential force dissipated, J: what it took from the motion, less what its spring still
@@ -520,7 +589,7 @@ fn energy(scene: &WorldScene, outcome: &WorldOutcome) -> WorldEnergy {
             continue;
         }
         kinetic_before += body.kinetic_energy(&body.velocity, &body.angular_velocity);
-        kinetic_after += body.kinetic_energy(&end.velocity, &end.spin);
+        kinetic_after += body.kinetic_energy_turned(&end.velocity, &end.spin, &end.orientation);
     }
     let gravity_work = outcome.gravity_work;
     let mut dissipated = outcome.settled;
@@ -571,8 +640,18 @@ pub fn from_impact(scene: &WorldScene, impact: &super::Report) -> WorldReport {
         };
         [v(0), v(1)]
     };
+    let sphere = |k: usize| (!scene.bodies[k].is_flat()).then_some(0);
+    let first = Vector3::from(impact.bodies[0].position_at_first_contact);
+    let point = if scene.bodies[0].is_flat() {
+        Vector3::from(impact.bodies[1].position_at_first_contact)
+            - Vector3::from(impact.normal) * scene.bodies[1].radius
+    } else {
+        first + Vector3::from(impact.normal) * scene.bodies[0].radius
+    };
     let contact = WorldContact {
         bodies: [0, 1],
+        spheres: [sphere(0), sphere(1)],
+        point: vec3(&point),
         law: impact.law.name,
         damping: impact.law.damping,
         damping_map_speed: impact.approach_speed,
@@ -630,6 +709,13 @@ pub fn from_impact(scene: &WorldScene, impact: &super::Report) -> WorldReport {
             velocity_after: report.velocity_after.unwrap_or(report.velocity_before),
             angular_velocity_after: report.angular_velocity_after.unwrap_or(report.angular_velocity_before),
             position_after: report.position_at_separation.unwrap_or(report.position_at_first_contact),
+            // (A world of two bodies runs as one impact only when neither turns: spheres and walls.)
+            orientation_after: [1.0, 0.0, 0.0, 0.0],
+            angular_momentum_after: vec3(&spin_momentum(
+                body,
+                &Vector3::from(report.angular_velocity_after.unwrap_or(report.angular_velocity_before)),
+                &UnitQuaternion::identity(),
+            )),
         })
         .collect();
     let e = &impact.energy;

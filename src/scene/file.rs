@@ -73,6 +73,16 @@ pub struct RawBody {
     pub yield_stress: Option<At<f64>>,
     /// A flat body's face normal in a world run.
     pub normal: Option<At<Vec<f64>>>,
+    /// A clump's contact spheres, fixed to the body (a world run).
+    pub spheres: Option<At<Vec<At<RawSphere>>>>,
+}
+
+/// One `[[bodies.spheres]]` table: a contact sphere fixed to its body.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawSphere {
+    pub offset: Option<At<Vec<f64>>>,
+    pub radius: Option<At<f64>>,
 }
 
 #[derive(Debug, Clone, Default, Deserialize)]

@@ -15,7 +15,7 @@ pub mod world;
 
 pub use error::{SceneError, SetupError};
 pub use validate::Read;
-pub use world::{DampingMap, PairSpec, WorldScene, WorldSpec};
+pub use world::{DampingMap, PairSpec, Site, WorldScene, WorldSpec};
 
 use crate::body::Body;
 use crate::integrate::Tolerances;

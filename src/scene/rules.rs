@@ -261,18 +261,7 @@ fn check_solver(solver: &super::SolverSpec) -> Checked {
 pub fn check_world(scene: &super::WorldScene) -> Checked {
     for (i, body) in scene.bodies.iter().enumerate() {
         check_body(i, body)?;
-        let eccentric = [
-            ("contact_offset", body.contact_offset != Vector3::zeros()),
-            ("pivot", body.pivot.is_some()),
-            ("inertia", body.inertia_tensor.is_some()),
-        ];
-        if let Some((key, _)) = eccentric.iter().find(|(_, given)| *given) {
-            return fail(
-                BodyKey(i, key),
-                "eccentric and pivoted rigid bodies (contact_offset, pivot, an inertia tensor) run in a scene of two \
-                 bodies; a world (more bodies, [world] or [[pair]]) takes spheres and walls only",
-            );
-        }
+        check_turning(i, body)?;
         if let Some(face) = scene.faces[i] {
             vector(BodyKey(i, "normal"), &face)?;
             if face.norm() == 0.0 {
@@ -321,8 +310,37 @@ pub fn check_world(scene: &super::WorldScene) -> Checked {
     Ok(())
 }
 
+/// A rigid body of a world (docs/world.md#rigid-bodies): a clump gives its inertia (its spheres are not its mass
+/// distribution), and a pivoted body moves as it turns about its pivot, `velocity = angular_velocity × (position -
+/// pivot)`.
+fn check_turning(i: usize, body: &Body) -> Checked {
+    if !body.spheres.is_empty() && !body.is_immovable() && body.inertia_given.is_none() && body.inertia_tensor.is_none()
+    {
+        return fail(
+            BodyKey(i, "inertia"),
+            "missing: a body of [[bodies.spheres]] gives its `inertia` (kg m²: a number, three principal moments or a \
+             3×3 tensor about its mass centre), since its contact spheres are not its mass distribution",
+        );
+    }
+    if let (Some(pivot), Some(position)) = (body.pivot, body.position) {
+        let turning = body.angular_velocity.cross(&(position - pivot));
+        let size = body.velocity.norm().max(turning.norm());
+        if (body.velocity - turning).norm() > 1e-9 * size {
+            let (turning, velocity) = crate::units::apart_vectors(turning.as_slice(), body.velocity.as_slice(), "m/s");
+            return fail(
+                BodyKey(i, "velocity"),
+                format!(
+                    "a body turning about its pivot moves with angular_velocity × (position - pivot) = {turning}, \
+                     not {velocity}"
+                ),
+            );
+        }
+    }
+    Ok(())
+}
+
 /// The rules of one pair that hold before anything moves: a Hertz stiffness and (with friction) a Mindlin tangential
-/// stiffness can be formed, and the bodies do not start overlapped.
+/// stiffness can be formed, and no two of their contact spheres start overlapped.
 fn check_pair_at_start(scene: &super::WorldScene, i: usize, j: usize) -> Checked {
     let (a, b) = (&scene.bodies[i], &scene.bodies[j]);
     let (contact, _) = scene.contact_of(i, j);
@@ -370,24 +388,37 @@ fn check_pair_at_start(scene: &super::WorldScene, i: usize, j: usize) -> Checked
             );
         }
     }
-    let at = |k: usize| scene.bodies[k].position.unwrap_or_default();
-    let overlap = scene.meeting(i, j).penetration(&(at(j) - at(i))).0;
-    let smallest = a.radius.min(b.radius);
-    if overlap > crate::geometry::TOUCH_TOLERANCE * smallest {
-        return fail(
-            BodyKey(j, "position"),
-            format!(
-                "bodies {i} and {j} start overlapped by {} (more than {} of the smaller radius)",
-                brief(overlap, "m"),
-                brief(crate::geometry::TOUCH_TOLERANCE, "")
-            ),
-        );
+    for p in scene.sites_of(i) {
+        for q in scene.sites_of(j) {
+            let (first, second) = (scene.site(i, p), scene.site(j, q));
+            let overlap = scene.site_meeting(&first, &second).penetration(&(second.centre - first.centre)).0;
+            let smallest = first.radius.min(second.radius);
+            if overlap > crate::geometry::TOUCH_TOLERANCE * smallest {
+                let spheres = |k: usize, s: usize| {
+                    if scene.bodies[k].spheres.is_empty() { String::new() } else { format!(" (sphere {s})") }
+                };
+                return fail(
+                    BodyKey(j, "position"),
+                    format!(
+                        "bodies {i}{} and {j}{} start overlapped by {} (more than {} of the smaller radius)",
+                        spheres(i, p),
+                        spheres(j, q),
+                        brief(overlap, "m"),
+                        brief(crate::geometry::TOUCH_TOLERANCE, "")
+                    ),
+                );
+            }
+        }
     }
     Ok(())
 }
 
 fn check_body(i: usize, body: &Body) -> Checked {
     let key = |leaf: &'static str| BodyKey(i, leaf);
+    for (s, sphere) in body.spheres.iter().enumerate() {
+        vector(format_args!("bodies.{i}.spheres.{s}.offset"), &sphere.offset)?;
+        number(format_args!("bodies.{i}.spheres.{s}.radius"), sphere.radius, Allowed::Positive)?;
+    }
     number(key("radius"), body.radius, Allowed::PositiveOrInfinite)?;
     match body.density {
         Some(density) => {

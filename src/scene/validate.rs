@@ -4,7 +4,7 @@
 //! come after, in `setup.rs` (docs/scene.md lists them all), located by the [`Read`] this gives. Lines come from the
 //! spans the conversion records for every key.
 
-use super::file::{At, RawBody, RawContact, RawOutput, RawPair, RawScene, RawSolver, RawWorld};
+use super::file::{At, RawBody, RawContact, RawOutput, RawPair, RawScene, RawSolver, RawSphere, RawWorld};
 use super::world::{DampingMap, MAX_CONTACTS_LIMIT, MAX_STEPS_LIMIT, PairSpec, WorldScene, WorldSpec};
 use super::{
     ContactSpec, DampingSpec, FrictionCap, Method, OutputSpec, Parsed, Scene, SceneError, SetupError, SolverSpec,
@@ -271,6 +271,8 @@ fn world_reason(raw: &RawScene) -> Option<String> {
         Some("it has [[pair]] tables".into())
     } else if count > 2 {
         Some(format!("it has {count} bodies"))
+    } else if raw.bodies.as_ref().is_some_and(|b| b.get_ref().iter().any(|body| body.get_ref().spheres.is_some())) {
+        Some("a body has [[bodies.spheres]]".into())
     } else {
         None
     }
@@ -565,9 +567,17 @@ fn body(src: &Source, i: usize, raw: &At<RawBody>) -> Checked<Body> {
     let table = raw.span();
     let raw = raw.get_ref();
     let missing = |leaf: &str, what: &str| src.error(&key(leaf), Some(&table), format!("missing: {what}"));
-    let radius = match &raw.radius {
-        Some(r) => number(src, &key("radius"), r),
-        None => return Err(missing("radius", "give `radius` in m (inf for a flat wall)")),
+    let spheres = match &raw.spheres {
+        Some(spheres) => clump(src, i, raw, spheres)?,
+        None => Vec::new(),
+    };
+    let radius = match (&raw.radius, spheres.is_empty()) {
+        (Some(r), _) => number(src, &key("radius"), r),
+        // A clump's radius is its bounding radius (resolved with the body).
+        (None, false) => f64::NAN,
+        (None, true) => {
+            return Err(missing("radius", "give `radius` in m (inf for a flat wall), or [[bodies.spheres]]"));
+        }
     };
     let (mass, density) = match (&raw.mass, &raw.density) {
         (Some(_), Some(d)) => {
@@ -616,7 +626,60 @@ fn body(src: &Source, i: usize, raw: &At<RawBody>) -> Checked<Body> {
         young,
         poisson,
         yield_stress,
+        spheres,
     })
+}
+
+/// A clump's `[[bodies.spheres]]`: each sphere's offset and radius as written (their values are the rules'), and the
+/// keys a clump excludes.
+fn clump(
+    src: &Source,
+    i: usize,
+    raw: &RawBody,
+    spheres: &At<Vec<At<RawSphere>>>,
+) -> Checked<Vec<crate::body::ContactSphere>> {
+    let key = |leaf: &str| format!("bodies.{i}.{leaf}");
+    let excluded = [
+        ("radius", raw.radius.as_ref().map(At::span)),
+        ("contact_offset", raw.contact_offset.as_ref().map(At::span)),
+        ("density", raw.density.as_ref().map(At::span)),
+    ];
+    for (leaf, span) in excluded {
+        if let Some(span) = span {
+            let why = if leaf == "density" {
+                "a clump gives its `mass` (kg): a density has no volume to act on"
+            } else {
+                "a body with [[bodies.spheres]] takes its contact spheres from them: leave `radius` and \
+                 `contact_offset` out"
+            };
+            return Err(src.error(&key(leaf), Some(&span), why));
+        }
+    }
+    if spheres.get_ref().is_empty() {
+        return Err(src.error(&key("spheres"), Some(&spheres.span()), "give at least one [[bodies.spheres]]"));
+    }
+    src.note(&key("spheres"), &spheres.span());
+    let mut list = Vec::new();
+    for (s, sphere) in spheres.get_ref().iter().enumerate() {
+        let table = sphere.span();
+        let leaf = |name: &str| format!("bodies.{i}.spheres.{s}.{name}");
+        let sphere = sphere.get_ref();
+        let Some(radius) = &sphere.radius else {
+            return Err(src.error(&leaf("radius"), Some(&table), "missing: give the sphere's `radius` in m"));
+        };
+        let offset = match &sphere.offset {
+            Some(offset) => vector(src, &leaf("offset"), offset)?,
+            None => {
+                return Err(src.error(
+                    &leaf("offset"),
+                    Some(&table),
+                    "missing: give the sphere's centre relative to the mass centre, `offset = [x, y, z]` in m",
+                ));
+            }
+        };
+        list.push(crate::body::ContactSphere { offset, radius: number(src, &leaf("radius"), radius) });
+    }
+    Ok(list)
 }
 
 /// A contact table (`[contact]`, or a `[[pair]]` over it) typed; `key` names each leaf where it is written.

@@ -103,10 +103,60 @@ impl Default for WorldSpec {
     }
 }
 
+/// One contact sphere of a world's body as the scene places it (a flat body's face is its one site, of infinite
+/// radius): the sphere `sphere` of body `body`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Site {
+    pub body: usize,
+    /// Its index among the body's spheres (0 for a body of one `radius`).
+    pub sphere: usize,
+    /// Its centre relative to the body's mass centre, m, in scene axes at t = 0.
+    pub offset: Vector3<f64>,
+    /// m (infinite for a face).
+    pub radius: f64,
+    /// Its centre at t = 0 (a flat body: the point of its face), m.
+    pub centre: Vector3<f64>,
+}
+
 impl WorldScene {
     /// How bodies `i` and `j` meet: as two spheres, or a sphere against a flat body's face.
     pub fn meeting(&self, i: usize, j: usize) -> Meeting {
         Meeting::between(&self.bodies[i], self.faces[i], &self.bodies[j], self.faces[j])
+    }
+
+    /// The indices of body `k`'s contact spheres (one for a body of one `radius` or a face).
+    pub fn sites_of(&self, k: usize) -> std::ops::Range<usize> {
+        0..self.bodies[k].spheres.len().max(1)
+    }
+
+    /// Contact sphere `s` of body `k`, placed at t = 0.
+    pub fn site(&self, k: usize, s: usize) -> Site {
+        let body = &self.bodies[k];
+        let sphere = body.spheres.get(s).copied().unwrap_or(crate::body::ContactSphere {
+            offset: if body.is_flat() { Vector3::zeros() } else { body.contact_offset },
+            radius: body.radius,
+        });
+        let position = body.position.unwrap_or_default();
+        // (A sphere at its body's centre is there exactly: no zero added.)
+        let centre = if sphere.offset == Vector3::zeros() { position } else { position + sphere.offset };
+        Site { body: k, sphere: s, offset: sphere.offset, radius: sphere.radius, centre }
+    }
+
+    /// How two contact spheres meet: as two spheres, or a sphere against a flat body's face.
+    pub fn site_meeting(&self, a: &Site, b: &Site) -> Meeting {
+        Meeting::of_radii(a.radius, self.faces[a.body], b.radius, self.faces[b.body])
+    }
+
+    /// Body `k` as the contact of its sphere `s` sees it: the body with that sphere's radius, at its centre (what a
+    /// contact law's Hertz stiffness and a pair's rules read). A body of one centred sphere is itself.
+    pub fn site_body(&self, k: usize, s: usize) -> Body {
+        let body = &self.bodies[k];
+        match body.spheres.get(s) {
+            Some(sphere) => {
+                Body { radius: sphere.radius, spheres: Vec::new(), contact_offset: Vector3::zeros(), ..body.clone() }
+            }
+            None => body.clone(),
+        }
     }
 
     /// Re-derives what follows from written values (masses from densities, inertias, exponents).
@@ -151,6 +201,29 @@ impl WorldScene {
             contact: contact.clone(),
             solver: self.solver,
             output: OutputSpec::default(),
+        }
+    }
+
+    /// A broken rule of the contact of sites `a` and `b` (their bodies as the pair scene's two), renamed as
+    /// [`WorldScene::rename`] renames it, and a clump's `radius` to its sphere's.
+    pub fn rename_sites(&self, a: &Site, b: &Site, error: SetupError) -> SetupError {
+        let sphere = |site: &Site, key: &str| {
+            if key == "radius" && !self.bodies[site.body].spheres.is_empty() {
+                Some(format!("bodies.{}.spheres.{}.radius", site.body, site.sphere))
+            } else {
+                None
+            }
+        };
+        let own = if let Some(leaf) = error.key.strip_prefix("bodies.0.") {
+            sphere(a, leaf)
+        } else if let Some(leaf) = error.key.strip_prefix("bodies.1.") {
+            sphere(b, leaf)
+        } else {
+            None
+        };
+        match own {
+            Some(key) => SetupError { key, message: error.message },
+            None => self.rename(a.body, b.body, error),
         }
     }
 

@@ -52,9 +52,21 @@ impl SpeedInPlay {
     pub fn of(scene: &WorldScene) -> SpeedInPlay {
         let bodies = &scene.bodies;
         let (mut relative, mut pair) = (0.0, None);
+        // A rigid body's spheres move with its spin too: at most |ω| times their reach faster than its mass centre.
+        let turning = |body: &Body| {
+            if body.is_rigid() {
+                let reach = body.contact_spheres().iter().map(|s| length(&s.offset) + s.radius).fold(0.0, f64::max);
+                let reach =
+                    reach + body.pivot.map_or(0.0, |pivot| length(&(body.position.unwrap_or_default() - pivot)));
+                length(&body.angular_velocity) * reach
+            } else {
+                0.0
+            }
+        };
         for i in 0..bodies.len() {
             for j in i + 1..bodies.len() {
-                let speed = length(&(bodies[i].velocity - bodies[j].velocity));
+                let speed =
+                    length(&(bodies[i].velocity - bodies[j].velocity)) + turning(&bodies[i]) + turning(&bodies[j]);
                 // (Velocities are finite: a speed beyond double precision is inf, and the finite-motion rule's.)
                 if scene.interacts(i, j) && speed > relative {
                     (relative, pair) = (speed, Some([i, j]));
@@ -66,6 +78,7 @@ impl SpeedInPlay {
             let up = -scene.world.gravity / g;
             let at = |body: &Body| body.position.unwrap_or_default().dot(&up);
             let top = bodies.iter().filter(|b| !b.is_immovable()).map(at).fold(f64::NEG_INFINITY, f64::max);
+            // (A clump's radius is its bounding radius: its lowest sphere is no lower.)
             let bottom =
                 bodies.iter().map(|b| if b.is_flat() { at(b) } else { at(b) - b.radius }).fold(f64::INFINITY, f64::min);
             (top - bottom).max(0.0)
@@ -174,20 +187,27 @@ pub fn check(scene: &WorldScene) -> Result<(), SetupError> {
     // beads has one class of pairs, not half a million), its deepest penetration kept for the rounding of each pair's
     // positions. The classes kept are bounded ([`CLASSES`]); beyond, a pair is checked on its own.
     let mut makes: HashMap<[u64; 7], usize> = HashMap::new();
-    let make: Vec<usize> = bodies
+    let site_bodies: Vec<Vec<(crate::scene::Site, Body)>> = (0..bodies.len())
+        .map(|k| scene.sites_of(k).map(|s| (scene.site(k, s), scene.site_body(k, s))).collect())
+        .collect();
+    let make: Vec<Vec<usize>> = site_bodies
         .iter()
-        .map(|b| {
-            let key = [
-                b.mass.to_bits(),
-                b.radius.to_bits(),
-                b.inertia.to_bits(),
-                b.young.map_or(u64::MAX, f64::to_bits),
-                b.poisson.map_or(u64::MAX, f64::to_bits),
-                b.yield_stress.map_or(u64::MAX, f64::to_bits),
-                u64::from(b.is_flat()),
-            ];
-            let next = makes.len();
-            *makes.entry(key).or_insert(next)
+        .map(|list| {
+            list.iter()
+                .map(|(_, b)| {
+                    let key = [
+                        b.mass.to_bits(),
+                        b.radius.to_bits(),
+                        b.inertia.to_bits(),
+                        b.young.map_or(u64::MAX, f64::to_bits),
+                        b.poisson.map_or(u64::MAX, f64::to_bits),
+                        b.yield_stress.map_or(u64::MAX, f64::to_bits),
+                        u64::from(b.is_flat()),
+                    ];
+                    let next = makes.len();
+                    *makes.entry(key).or_insert(next)
+                })
+                .collect()
         })
         .collect();
     let mut deepest: HashMap<(Option<usize>, usize, usize), Option<f64>> = HashMap::new();
@@ -196,37 +216,47 @@ pub fn check(scene: &WorldScene) -> Result<(), SetupError> {
             if !scene.interacts(i, j) {
                 continue;
             }
-            let (a, b) = (&bodies[i], &bodies[j]);
             let written = if scene.pairs.is_empty() { None } else { scene.contact_of(i, j).1 };
-            let class = (written, make[i].min(make[j]), make[i].max(make[j]));
-            let depth = match deepest.get(&class) {
-                Some(&depth) => depth,
-                None => {
-                    let depth = check_contact(scene, i, j, &play)?;
-                    if deepest.len() < CLASSES {
-                        deepest.insert(class, depth);
-                    }
-                    depth
-                }
-            };
-            // (A pair the energy in play cannot move relative to each other has no contact to resolve.)
-            let Some(depth) = depth else { continue };
-            let (xa, xb) = (a.position.unwrap_or_default(), b.position.unwrap_or_default());
-            let rounding = geometry::touching_tolerance(a, &xa, b, &xb);
-            if depth < rounding {
-                let smaller = if b.radius < a.radius { j } else { i };
-                return fail(
-                    format!("bodies.{smaller}.radius"),
-                    format!(
-                        "the contact of bodies {i} and {j} would penetrate at most {} at {}, below the rounding of \
+            // Every sphere of one body against every sphere of the other: each pair is a contact of its own.
+            for (p, (site_a, a)) in site_bodies[i].iter().enumerate() {
+                for (q, (site_b, b)) in site_bodies[j].iter().enumerate() {
+                    let (mi, mj) = (make[i][p], make[j][q]);
+                    let class = (written, mi.min(mj), mi.max(mj));
+                    let depth = match deepest.get(&class) {
+                        Some(&depth) => depth,
+                        None => {
+                            let depth = check_contact(scene, [site_a, site_b], [a, b], &play)?;
+                            if deepest.len() < CLASSES {
+                                deepest.insert(class, depth);
+                            }
+                            depth
+                        }
+                    };
+                    // (A pair the energy in play cannot move relative to each other has no contact to resolve.)
+                    let Some(depth) = depth else { continue };
+                    let (xa, xb) = (site_a.centre, site_b.centre);
+                    let rounding = geometry::touching_tolerance(a, &xa, b, &xb);
+                    if depth < rounding {
+                        let (smaller, sphere) = if b.radius < a.radius { (j, site_b) } else { (i, site_a) };
+                        let key = if scene.bodies[smaller].spheres.is_empty() {
+                            format!("bodies.{smaller}.radius")
+                        } else {
+                            format!("bodies.{smaller}.spheres.{}.radius", sphere.sphere)
+                        };
+                        return fail(
+                            key,
+                            format!(
+                                "the contact of bodies {i} and {j} would penetrate at most {} at {}, below the rounding of \
                          their positions, {} (64 units in the last place of their coordinates and radii): a world \
                          holds absolute positions, and such a contact is lost in their rounding (a scene of the two \
                          bodies alone measures it from its first contact)",
-                        brief(depth, "m"),
-                        play.describe_pair(geometry::effective_mass(a, b).unwrap_or(f64::NAN)),
-                        brief(rounding, "m")
-                    ),
-                );
+                                brief(depth, "m"),
+                                play.describe_pair(geometry::effective_mass(a, b).unwrap_or(f64::NAN)),
+                                brief(rounding, "m")
+                            ),
+                        );
+                    }
+                }
             }
         }
     }
@@ -326,18 +356,23 @@ fn check_flight(scene: &WorldScene, speed: f64) -> Result<(), SetupError> {
 /// law resolved, its scales inside double precision, its damping simulable, its elastic (or plastic) penetration
 /// below the smaller radius, its friction formed — renamed to the world's keys; its deepest penetration there, m
 /// (`None` for a pair no energy can move).
-fn check_contact(scene: &WorldScene, i: usize, j: usize, play: &SpeedInPlay) -> Result<Option<f64>, SetupError> {
-    let (a, b) = (&scene.bodies[i], &scene.bodies[j]);
+fn check_contact(
+    scene: &WorldScene,
+    [site_a, site_b]: [&crate::scene::Site; 2],
+    [a, b]: [&Body; 2],
+    play: &SpeedInPlay,
+) -> Result<Option<f64>, SetupError> {
+    let (i, j) = (site_a.body, site_b.body);
     let (spec, _) = scene.contact_of(i, j);
     let effective_mass = geometry::effective_mass(a, b).expect("bodies that can touch are not both immovable");
     let speed = play.for_pair(effective_mass);
     if speed.is_nan() || speed <= 0.0 {
         return Ok(None);
     }
-    let rename = |error: SetupError| scene.rename(i, j, error);
+    let rename = |error: SetupError| scene.rename_sites(site_a, site_b, error);
     // A rule broken at the speed in play says which speed that is.
     let at_play = |error: SetupError| {
-        let error = scene.rename(i, j, error);
+        let error = scene.rename_sites(site_a, site_b, error);
         SetupError {
             key: error.key,
             message: format!(

@@ -1,16 +1,18 @@
 //! The stress run's random worlds (`impact stress --worlds`): 3 to 8 spheres on a jittered grid (some rows touching,
 //! as a cradle's), thrown at each other, half of them under gravity with a floor and sometimes a fixed sphere, every
 //! law, both separation criteria and both damping maps; half of them with friction (a Mindlin or a constant tangential
-//! spring, with or without its damping) and spinning bodies. Each run is checked for what a world must keep whatever
-//! happens in it (docs/world.md#what-is-tested):
+//! spring, with or without its damping) and spinning bodies; a third of them with rigid bodies in place of some balls
+//! (a clump of spheres, or one sphere off the mass centre, with a turned inertia tensor and a spin). Each run is
+//! checked for what a world must keep whatever happens in it (docs/world.md#what-is-tested):
 //!
 //! - `world.energy_balance`: the energy balance closes, relative to the largest energy in play;
-//! - `world.momentum`, `world.angular_momentum`: without gravity and immovable bodies, the total momentum and angular
-//!   momentum (about the origin, orbital and spin) are kept, relative to `sum m |v|` and
-//!   `sum (m |x| |v| + I |ω|)`;
-//! - `world.overlap_after`: when the run stops, no two bodies that are not in an active contact overlap by more than
-//!   the rounding of their positions beyond the overlap their last contact parted them at (a contact its force
-//!   ended; zero otherwise): the measure is that excess over the tolerance, at most 1.
+//! - `world.momentum`, `world.angular_momentum`: without gravity, immovable bodies and pivots, the total momentum and
+//!   angular momentum (about the origin, orbital and spin: `I ω` with the inertia turned with the body) are kept,
+//!   relative to `sum m |v|` and `sum (m |x| |v| + |I ω|)`;
+//! - `world.overlap_after`: when the run stops, no two spheres of two bodies (or a sphere and a face) that are not in
+//!   an active contact overlap by more than the rounding of their positions beyond the overlap their last contact
+//!   parted them at (a contact its force ended; zero otherwise): the measure is that excess over the tolerance, at
+//!   most 1.
 
 use super::CaseResult;
 use crate::draw::Draw;
@@ -55,6 +57,14 @@ pub fn scene_text(seed: u64, index: u64, quick: bool) -> String {
     }
     let spacing = 0.03;
     let touching_row = r.chance(0.3);
+    // A third of the worlds make rigid bodies of some of their spheres — from a stream of their own, so that every
+    // other world is as it was: each such body, by a chance of one half, becomes a clump of one to three spheres
+    // inside the ball it replaces (so that nothing starts overlapped), or one sphere off its mass centre
+    // (`contact_offset`), of the ball's mass, a turned inertia tensor of principal moments 0.25 to 0.45 m R², and
+    // spinning at up to 100 rad/s.
+    let mut rigid = Draw::new(seed ^ 0xc1_a3b5_0001, index);
+    let rigid_world = rigid.chance(1.0 / 3.0);
+    let mut clump = Vec::with_capacity(count);
     for k in 0..count {
         let radius = if touching_row { 0.01 } else { r.log(0.003, 0.012) };
         let (ix, iy, iz) = ((k % 3) as f64, ((k / 3) % 2) as f64, (k / 6) as f64);
@@ -76,6 +86,12 @@ pub fn scene_text(seed: u64, index: u64, quick: bool) -> String {
         };
         let density = r.log(1e3, 2e4);
         let young = r.log(1e9, 4e11);
+        let poisson = r.uniform(0.1, 0.45);
+        clump.push(rigid_world && rigid.chance(0.5));
+        if clump[k] {
+            text += &rigid_body(&mut rigid, k, radius, density, &position, &velocity, young, poisson);
+            continue;
+        }
         let _ = write!(
             text,
             "\n[[bodies]]\nname = \"b{k}\"\nradius = {}\ndensity = {}\nposition = {}\nvelocity = {}\nyoung = {}\n\
@@ -85,7 +101,7 @@ pub fn scene_text(seed: u64, index: u64, quick: bool) -> String {
             vector(&position),
             vector(&velocity),
             number(young),
-            number(r.uniform(0.1, 0.45))
+            number(poisson)
         );
     }
     if gravity {
@@ -174,12 +190,66 @@ pub fn scene_text(seed: u64, index: u64, quick: bool) -> String {
             keys.push_str("friction_cap = \"magnitude\"\n");
         }
         text += &keys;
-        for k in 0..count {
+        for (k, &rigid_body) in clump.iter().enumerate() {
+            // (A rigid body spins already: its spin is drawn and left unused, so that the others keep theirs.)
             if rough.chance(0.6) {
                 let spin = Vector3::new(rough.uniform(-1.0, 1.0), rough.uniform(-1.0, 1.0), rough.uniform(-1.0, 1.0));
+                if rigid_body {
+                    continue;
+                }
                 let name = format!("name = \"b{k}\"\n");
                 text = text.replacen(&name, &format!("{name}angular_velocity = {}\n", vector(&(spin * 300.0))), 1);
             }
+        }
+    }
+    text
+}
+
+/// Body `k` of a world as a rigid body in place of the ball of `radius` and `density` at `position`: a clump of one
+/// to three spheres inside that ball, or one sphere off its mass centre, of the ball's mass, with a turned inertia
+/// tensor and a spin (see [`scene_text`]).
+#[allow(clippy::too_many_arguments)]
+fn rigid_body(
+    r: &mut Draw,
+    k: usize,
+    radius: f64,
+    density: f64,
+    position: &Vector3<f64>,
+    velocity: &Vector3<f64>,
+    young: f64,
+    poisson: f64,
+) -> String {
+    let mass = density * 4.0 / 3.0 * std::f64::consts::PI * radius.powi(3);
+    let moments =
+        Vector3::new(r.uniform(0.25, 0.45), r.uniform(0.25, 0.45), r.uniform(0.25, 0.45)) * mass * radius * radius;
+    let turn = nalgebra::Rotation3::from_axis_angle(&nalgebra::Unit::new_normalize(r.direction()), r.uniform(0.0, 3.0));
+    let tensor = turn.matrix() * nalgebra::Matrix3::from_diagonal(&moments) * turn.matrix().transpose();
+    // Symmetric to the bit, as the scene rules want it.
+    let entry = |i: usize, j: usize| number(0.5 * (tensor[(i, j)] + tensor[(j, i)]));
+    let rows: Vec<String> = (0..3).map(|i| format!("[{}, {}, {}]", entry(i, 0), entry(i, 1), entry(i, 2))).collect();
+    let spin = Vector3::new(r.uniform(-1.0, 1.0), r.uniform(-1.0, 1.0), r.uniform(-1.0, 1.0)) * 100.0;
+    let mut text = format!(
+        "\n[[bodies]]\nname = \"b{k}\"\nmass = {}\ninertia = [{}]\nposition = {}\nvelocity = {}\n\
+         angular_velocity = {}\nyoung = {}\npoisson = {}\n",
+        number(mass),
+        rows.join(", "),
+        vector(position),
+        vector(velocity),
+        vector(&spin),
+        number(young),
+        number(poisson)
+    );
+    let sphere = |r: &mut Draw| {
+        let own = radius * r.uniform(0.3, 0.6);
+        (r.direction() * (r.uniform(0.0, 0.95) * (radius - own)), own)
+    };
+    if r.chance(0.25) {
+        let (offset, own) = sphere(r);
+        let _ = write!(text, "radius = {}\ncontact_offset = {}\n", number(own), vector(&offset));
+    } else {
+        for _ in 0..1 + (r.unit() * 3.0) as usize {
+            let (offset, own) = sphere(r);
+            let _ = write!(text, "\n[[bodies.spheres]]\noffset = {}\nradius = {}\n", vector(&offset), number(own));
         }
     }
     text
@@ -229,52 +299,76 @@ pub fn check(scene: &WorldScene, report: &WorldReport) -> (Vec<(&'static str, f6
         }
     };
     record("world.energy_balance", report.energy.balance.abs());
-    let free = scene.world.gravity == Vector3::zeros() && scene.bodies.iter().all(|b| !b.is_immovable());
+    // (A pivot holds its body in place: not free either.)
+    let free =
+        scene.world.gravity == Vector3::zeros() && scene.bodies.iter().all(|b| !b.is_immovable() && b.pivot.is_none());
     if free {
         let (mut p0, mut p1, mut l0, mut l1) = (Vector3::zeros(), Vector3::zeros(), Vector3::zeros(), Vector3::zeros());
         let (mut p_scale, mut l_scale) = (0.0, 0.0);
         for (body, out) in scene.bodies.iter().zip(&report.bodies) {
-            let (x0, v0, w0) = (body.position.unwrap_or_default(), body.velocity, body.angular_velocity);
+            let (x0, v0) = (body.position.unwrap_or_default(), body.velocity);
             let (x1, v1) = (Vector3::from(out.position_after), Vector3::from(out.velocity_after));
-            let w1 = Vector3::from(out.angular_velocity_after);
+            // The spin's angular momentum about the mass centre: I ω at t = 0 (the tensor in scene axes then), and
+            // the report's at the end (the inertia turned with the body).
+            let (s0, s1) = (body.inertia_matrix() * body.angular_velocity, Vector3::from(out.angular_momentum_after));
             p0 += v0 * body.mass;
             p1 += v1 * body.mass;
-            l0 += x0.cross(&v0) * body.mass + w0 * body.inertia;
-            l1 += x1.cross(&v1) * body.mass + w1 * body.inertia;
+            l0 += x0.cross(&v0) * body.mass + s0;
+            l1 += x1.cross(&v1) * body.mass + s1;
             p_scale += body.mass * v0.norm();
-            l_scale += body.mass * x0.norm().max(x1.norm()) * v0.norm().max(v1.norm())
-                + body.inertia * w0.norm().max(w1.norm());
+            l_scale += body.mass * x0.norm().max(x1.norm()) * v0.norm().max(v1.norm()) + s0.norm().max(s1.norm());
         }
         record("world.momentum", (p1 - p0).amax() / p_scale);
         record("world.angular_momentum", (l1 - l0).amax() / l_scale);
     }
-    // No two bodies outside an active contact overlap when the run stops.
-    let active: Vec<[usize; 2]> = report.contacts.iter().filter(|c| !c.separated).map(|c| c.bodies).collect();
+    // No two spheres (or a sphere and a face) of two bodies outside an active contact overlap when the run stops.
+    let same = |c: &crate::report::world::WorldContact, [i, j]: [usize; 2], [a, b]: [Option<usize>; 2]| {
+        c.bodies == [i, j] && c.spheres == [a, b]
+    };
+    // A site's centre at the end: its body's position plus its offset turned with the body (exactly the position for
+    // a site at the mass centre).
+    let centre = |site: &crate::scene::Site| {
+        let out = &report.bodies[site.body];
+        let position = Vector3::from(out.position_after);
+        if site.offset == Vector3::zeros() {
+            return position;
+        }
+        let [w, x, y, z] = out.orientation_after;
+        let turn = nalgebra::UnitQuaternion::new_normalize(nalgebra::Quaternion::new(w, x, y, z));
+        position + turn * site.offset
+    };
     let mut worst: f64 = 0.0;
     for i in 0..scene.bodies.len() {
         for j in i + 1..scene.bodies.len() {
-            if !scene.interacts(i, j) || active.contains(&[i, j]) {
+            if !scene.interacts(i, j) {
                 continue;
             }
-            let relative =
-                Vector3::from(report.bodies[j].position_after) - Vector3::from(report.bodies[i].position_after);
-            let (overlap, _) = scene.meeting(i, j).penetration(&relative);
-            // A pair a contact's force parted may still overlap by as much as it parted at, never more.
-            let parted = report
-                .contacts
-                .iter()
-                .rev()
-                .find(|c| c.bodies == [i, j])
-                .and_then(|c| c.penetration_at_separation)
-                .unwrap_or(0.0);
-            let size = |k: usize| {
-                let b = &scene.bodies[k];
-                (if b.is_flat() { 0.0 } else { b.radius }) + Vector3::from(report.bodies[k].position_after).amax()
-            };
-            let (a, b) = (&scene.bodies[i], &scene.bodies[j]);
-            let tolerance = (64.0 * f64::EPSILON * (size(i) + size(j)))
-                .max(crate::geometry::TOUCH_TOLERANCE * a.radius.min(b.radius));
-            worst = worst.max((overlap - parted) / tolerance);
+            for p in scene.sites_of(i) {
+                for q in scene.sites_of(j) {
+                    let (a, b) = (scene.site(i, p), scene.site(j, q));
+                    let spheres =
+                        [(!scene.bodies[i].is_flat()).then_some(p), (!scene.bodies[j].is_flat()).then_some(q)];
+                    if report.contacts.iter().any(|c| !c.separated && same(c, [i, j], spheres)) {
+                        continue;
+                    }
+                    let (ca, cb) = (centre(&a), centre(&b));
+                    let (overlap, _) = scene.site_meeting(&a, &b).penetration(&(cb - ca));
+                    // A pair a contact's force parted may still overlap by as much as it parted at, never more.
+                    let parted = report
+                        .contacts
+                        .iter()
+                        .rev()
+                        .find(|c| same(c, [i, j], spheres))
+                        .and_then(|c| c.penetration_at_separation)
+                        .unwrap_or(0.0);
+                    let size = |site: &crate::scene::Site, at: &Vector3<f64>| {
+                        (if scene.bodies[site.body].is_flat() { 0.0 } else { site.radius }) + at.amax()
+                    };
+                    let tolerance = (64.0 * f64::EPSILON * (size(&a, &ca) + size(&b, &cb)))
+                        .max(crate::geometry::TOUCH_TOLERANCE * a.radius.min(b.radius));
+                    worst = worst.max((overlap - parted) / tolerance);
+                }
+            }
         }
     }
     record("world.overlap_after", worst);

@@ -9,11 +9,12 @@
 
 use super::broad::{Neighbours, skin};
 use super::flight::{Kinematic, acceleration, first_touch};
-use super::island::{ActiveContact, Island, Units};
+use super::island::{ActiveContact, Island, Units, turned_inertia};
 use super::record::{
     Compression, ContactRecord, ContactSample, EndReason, Ending as ContactEnding, Observer, Progress, Stop,
     WorldOutcome,
 };
+use super::sites::Sites;
 use crate::dynamics::contact::{Mode, Tangential};
 use crate::geometry::Meeting;
 use crate::integrate::{Counters, Direction, Ending, EventOf, IntegrationError, StepperOf, Tolerances};
@@ -21,7 +22,7 @@ use crate::law::Separation;
 use crate::scene::SetupError;
 use crate::scene::{DampingMap, DampingSpec, WorldScene};
 use crate::setup::{check_law, friction_of, resolve_law};
-use nalgebra::{DVector, Dyn, Vector3};
+use nalgebra::{DVector, Dyn, UnitQuaternion, Vector3};
 use std::collections::BTreeSet;
 
 /// Why a world run could not be completed.
@@ -111,6 +112,9 @@ enum Watched {
     /// The gap of a watched pair that began the segment overlapping (a contact its force ended before its overlap)
     /// opened: the segment ends, and the next one watches that pair's gap close from open.
     Reopened(usize),
+    /// The gap of a watched pair with a turning body reaches a minimum (its rate rises through zero): where it is
+    /// below zero, the pair touched between two steps.
+    Dip(usize),
     /// The island came to rest (free groups: the run ends).
     Rest,
     /// A member reached the bound of the neighbour list: the list is rebuilt.
@@ -126,6 +130,8 @@ enum Watched {
 /// The run's state between segments.
 struct World<'a> {
     scene: &'a WorldScene,
+    /// Every contact sphere of the scene (and each face): a contact is a pair of them.
+    sites: std::rc::Rc<Sites>,
     /// Scene time, s.
     time: f64,
     /// Every body's state now.
@@ -134,13 +140,13 @@ struct World<'a> {
     records: Vec<ContactRecord>,
     /// The island's units while one exists.
     units: Option<Units>,
-    /// The damping-map speed of each pair's first contact (first-contact maps).
+    /// The damping-map speed of each pair of sites' first contact (first-contact maps).
     first_speeds: std::collections::HashMap<[usize; 2], f64>,
     /// For two overlapping contacts [later, earlier]: the earlier one's impulse when the later began, N s (what it gave
     /// during their overlap is its impulse at the end of the overlap less this).
     overlap_marks: std::collections::HashMap<[usize; 2], f64>,
-    /// The pairs that touched without their gap ever opening since the last segment began: their contact would begin
-    /// pushed (for contacts taken at a segment's end).
+    /// The pairs of sites that touched without their gap ever opening since the last segment began: their contact
+    /// would begin pushed (for contacts taken at a segment's end).
     pressed: BTreeSet<[usize; 2]>,
     ended: u64,
     immovable_work: f64,
@@ -177,11 +183,14 @@ impl<'a> World<'a> {
                 position: b.position.unwrap_or_default(),
                 velocity: b.velocity,
                 spin: b.angular_velocity,
+                orientation: UnitQuaternion::identity(),
             })
             .collect();
-        let neighbours = Neighbours::build(scene, &states, skin(scene));
+        let sites = std::rc::Rc::new(Sites::of(scene));
+        let neighbours = Neighbours::build(scene, &sites, &states, skin(scene, &sites));
         World {
             scene,
+            sites,
             time: 0.0,
             states,
             active: Vec::new(),
@@ -267,7 +276,7 @@ impl<'a> World<'a> {
     fn contact_samples(&self) -> Vec<ContactSample> {
         let Some(units) = self.units.filter(|_| !self.active.is_empty()) else { return Vec::new() };
         let flight = self.flight_accelerations();
-        let island = Island::new(self.scene, &self.states, &flight, self.active.clone(), units);
+        let island = Island::new(self.scene, &self.sites, &self.states, &flight, self.active.clone(), &[], units);
         let y = island.initial_state();
         (0..island.contacts.len()).map(|c| sample(&island, c, &y)).collect()
     }
@@ -323,12 +332,64 @@ impl<'a> World<'a> {
         !self.scene.bodies[k].is_immovable() && !self.frozen[k]
     }
 
+    /// The rigid bodies that turn in flight (docs/world.md#rigid-bodies): free, and spinning, or hung on a pivot under
+    /// gravity. They fly in an island, their gaps watched as events; every other body flies in closed form.
+    fn flyers(&self) -> Vec<usize> {
+        if !self.sites.any_rigid {
+            return Vec::new();
+        }
+        let swinging = self.scene.world.gravity != Vector3::zeros();
+        (0..self.states.len())
+            .filter(|&k| {
+                let body = &self.scene.bodies[k];
+                body.is_rigid()
+                    && !self.frozen[k]
+                    && (self.states[k].spin != Vector3::zeros() || (swinging && body.pivot.is_some()))
+            })
+            .collect()
+    }
+
+    /// Site `s`'s centre now, m.
+    fn centre(&self, s: usize) -> Vector3<f64> {
+        self.sites.centre(s, &self.states[self.sites.body(s)])
+    }
+
+    /// The velocity (m/s) of the point of body `k` at `lever` (m) from its mass centre now: v + ω × lever.
+    fn point_velocity(&self, k: usize, lever: &Vector3<f64>) -> Vector3<f64> {
+        let state = &self.states[k];
+        if *lever == Vector3::zeros() { state.velocity } else { state.velocity + state.spin.cross(lever) }
+    }
+
+    /// Site `s`'s centre's velocity now, m/s.
+    fn site_velocity(&self, s: usize) -> Vector3<f64> {
+        let k = self.sites.body(s);
+        self.point_velocity(k, &self.sites.lever(s, &self.states[k]))
+    }
+
+    /// Body `k`'s angular momentum now about its origin (its mass centre, or its pivot), kg m²/s.
+    fn angular_momentum(&self, k: usize) -> Vector3<f64> {
+        angular_momentum(&self.scene.bodies[k], &self.states[k])
+    }
+
+    /// Body `k` now as the instantaneous eccentric impact takes it (its inertia turned with it).
+    fn rigid_body(&self, k: usize) -> crate::eccentric::RigidBody {
+        let (body, state) = (&self.scene.bodies[k], &self.states[k]);
+        crate::eccentric::RigidBody {
+            mass: body.mass,
+            inertia: if body.rotates() { turned_inertia(body, &state.orientation) } else { body.inertia_matrix() },
+            centre: state.position,
+            velocity: state.velocity,
+            spin: state.spin,
+            pivot: body.pivot,
+        }
+    }
+
     /// Active contact `c`'s penetration (m) and penetration rate (m/s) at the bodies' states now.
     fn standing(&self, c: usize) -> (f64, f64) {
         let contact = &self.active[c];
-        let [i, j] = contact.pair;
-        let (penetration, normal) = contact.meeting.penetration(&(self.states[j].position - self.states[i].position));
-        (penetration, (self.states[i].velocity - self.states[j].velocity).dot(&normal))
+        let [p, q] = contact.sites;
+        let (penetration, normal) = contact.meeting.penetration(&(self.centre(q) - self.centre(p)));
+        (penetration, (self.site_velocity(p) - self.site_velocity(q)).dot(&normal))
     }
 
     /// Active contact `c`'s slip now (m/s): the velocity of body i's contact point relative to body j's, across the
@@ -336,11 +397,17 @@ impl<'a> World<'a> {
     fn slip_now(&self, c: usize) -> Vector3<f64> {
         let contact = &self.active[c];
         let [i, j] = contact.pair;
+        let [p, q] = contact.sites;
         let (a, b) = (&self.states[i], &self.states[j]);
-        let relative = b.position - a.position;
+        let relative = self.centre(q) - self.centre(p);
         let (_, n) = contact.meeting.penetration(&relative);
-        let arms = contact.meeting.lever_arms(&relative, [self.scene.bodies[i].radius, self.scene.bodies[j].radius]);
-        crate::geometry::slip(&n, [a.velocity, b.velocity], [a.spin, b.spin], arms)
+        let arms = contact.meeting.lever_arms(&relative, [self.sites.list[p].radius, self.sites.list[q].radius]);
+        if self.sites.lever(p, a) == Vector3::zeros() && self.sites.lever(q, b) == Vector3::zeros() {
+            return crate::geometry::slip(&n, [a.velocity, b.velocity], [a.spin, b.spin], arms);
+        }
+        let levers = [self.sites.lever(p, a) + arms[0], self.sites.lever(q, b) + arms[1]];
+        let point = self.point_velocity(i, &levers[0]) - self.point_velocity(j, &levers[1]);
+        point - n * point.dot(&n)
     }
 
     /// The scene time left before `end_time` (infinite without one).
@@ -348,10 +415,12 @@ impl<'a> World<'a> {
         self.scene.world.end_time.map_or(f64::INFINITY, |end| end - self.time)
     }
 
-    /// Every pair that can touch, each once (i < j).
+    /// Every pair of sites that can touch, each once (p < q).
     fn pairs(&self) -> impl Iterator<Item = (usize, usize)> + '_ {
-        let n = self.scene.bodies.len();
-        (0..n).flat_map(move |i| (i + 1..n).map(move |j| (i, j))).filter(|&(i, j)| self.scene.interacts(i, j))
+        let n = self.sites.len();
+        (0..n)
+            .flat_map(move |p| (p + 1..n).map(move |q| (p, q)))
+            .filter(|&(p, q)| self.sites.interacts(self.scene, p, q))
     }
 
     /// The flight time (s) within which no body outside `island` (none: every body) reaches the bound of the
@@ -361,35 +430,40 @@ impl<'a> World<'a> {
             return f64::INFINITY;
         }
         let flight = self.flight_accelerations();
-        (0..self.states.len())
-            .filter(|&k| island.is_none_or(|island| island.slot(k).is_none()))
-            .map(|k| self.neighbours.flight_bound(k, &self.states[k], &flight[k]))
+        (0..self.sites.len())
+            .filter(|&s| island.is_none_or(|island| island.slot(self.sites.body(s)).is_none()))
+            .map(|s| {
+                let k = self.sites.body(s);
+                self.neighbours.flight_bound(s, &self.sites.kinematic(s, &self.states[k]), &flight[k])
+            })
             .fold(f64::INFINITY, f64::min)
     }
 
     /// Rebuilds the neighbour list at the bodies' states now.
     fn relist(&mut self) {
-        self.neighbours.rebuild(self.scene, &self.states);
+        self.neighbours.rebuild(self.scene, &self.sites, &self.states);
     }
 
-    /// The tolerance (m) within which bodies `i` and `j` count as touching: the rounding of their positions, and no
+    /// The tolerance (m) within which sites `p` and `q` count as touching: the rounding of their positions, and no
     /// less than the overlap a scene may start with (1e-12 of the smaller radius).
-    fn touching(&self, i: usize, j: usize) -> f64 {
-        let (a, b) = (&self.scene.bodies[i], &self.scene.bodies[j]);
-        crate::geometry::touching_tolerance(a, &self.states[i].position, b, &self.states[j].position)
+    fn touching(&self, p: usize, q: usize) -> f64 {
+        let (a, b) = (&self.sites.bodies[p], &self.sites.bodies[q]);
+        crate::geometry::touching_tolerance(a, &self.centre(p), b, &self.centre(q))
     }
 
-    /// The next first touch in free flight among `pairs` (from the bodies' states now), within `left` s: its time
-    /// after now, and every pair touching then.
+    /// The next first touch in free flight among `pairs` of sites (from the bodies' states now), within `left` s: its
+    /// time after now, and every pair touching then. (Every body flies in closed form: none of them turns.)
     fn next_touch(&self, pairs: &[(usize, usize)], left: f64) -> Option<(f64, Vec<(usize, usize)>)> {
         let flight = self.flight_accelerations();
         let mut touches: Vec<(usize, usize, f64)> = Vec::new();
-        for &(i, j) in pairs {
-            let meeting = self.scene.meeting(i, j);
+        for &(p, q) in pairs {
+            let meeting = self.sites.meeting(self.scene, p, q);
+            let [i, j] = self.sites.bodies_of([p, q]);
             let (ga, gb) = (flight[i], flight[j]);
-            let tolerance = self.touching(i, j);
-            if let Some(t) = first_touch(&meeting, &self.states[i], &self.states[j], &ga, &gb, tolerance, left) {
-                touches.push((i, j, t));
+            let tolerance = self.touching(p, q);
+            let (a, b) = (self.sites.kinematic(p, &self.states[i]), self.sites.kinematic(q, &self.states[j]));
+            if let Some(t) = first_touch(&meeting, &a, &b, &ga, &gb, tolerance, left) {
+                touches.push((p, q, t));
             }
         }
         let delay = touches.iter().map(|t| t.2).fold(f64::INFINITY, f64::min);
@@ -408,7 +482,7 @@ impl<'a> World<'a> {
             }
             // A list nearly spent is rebuilt before the next flight or segment (which would end at once).
             let reach = self.neighbours.reach();
-            if (0..self.states.len()).any(|k| self.neighbours.margin(k, &self.states[k].position) < reach / 8.0) {
+            if (0..self.sites.len()).any(|s| self.neighbours.margin(s, &self.centre(s)) < reach / 8.0) {
                 self.relist();
             }
             while !self.live().is_empty()
@@ -416,7 +490,7 @@ impl<'a> World<'a> {
             {
                 self.quiet(&group)?;
             }
-            if self.live().is_empty() {
+            if self.live().is_empty() && self.flyers().is_empty() {
                 self.fly()?;
             } else {
                 self.segment()?;
@@ -514,29 +588,43 @@ impl<'a> World<'a> {
         }
     }
 
-    /// Begins the contact of bodies `i` and `j` now (their states current): resolves its law, records its first
+    /// Begins the contact of sites `p` and `q` now (their bodies' states current): resolves its law, records its first
     /// touch; whether it began. `island` is the speed unit of the island it begins in, if any; `pushed` whether the
     /// bodies were already touching, pushed together rather than closing a gap (`None`: decided here, by the
     /// approach speed being zero).
-    fn begin(&mut self, i: usize, j: usize, island: Option<f64>, pushed: Option<bool>) -> Result<bool, WorldError> {
+    fn begin(&mut self, p: usize, q: usize, island: Option<f64>, pushed: Option<bool>) -> Result<bool, WorldError> {
         let scene = self.scene;
+        let [i, j] = self.sites.bodies_of([p, q]);
         self.wake(i);
         self.wake(j);
-        let (a, b) = (&scene.bodies[i], &scene.bodies[j]);
+        let (a, b) = (&self.sites.bodies[p], &self.sites.bodies[q]);
         let (spec, _) = scene.contact_of(i, j);
-        let meeting = scene.meeting(i, j);
-        let relative = self.states[j].position - self.states[i].position;
+        let meeting = self.sites.meeting(scene, p, q);
+        let relative = self.centre(q) - self.centre(p);
         let (overlap, normal) = meeting.penetration(&relative);
-        let relative_velocity = self.states[i].velocity - self.states[j].velocity;
+        let relative_velocity = self.site_velocity(p) - self.site_velocity(q);
         let approach = relative_velocity.dot(&normal).max(0.0);
         // Touching without approach, or pressed again on the overlap a contact ended by its force left: pushed.
-        let pushed = pushed.unwrap_or(approach == 0.0 || overlap > self.touching(i, j));
+        let pushed = pushed.unwrap_or(approach == 0.0 || overlap > self.touching(p, q));
         if !pushed && approach > 0.0 && approach <= 8.0 * f64::EPSILON * relative_velocity.norm() {
             // A graze within the rounding of the velocities: no contact.
             return Ok(false);
         }
-        let effective_mass = crate::geometry::effective_mass(a, b).expect("interacting bodies are not both immovable");
-        let rename = |error: SetupError| WorldError::Setup(scene.rename(i, j, error));
+        // The contact points' arms from each body's origin at first touch (each sphere's radius along the normal).
+        let touch = crate::geometry::touch_arms(a, b, &normal);
+        let levers = [self.sites.lever(p, &self.states[i]) + touch[0], self.sites.lever(q, &self.states[j]) + touch[1]];
+        let point = if scene.faces[i].is_some() { self.centre(q) + touch[1] } else { self.centre(p) + touch[0] };
+        let rigid = scene.bodies[i].is_rigid() || scene.bodies[j].is_rigid();
+        // A rigid body meets the contact with its effective mass at the contact point (docs/references.md#eccentric-impact): the damping
+        // maps and the units take the pair's.
+        let effective_mass = if rigid {
+            let inverse: f64 = [i, j].iter().map(|&k| self.rigid_body(k).inverse_effective_mass(&point, &normal)).sum();
+            1.0 / inverse
+        } else {
+            crate::geometry::effective_mass(a, b).expect("interacting bodies are not both immovable")
+        };
+        let rename =
+            |error: SetupError| WorldError::Setup(scene.rename_sites(&self.sites.list[p], &self.sites.list[q], error));
         // The damping map's speed: the approach speed, but never below the speed of a resting contact under
         // gravity, sqrt(g d_s) (d_s its static penetration), nor — for a contact pushed into being — below the
         // island's speed.
@@ -552,7 +640,7 @@ impl<'a> World<'a> {
         let mut map_speed = approach.max(floor);
         let maps_by_speed = matches!(spec.damping, DampingSpec::Restitution(_));
         if maps_by_speed && scene.world.damping_map == DampingMap::FirstContact {
-            map_speed = *self.first_speeds.entry([i, j]).or_insert(map_speed);
+            map_speed = *self.first_speeds.entry([p, q]).or_insert(map_speed);
         }
         if map_speed.is_nan() || map_speed <= 0.0 {
             // Touching without approach, gravity or an island to push them: nothing to begin.
@@ -570,9 +658,13 @@ impl<'a> World<'a> {
         let mode = match friction {
             Some(f) => {
                 // The contact points' slip at first touch (body i's relative to body j's, across the normal).
-                let velocities = [self.states[i].velocity, self.states[j].velocity];
-                let across =
-                    crate::geometry::slip(&normal, velocities, spins, crate::geometry::touch_arms(a, b, &normal));
+                let across = if rigid || levers != touch {
+                    let point = self.point_velocity(i, &levers[0]) - self.point_velocity(j, &levers[1]);
+                    point - normal * point.dot(&normal)
+                } else {
+                    let velocities = [self.states[i].velocity, self.states[j].velocity];
+                    crate::geometry::slip(&normal, velocities, spins, touch)
+                };
                 let slip = across.norm();
                 if slip > 0.0 {
                     slip_direction = across / slip;
@@ -602,8 +694,14 @@ impl<'a> World<'a> {
             self.records[other.record].overlapping.insert(index);
             self.overlap_marks.insert([index, other.record], other.impulse);
         }
+        let origins = [i, j].map(|k| scene.bodies[k].pivot.unwrap_or(self.states[k].position));
         self.records.push(ContactRecord {
             bodies: [i, j],
+            spheres: [self.sites.sphere(scene, p), self.sites.sphere(scene, q)],
+            point,
+            levers: [point - origins[0], point - origins[1]],
+            orientations_before: [self.states[i].orientation, self.states[j].orientation],
+            momenta_before: [self.angular_momentum(i), self.angular_momentum(j)],
             law,
             separation: spec.separation,
             map_speed,
@@ -613,10 +711,11 @@ impl<'a> World<'a> {
             pushed,
             velocities_before: [self.states[i].velocity, self.states[j].velocity],
             spins_before: spins,
+            effective_mass,
             friction: spec.friction,
             slip_rest: (friction.is_some() && slip_direction == Vector3::zeros()).then_some(self.time),
             switches: 0,
-            elastic_at_start: if overlap > 2.0 * self.touching(i, j) { law.elastic_energy(overlap) } else { 0.0 },
+            elastic_at_start: if overlap > 2.0 * self.touching(p, q) { law.elastic_energy(overlap) } else { 0.0 },
             max_compression: None,
             peak_force: None,
             end: None,
@@ -629,6 +728,7 @@ impl<'a> World<'a> {
         self.active.push(ActiveContact {
             record: index,
             pair: [i, j],
+            sites: [p, q],
             meeting,
             law,
             on_force,
@@ -650,31 +750,49 @@ impl<'a> World<'a> {
     /// One segment of the island: integrates until a contact begins or ends (or the run's end), and takes it.
     fn segment(&mut self) -> Result<(), WorldError> {
         let scene = self.scene;
-        let units = self.units.expect("an island has units");
+        let units = match self.units {
+            Some(units) => units,
+            None => {
+                let units = self.flight_units()?;
+                self.units = Some(units);
+                units
+            }
+        };
         let start = self.states.clone();
         let flight = self.flight_accelerations();
-        // The island integrates the live contacts (`live[c]` is its contact c's index among the active ones).
+        let sites = std::rc::Rc::clone(&self.sites);
+        let sites = &*sites;
+        // The island integrates the live contacts (`live[c]` is its contact c's index among the active ones), and the
+        // rigid bodies that turn in flight.
         let live = self.live();
-        let island = Island::new(scene, &start, &flight, live.iter().map(|&c| self.active[c].clone()).collect(), units);
+        let flyers = self.flyers();
+        let contacts = live.iter().map(|&c| self.active[c].clone()).collect();
+        let island = Island::new(scene, sites, &start, &flight, contacts, &flyers, units);
         let y0 = island.initial_state();
+        if island.contacts.is_empty() && self.left().is_infinite() && !self.may_touch(&flyers) {
+            // Turning bodies in flight that nothing can reach any more, as nothing else can: the run is over.
+            self.reason = Some(EndReason::NoMoreContacts);
+            return Ok(());
+        }
         // The pairs watched for a first touch: every pair with a member that is not an active contact. A pair
         // touching at the start is watched from just inside the rounding of its positions, so that its gap starts
         // open; whether its gap then opens is watched too (a contact it begins without is pushed). A pair that
         // starts overlapping beyond that rounding (a contact its force ended while the bodies still overlapped) is
         // watched for its gap to open, which ends the segment: the next one watches the gap close from open.
-        let active: BTreeSet<[usize; 2]> = self.active.iter().map(|c| c.pair).collect();
+        let active: BTreeSet<[usize; 2]> = self.active.iter().map(|c| c.sites).collect();
         let all: Vec<(usize, usize)> =
-            self.neighbours.pairs.iter().copied().filter(|&(i, j)| !active.contains(&[i, j])).collect();
-        let inside = |&(i, j): &(usize, usize)| island.slot(i).is_some() || island.slot(j).is_some();
+            self.neighbours.pairs.iter().copied().filter(|&(p, q)| !active.contains(&[p, q])).collect();
+        let inside =
+            |&(p, q): &(usize, usize)| island.slot(sites.body(p)).is_some() || island.slot(sites.body(q)).is_some();
         let watched: Vec<(usize, usize, Meeting, f64, f64)> = all
             .iter()
-            .filter(|p| inside(p))
-            .map(|&(i, j)| {
-                let meeting = scene.meeting(i, j);
-                let gap = -island.pair_state(i, j, &meeting, &y0).penetration;
-                let tolerance = self.touching(i, j);
+            .filter(|pair| inside(pair))
+            .map(|&(p, q)| {
+                let meeting = sites.meeting(scene, p, q);
+                let gap = -island.site_state(p, q, &meeting, &y0).penetration;
+                let tolerance = self.touching(p, q);
                 let offset = if gap <= tolerance { (-gap).max(0.0) + tolerance } else { 0.0 };
-                (i, j, meeting, offset, tolerance)
+                (p, q, meeting, offset, tolerance)
             })
             .collect();
         // Pairs with no body in the island fly freely: the segment stops at their next first touch.
@@ -718,19 +836,23 @@ impl<'a> World<'a> {
         for (p, (i, j, meeting, offset, tolerance)) in watched.iter().enumerate() {
             let (i, j, offset, tolerance) = (*i, *j, *offset, *tolerance);
             functions
-                .push(Box::new(move |y| (offset - isl.pair_state(i, j, meeting, y).penetration) / isl.units.length));
+                .push(Box::new(move |y| (offset - isl.site_state(i, j, meeting, y).penetration) / isl.units.length));
             kinds.push((Watched::Touch(p), true));
             if offset > 2.0 * tolerance {
                 // Overlapping at the start: the gap opening beyond the rounding ends the segment.
                 let open = 2.0 * tolerance;
                 functions
-                    .push(Box::new(move |y| (open + isl.pair_state(i, j, meeting, y).penetration) / isl.units.length));
+                    .push(Box::new(move |y| (open + isl.site_state(i, j, meeting, y).penetration) / isl.units.length));
                 kinds.push((Watched::Reopened(p), true));
             } else if offset > 0.0 {
                 let open = 8.0 * offset;
                 functions
-                    .push(Box::new(move |y| (open + isl.pair_state(i, j, meeting, y).penetration) / isl.units.length));
+                    .push(Box::new(move |y| (open + isl.site_state(i, j, meeting, y).penetration) / isl.units.length));
                 kinds.push((Watched::Opened(p), false));
+            } else if [i, j].iter().any(|&s| isl.turns(sites.body(s))) {
+                // The gap's minima (its rate, -d', rising through zero), watched for a dip below zero between steps.
+                functions.push(Box::new(move |y| -isl.site_state(i, j, meeting, y).rate / isl.units.speed));
+                kinds.push((Watched::Dip(p), false));
             }
         }
         for (k, (group, held)) in components.iter().enumerate() {
@@ -740,14 +862,14 @@ impl<'a> World<'a> {
             }
         }
         if !self.neighbours.is_everything() {
-            // The margin left to the member that moved furthest from where the list was built.
-            let (reach, reference) = (self.neighbours.reach(), self.neighbours.references(&isl.members));
+            // The margin left to the member's site that moved furthest from where the list was built.
+            let member_sites: Vec<usize> = isl.members.iter().flat_map(|&k| sites.of_body(k)).collect();
+            let (reach, reference) = (self.neighbours.reach(), self.neighbours.references(&member_sites));
             functions.push(Box::new(move |y| {
-                let moved = isl
-                    .members
+                let moved = member_sites
                     .iter()
                     .zip(&reference)
-                    .map(|(&k, at)| (isl.position(k, y) - at).norm())
+                    .map(|(&s, at)| (isl.site_position(s, y) - at).norm())
                     .fold(0.0, f64::max);
                 (reach - moved) / isl.units.length
             }));
@@ -761,7 +883,10 @@ impl<'a> World<'a> {
         let events: Vec<EventOf<'_, Dyn>> = functions
             .iter()
             .zip(&kinds)
-            .map(|(f, &(_, terminal))| EventOf { function: f.as_ref(), direction: Direction::Falling, terminal })
+            .map(|(f, &(kind, terminal))| {
+                let direction = if matches!(kind, Watched::Dip(_)) { Direction::Rising } else { Direction::Falling };
+                EventOf { function: f.as_ref(), direction, terminal }
+            })
             .collect();
 
         let requested = scene.solver.tolerances;
@@ -789,7 +914,20 @@ impl<'a> World<'a> {
         let by_outside = outside_touch.as_ref().map_or(f64::INFINITY, |(delay, _)| delay / units.time);
         let by_list = self.list_holds(Some(&island)) / units.time;
         let horizon = by_end.min(by_outside).min(by_list).min(SEGMENT_TIME);
-        let end = stepper.run(0.0, y0, horizon, &events)?;
+        let mut end = stepper.run(0.0, y0.clone(), horizon, &events)?;
+        // A gap that closed and opened again between two steps (a turning body's long steps in flight) shows as a
+        // located minimum below zero: the segment is run again to that minimum, where the touch is seen and located.
+        let dipped = end.crossings.iter().find(|crossing| {
+            matches!(kinds[crossing.event].0, Watched::Dip(p)
+                if island.site_state(watched[p].0, watched[p].1, &watched[p].2, &crossing.state).penetration > 0.0)
+        });
+        if let Some(dip) = dipped {
+            let to = dip.time;
+            if let Some(record) = stepper.record.as_mut() {
+                record.clear();
+            }
+            end = stepper.run(0.0, y0, to, &events)?;
+        }
         self.counters.steps += stepper.counters.steps;
         self.counters.rejected_steps += stepper.counters.rejected_steps;
         self.counters.evaluations += stepper.counters.evaluations;
@@ -800,6 +938,7 @@ impl<'a> World<'a> {
                         position: island.position(k, y),
                         velocity: island.velocity(k, y),
                         spin: island.spin(k, y),
+                        orientation: island.orientation(k, y),
                     })
                     .collect();
                 let contacts: Vec<ContactSample> = (0..island.contacts.len()).map(|c| sample(&island, c, y)).collect();
@@ -853,8 +992,12 @@ impl<'a> World<'a> {
             if !body.is_immovable() {
                 self.gravity_work += body.mass * scene.world.gravity.dot(&island.displacement(k, y));
             }
-            self.states[k] =
-                Kinematic { position: island.position(k, y), velocity: island.velocity(k, y), spin: island.spin(k, y) };
+            self.states[k] = Kinematic {
+                position: island.position(k, y),
+                velocity: island.velocity(k, y),
+                spin: island.spin(k, y),
+                orientation: island.orientation(k, y),
+            };
         }
         for (c, &active) in live.iter().enumerate() {
             let contact = &mut self.active[active];
@@ -969,7 +1112,11 @@ impl<'a> World<'a> {
                         return Ok(());
                     }
                 }
-                Watched::MaxCompression(_) | Watched::ForcePeak(_) | Watched::Opened(_) | Watched::SlipRest(_) => {
+                Watched::MaxCompression(_)
+                | Watched::ForcePeak(_)
+                | Watched::Opened(_)
+                | Watched::SlipRest(_)
+                | Watched::Dip(_) => {
                     unreachable!("not terminal")
                 }
             },
@@ -1020,6 +1167,101 @@ impl<'a> World<'a> {
         Ok(())
     }
 
+    /// The units of an island of rigid bodies turning in flight, before any contact has given it its own: those of the
+    /// contact of a flyer's site with its first neighbour at their relative speed (the spin's and a swing's included).
+    fn flight_units(&self) -> Result<Units, WorldError> {
+        let scene = self.scene;
+        let g = scene.world.gravity.norm();
+        if let Some(&k) = self.flyers().first() {
+            let body = &scene.bodies[k];
+            let reach = self.reach(k);
+            for &(p, q) in &self.neighbours.pairs {
+                let [i, j] = self.sites.bodies_of([p, q]);
+                if i != k && j != k {
+                    continue;
+                }
+                let other = if i == k { j } else { i };
+                let spin = |b: usize| self.states[b].spin.norm() * self.reach(b);
+                let speed = (self.states[k].velocity - self.states[other].velocity).norm()
+                    + spin(k)
+                    + spin(other)
+                    + (g * reach).sqrt();
+                let (a, b) = (&self.sites.bodies[p], &self.sites.bodies[q]);
+                let Some(mass) = crate::geometry::effective_mass(a, b) else { continue };
+                if !(speed > 0.0 && speed.is_finite()) {
+                    continue;
+                }
+                let (spec, _) = scene.contact_of(i, j);
+                let law = resolve_law(spec, [a, b], mass, speed).map_err(|error| {
+                    WorldError::Setup(scene.rename_sites(&self.sites.list[p], &self.sites.list[q], error))
+                })?;
+                return Ok(Units::new(mass, law.stiffness, law.exponent, speed));
+            }
+            // Nothing near it: units of its own size.
+            let length = 1e-6 * reach;
+            return Ok(Units {
+                length,
+                speed: 1.0,
+                time: length,
+                mass: body.mass,
+                force: body.mass / length,
+                impulse: body.mass,
+                energy: body.mass,
+            });
+        }
+        Ok(Units { length: 1.0, speed: 1.0, time: 1.0, mass: 1.0, force: 1.0, impulse: 1.0, energy: 1.0 })
+    }
+
+    /// Body `k`'s reach, m: the farthest of its contact spheres' surfaces from its origin (its mass centre, or its
+    /// pivot).
+    fn reach(&self, k: usize) -> f64 {
+        let body = &self.scene.bodies[k];
+        if body.is_flat() {
+            return 0.0;
+        }
+        let origin = body.pivot.unwrap_or(self.states[k].position);
+        self.sites.of_body(k).map(|s| (self.centre(s) - origin).norm() + self.sites.list[s].radius).fold(0.0, f64::max)
+    }
+
+    /// Whether any two sites may still touch, with the flyers `flyers` bounded by spheres about their origins (a free
+    /// body's bounding sphere flies on its mass centre's parabola, a pivoted one's stays about its pivot): a bound
+    /// found in closed form, so that a run whose bodies tumble apart for ever ends.
+    fn may_touch(&self, flyers: &[usize]) -> bool {
+        let scene = self.scene;
+        let flight = self.flight_accelerations();
+        // Each site's stand-in: a flyer's bounding sphere, or the site itself.
+        let stand_in = |s: usize| -> (Kinematic, f64, Vector3<f64>) {
+            let k = self.sites.body(s);
+            let state = &self.states[k];
+            if flyers.contains(&k) {
+                let body = &scene.bodies[k];
+                let (origin, moving) = match body.pivot {
+                    Some(pivot) => (pivot, Vector3::zeros()),
+                    None => (state.position, state.velocity),
+                };
+                let bound = Kinematic { position: origin, velocity: moving, ..*state };
+                (bound, self.reach(k), if body.pivot.is_some() { Vector3::zeros() } else { flight[k] })
+            } else {
+                (self.sites.kinematic(s, state), self.sites.list[s].radius, flight[k])
+            }
+        };
+        self.pairs().any(|(p, q)| {
+            let [i, j] = self.sites.bodies_of([p, q]);
+            if !flyers.contains(&i) && !flyers.contains(&j) {
+                let meeting = self.sites.meeting(scene, p, q);
+                let (a, b) = (self.sites.kinematic(p, &self.states[i]), self.sites.kinematic(q, &self.states[j]));
+                let tolerance = self.touching(p, q);
+                return first_touch(&meeting, &a, &b, &flight[i], &flight[j], tolerance, f64::INFINITY).is_some();
+            }
+            let ((a, ra, ga), (b, rb, gb)) = (stand_in(p), stand_in(q));
+            let meeting = Meeting::of_radii(ra, scene.faces[i], rb, scene.faces[j]);
+            if meeting.penetration(&(b.position - a.position)).0 >= 0.0 {
+                return true;
+            }
+            first_touch(&meeting, &a, &b, &ga, &gb, 0.0, f64::INFINITY).is_some()
+        })
+    }
+
     /// Contacts that end, and pairs that touch, at the very instant a segment ended (within the rounding of
     /// positions): taken at once, each as its own event.
     fn settle_simultaneous(&mut self, speed: f64) -> Result<(), WorldError> {
@@ -1036,12 +1278,14 @@ impl<'a> World<'a> {
             let start = self.states.clone();
             let flight = self.flight_accelerations();
             let units = self.units.expect("an island has units");
-            let island =
-                Island::new(scene, &start, &flight, live.iter().map(|&c| self.active[c].clone()).collect(), units);
+            let sites = std::rc::Rc::clone(&self.sites);
+            let sites = &*sites;
+            let contacts = live.iter().map(|&c| self.active[c].clone()).collect();
+            let island = Island::new(scene, sites, &start, &flight, contacts, &[], units);
             let y = island.initial_state();
             let parting = (0..island.contacts.len()).find_map(|c| {
                 let state = island.contact_state(c, &y);
-                let tolerance = self.touching(island.contacts[c].pair[0], island.contacts[c].pair[1]);
+                let tolerance = self.touching(island.contacts[c].sites[0], island.contacts[c].sites[1]);
                 let value = if island.contacts[c].on_force {
                     island.separation_value(c, &y)
                 } else {
@@ -1049,16 +1293,17 @@ impl<'a> World<'a> {
                 };
                 (state.rate < 0.0 && value <= 0.0).then_some((live[c], state.rate))
             });
-            let active: BTreeSet<[usize; 2]> = self.active.iter().map(|c| c.pair).collect();
-            let touching = self.neighbours.pairs.iter().copied().find(|&(i, j)| {
-                if active.contains(&[i, j])
+            let active: BTreeSet<[usize; 2]> = self.active.iter().map(|c| c.sites).collect();
+            let touching = self.neighbours.pairs.iter().copied().find(|&(p, q)| {
+                let [i, j] = sites.bodies_of([p, q]);
+                if active.contains(&[p, q])
                     || (island.slot(i).is_none() && island.slot(j).is_none())
-                    || self.grazed(i, j)
+                    || self.grazed(p, q)
                 {
                     return false;
                 }
-                let state = island.pair_state(i, j, &scene.meeting(i, j), &y);
-                let tolerance = self.touching(i, j);
+                let state = island.site_state(p, q, &sites.meeting(scene, p, q), &y);
+                let tolerance = self.touching(p, q);
                 state.rate > 0.0 && state.penetration.abs() <= tolerance
             });
             drop(island);
@@ -1116,7 +1361,9 @@ impl<'a> World<'a> {
             while at < group.len() {
                 let c = group[at];
                 at += 1;
-                quiet &= self.active[c].pair.iter().all(|&k| self.free(k)) && self.is_quiet(c, &units);
+                // (A rigid body's contacts are never ended quiet: a common velocity would leave its spin.)
+                quiet &= self.active[c].pair.iter().all(|&k| self.free(k) && !self.scene.bodies[k].is_rigid())
+                    && self.is_quiet(c, &units);
                 for k in self.active[c].pair {
                     for &other in &touching[&k] {
                         if !done[other] {
@@ -1163,8 +1410,14 @@ impl<'a> World<'a> {
         while at < group.len() {
             let p = group[at];
             at += 1;
-            for &q in self.neighbours.adjacent(p) {
-                if seen.contains(&q) || !self.free(q) || active.contains(&[p.min(q), p.max(q)]) {
+            let site = self.sites.of_body(p).start;
+            for &other in self.neighbours.adjacent(site) {
+                let q = self.sites.body(other);
+                if seen.contains(&q)
+                    || !self.free(q)
+                    || self.scene.bodies[q].is_rigid()
+                    || active.contains(&[p.min(q), p.max(q)])
+                {
                     continue;
                 }
                 if self.states[q].velocity == self.states[p].velocity {
@@ -1200,14 +1453,14 @@ impl<'a> World<'a> {
             return;
         }
         let (impulse, work, _) = island.integrals(c, y);
-        let [i, j] = contact.pair;
-        let moving = if self.scene.bodies[i].is_immovable() { j } else { i };
+        let [i, _] = contact.pair;
+        let moving = if self.scene.bodies[i].is_immovable() { 1 } else { 0 };
         record.max_compression = Some(Compression {
             time: at,
             penetration: state.penetration,
             impulse,
             work,
-            common_normal_velocity: island.velocity(moving, y).dot(&state.normal),
+            common_normal_velocity: island.site_velocity(contact.sites[moving], y).dot(&state.normal),
         });
     }
 
@@ -1235,8 +1488,9 @@ impl<'a> World<'a> {
             self.close_overlap(&contact, other);
         }
         let [i, j] = contact.pair;
+        let relative = self.centre(contact.sites[1]) - self.centre(contact.sites[0]);
+        let momenta = [self.angular_momentum(i), self.angular_momentum(j)];
         let record = &mut self.records[contact.record];
-        let relative = self.states[j].position - self.states[i].position;
         let (penetration, _) = contact.meeting.penetration(&relative);
         let elastic_left = if let Some(stored) = stored {
             stored
@@ -1255,6 +1509,7 @@ impl<'a> World<'a> {
             penetration,
             velocities: [self.states[i].velocity, self.states[j].velocity],
             spins: [self.states[i].spin, self.states[j].spin],
+            momenta,
             tangential_work: contact.tangential_work,
         });
         if record.max_compression.is_none() {
@@ -1269,7 +1524,8 @@ impl<'a> World<'a> {
             });
         }
         self.ended += 1;
-        if self.live().is_empty() {
+        // (Rigid bodies turning in flight go on in an island of the same units.)
+        if self.live().is_empty() && self.flyers().is_empty() {
             self.units = None;
         }
         Ok(())
@@ -1307,7 +1563,8 @@ impl<'a> World<'a> {
         if let Some(units) = units {
             let start = self.states.clone();
             let flight = self.flight_accelerations();
-            let island = Island::new(self.scene, &start, &flight, self.active.clone(), units);
+            let sites = std::rc::Rc::clone(&self.sites);
+            let island = Island::new(self.scene, &sites, &start, &flight, self.active.clone(), &[], units);
             let y = island.initial_state();
             let time = self.time;
             for c in 0..island.contacts.len() {
@@ -1368,6 +1625,26 @@ impl<'a> World<'a> {
             notes: self.notes,
         }
     }
+}
+
+/// Body `body`'s angular momentum at `state` about its origin (its mass centre, or its pivot), kg m²/s: zero for a body
+/// that does not turn.
+pub fn angular_momentum(body: &crate::body::Body, state: &Kinematic) -> Vector3<f64> {
+    if !body.rotates() || body.is_immovable() {
+        return Vector3::zeros();
+    }
+    if !body.is_eccentric() {
+        return state.spin * body.inertia;
+    }
+    let rigid = crate::eccentric::RigidBody {
+        mass: body.mass,
+        inertia: turned_inertia(body, &state.orientation),
+        centre: state.position,
+        velocity: state.velocity,
+        spin: state.spin,
+        pivot: body.pivot,
+    };
+    rigid.inertia_about_pivot() * state.spin
 }
 
 /// Contact `c` of `island` at state `y`: its record's index, penetration and force.

@@ -9,7 +9,7 @@
 
 use crate::body::Body;
 use crate::geometry::Meeting;
-use nalgebra::Vector3;
+use nalgebra::{UnitQuaternion, Vector3};
 
 /// Where a body is and how it moves at one instant (SI).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -18,8 +18,12 @@ pub struct Kinematic {
     pub position: Vector3<f64>,
     /// Velocity, m/s.
     pub velocity: Vector3<f64>,
-    /// Angular velocity, rad/s: constant in flight (only a contact's friction changes it).
+    /// Angular velocity, rad/s: constant in flight for a sphere (only a contact's friction changes it); a rigid body
+    /// that spins flies in an island (docs/world.md#rigid-bodies).
     pub spin: Vector3<f64>,
+    /// The rotation from the scene axes at t = 0 (identity for a body whose orientation nobody reads: a sphere, a
+    /// wall): constant in closed-form flight.
+    pub orientation: UnitQuaternion<f64>,
 }
 
 /// The acceleration of `body` in free flight: g for a finite mass, none for an immovable body.
@@ -34,6 +38,7 @@ impl Kinematic {
             position: self.position + self.velocity * time + a * (0.5 * time * time),
             velocity: self.velocity + a * time,
             spin: self.spin,
+            orientation: self.orientation,
         }
     }
 
@@ -251,12 +256,18 @@ mod tests {
         let (g, r, d0, tolerance) = (9.81, 0.01, 1e-4, 1e-15);
         let gravity = Vector3::new(0.0, 0.0, -g);
         let floor = Meeting::Face { face: Vector3::z(), radius: r, sign: 1.0 };
-        let wall = Kinematic { position: Vector3::zeros(), velocity: Vector3::zeros(), spin: Vector3::zeros() };
+        let wall = Kinematic {
+            position: Vector3::zeros(),
+            velocity: Vector3::zeros(),
+            spin: Vector3::zeros(),
+            orientation: UnitQuaternion::identity(),
+        };
         for v in [0.1, 0.02] {
             let ball = Kinematic {
                 position: Vector3::new(0.0, 0.0, r - d0),
                 velocity: Vector3::new(0.0, 0.0, v),
                 spin: Vector3::zeros(),
+                orientation: UnitQuaternion::identity(),
             };
             let t = first_touch(&floor, &wall, &ball, &Vector3::zeros(), &gravity, tolerance, 100.0).unwrap();
             let expected = if v * v > 2.0 * g * d0 {
@@ -268,11 +279,17 @@ mod tests {
         }
         let spheres = Meeting::Spheres { reach: 0.02 };
         let (w, tolerance) = (0.5, 1e-9);
-        let first = Kinematic { position: Vector3::zeros(), velocity: Vector3::zeros(), spin: Vector3::zeros() };
+        let first = Kinematic {
+            position: Vector3::zeros(),
+            velocity: Vector3::zeros(),
+            spin: Vector3::zeros(),
+            orientation: UnitQuaternion::identity(),
+        };
         let apart = Kinematic {
             position: Vector3::new(0.02 - d0, 0.0, 0.0),
             velocity: Vector3::new(w, 0.0, 0.0),
             spin: Vector3::zeros(),
+            orientation: UnitQuaternion::identity(),
         };
         let none = Vector3::zeros();
         assert_eq!(first_touch(&spheres, &first, &apart, &none, &none, tolerance, 100.0), None);
@@ -289,12 +306,18 @@ mod tests {
         let g = Vector3::new(0.0, 0.0, -9.81);
         let (h, r) = (1.0, 0.01);
         let floor = Meeting::Face { face: Vector3::z(), radius: r, sign: 1.0 };
-        let wall = Kinematic { position: Vector3::zeros(), velocity: Vector3::zeros(), spin: Vector3::zeros() };
+        let wall = Kinematic {
+            position: Vector3::zeros(),
+            velocity: Vector3::zeros(),
+            spin: Vector3::zeros(),
+            orientation: UnitQuaternion::identity(),
+        };
         for u in [0.0, 3.0] {
             let ball = Kinematic {
                 position: Vector3::new(0.0, 0.0, h + r),
                 velocity: Vector3::new(0.5, 0.0, u),
                 spin: Vector3::zeros(),
+                orientation: UnitQuaternion::identity(),
             };
             let t = first_touch(&floor, &wall, &ball, &Vector3::zeros(), &g, 1e-14, 100.0).unwrap();
             let expected = (u + (u * u + 2.0 * 9.81 * h).sqrt()) / 9.81;
@@ -305,6 +328,7 @@ mod tests {
             position: Vector3::new(0.0, 0.0, r),
             velocity: Vector3::new(0.0, 0.0, 1.0),
             spin: Vector3::zeros(),
+            orientation: UnitQuaternion::identity(),
         };
         let t = first_touch(&floor, &wall, &parted, &Vector3::zeros(), &g, 1e-14, 100.0).unwrap();
         assert!((t - 2.0 / 9.81).abs() < 1e-14, "{t}");
@@ -315,6 +339,7 @@ mod tests {
             position: Vector3::new(0.0, 0.0, 1.0),
             velocity: Vector3::new(0.0, 0.0, 2.0),
             spin: Vector3::zeros(),
+            orientation: UnitQuaternion::identity(),
         };
         let t = first_touch(&fixed, &wall, &ball, &Vector3::zeros(), &g, 1e-14, 100.0).unwrap();
         let expected = (2.0 + (4.0 + 2.0 * 9.81 * 0.97f64).sqrt()) / 9.81;

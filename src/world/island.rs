@@ -10,8 +10,19 @@
 //! goes on (after the clock, so that a smooth island's state is unchanged) with every member's spin, scaled as
 //! ω r / V like one impact's, and each contact's tangential spring (in M V²/L) and tangential work. A segment lasts
 //! until a contact begins or ends, or one switches between sticking and sliding: then the driver builds the next one.
+//!
+//! Rigid bodies (docs/world.md#rigid-bodies) add, last of all, for each member whose orientation is integrated, its
+//! rotation since the segment began as a quaternion (the vector part times ρ/L, ρ the body's reach, so that the
+//! absolute tolerance bounds its spheres' displacement by the turn in L) and the change of its angular momentum about
+//! its origin — the mass centre, or a pivot — in M V ρ. The angular momentum, not the angular velocity: torque-free
+//! flight keeps it exactly, and the contacts' torques on two bodies cancel in the sum, so that the world's angular
+//! momentum is kept to rounding; ω = R I⁻¹ Rᵀ L follows from it, the inertia turning with the body. The quaternion is
+//! read normalised (the rotation is always a rotation) and a segment's end takes it as the body's orientation, unit.
+//! Each contact is a pair of sites (a sphere of a body, or a face), and reads its two points' positions and velocities
+//! (v + ω × r) from the sites' motion, so that the normal and tangential laws do not care whether a body turns.
 
 use super::flight::Kinematic;
+use super::sites::Sites;
 use crate::dynamics::contact::{Kinematics, Mode, Tangential};
 use crate::dynamics::unit_or_one;
 use crate::geometry::Meeting;
@@ -20,7 +31,7 @@ use crate::law::ContactLaw;
 use crate::scene::FrictionCap;
 use crate::scene::WorldScene;
 use crate::setup::Friction;
-use nalgebra::{DVector, Dyn, Vector3};
+use nalgebra::{DVector, Dyn, Matrix3, Quaternion, UnitQuaternion, Vector3};
 
 /// Scaled penetration below zero that still counts as the edge of a contact: the located end sees the force from
 /// inside (Kelvin–Voigt's jump), as in the one-contact models.
@@ -64,7 +75,10 @@ impl Units {
 pub struct ActiveContact {
     /// The index of its record (the contacts of the run, in order of first touch).
     pub record: usize,
+    /// Its bodies (the normal points from `pair[0]` to `pair[1]`).
     pub pair: [usize; 2],
+    /// Its two sites, one of each body (the bodies themselves in a world of spheres).
+    pub sites: [usize; 2],
     pub meeting: Meeting,
     pub law: ContactLaw,
     /// Whether it ends where its continued force falls through zero (a `separation = "force"` law that can pull).
@@ -106,10 +120,60 @@ pub struct ContactState {
     pub distance: f64,
 }
 
+/// A member whose orientation is integrated (a rigid body), as the segment began (SI).
+#[derive(Debug, Clone, Copy)]
+struct Turning {
+    /// Its body.
+    body: usize,
+    /// Its reach ρ, m: the farthest of its spheres from its origin (at least the largest radius): the scale of its
+    /// rotation and angular momentum states.
+    reach: f64,
+    /// Its inverse inertia about its origin, in scene axes as the segment began, 1/(kg m²).
+    inverse_inertia: Matrix3<f64>,
+    /// Its angular momentum about its origin when the segment began, kg m²/s.
+    momentum: Vector3<f64>,
+    /// Its pivot, if it turns about one (m), and the arm from the pivot to its mass centre as the segment began (m).
+    pivot: Option<Vector3<f64>>,
+    centre_arm: Vector3<f64>,
+}
+
+/// A turning member's motion at one state (SI).
+#[derive(Debug, Clone, Copy)]
+struct Turn {
+    /// The rotation since the segment began, its raw quaternion parts (w, v) and |q|².
+    rotation: UnitQuaternion<f64>,
+    scalar: f64,
+    vector: Vector3<f64>,
+    size: f64,
+    /// Angular velocity, rad/s; angular momentum about the origin, kg m²/s; the inverse inertia now, 1/(kg m²).
+    spin: Vector3<f64>,
+    momentum: Vector3<f64>,
+    inverse_inertia: Matrix3<f64>,
+}
+
+impl Turn {
+    /// (R - 1) a for an arm `a` as the segment began: the turn's displacement of a point of the body, without the
+    /// cancellation of R a - a.
+    fn turned(&self, a: &Vector3<f64>) -> Vector3<f64> {
+        let across = self.vector.cross(a);
+        (across * (2.0 * self.scalar) + self.vector.cross(&across) * 2.0) / self.size
+    }
+}
+
 /// The bodies and contacts of one segment of an island, with what the scaled state means.
 #[derive(Debug)]
 pub struct Island<'a> {
     scene: &'a WorldScene,
+    sites: &'a Sites,
+    /// Each site's centre when the segment began (scene-indexed), m.
+    site_start: Vec<Vector3<f64>>,
+    /// Each site's arm from its body's mass centre when the segment began, m (zero for a site at its centre).
+    site_arms: Vec<Vector3<f64>>,
+    /// For each member, its place among the turning members (`None`: a sphere, whose orientation nobody reads).
+    turning_slot: Vec<Option<usize>>,
+    turning: Vec<Turning>,
+    /// Where the turning members' states (7 each) begin.
+    rigid_base: usize,
     /// Every body's position and velocity when the segment began (scene-indexed), SI.
     start: &'a [Kinematic],
     /// Every body's acceleration in free flight (scene-indexed), m/s²: gravity for a body of finite mass, none for an
@@ -146,11 +210,14 @@ pub struct Island<'a> {
 
 impl<'a> Island<'a> {
     /// The segment of `contacts` (their bodies become the members) from the bodies' states `start`, in `units`.
+    /// `flyers` are rigid bodies that turn in flight: members without a contact, whose gaps the segment watches.
     pub fn new(
         scene: &'a WorldScene,
+        sites: &'a Sites,
         start: &'a [Kinematic],
         flight: &'a [Vector3<f64>],
         contacts: Vec<ActiveContact>,
+        flyers: &[usize],
         units: Units,
     ) -> Self {
         let mut slots = vec![None; scene.bodies.len()];
@@ -161,6 +228,12 @@ impl<'a> Island<'a> {
                     slots[k] = Some(members.len());
                     members.push(k);
                 }
+            }
+        }
+        for &k in flyers {
+            if slots[k].is_none() && !scene.bodies[k].is_immovable() {
+                slots[k] = Some(members.len());
+                members.push(k);
             }
         }
         let dissipation_units =
@@ -200,9 +273,59 @@ impl<'a> Island<'a> {
             .collect();
         let spin_base = clock + 1;
         let tangential_base = spin_base + if frictional { 3 * members.len() } else { 0 };
-        let size = tangential_base + if frictional { 4 * contacts.len() } else { 0 };
+        let rigid_base = tangential_base + if frictional { 4 * contacts.len() } else { 0 };
+        let (site_start, site_arms): (Vec<Vector3<f64>>, Vec<Vector3<f64>>) = if sites.any_rigid {
+            (0..sites.len())
+                .map(|s| {
+                    let state = &start[sites.body(s)];
+                    (sites.centre(s, state), sites.lever(s, state))
+                })
+                .unzip()
+        } else {
+            (start.iter().map(|state| state.position).collect(), vec![Vector3::zeros(); sites.len()])
+        };
+        let mut turning_slot = vec![None; members.len()];
+        let mut turning = Vec::new();
+        for (m, &k) in members.iter().enumerate() {
+            let body = &scene.bodies[k];
+            if !body.is_rigid() {
+                continue;
+            }
+            let state = &start[k];
+            let reach = sites
+                .of_body(k)
+                .map(|s| site_arms[s].norm().max(sites.list[s].radius))
+                .fold(0.0, f64::max)
+                .max(f64::MIN_POSITIVE);
+            let centre_arm = body.pivot.map_or(Vector3::zeros(), |pivot| state.position - pivot);
+            let rigid = crate::eccentric::RigidBody {
+                mass: body.mass,
+                inertia: turned_inertia(body, &state.orientation),
+                centre: state.position,
+                velocity: state.velocity,
+                spin: state.spin,
+                pivot: body.pivot,
+            };
+            let inertia = rigid.inertia_about_pivot();
+            turning_slot[m] = Some(turning.len());
+            turning.push(Turning {
+                body: k,
+                reach,
+                inverse_inertia: crate::eccentric::inverse_inertia(&inertia),
+                momentum: inertia * state.spin,
+                pivot: body.pivot,
+                centre_arm,
+            });
+        }
+        let size = rigid_base + 7 * turning.len();
         Island {
             scene,
+            sites,
+            site_start,
+            site_arms,
+            turning_slot,
+            turning,
+            rigid_base,
             start,
             flight,
             slots,
@@ -255,7 +378,112 @@ impl<'a> Island<'a> {
                 y[at + 3] = contact.tangential_work / (u.energy * self.friction_units[c]);
             }
         }
+        for r in 0..self.turning.len() {
+            // No turn yet: the quaternion's scalar part is 1.
+            y[self.rigid_base + 7 * r + 3] = 1.0;
+        }
         y
+    }
+
+    /// Turning member `r`'s motion at state `y`.
+    fn turn(&self, r: usize, y: &DVector<f64>) -> Turn {
+        let part = &self.turning[r];
+        let at = self.rigid_base + 7 * r;
+        let vector = y.fixed_rows::<3>(at).into_owned() * (self.units.length / part.reach);
+        let scalar = y[at + 3];
+        let size = scalar * scalar + vector.norm_squared();
+        let rotation = UnitQuaternion::new_normalize(Quaternion::new(scalar, vector.x, vector.y, vector.z));
+        let change = y.fixed_rows::<3>(at + 4).into_owned() * (self.units.impulse * part.reach);
+        let momentum = part.momentum + change;
+        let matrix = rotation.to_rotation_matrix();
+        let inverse_inertia = matrix * part.inverse_inertia * matrix.transpose();
+        Turn { rotation, scalar, vector, size, spin: inverse_inertia * momentum, momentum, inverse_inertia }
+    }
+
+    /// Body `k`'s turn at `y`, if it is a turning member.
+    fn turn_of(&self, k: usize, y: &DVector<f64>) -> Option<Turn> {
+        let m = self.slots[k]?;
+        self.turning_slot[m].map(|r| self.turn(r, y))
+    }
+
+    /// Whether body `k` is a member whose orientation the island integrates.
+    pub fn turns(&self, k: usize) -> bool {
+        self.turning_of(k).is_some()
+    }
+
+    /// Body `k`'s turning part, if it is a turning member.
+    fn turning_of(&self, k: usize) -> Option<(usize, &Turning)> {
+        let r = self.turning_slot[self.slots[k]?]?;
+        Some((r, &self.turning[r]))
+    }
+
+    /// Body `k`'s orientation at `y` (its orientation when the segment began, for a body that does not turn in it).
+    pub fn orientation(&self, k: usize, y: &DVector<f64>) -> UnitQuaternion<f64> {
+        match self.turn_of(k, y) {
+            Some(turn) => {
+                UnitQuaternion::new_normalize(turn.rotation.into_inner() * self.start[k].orientation.into_inner())
+            }
+            None => self.start[k].orientation,
+        }
+    }
+
+    /// Body `k`'s angular momentum about its mass centre at `y`, kg m²/s (about its pivot for a pivoted body);
+    /// `None` for a body whose orientation is not integrated.
+    pub fn angular_momentum(&self, k: usize, y: &DVector<f64>) -> Option<Vector3<f64>> {
+        self.turn_of(k, y).map(|turn| turn.momentum)
+    }
+
+    /// Site `s`'s arm from its body's origin (its mass centre, or its pivot) at `y`, m, and its displacement since the
+    /// segment began, m.
+    fn site_arm(&self, s: usize, y: &DVector<f64>) -> (Vector3<f64>, Vector3<f64>) {
+        let k = self.sites.body(s);
+        let arm = self.site_arms[s];
+        match self.turning_of(k) {
+            Some((r, part)) => {
+                let turn = self.turn(r, y);
+                let from_origin = arm + part.centre_arm;
+                let turned = turn.turned(&from_origin);
+                let displacement = match part.pivot {
+                    Some(_) => turned,
+                    None => self.displacement(k, y) + turned,
+                };
+                (from_origin + turned, displacement)
+            }
+            None => (arm, self.displacement(k, y)),
+        }
+    }
+
+    /// Site `s`'s centre relative to site `p`'s (m): their relative position when the segment began plus the
+    /// difference of their small displacements.
+    fn site_relative_position(&self, p: usize, q: usize, y: &DVector<f64>) -> Vector3<f64> {
+        (self.site_start[q] - self.site_start[p]) + (self.site_arm(q, y).1 - self.site_arm(p, y).1)
+    }
+
+    /// Site `s`'s centre, m.
+    pub fn site_position(&self, s: usize, y: &DVector<f64>) -> Vector3<f64> {
+        self.site_start[s] + self.site_arm(s, y).1
+    }
+
+    /// The velocity (m/s) of the point of body `k` at `arm` (m) from its origin: v + ω × arm.
+    fn point_velocity(&self, k: usize, arm: &Vector3<f64>, y: &DVector<f64>) -> Vector3<f64> {
+        match self.turning_of(k) {
+            Some((r, part)) => {
+                let spin = self.turn(r, y).spin;
+                let origin = if part.pivot.is_some() { Vector3::zeros() } else { self.velocity(k, y) };
+                origin + spin.cross(arm)
+            }
+            None if *arm == Vector3::zeros() => self.velocity(k, y),
+            None => self.velocity(k, y) + self.spin(k, y).cross(arm),
+        }
+    }
+
+    /// Site `s`'s centre's velocity, m/s.
+    pub fn site_velocity(&self, s: usize, y: &DVector<f64>) -> Vector3<f64> {
+        let k = self.sites.body(s);
+        if self.turning_of(k).is_none() && self.site_arms[s] == Vector3::zeros() {
+            return self.velocity(k, y);
+        }
+        self.point_velocity(k, &self.site_arm(s, y).0, y)
     }
 
     /// Scaled time since the segment began.
@@ -270,6 +498,11 @@ impl<'a> Island<'a> {
 
     /// Body `k`'s displacement since the segment began, m.
     pub fn displacement(&self, k: usize, y: &DVector<f64>) -> Vector3<f64> {
+        if let Some((r, part)) = self.turning_of(k)
+            && part.pivot.is_some()
+        {
+            return self.turn(r, y).turned(&part.centre_arm);
+        }
         match self.slots[k] {
             Some(m) => y.fixed_rows::<3>(6 * m).into_owned() * self.units.length,
             None => self.start[k].displacement(y[self.clock] * self.units.time, &self.flight[k]),
@@ -278,6 +511,12 @@ impl<'a> Island<'a> {
 
     /// Body `k`'s velocity, m/s.
     pub fn velocity(&self, k: usize, y: &DVector<f64>) -> Vector3<f64> {
+        if let Some((r, part)) = self.turning_of(k)
+            && part.pivot.is_some()
+        {
+            let turn = self.turn(r, y);
+            return turn.spin.cross(&(part.centre_arm + turn.turned(&part.centre_arm)));
+        }
         match self.slots[k] {
             Some(m) => y.fixed_rows::<3>(6 * m + 3).into_owned() * self.units.speed,
             None => self.start[k].velocity + self.flight[k] * (y[self.clock] * self.units.time),
@@ -296,6 +535,9 @@ impl<'a> Island<'a> {
 
     /// Body `k`'s angular velocity, rad/s.
     pub fn spin(&self, k: usize, y: &DVector<f64>) -> Vector3<f64> {
+        if let Some(turn) = self.turn_of(k, y) {
+            return turn.spin;
+        }
         match self.slots[k] {
             Some(m) if self.frictional => {
                 y.fixed_rows::<3>(self.spin_base + 3 * m).into_owned()
@@ -328,7 +570,12 @@ impl<'a> Island<'a> {
         } else {
             Vector3::zeros()
         };
-        let relative = -w + self.scaled_spin(i, y).cross(&arms[0]) - self.scaled_spin(j, y).cross(&arms[1]);
+        let relative = if self.turns_at(c) {
+            let levers = self.levers(c, &arms, y);
+            (self.point_velocity(i, &levers[0], y) - self.point_velocity(j, &levers[1], y)) / u.speed
+        } else {
+            -w + self.scaled_spin(i, y).cross(&arms[0]) - self.scaled_spin(j, y).cross(&arms[1])
+        };
         Kinematics {
             normal: n,
             penetration: state.penetration / u.length,
@@ -337,6 +584,26 @@ impl<'a> Island<'a> {
             slip: relative - n * relative.dot(&n),
             normal_rate,
         }
+    }
+
+    /// Whether contact `c` has a side whose contact point is not a sphere's at its centre: a turning member, or a site
+    /// off its body's centre. Its kinematics then read the points' velocities as v + ω × r from the body's origin.
+    fn turns_at(&self, c: usize) -> bool {
+        let contact = &self.contacts[c];
+        (0..2).any(|side| {
+            self.site_arms[contact.sites[side]] != Vector3::zeros() || self.turning_of(contact.pair[side]).is_some()
+        })
+    }
+
+    /// Contact `c`'s contact point's arm from each body's origin (mass centre or pivot), m: its site's arm, and the
+    /// contact's `arms` (over the site's radius: from the sphere's centre to the contact point) times the radius.
+    fn levers(&self, c: usize, arms: &[Vector3<f64>; 2], y: &DVector<f64>) -> [Vector3<f64>; 2] {
+        let contact = &self.contacts[c];
+        [0, 1].map(|side| {
+            let s = contact.sites[side];
+            let (arm, _) = self.site_arm(s, y);
+            if arms[side] == Vector3::zeros() { arm } else { arm + arms[side] * self.sites.list[s].radius }
+        })
     }
 
     /// The component of contact `c`'s slip along its direction at first touch, in V.
@@ -425,6 +692,10 @@ impl<'a> Island<'a> {
     /// their common normal when all its active contacts share one normal's line (a ball on a floor spinning about the
     /// vertical: point contacts carry no torsion), none otherwise.
     pub fn torsion(&self, k: usize, y: &DVector<f64>) -> Vector3<f64> {
+        if self.turning_of(k).is_some() {
+            // A rigid body rests without turning: its points' contacts hold every spin.
+            return Vector3::zeros();
+        }
         let spin = self.spin(k, y);
         let Some(m) = self.slots[k] else { return spin };
         let normals: Vec<Vector3<f64>> = self.touching[m].iter().map(|&c| self.contact_state(c, y).normal).collect();
@@ -452,16 +723,11 @@ impl<'a> Island<'a> {
         self.start[k].position + self.displacement(k, y)
     }
 
-    /// x_j - x_i, m: the relative position at the segment's start plus the difference of the displacements.
-    pub fn relative_position(&self, i: usize, j: usize, y: &DVector<f64>) -> Vector3<f64> {
-        (self.start[j].position - self.start[i].position) + (self.displacement(j, y) - self.displacement(i, y))
-    }
-
-    /// How bodies `i` and `j` (meeting as `meeting`) stand at state `y`.
-    pub fn pair_state(&self, i: usize, j: usize, meeting: &Meeting, y: &DVector<f64>) -> ContactState {
-        let relative = self.relative_position(i, j, y);
+    /// How sites `p` and `q` (meeting as `meeting`) stand at state `y`.
+    pub fn site_state(&self, p: usize, q: usize, meeting: &Meeting, y: &DVector<f64>) -> ContactState {
+        let relative = self.site_relative_position(p, q, y);
         let (penetration, normal) = meeting.penetration(&relative);
-        let relative_velocity = self.velocity(j, y) - self.velocity(i, y);
+        let relative_velocity = self.site_velocity(q, y) - self.site_velocity(p, y);
         let distance = match meeting {
             Meeting::Spheres { .. } => relative.norm(),
             Meeting::Face { .. } => f64::INFINITY,
@@ -472,7 +738,7 @@ impl<'a> Island<'a> {
     /// Contact `c`'s kinematics at state `y`.
     pub fn contact_state(&self, c: usize, y: &DVector<f64>) -> ContactState {
         let contact = &self.contacts[c];
-        self.pair_state(contact.pair[0], contact.pair[1], &contact.meeting, y)
+        self.site_state(contact.sites[0], contact.sites[1], &contact.meeting, y)
     }
 
     /// Contact `c`'s normal force split into its elastic and dissipative parts, N, at its kinematics `state` (of the
@@ -502,6 +768,15 @@ impl<'a> Island<'a> {
     pub fn acceleration_of(&self, k: usize, y: &DVector<f64>) -> Vector3<f64> {
         let body = &self.scene.bodies[k];
         let Some(m) = self.slots[k] else { return self.flight[k] };
+        if let Some((r, part)) = self.turning_of(k)
+            && part.pivot.is_some()
+        {
+            // The mass centre of a pivoted body moves on a sphere about the pivot.
+            let turn = self.turn(r, y);
+            let arm = part.centre_arm + turn.turned(&part.centre_arm);
+            let alpha = self.angular_acceleration(r, &turn, y);
+            return alpha.cross(&arm) + turn.spin.cross(&turn.spin.cross(&arm));
+        }
         let mut a = self.scene.world.gravity;
         for &c in &self.touching[m] {
             let state = self.contact_state(c, y);
@@ -522,8 +797,8 @@ impl<'a> Island<'a> {
     pub fn force_rate(&self, c: usize, y: &DVector<f64>) -> f64 {
         let state = self.contact_state(c, y);
         let contact = &self.contacts[c];
-        let [i, j] = contact.pair;
-        let relative_acceleration = self.acceleration_of(j, y) - self.acceleration_of(i, y);
+        let [p, q] = contact.sites;
+        let relative_acceleration = self.site_acceleration(q, y) - self.site_acceleration(p, y);
         let u = &state.relative_velocity;
         let turning = if state.distance.is_finite() {
             (u - state.normal * state.normal.dot(u)) / state.distance
@@ -538,6 +813,51 @@ impl<'a> Island<'a> {
             contact.law.force_gradient(d, state.rate)
         };
         by_penetration * state.rate + by_rate * second
+    }
+
+    /// The torque (N m) on turning member `r` about its origin at `y`: its contacts' normal forces at its spheres'
+    /// centres and their tangential forces at the contact points, and, for a pivoted body, gravity at its mass centre.
+    fn torque(&self, r: usize, y: &DVector<f64>) -> Vector3<f64> {
+        let part = &self.turning[r];
+        let k = part.body;
+        let m = self.slots[k].expect("a turning part is a member");
+        let mut torque = Vector3::zeros();
+        if part.pivot.is_some() {
+            let arm = part.centre_arm + self.turn(r, y).turned(&part.centre_arm);
+            torque += arm.cross(&(self.scene.world.gravity * self.scene.bodies[k].mass));
+        }
+        for &c in &self.touching[m] {
+            let contact = &self.contacts[c];
+            let side = if contact.pair[0] == k { 0 } else { 1 };
+            let sign = if side == 1 { 1.0 } else { -1.0 };
+            let state = self.contact_state(c, y);
+            let (elastic, dissipative) = self.force(c, &state, y);
+            let (lever, _) = self.site_arm(contact.sites[side], y);
+            torque += lever.cross(&(state.normal * ((elastic + dissipative) * sign)));
+            if let Some((kinematics, tangential)) =
+                self.tangential(c, &state, (elastic + dissipative) / self.units.force, 0.0, y)
+            {
+                let levers = self.levers(c, &kinematics.arms, y);
+                torque += levers[side].cross(&(tangential.force * (-sign * self.units.force)));
+            }
+        }
+        torque
+    }
+
+    /// Turning member `r`'s angular acceleration (rad/s²) at `y`, its motion `turn`: I⁻¹ (τ - ω × L), Euler's
+    /// equations in the scene's frame.
+    fn angular_acceleration(&self, r: usize, turn: &Turn, y: &DVector<f64>) -> Vector3<f64> {
+        turn.inverse_inertia * (self.torque(r, y) - turn.spin.cross(&turn.momentum))
+    }
+
+    /// Site `s`'s centre's acceleration at `y`, m/s²: its body's, and for a turning member α × r + ω × (ω × r).
+    fn site_acceleration(&self, s: usize, y: &DVector<f64>) -> Vector3<f64> {
+        let k = self.sites.body(s);
+        let Some((r, part)) = self.turning_of(k) else { return self.acceleration_of(k, y) };
+        let turn = self.turn(r, y);
+        let (arm, _) = self.site_arm(s, y);
+        let origin = if part.pivot.is_some() { Vector3::zeros() } else { self.acceleration_of(k, y) };
+        origin + self.angular_acceleration(r, &turn, y).cross(&arm) + turn.spin.cross(&turn.spin.cross(&arm))
     }
 
     /// The function whose fall through zero ends contact `c`: its penetration (m), or — ended by its force — the law's
@@ -624,6 +944,23 @@ impl<'a> Island<'a> {
                 0.0
             };
             energy += 0.5 * masses[g] * v.norm_squared() + potential;
+            if let Some((r, _)) = self.turning_of(self.members[m]) {
+                // A rigid body rests when it neither turns nor is turned: its rotation's energy, and its angular
+                // acceleration's as the translation's above.
+                let turn = self.turn(r, y);
+                let alpha = self.angular_acceleration(r, &turn, y);
+                let inertia = turn.inverse_inertia.try_inverse().unwrap_or_else(Matrix3::zeros);
+                let turned = 0.5 * alpha.dot(&(inertia * alpha));
+                let potential = if omega2 > 0.0 {
+                    turned / omega2
+                } else if turned > 0.0 {
+                    f64::INFINITY
+                } else {
+                    0.0
+                };
+                energy += 0.5 * turn.spin.dot(&turn.momentum) + potential;
+                continue;
+            }
             if held && self.frictional {
                 // A body an immovable one holds is at rest only when it no longer turns either — but for the spin no
                 // friction can change (about the normal of a point contact).
@@ -671,8 +1008,16 @@ impl ModelOf<Dyn> for Island<'_> {
             dy.fixed_rows_mut::<3>(6 * m).copy_from(&w);
             dy.fixed_rows_mut::<3>(6 * m + 3).copy_from(&self.gravity);
         }
-        // Spins change and springs load only through friction (added below).
+        // Spins change and springs load only through friction (added below); rotations and angular momenta at the end.
         dy.rows_mut(self.spin_base, self.size - self.spin_base).fill(0.0);
+        let turns: Vec<Turn> = (0..self.turning.len()).map(|r| self.turn(r, y)).collect();
+        for part in &self.turning {
+            if part.pivot.is_some() {
+                // A pivoted body's mass centre follows its rotation: its translation's states rest.
+                let m = self.slots[part.body].expect("a turning part is a member");
+                dy.fixed_rows_mut::<6>(6 * m).fill(0.0);
+            }
+        }
         let mut immovable_power = 0.0;
         for c in 0..self.contacts.len() {
             let state = self.contact_state(c, y);
@@ -681,9 +1026,20 @@ impl ModelOf<Dyn> for Island<'_> {
             let rate = state.rate / u.speed;
             let on_j = state.normal * force;
             let [i, j] = self.contacts[c].pair;
-            for (k, sign) in [(i, -1.0), (j, 1.0)] {
+            for (side, k, sign) in [(0, i, -1.0), (1, j, 1.0)] {
                 match self.slots[k] {
                     Some(m) => {
+                        if let Some(r) = self.turning_slot[m] {
+                            // The normal force acts along the line of the spheres' centres: its moment about the
+                            // origin has the arm to the sphere's centre.
+                            let part = &self.turning[r];
+                            let (lever, _) = self.site_arm(self.contacts[c].sites[side], y);
+                            let mut dh = dy.fixed_rows_mut::<3>(self.rigid_base + 7 * r + 4);
+                            dh += (lever / part.reach).cross(&(on_j * sign));
+                            if part.pivot.is_some() {
+                                continue;
+                            }
+                        }
                         let share = u.mass / self.scene.bodies[k].mass;
                         let mut dw = dy.fixed_rows_mut::<3>(6 * m + 3);
                         dw += on_j * (sign * share);
@@ -708,9 +1064,22 @@ impl ModelOf<Dyn> for Island<'_> {
             let force_rate = if sliding { self.force_rate(c, y) * u.time / u.force } else { 0.0 };
             let (kinematics, tangential) =
                 self.tangential(c, &state, force, force_rate, y).expect("a frictional contact");
-            for (k, sign, arm) in [(i, 1.0, kinematics.arms[0]), (j, -1.0, kinematics.arms[1])] {
+            let levers = if self.turns_at(c) { Some(self.levers(c, &kinematics.arms, y)) } else { None };
+            for (side, k, sign, arm) in [(0, i, 1.0, kinematics.arms[0]), (1, j, -1.0, kinematics.arms[1])] {
                 let on_k = tangential.force * sign;
                 match self.slots[k] {
+                    Some(m) if self.turning_slot[m].is_some() => {
+                        let r = self.turning_slot[m].expect("a turning member");
+                        let part = &self.turning[r];
+                        let lever = levers.expect("a turning member's contact has levers")[side];
+                        let mut dh = dy.fixed_rows_mut::<3>(self.rigid_base + 7 * r + 4);
+                        dh += (lever / part.reach).cross(&on_k);
+                        if part.pivot.is_none() {
+                            let share = u.mass / self.scene.bodies[k].mass;
+                            let mut dw = dy.fixed_rows_mut::<3>(6 * m + 3);
+                            dw += on_k * share;
+                        }
+                    }
                     Some(m) => {
                         let share = u.mass / self.scene.bodies[k].mass;
                         let mut dw = dy.fixed_rows_mut::<3>(6 * m + 3);
@@ -730,7 +1099,29 @@ impl ModelOf<Dyn> for Island<'_> {
             dy.fixed_rows_mut::<3>(at).copy_from(&tangential.spring_rate);
             dy[at + 3] = tangential.force.dot(&kinematics.slip) / self.friction_units[c];
         }
+        for (r, (part, turn)) in self.turning.iter().zip(&turns).enumerate() {
+            let at = self.rigid_base + 7 * r;
+            // q' = ½ (0, ω) ⊗ q, in the time unit T, the vector part times ρ/L.
+            let spin = turn.spin * u.time;
+            let vector = (spin * turn.scalar + spin.cross(&turn.vector)) * (0.5 * part.reach / u.length);
+            dy.fixed_rows_mut::<3>(at).copy_from(&vector);
+            dy[at + 3] = -0.5 * spin.dot(&turn.vector);
+            if part.pivot.is_some() {
+                // Gravity's moment about the pivot, at the mass centre.
+                let arm = part.centre_arm + turn.turned(&part.centre_arm);
+                let weight = self.scene.world.gravity * (self.scene.bodies[part.body].mass / u.force);
+                let mut dh = dy.fixed_rows_mut::<3>(at + 4);
+                dh += (arm / part.reach).cross(&weight);
+            }
+        }
         dy[self.immovable_work] = immovable_power;
         dy[self.clock] = 1.0;
     }
+}
+
+/// Body `body`'s inertia tensor about its mass centre turned by `orientation` from the scene axes at t = 0, kg m²:
+/// R I Rᵀ.
+pub fn turned_inertia(body: &crate::body::Body, orientation: &UnitQuaternion<f64>) -> Matrix3<f64> {
+    let matrix = orientation.to_rotation_matrix();
+    matrix * body.inertia_matrix() * matrix.transpose()
 }

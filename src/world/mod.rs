@@ -14,5 +14,6 @@ pub mod flight;
 pub mod island;
 pub mod record;
 pub mod sequential;
+pub mod sites;
 
 pub use driver::WorldError;

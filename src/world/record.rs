@@ -3,7 +3,7 @@
 use super::flight::Kinematic;
 use crate::integrate::Counters;
 use crate::law::{ContactLaw, Separation};
-use nalgebra::Vector3;
+use nalgebra::{UnitQuaternion, Vector3};
 use std::collections::{BTreeMap, BTreeSet};
 use std::sync::atomic::{AtomicU64, Ordering};
 
@@ -12,6 +12,19 @@ use std::sync::atomic::{AtomicU64, Ordering};
 pub struct ContactRecord {
     /// Scene indices of the two bodies; the normal points from the first to the second.
     pub bodies: [usize; 2],
+    /// The sphere of each body that touches (0 for a body of one sphere), `None` for a flat body's face.
+    pub spheres: [Option<usize>; 2],
+    /// The contact point at first touch, m (scene coordinates): on the first body's sphere along the normal.
+    pub point: Vector3<f64>,
+    /// From each body's origin (its mass centre, or its pivot) to the contact point at first touch, m.
+    pub levers: [Vector3<f64>; 2],
+    /// Each body's orientation at first touch (from the scene axes at t = 0).
+    pub orientations_before: [UnitQuaternion<f64>; 2],
+    /// Each body's angular momentum about its origin at first touch, kg m²/s.
+    pub momenta_before: [Vector3<f64>; 2],
+    /// The pair's effective mass at the contact point along the normal at first touch, kg (a rigid body's at its
+    /// lever: docs/references.md#eccentric-impact).
+    pub effective_mass: f64,
     /// The law with its damping resolved at this contact.
     pub law: ContactLaw,
     pub separation: Separation,
@@ -110,6 +123,8 @@ pub struct Ending {
     pub velocities: [Vector3<f64>; 2],
     /// The two bodies' angular velocities at the end, rad/s.
     pub spins: [Vector3<f64>; 2],
+    /// The two bodies' angular momenta about their origins at the end, kg m²/s.
+    pub momenta: [Vector3<f64>; 2],
     /// ∫ Ft·slip dt over the contact, J (negative: taken from the motion; the spring's energy is released when the
     /// contact ends, so all of it is dissipated).
     pub tangential_work: f64,
