@@ -145,6 +145,9 @@ struct World<'a> {
     /// For two overlapping contacts [later, earlier]: the earlier one's impulse when the later began, N s (what it gave
     /// during their overlap is its impulse at the end of the overlap less this).
     overlap_marks: std::collections::HashMap<[usize; 2], f64>,
+    /// The deepest penetration (m) of each pair of sites' last yielding contact that its force ended while they still
+    /// overlapped: the dented surface a contact pressed again on that overlap reloads (docs/world.md#contacts-that-yield).
+    dents: std::collections::HashMap<[usize; 2], f64>,
     /// The pairs of sites that touched without their gap ever opening since the last segment began: their contact
     /// would begin pushed (for contacts taken at a segment's end).
     pressed: BTreeSet<[usize; 2]>,
@@ -198,6 +201,7 @@ impl<'a> World<'a> {
             units: None,
             first_speeds: Default::default(),
             overlap_marks: Default::default(),
+            dents: Default::default(),
             pressed: BTreeSet::new(),
             ended: 0,
             immovable_work: 0.0,
@@ -649,6 +653,16 @@ impl<'a> World<'a> {
         let law = resolve_law(spec, [a, b], effective_mass, map_speed).map_err(rename)?;
         check_law(spec, [a, b], &law, effective_mass, map_speed).map_err(rename)?;
         let friction = friction_of(spec, [a, b], effective_mass).map_err(rename)?;
+        // Pressed again on the overlap an earlier contact of the pair left when its force ended it (the gap never
+        // opened): a yielding law reloads the surface that contact dented, along its unloading curve from its deepest
+        // point — no force and no spring energy below its dent. (A contact that closes a gap, or any other law, starts
+        // from the overlap it begins on: an undented surface for a yielding law.)
+        let on_overlap = overlap > 2.0 * self.touching(p, q);
+        let dent = self.dents.remove(&[p.min(q), p.max(q)]);
+        let deepest = match dent {
+            Some(deepest) if on_overlap && law.yields() => deepest.max(overlap),
+            _ => overlap.max(0.0),
+        };
         let contact_units = Units::new(effective_mass, law.stiffness, law.exponent, map_speed);
         if self.units.is_none() {
             self.units = Some(contact_units);
@@ -682,7 +696,7 @@ impl<'a> World<'a> {
                 let probe = PROBE * contact_units.length;
                 // The force the contact begins with: the law's at the overlap it starts on (a contact pressed again on
                 // the overlap an earlier one left starts under a finite cap), at the approach rate.
-                let contact_force = law.force(overlap.max(0.0), approach);
+                let contact_force = law.split_force_after(overlap.max(0.0), approach, deepest).total();
                 sliding.initial_mode(slip, approach, probe, contact_force, law.force(probe, approach))
             }
             None => Mode::Stick,
@@ -715,7 +729,7 @@ impl<'a> World<'a> {
             friction: spec.friction,
             slip_rest: (friction.is_some() && slip_direction == Vector3::zeros()).then_some(self.time),
             switches: 0,
-            elastic_at_start: if overlap > 2.0 * self.touching(p, q) { law.elastic_energy(overlap) } else { 0.0 },
+            elastic_at_start: if on_overlap { law.elastic_energy_after(overlap, deepest) } else { 0.0 },
             max_compression: None,
             peak_force: None,
             end: None,
@@ -735,9 +749,9 @@ impl<'a> World<'a> {
             impulse: 0.0,
             work: 0.0,
             dissipated: 0.0,
-            // A contact pressed on an overlap has been loaded that deep (an undented surface otherwise: each contact
-            // of a yielding law starts from one).
-            deepest: overlap.max(0.0),
+            // A contact pressed on an overlap has been loaded at least that deep (an undented surface otherwise: each
+            // contact of a yielding law that closes a gap starts from one).
+            deepest,
             friction,
             mode,
             slip_direction,
@@ -1492,6 +1506,11 @@ impl<'a> World<'a> {
         let momenta = [self.angular_momentum(i), self.angular_momentum(j)];
         let record = &mut self.records[contact.record];
         let (penetration, _) = contact.meeting.penetration(&relative);
+        if contact.law.yields() && penetration > 0.0 {
+            // The dent a contact pressed again on this overlap reloads.
+            let [p, q] = contact.sites;
+            self.dents.insert([p.min(q), p.max(q)], contact.deepest.max(penetration));
+        }
         let elastic_left = if let Some(stored) = stored {
             stored
         } else if contact.on_force && penetration > 0.0 {
