@@ -19,7 +19,7 @@ use crate::integrate::{
     Counters, Crossing, Direction, Ending, Event, IntegrationError, Scheme, State, Stepper, Tolerances,
 };
 use crate::outcome::{FixedStepOutcome, Outcome, SETTLED, TIME_LIMIT, stiffness_causes};
-use crate::report::Report;
+use crate::report::{Report, Sections};
 use crate::report::accuracy::ReferenceDetail;
 use crate::scene::SetupError;
 use crate::scene::{DampingSpec, Method, Scene};
@@ -61,6 +61,8 @@ pub struct Options {
     /// times the speed, for `constant_e`. Off, every verdict is null (a sweep's row that writes no verdict column, a
     /// calibration's step).
     pub idealisation: bool,
+    /// Which parts of the report to fill (all by default; a sweep's row fills what its columns read).
+    pub sections: Sections,
 }
 
 /// Simulates the scene's impact with the full report; `recording` says whether (and how) to keep the contact
@@ -68,7 +70,13 @@ pub struct Options {
 pub fn simulate(scene: &Scene, recording: Recording) -> Result<Simulation, SimulationError> {
     simulate_with(
         scene,
-        Options { recording, reference: ReferenceDetail::Full, quantities: Quantities::ALL, idealisation: true },
+        Options {
+            recording,
+            reference: ReferenceDetail::Full,
+            quantities: Quantities::ALL,
+            idealisation: true,
+            sections: Sections::ALL,
+        },
     )
 }
 
@@ -107,7 +115,7 @@ pub fn simulate_prepared(
     // (The wall time is this impact's: the trial's two runs come after it.)
     let wall_time = clock.map_or(f64::NAN, |clock| clock.elapsed().as_secs_f64());
     let trial = options.idealisation.then(|| speed_trial(scene, setup));
-    let report = crate::report::build(scene, setup, &outcome, options.reference, wall_time, trial);
+    let report = crate::report::build(scene, setup, &outcome, options.reference, wall_time, trial, options.sections);
     Ok(Simulation { report, history })
 }
 
