@@ -1,5 +1,6 @@
-//! A sweep's row builds a light report: only the parts its columns read (`report::Sections`), on a typed scene copied
-//! without its names, checking only the groups of value rules its varied keys reach. Its CSV line must be byte for
+//! A sweep's row builds a light report: only the parts its columns read (`report::Sections`), on a worker's copy of
+//! the typed scene without its names (only the tables its keys set copied back from row to row), checking only the
+//! groups of value rules its varied keys reach. Its CSV line must be byte for
 //! byte the line of the same point run the long way: the point written into the scene's TOML, read back, checked by
 //! every rule, simulated with the whole report (every section filled), and its cells picked from that report. Here
 //! over random scenes (central and oblique, sphere on wall and two spheres, with and without friction), random laws,
@@ -10,7 +11,7 @@ use impact::impact::{Options, simulate_with};
 use impact::law::LawKind;
 use impact::report::Sections;
 use impact::scene::Scene;
-use impact::sweep::Sweep;
+use impact::sweep::{Scratch, Sweep};
 use impact::sweep::grid::{Axis, Grid, Spacing};
 use impact::sweep::table::{Cell, Columns, RESULT_COLUMNS, Row, Status, VERDICT_COLUMNS, line};
 use std::path::Path;
@@ -139,8 +140,12 @@ fn a_light_rows_line_is_the_full_reports_line_byte_for_byte() {
         if !chosen.is_empty() {
             sweep.select(Columns::parse(&chosen).unwrap());
         }
-        for index in 0..sweep.rows() {
-            let (light, long) = (sweep.evaluate(index), long_way(&sweep, index));
+        // One worker's copies of the scene, kept from row to row as a sweep's worker keeps them, the rows taken
+        // forwards and backwards (a row starts from what the previous one left).
+        let mut scratch = Scratch::default();
+        let forwards = 0..sweep.rows();
+        for index in forwards.clone().chain(forwards.rev()) {
+            let (light, long) = (sweep.evaluate_in(index, &mut scratch), long_way(&sweep, index));
             assert_eq!(line(&light), line(&long), "row {index} of {axes:?}, columns {chosen:?}\n{text}");
             rows += 1;
             errors += usize::from(matches!(light.status, Status::Error(_)));

@@ -88,7 +88,38 @@ pub struct Sweep {
 struct Base {
     scene: Scene,
     known: RuleGroups,
+    /// The tables the varied keys set (as groups of rules: a body, the contact, the solver).
+    reached: RuleGroups,
 }
+
+impl Base {
+    /// `copy` made this base's scene as a point starts from: a first copy whole; after a point, only the tables the
+    /// keys reach copied back. (The other tables are the base's, re-derived by [`Scene::resolve`], which gives the
+    /// same values however often it runs: it derives only from written values.)
+    fn restored<'a>(&self, copy: &'a mut Option<Scene>) -> &'a mut Scene {
+        match copy {
+            Some(scene) => {
+                for i in 0..2 {
+                    if self.reached.bodies[i] {
+                        scene.bodies[i].clone_from(&self.scene.bodies[i]);
+                    }
+                }
+                if self.reached.contact {
+                    scene.contact.clone_from(&self.scene.contact);
+                }
+                if self.reached.solver {
+                    scene.solver = self.scene.solver;
+                }
+                scene
+            }
+            None => copy.insert(self.scene.clone()),
+        }
+    }
+}
+
+/// A worker's copies of the sweep's base scenes ([`Sweep::evaluate_in`]), one a law, made at its first row.
+#[derive(Debug, Clone, Default)]
+pub struct Scratch(Vec<Option<Scene>>);
 
 /// The laws named in `--law` (scene spellings), checked.
 pub fn parse_laws(names: &[String]) -> Result<Vec<LawKind>, SweepError> {
@@ -255,17 +286,24 @@ impl Sweep {
 
     /// Runs row `index`: validates its scene and simulates it.
     pub fn evaluate(&self, index: usize) -> Row {
-        self.evaluate_by(index, true)
+        self.evaluate_in(index, &mut Scratch::default())
+    }
+
+    /// [`Sweep::evaluate`] on a worker's copies of the scene (`scratch`, kept from row to row): the same row, for a
+    /// copy of only the tables the varied keys reach.
+    pub fn evaluate_in(&self, index: usize, scratch: &mut Scratch) -> Row {
+        self.evaluate_by(index, Some(scratch))
     }
 
     /// Row `index` through the document: the point written into the scene's TOML and read back like a file. This
     /// is what a point means; [`Sweep::evaluate`] applies it to a typed scene instead, and must give the same row
     /// (the tests hold it to that).
     pub fn evaluate_written(&self, index: usize) -> Row {
-        self.evaluate_by(index, false)
+        self.evaluate_by(index, None)
     }
 
-    fn evaluate_by(&self, index: usize, typed: bool) -> Row {
+    /// Row `index` on the typed scene (with `scratch`) or through the document (without).
+    fn evaluate_by(&self, index: usize, scratch: Option<&mut Scratch>) -> Row {
         let (values, law) = self.point(index);
         let law = self.law_name(law);
         let (columns, options) = (&self.columns, self.options);
@@ -282,13 +320,16 @@ impl Sweep {
                 Err(error) => Err(error.to_string()),
             }
         };
-        let base = self.bases[index % self.law_count()].as_ref().filter(|_| typed);
-        let cells = match base {
-            Some(base) => {
-                let mut scene = base.scene.clone();
-                self.apply_point(&mut scene, base.known, &values).and_then(|setup| cells_of(&scene, &setup))
+        let law_index = index % self.law_count();
+        let cells = match (&self.bases[law_index], scratch) {
+            (Some(base), Some(scratch)) => {
+                if scratch.0.len() < self.bases.len() {
+                    scratch.0.resize(self.bases.len(), None);
+                }
+                let scene = base.restored(&mut scratch.0[law_index]);
+                self.apply_point(scene, base.known, &values).and_then(|setup| cells_of(scene, &setup))
             }
-            None => self.scene_text(index).and_then(|text| {
+            _ => self.scene_text(index).and_then(|text| {
                 let scene = Scene::parse(&text, &self.path).map_err(scene_message)?;
                 let setup = Setup::new(&scene).map_err(setup_message)?;
                 cells_of(&scene, &setup)
@@ -319,16 +360,22 @@ impl Sweep {
         // varied keys reach.
         let mut resolved = scene.clone();
         resolved.resolve();
-        let mut known = RuleGroups::passed_by(&resolved);
+        let passed = RuleGroups::passed_by(&resolved);
+        let mut reached = RuleGroups::NONE;
         for axis in &self.grid.axes {
-            let reached = axis.key.reaches();
+            let key = axis.key.reaches();
             for i in 0..2 {
-                known.bodies[i] &= !reached.bodies[i];
+                reached.bodies[i] |= key.bodies[i];
             }
-            known.contact &= !reached.contact;
-            known.solver &= !reached.solver;
+            reached.contact |= key.contact;
+            reached.solver |= key.solver;
         }
-        Some(Base { scene, known })
+        let known = RuleGroups {
+            bodies: [0, 1].map(|i| passed.bodies[i] && !reached.bodies[i]),
+            contact: passed.contact && !reached.contact,
+            solver: passed.solver && !reached.solver,
+        };
+        Some(Base { scene, known, reached })
     }
 
     /// A point applied to (a copy of) a law's typed scene and checked by the rules a scene file obeys: the same scene,
@@ -403,7 +450,9 @@ impl Sweep {
                 pool.install(|| {
                     chunk
                         .par_iter()
-                        .map(|&index| (!stop.load(Ordering::Relaxed)).then(|| shape(self.evaluate(index))))
+                        .map_init(Scratch::default, |scratch, &index| {
+                            (!stop.load(Ordering::Relaxed)).then(|| shape(self.evaluate_in(index, scratch)))
+                        })
                         .collect_into_vec(&mut rows)
                 });
                 if stop.load(Ordering::Relaxed) || rows.iter().any(Option::is_none) {
