@@ -20,7 +20,7 @@ pub mod table;
 pub mod world;
 
 use crate::history::Recording;
-use crate::impact::{Options, simulate_prepared};
+use crate::impact::{Options, simulate_prepared_read};
 use crate::law::LawKind;
 use crate::scene::SetupError;
 use crate::scene::{RuleGroups, Scene, SceneError};
@@ -308,17 +308,14 @@ impl Sweep {
         let law = self.law_name(law);
         let (columns, options) = (&self.columns, self.options);
         // The cells are taken from the report where it was built, and the scene and its setup stay where they were
-        // made (a report is 1.7 kB, a scene 0.7: moving them out through Results cost more than the cells).
+        // made (a report is 2.9 kB, a scene 1.1: moving them out through Results cost more than the cells).
         let cells_of = |scene: &Scene, setup: &Setup| {
             // (No column shows the run's wall time: not measured.)
-            match simulate_prepared(scene, setup, options, None) {
-                Ok(simulation) => {
-                    let report = &simulation.report;
-                    let status = if report.contact.separated { Status::Ok } else { Status::NotSeparated };
-                    Ok((status, columns.pick(report)))
-                }
-                Err(error) => Err(error.to_string()),
-            }
+            simulate_prepared_read(scene, setup, options, |report| {
+                let status = if report.contact.separated { Status::Ok } else { Status::NotSeparated };
+                (status, columns.pick(report))
+            })
+            .map_err(|error| error.to_string())
         };
         let law_index = index % self.law_count();
         let cells = match (&self.bases[law_index], scratch) {
