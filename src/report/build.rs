@@ -20,7 +20,7 @@ use nalgebra::Vector3;
 
 /// The report of one impact; with `trial` (the e of the same contact at 0.9 and 1.1 times the speed), its verdicts on
 /// the idealisation, read from the report's own numbers; `sections` says which parts to fill (the verdicts read the
-/// instantaneous impact: a trial fills it whatever `sections` says).
+/// instantaneous impact and the bodies: a trial fills them whatever `sections` says).
 pub fn build(
     scene: &Scene,
     setup: &Setup,
@@ -220,7 +220,7 @@ pub fn build(
             separated: done,
             permanent_dent: (done && setup.law.yields()).then_some(end.penetration.max(0.0)),
         },
-        bodies: [body(0, a), body(1, b)],
+        bodies: if sections.bodies || trial.is_some() { [body(0, a), body(1, b)] } else { Default::default() },
         energy: EnergyReport {
             kinetic_before,
             kinetic_after: when(kinetic(0, a) + kinetic(1, b)),
