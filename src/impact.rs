@@ -19,8 +19,8 @@ use crate::integrate::{
     Counters, Crossing, Direction, Ending, Event, IntegrationError, Scheme, State, Stepper, Tolerances,
 };
 use crate::outcome::{FixedStepOutcome, Outcome, SETTLED, TIME_LIMIT, stiffness_causes};
-use crate::report::{Report, Sections};
 use crate::report::accuracy::ReferenceDetail;
+use crate::report::{Report, Sections};
 use crate::scene::SetupError;
 use crate::scene::{DampingSpec, Method, Scene};
 use crate::setup::{Motion, Setup};

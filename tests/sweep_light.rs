@@ -11,9 +11,9 @@ use impact::impact::{Options, simulate_with};
 use impact::law::LawKind;
 use impact::report::Sections;
 use impact::scene::Scene;
-use impact::sweep::{Scratch, Sweep};
 use impact::sweep::grid::{Axis, Grid, Spacing};
 use impact::sweep::table::{Cell, Columns, RESULT_COLUMNS, Row, Status, VERDICT_COLUMNS, line};
+use impact::sweep::{Scratch, Sweep};
 use std::path::Path;
 
 /// xorshift64: the draws of this test, the same on every run.

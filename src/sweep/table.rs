@@ -18,8 +18,8 @@ use super::SweepError;
 use super::shard::Shard;
 use crate::fast::Quantities;
 use crate::idealisation::{Idealisation, Judgement};
-use crate::report::{Report, Sections};
 use crate::report::accuracy::ReferenceDetail;
+use crate::report::{Report, Sections};
 use crate::text::{MESSAGE_CHARS, cut};
 
 /// The report's scalar results, after the varied keys.
@@ -209,11 +209,7 @@ impl Columns {
     /// The parts of the report a row fills: no names (no column shows text of the scene's); the instantaneous
     /// impacts only for `max_velocity_difference`, the bodies only for the spins (the verdicts fill both in any case).
     pub fn sections(&self) -> Sections {
-        Sections {
-            names: false,
-            instantaneous: self.shows(&[INSTANTANEOUS_COLUMN]),
-            bodies: self.shows(&BODY_COLUMNS),
-        }
+        Sections { names: false, instantaneous: self.shows(&[INSTANTANEOUS_COLUMN]), bodies: self.shows(&BODY_COLUMNS) }
     }
 
     /// How much of the exact reference a row computes: the restitution if its column is written, else none.
