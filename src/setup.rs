@@ -260,6 +260,13 @@ impl Scene {
         self.check_rules()?;
         Setup::new(self)
     }
+
+    /// [`Scene::check`] without the groups of value rules in `known`, which the caller knows this scene passes
+    /// ([`Scene::check_rules_except`]): the same setup, or the same error.
+    pub fn check_except(&self, known: crate::scene::RuleGroups) -> Result<Setup, SetupError> {
+        self.check_rules_except(known)?;
+        Setup::new(self)
+    }
 }
 
 /// Reads and validates a scene file of either kind.

@@ -4,7 +4,7 @@
 use super::accuracy::{self, Measured, ReferenceDetail};
 use super::{
     BodyReport, ContactReport, EccentricReport, EnergyReport, InstantaneousReport, LawReport, ObliqueReport, Report,
-    RigidBodyReport, SolverReport, Vec3,
+    RigidBodyReport, Sections, SolverReport, Vec3,
 };
 use crate::body::Body;
 use crate::dynamics::Snapshot;
@@ -19,7 +19,8 @@ use crate::units::{apart, brief, short};
 use nalgebra::Vector3;
 
 /// The report of one impact; with `trial` (the e of the same contact at 0.9 and 1.1 times the speed), its verdicts on
-/// the idealisation, read from the report's own numbers.
+/// the idealisation, read from the report's own numbers; `sections` says which parts to fill (the verdicts read the
+/// instantaneous impact and the bodies: a trial fills them whatever `sections` says).
 pub fn build(
     scene: &Scene,
     setup: &Setup,
@@ -27,6 +28,7 @@ pub fn build(
     detail: ReferenceDetail,
     wall_time: f64,
     trial: Option<SpeedTrial>,
+    sections: Sections,
 ) -> Report {
     let [a, b] = &scene.bodies;
     let n = setup.normal;
@@ -82,8 +84,10 @@ pub fn build(
             instantaneous_report(&direct_impact(&scene.bodies, &n, setup.effective_mass, e), after.map(|(v, _)| v))
         }
     };
+    let instantaneous = sections.instantaneous || trial.is_some();
+    let name = |text: &String| if sections.names { text.clone() } else { String::new() };
     let body = |i: usize, body: &Body| BodyReport {
-        name: body.name.clone(),
+        name: name(&body.name),
         mass: body.mass,
         radius: body.radius,
         inertia: body.inertia,
@@ -181,7 +185,7 @@ pub fn build(
     let ratios = Ratios::of(done, deformation_impulse, restitution_impulse, compression_work, restitution_work);
     notes.extend(ratios.notes());
     let mut report = Report {
-        title: scene.title.clone(),
+        title: name(&scene.title),
         law: LawReport {
             name: setup.law.kind.name(),
             stiffness: setup.law.stiffness,
@@ -216,7 +220,7 @@ pub fn build(
             separated: done,
             permanent_dent: (done && setup.law.yields()).then_some(end.penetration.max(0.0)),
         },
-        bodies: [body(0, a), body(1, b)],
+        bodies: if sections.bodies || trial.is_some() { [body(0, a), body(1, b)] } else { Default::default() },
         energy: EnergyReport {
             kinetic_before,
             kinetic_after: when(kinetic(0, a) + kinetic(1, b)),
@@ -225,8 +229,8 @@ pub fn build(
             work_of_immovable_bodies: when(end.work_of_immovable_bodies),
         },
         oblique,
-        instantaneous: when(e_velocity).map(compare),
-        instantaneous_nominal: nominal.map(compare),
+        instantaneous: when(e_velocity).filter(|_| instantaneous).map(compare),
+        instantaneous_nominal: nominal.filter(|_| instantaneous).map(compare),
         reference,
         idealisation: Idealisation::default(),
         solver: SolverReport {

@@ -10,6 +10,33 @@ pub use build::build;
 use crate::idealisation::Idealisation;
 use serde::{Serialize, Serializer};
 
+/// The parts of a [`Report`] a run fills. A run's own report fills all (the default); a sweep's row fills only what its
+/// columns read ("a scene computes only what it asks for"): the parts left out are empty — no title and nameless
+/// bodies, no instantaneous impacts, empty body sections — and every number that is filled is the one the whole report holds, computed by
+/// the same code ([`build`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Sections {
+    /// The title and the bodies' names: text no column reads (three copies of strings a row).
+    pub names: bool,
+    /// The instantaneous impacts, with the simulated e and with the nominal one (`instantaneous`,
+    /// `instantaneous_nominal`): read by the `max_velocity_difference` column and the verdicts on the idealisation.
+    pub instantaneous: bool,
+    /// The bodies' sections (`bodies`; left out, each is empty: zeros and nulls): read by the spin columns and the
+    /// verdicts.
+    pub bodies: bool,
+}
+
+impl Sections {
+    /// Every part: a run's own report.
+    pub const ALL: Sections = Sections { names: true, instantaneous: true, bodies: true };
+}
+
+impl Default for Sections {
+    fn default() -> Sections {
+        Sections::ALL
+    }
+}
+
 /// A 3-vector as written in the report.
 pub type Vec3 = [f64; 3];
 
@@ -100,7 +127,7 @@ pub struct ContactReport {
     pub permanent_dent: Option<f64>,
 }
 
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, Default, PartialEq, Serialize)]
 pub struct BodyReport {
     pub name: String,
     /// kg, "inf" for immovable (an addition).

@@ -14,6 +14,7 @@ mod validate;
 pub mod world;
 
 pub use error::{SceneError, SetupError};
+pub use rules::RuleGroups;
 pub use validate::Read;
 pub use world::{DampingMap, PairSpec, Site, WorldScene, WorldSpec};
 
@@ -319,6 +320,12 @@ impl Scene {
     /// applies, on a scene already typed. The error names the key; it has no file or line.
     pub fn check_rules(&self) -> Result<(), SetupError> {
         rules::check(self)
+    }
+
+    /// [`Scene::check_rules`] without the groups of rules in `known` (a sweep's point: those its base scene passed
+    /// and its varied keys do not reach), with the same first error.
+    pub fn check_rules_except(&self, known: RuleGroups) -> Result<(), SetupError> {
+        rules::check_groups(self, known)
     }
 
     /// Reads two-body scene text: its form and every value rule, errors located; `path` names the source in errors

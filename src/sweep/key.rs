@@ -15,7 +15,7 @@
 //!   perpendicular to the normal when it has none). For a sphere on a wall at rest it is the angle of incidence.
 
 use super::SweepError;
-use crate::scene::{DampingSpec, Scene, StiffnessSpec, TangentialStiffnessSpec};
+use crate::scene::{DampingSpec, RuleGroups, Scene, StiffnessSpec, TangentialStiffnessSpec};
 use nalgebra::Vector3;
 use std::fmt;
 use toml::{Table, Value};
@@ -292,6 +292,20 @@ impl SceneKey {
         let turned: Vec<Value> = turned(normal, velocity, body, degrees)?.iter().map(|&c| Value::Float(c)).collect();
         table.insert("velocity".into(), Value::Array(turned));
         Ok(())
+    }
+
+    /// The groups of value rules ([`RuleGroups`]) whose table setting this key changes: its body's, the contact's or
+    /// the solver's.
+    pub fn reaches(&self) -> RuleGroups {
+        let mut groups = RuleGroups::NONE;
+        match (self.table, self.body) {
+            ("bodies", Some(i)) if i < 2 => groups.bodies[i] = true,
+            ("contact", _) => groups.contact = true,
+            ("solver", _) => groups.solver = true,
+            // (No other key is settable; were one added, it would reach everything until said otherwise.)
+            _ => groups = RuleGroups { bodies: [true; 2], contact: true, solver: true },
+        }
+        groups
     }
 
     /// Sets this key to `value` on a typed scene, with exactly the switching rules of [`SceneKey::set`] (a point of a

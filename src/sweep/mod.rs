@@ -20,10 +20,10 @@ pub mod table;
 pub mod world;
 
 use crate::history::Recording;
-use crate::impact::{Options, simulate_prepared};
+use crate::impact::{Options, simulate_prepared_read};
 use crate::law::LawKind;
 use crate::scene::SetupError;
-use crate::scene::{Scene, SceneError};
+use crate::scene::{RuleGroups, Scene, SceneError};
 use crate::setup::Setup;
 use crate::text::{MESSAGE_CHARS, cut};
 use grid::Grid;
@@ -73,7 +73,7 @@ pub struct Sweep {
     /// The laws, in `--law` order; empty to run the scene's own law.
     pub laws: Vec<LawKind>,
     /// For each law, the typed scene its points are applied to (see [`Sweep::base`]).
-    bases: Vec<Option<Scene>>,
+    bases: Vec<Option<Base>>,
     /// The result columns written (all unless [`Sweep::select`] chose some).
     columns: Columns,
     /// The scene's own law as its file writes it (the `law` column without `--law`).
@@ -81,6 +81,45 @@ pub struct Sweep {
     /// What a row's run computes: what [`Sweep::columns`] show (found once, not a row at a time).
     options: Options,
 }
+
+/// A law's typed scene, which its rows copy and set their point on, and the groups of value rules its points pass
+/// without checking.
+#[derive(Debug, Clone)]
+struct Base {
+    scene: Scene,
+    known: RuleGroups,
+    /// The tables the varied keys set (as groups of rules: a body, the contact, the solver).
+    reached: RuleGroups,
+}
+
+impl Base {
+    /// `copy` made this base's scene as a point starts from: a first copy whole; after a point, only the tables the
+    /// keys reach copied back. (The other tables are the base's, re-derived by [`Scene::resolve`], which gives the
+    /// same values however often it runs: it derives only from written values.)
+    fn restored<'a>(&self, copy: &'a mut Option<Scene>) -> &'a mut Scene {
+        match copy {
+            Some(scene) => {
+                for i in 0..2 {
+                    if self.reached.bodies[i] {
+                        scene.bodies[i].clone_from(&self.scene.bodies[i]);
+                    }
+                }
+                if self.reached.contact {
+                    scene.contact.clone_from(&self.scene.contact);
+                }
+                if self.reached.solver {
+                    scene.solver = self.scene.solver;
+                }
+                scene
+            }
+            None => copy.insert(self.scene.clone()),
+        }
+    }
+}
+
+/// A worker's copies of the sweep's base scenes ([`Sweep::evaluate_in`]), one a law, made at its first row.
+#[derive(Debug, Clone, Default)]
+pub struct Scratch(Vec<Option<Scene>>);
 
 /// The laws named in `--law` (scene spellings), checked.
 pub fn parse_laws(names: &[String]) -> Result<Vec<LawKind>, SweepError> {
@@ -183,6 +222,7 @@ impl Sweep {
             reference: columns.reference(),
             quantities: columns.quantities(),
             idealisation: columns.verdicts(),
+            sections: columns.sections(),
         }
     }
 
@@ -246,40 +286,47 @@ impl Sweep {
 
     /// Runs row `index`: validates its scene and simulates it.
     pub fn evaluate(&self, index: usize) -> Row {
-        self.evaluate_by(index, true)
+        self.evaluate_in(index, &mut Scratch::default())
+    }
+
+    /// [`Sweep::evaluate`] on a worker's copies of the scene (`scratch`, kept from row to row): the same row, for a
+    /// copy of only the tables the varied keys reach.
+    pub fn evaluate_in(&self, index: usize, scratch: &mut Scratch) -> Row {
+        self.evaluate_by(index, Some(scratch))
     }
 
     /// Row `index` through the document: the point written into the scene's TOML and read back like a file. This
     /// is what a point means; [`Sweep::evaluate`] applies it to a typed scene instead, and must give the same row
     /// (the tests hold it to that).
     pub fn evaluate_written(&self, index: usize) -> Row {
-        self.evaluate_by(index, false)
+        self.evaluate_by(index, None)
     }
 
-    fn evaluate_by(&self, index: usize, typed: bool) -> Row {
+    /// Row `index` on the typed scene (with `scratch`) or through the document (without).
+    fn evaluate_by(&self, index: usize, scratch: Option<&mut Scratch>) -> Row {
         let (values, law) = self.point(index);
         let law = self.law_name(law);
         let (columns, options) = (&self.columns, self.options);
         // The cells are taken from the report where it was built, and the scene and its setup stay where they were
-        // made (a report is 1.7 kB, a scene 0.7: moving them out through Results cost more than the cells).
+        // made (a report is 2.9 kB, a scene 1.1: moving them out through Results cost more than the cells).
         let cells_of = |scene: &Scene, setup: &Setup| {
             // (No column shows the run's wall time: not measured.)
-            match simulate_prepared(scene, setup, options, None) {
-                Ok(simulation) => {
-                    let report = &simulation.report;
-                    let status = if report.contact.separated { Status::Ok } else { Status::NotSeparated };
-                    Ok((status, columns.pick(report)))
-                }
-                Err(error) => Err(error.to_string()),
-            }
+            simulate_prepared_read(scene, setup, options, |report| {
+                let status = if report.contact.separated { Status::Ok } else { Status::NotSeparated };
+                (status, columns.pick(report))
+            })
+            .map_err(|error| error.to_string())
         };
-        let base = self.bases[index % self.law_count()].as_ref().filter(|_| typed);
-        let cells = match base {
-            Some(base) => {
-                let mut scene = base.clone();
-                self.apply_point(&mut scene, &values).and_then(|setup| cells_of(&scene, &setup))
+        let law_index = index % self.law_count();
+        let cells = match (&self.bases[law_index], scratch) {
+            (Some(base), Some(scratch)) => {
+                if scratch.0.len() < self.bases.len() {
+                    scratch.0.resize(self.bases.len(), None);
+                }
+                let scene = base.restored(&mut scratch.0[law_index]);
+                self.apply_point(scene, base.known, &values).and_then(|setup| cells_of(scene, &setup))
             }
-            None => self.scene_text(index).and_then(|text| {
+            _ => self.scene_text(index).and_then(|text| {
                 let scene = Scene::parse(&text, &self.path).map_err(scene_message)?;
                 let setup = Setup::new(&scene).map_err(setup_message)?;
                 cells_of(&scene, &setup)
@@ -291,24 +338,52 @@ impl Sweep {
 
     /// The typed scene a law's rows start from: the document with the law's defaults, converted once; `None` when it
     /// does not convert (the file leaves out something the points set, say), and the rows take the document path.
-    fn base(&self, law: usize) -> Option<Scene> {
+    fn base(&self, law: usize) -> Option<Base> {
         let mut document = self.document.clone();
         if let Some(&law) = self.laws.get(law) {
             let keys: Vec<_> = self.grid.axes.iter().map(|axis| axis.key.clone()).collect();
             laws::apply(&mut document, law, &keys).ok()?;
         }
         let text = toml::to_string(&document).ok()?;
-        Scene::convert(&text, &self.path).ok()
+        let mut scene = Scene::convert(&text, &self.path).ok()?;
+        // The text no row reads (a row's report has no names: `Columns::sections`; no rule reads them), so that
+        // copying the scene for a row allocates nothing.
+        scene.title = String::new();
+        for body in &mut scene.bodies {
+            body.name = String::new();
+        }
+        scene.output = Default::default();
+        // The groups of value rules every point passes without checking: those the base passes, less those the
+        // varied keys reach.
+        let mut resolved = scene.clone();
+        resolved.resolve();
+        let passed = RuleGroups::passed_by(&resolved);
+        let mut reached = RuleGroups::NONE;
+        for axis in &self.grid.axes {
+            let key = axis.key.reaches();
+            for i in 0..2 {
+                reached.bodies[i] |= key.bodies[i];
+            }
+            reached.contact |= key.contact;
+            reached.solver |= key.solver;
+        }
+        let known = RuleGroups {
+            bodies: [0, 1].map(|i| passed.bodies[i] && !reached.bodies[i]),
+            contact: passed.contact && !reached.contact,
+            solver: passed.solver && !reached.solver,
+        };
+        Some(Base { scene, known, reached })
     }
 
     /// A point applied to (a copy of) a law's typed scene and checked by the rules a scene file obeys: the same scene,
-    /// and the same error text, as writing the point into the document and reading it back. Returns its setup.
-    fn apply_point(&self, scene: &mut Scene, values: &[f64]) -> Result<Setup, String> {
+    /// and the same error text, as writing the point into the document and reading it back (the groups of rules in
+    /// `known` pass unchecked: the base passes them and the point does not reach them). Returns its setup.
+    fn apply_point(&self, scene: &mut Scene, known: RuleGroups, values: &[f64]) -> Result<Setup, String> {
         for (axis, &value) in self.grid.axes.iter().zip(values) {
             axis.key.apply(scene, value).map_err(|why| format!("{}: {why}", axis.key))?;
         }
         scene.resolve();
-        scene.check().map_err(setup_message)
+        scene.check_except(known).map_err(setup_message)
     }
 
     /// The global indices of the rows of `shard` (all rows without one), in increasing order.
@@ -346,13 +421,19 @@ impl Sweep {
         shape: impl Fn(Row) -> T + Sync,
         mut write: impl FnMut(T) -> Result<(), E> + Send,
     ) -> Result<(), E> {
-        let (send, receive) = std::sync::mpsc::sync_channel::<Vec<T>>(1);
+        let (send, receive) = std::sync::mpsc::sync_channel::<Vec<Option<T>>>(1);
+        // The writer hands each chunk's emptied vector back, so that the chunks reuse two or three buffers: a fresh
+        // one per chunk (100 kB of row handles, freed on the writer's thread) cost a page fault per chunk, 6 % of
+        // the e-alone sweep's time.
+        let (give_back, spare) = std::sync::mpsc::channel::<Vec<Option<T>>>();
         std::thread::scope(|scope| {
             let writer = scope.spawn(move || {
-                for rows in receive {
-                    for row in rows {
+                for mut rows in receive {
+                    for row in rows.drain(..).flatten() {
                         write(row)?;
                     }
+                    // (The computing side may have finished: the buffer is then dropped here.)
+                    let _ = give_back.send(rows);
                 }
                 Ok(())
             });
@@ -361,14 +442,19 @@ impl Sweep {
             while indices.peek().is_some() {
                 chunk.clear();
                 chunk.extend(indices.by_ref().take(CHUNK));
+                let mut rows = spare.try_recv().unwrap_or_else(|_| Vec::with_capacity(CHUNK));
                 // (A row is checked before it starts: a chunk of slow rows stops within one row's time.)
-                let rows: Option<Vec<T>> = pool.install(|| {
+                pool.install(|| {
                     chunk
                         .par_iter()
-                        .map(|&index| (!stop.load(Ordering::Relaxed)).then(|| shape(self.evaluate(index))))
-                        .collect()
+                        .map_init(Scratch::default, |scratch, &index| {
+                            (!stop.load(Ordering::Relaxed)).then(|| shape(self.evaluate_in(index, scratch)))
+                        })
+                        .collect_into_vec(&mut rows)
                 });
-                let Some(rows) = rows.filter(|_| !stop.load(Ordering::Relaxed)) else { break };
+                if stop.load(Ordering::Relaxed) || rows.iter().any(Option::is_none) {
+                    break;
+                }
                 done(rows.len());
                 // The writer has stopped on an error: it is returned below.
                 if send.send(rows).is_err() {

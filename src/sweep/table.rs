@@ -18,8 +18,8 @@ use super::SweepError;
 use super::shard::Shard;
 use crate::fast::Quantities;
 use crate::idealisation::{Idealisation, Judgement};
-use crate::report::Report;
 use crate::report::accuracy::ReferenceDetail;
+use crate::report::{Report, Sections};
 use crate::text::{MESSAGE_CHARS, cut};
 
 /// The report's scalar results, after the varied keys.
@@ -116,6 +116,10 @@ const TIME_COLUMNS: [&str; 5] =
 const PEAK_COLUMNS: [&str; 2] = ["max_force", "max_force_time"];
 /// The columns that show the dissipated energy.
 const DISSIPATION_COLUMNS: [&str; 1] = ["dissipated"];
+/// The columns read from the bodies' sections.
+const BODY_COLUMNS: [&str; 2] = ["spin_after_1", "spin_after_2"];
+/// The column read from the instantaneous impact.
+const INSTANTANEOUS_COLUMN: &str = "max_velocity_difference";
 /// The column that shows the exact reference.
 const REFERENCE_COLUMN: &str = "reference_restitution";
 
@@ -200,6 +204,12 @@ impl Columns {
             peak: self.shows(&PEAK_COLUMNS) || self.verdicts(),
             dissipation: self.shows(&DISSIPATION_COLUMNS),
         }
+    }
+
+    /// The parts of the report a row fills: no names (no column shows text of the scene's); the instantaneous
+    /// impacts only for `max_velocity_difference`, the bodies only for the spins (the verdicts fill both in any case).
+    pub fn sections(&self) -> Sections {
+        Sections { names: false, instantaneous: self.shows(&[INSTANTANEOUS_COLUMN]), bodies: self.shows(&BODY_COLUMNS) }
     }
 
     /// How much of the exact reference a row computes: the restitution if its column is written, else none.
