@@ -639,3 +639,26 @@ fn the_sequential_model_of_a_rods_chatter_is_the_planar_rods_impacts_in_turn() {
     let centre = vector(&model["velocity_after"][0]);
     assert!((centre[2] - (v - g * (end - now))).abs() < 1e-9, "v_z at the end {centre:?}");
 }
+
+#[test]
+fn constant_e_compares_a_rods_end_only_with_the_same_ends_other_contacts() {
+    // A rod's two ends meet the floor with different effective masses (M/(1 + 3 cos²θ) at each end's own angle), so
+    // the e of one end at one speed and of the other end at another says nothing of how one contact's e depends on
+    // speed: each contact's constant_e names only contacts of its own sphere (models/rod-chatter.toml: the ends
+    // alternate, so a comparison across ends would name one).
+    let text = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/models/rod-chatter.toml")).unwrap();
+    let report = run(&text);
+    let contacts = report["contacts"].as_array().expect("contacts");
+    let ends: Vec<&Value> = contacts.iter().map(|c| &c["spheres"]).collect();
+    assert!(ends.iter().any(|s| s[0] == 0) && ends.iter().any(|s| s[0] == 1), "both ends strike: {ends:?}");
+    let mut named = 0;
+    for (k, c) in contacts.iter().enumerate() {
+        let meaning = c["idealisation"]["constant_e"]["meaning"].as_str().unwrap_or("");
+        for word in meaning.split("in contact ").skip(1) {
+            let other: usize = word.split(|ch: char| !ch.is_ascii_digit()).next().unwrap().parse().unwrap();
+            assert_eq!(ends[other], ends[k], "contact {k} (spheres {}) is compared with contact {other}: {meaning}", ends[k]);
+            named += 1;
+        }
+    }
+    assert!(named >= 4, "the comparisons name other contacts: {named}");
+}

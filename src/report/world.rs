@@ -399,20 +399,32 @@ fn contact(record: &ContactRecord) -> WorldContact {
     }
 }
 
+/// Two bodies in order, each with the sphere of it that touches (None for a body of one sphere or a wall).
+type PairOfSpheres = ([usize; 2], [Option<usize>; 2]);
+
+/// The contact's pair of bodies and spheres, the same whichever body the record names first.
+fn pair_of_spheres(record: &crate::world::record::ContactRecord) -> PairOfSpheres {
+    let [i, j] = record.bodies;
+    let [a, b] = record.spheres;
+    if i <= j { ([i, j], [a, b]) } else { ([j, i], [b, a]) }
+}
+
 /// Each contact's verdicts on the idealisation: its own numbers (`contacts`, built from the records) and what the run
 /// measured around it — the flight to its bodies' next contact, gravity, the contacts overlapping it, the pair's
 /// contacts at other speeds. Arithmetic on the records, O(n log n) in the number of contacts: nothing runs again.
 fn judge_all(scene: &WorldScene, outcome: &WorldOutcome, contacts: &[WorldContact]) -> Vec<Idealisation> {
     // Each body's contacts, in order of first touch (the records' order).
     let mut of_body: Vec<Vec<usize>> = vec![Vec::new(); scene.bodies.len()];
-    // Each pair's contacts with an e, by approach speed: (speed, index, e).
-    let mut of_pair: std::collections::HashMap<[usize; 2], Vec<(f64, usize, f64)>> = Default::default();
+    // Each pair's contacts with an e, by approach speed: (speed, index, e). A pair is two bodies and, for rigid bodies
+    // of several spheres, the sphere of each that touches: a rod's two ends meet the floor with different effective
+    // masses, so their e at different speeds say nothing of one contact's dependence on speed.
+    let mut of_pair: std::collections::HashMap<PairOfSpheres, Vec<(f64, usize, f64)>> = Default::default();
     for (k, (record, c)) in outcome.contacts.iter().zip(contacts).enumerate() {
         let [i, j] = record.bodies;
         of_body[i].push(k);
         of_body[j].push(k);
         if let Some(e) = c.restitution_velocity_ratio.filter(|e| *e > 0.0) {
-            of_pair.entry([i.min(j), i.max(j)]).or_default().push((c.approach_speed, k, e));
+            of_pair.entry(pair_of_spheres(record)).or_default().push((c.approach_speed, k, e));
         }
     }
     for speeds in of_pair.values_mut() {
@@ -422,7 +434,7 @@ fn judge_all(scene: &WorldScene, outcome: &WorldOutcome, contacts: &[WorldContac
         .map(|k| {
             let [i, j] = outcome.contacts[k].bodies;
             let movable: Vec<usize> = [i, j].into_iter().filter(|&b| !scene.bodies[b].is_immovable()).collect();
-            let pair = of_pair.get(&[i.min(j), i.max(j)]).map_or(&[][..], |p| p.as_slice());
+            let pair = of_pair.get(&pair_of_spheres(&outcome.contacts[k])).map_or(&[][..], |p| p.as_slice());
             judge(scene, outcome, contacts, k, &movable, |b| &of_body[b], pair)
         })
         .collect()
