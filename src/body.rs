@@ -74,14 +74,21 @@ impl Body {
         };
     }
 
+    /// Whether a contact sphere of the body is off its mass centre (`contact_offset`, several `[[bodies.spheres]]`, or
+    /// one off the centre): the body is not the sphere it touches with.
+    pub fn is_off_centre(&self) -> bool {
+        self.contact_offset != Vector3::zeros()
+            || self.spheres.len() > 1
+            || self.spheres.iter().any(|s| s.offset != Vector3::zeros())
+    }
+
     /// Whether the body is a rigid body that a sphere's model does not describe: its contact sphere off its mass
     /// centre, a pivot, or an inertia that is not the same about every axis. Such a body runs through the rigid-body
     /// model (`dynamics::rigid`), whose contact point moves with the body's orientation.
     pub fn is_eccentric(&self) -> bool {
         let anisotropic =
             self.inertia_tensor.is_some_and(|t| (t - Matrix3::identity() * (t.trace() / 3.0)).norm() > 0.0);
-        let off_centre = self.spheres.len() > 1 || self.spheres.iter().any(|s| s.offset != Vector3::zeros());
-        self.contact_offset != Vector3::zeros() || self.pivot.is_some() || anisotropic || off_centre
+        self.is_off_centre() || self.pivot.is_some() || anisotropic
     }
 
     /// The body's contact spheres (offsets from the mass centre in scene axes at t = 0, m; radii, m): its

@@ -609,6 +609,12 @@ fn yielding_law(pressure: f64, speed: f64, measured: &Measured) -> Option<Verdic
 fn quasi_static(bodies: [&Body; 2], measured: &Measured) -> Option<Verdict> {
     let duration = measured.duration?;
     let transit = |body: &Body| {
+        // A body whose contact sphere is off its mass centre (a rod struck at its end, a clump) is not that sphere: its
+        // mass is not spread over the sphere's volume, and its size along the wave's path is not the sphere's
+        // diameter, so no transit can be formed from the scene (docs/idealisation.md).
+        if body.is_off_centre() {
+            return None;
+        }
         let young = body.young.filter(|e| e.is_finite())?;
         let volume = 4.0 / 3.0 * std::f64::consts::PI * body.radius.powi(3);
         let density = body.density.unwrap_or(body.mass / volume);

@@ -662,3 +662,26 @@ fn constant_e_compares_a_rods_end_only_with_the_same_ends_other_contacts() {
     }
     assert!(named >= 4, "the comparisons name other contacts: {named}");
 }
+
+#[test]
+fn a_clumps_verdicts_measure_the_sphere_that_touches_not_the_bounding_radius() {
+    // A rod of two 5 mm end spheres 0.2 m apart (bounding radius 105 mm) dropped flat on a floor: each end meets the
+    // floor as a 5 mm sphere, so `particles` compares a = sqrt(R* d_max), R* = 5 mm against a wall, with 5 mm (not
+    // 105 mm), and `instantaneous` the relative travel v t_c with 5 mm. A clump has no density and its length along
+    // a wave's path is not a sphere's diameter: `quasi_static` has no transit to form from the scene.
+    let text = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/models/rod-dropped-flat.toml")).unwrap();
+    let scene = world(&text);
+    let sphere = scene.bodies[0].spheres[0].radius;
+    assert_eq!(sphere, 0.005);
+    let report = run(&text);
+    for c in report["contacts"].as_array().expect("contacts") {
+        let verdicts = &c["idealisation"];
+        let particles = &verdicts["particles"];
+        assert_eq!(number(&particles["compared_with"]), sphere, "{particles}");
+        let a = (sphere * number(&c["max_penetration"])).sqrt();
+        assert!(relative(number(&particles["value"]), a) < 1e-12, "{particles} against a = {a:e}");
+        let instantaneous = &verdicts["instantaneous"];
+        assert_eq!(number(&instantaneous["compared_with"]), sphere, "{instantaneous}");
+        assert!(verdicts["quasi_static"].is_null(), "{}", verdicts["quasi_static"]);
+    }
+}

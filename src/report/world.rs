@@ -495,7 +495,19 @@ fn judge<'a>(
     let damping = |m: usize| outcome.contacts[m].law.damping;
     speeds.remapped = [speeds.slower, speeds.faster].iter().flatten().any(|s| damping(s.0) != record.law.damping);
     let around = Surroundings { flight, gravity: scene.world.gravity, held, others, whole, speeds };
-    idealisation::judge_in_world(bodies, &measured(scene, record, c), &around)
+    let [a, b] = [0, 1].map(|side| contact_body(bodies[side], record.spheres[side]));
+    idealisation::judge_in_world([&a, &b], &measured(scene, record, c), &around)
+}
+
+/// A body as one contact meets it: a clump of several spheres meets it with the touching sphere, so the lengths the
+/// verdicts compare with (R, R*, the contact radius) are that sphere's, not the clump's bounding radius. (A body of
+/// one sphere is that sphere already.)
+fn contact_body(body: &crate::body::Body, sphere: Option<usize>) -> crate::body::Body {
+    let mut contact = body.clone();
+    if let Some(touching) = sphere.and_then(|s| body.spheres.get(s)) {
+        contact.radius = touching.radius;
+    }
+    contact
 }
 
 /// What the verdicts read of one contact of a world: its report values, and the pair's kinetic energy at first touch.
