@@ -222,7 +222,8 @@ fn sequential(report: &WorldReport) -> Section {
             let k = movable[index];
             let name = &report.bodies[k].name;
             section.row(format!("  velocity after, {name}"), vector(&model.velocity_after[k], "m/s"));
-            if spinning {
+            // (The model can turn a body the simulation leaves unturned: a rod dropped flat, its ends taken in turn.)
+            if spinning || model.angular_velocity_after[k] != [0.0; 3] {
                 section.row(
                     format!("  angular velocity after, {name}"),
                     vector(&model.angular_velocity_after[k], "rad/s"),
