@@ -656,7 +656,11 @@ fn constant_e_compares_a_rods_end_only_with_the_same_ends_other_contacts() {
         let meaning = c["idealisation"]["constant_e"]["meaning"].as_str().unwrap_or("");
         for word in meaning.split("in contact ").skip(1) {
             let other: usize = word.split(|ch: char| !ch.is_ascii_digit()).next().unwrap().parse().unwrap();
-            assert_eq!(ends[other], ends[k], "contact {k} (spheres {}) is compared with contact {other}: {meaning}", ends[k]);
+            assert_eq!(
+                ends[other], ends[k],
+                "contact {k} (spheres {}) is compared with contact {other}: {meaning}",
+                ends[k]
+            );
             named += 1;
         }
     }
