@@ -359,6 +359,15 @@ fn between_flights(measured: &Measured, flight: f64) -> Option<Verdict> {
     })
 }
 
+/// A ratio of two impulses as words that lead into the one compared with: "0.56 times", "as much as" (a ratio that
+/// reads 1, where "1 times" or "1 of" would puzzle).
+fn times(ratio: f64) -> String {
+    match brief(ratio, "") {
+        one if one == "1" => "as much as".to_string(),
+        shown => format!("{shown} times"),
+    }
+}
+
 /// Gravity's impulse along the normal on the heavier movable body, m |g·n| t_c (where gravity presses the contact),
 /// plus the impulses of the other contacts on its bodies during it, against its own impulse.
 fn surrounded(bodies: [&Body; 2], measured: &Measured, around: &Surroundings) -> Option<Verdict> {
@@ -374,25 +383,25 @@ fn surrounded(bodies: [&Body; 2], measured: &Measured, around: &Surroundings) ->
         } else if !around.held {
             "gravity moves both free bodies alike and leaves their relative motion alone".to_string()
         } else {
-            format!("gravity along the normal ({}) gives {} of it", brief(along, "m/s²"), brief(gravity / impulse, ""))
+            format!("gravity along the normal ({}) gives {} it", brief(along, "m/s²"), times(gravity / impulse))
         };
         let contacts = if around.others.is_empty() {
             "no other contact acts on its bodies meanwhile".to_string()
         } else {
             let list: Vec<String> = around.others.iter().map(|(k, _)| k.to_string()).collect();
             format!(
-                "contact{} {} on the same bodies give{} {} of it {}",
+                "contact{} {} on the same bodies give{} {} it {}",
                 if list.len() > 1 { "s" } else { "" },
                 list.join(", "),
                 if list.len() > 1 { "" } else { "s" },
-                brief(others / impulse, ""),
+                times(others / impulse),
                 if around.whole { "(whole impulses: an upper bound)" } else { "during the overlap" }
             )
         };
         format!(
-            "other forces add {} of the contact impulse while it lasts: {pull}; {contacts} — the idealisation's \
+            "other forces add {} the contact impulse while it lasts: {pull}; {contacts} — the idealisation's \
              impact of two bodies alone, with one e, leaves them out",
-            brief(ratio, "")
+            times(ratio)
         )
     })
 }
@@ -513,9 +522,9 @@ fn isolated(bodies: [&Body; 2], measured: &Measured) -> Option<Verdict> {
     verdict(gravity, impulse, CORRECTION, ("m g t_c / contact impulse", "N s"), |ratio| {
         format!(
             "the scene has no gravity; standard gravity on the heavier body, pressed through the contact by a support \
-             or a wall, would add {} of the contact impulse and change the rebound by about as much (two bodies \
+             or a wall, would add {} the contact impulse and change the rebound by about as much (two bodies \
              falling freely together would not feel it)",
-            brief(ratio, "")
+            times(ratio)
         )
     })
 }

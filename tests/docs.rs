@@ -467,8 +467,8 @@ fn shell_commands() -> Vec<(String, String)> {
 }
 
 /// The command as a shell runs it with the built `impact` first on the PATH: `cargo run --release [-- ARGS]` is
-/// `impact [ARGS]`; the other cargo commands (`test`, `install`, `bench`) and pip's are not the program's and are left
-/// out.
+/// `impact [ARGS]`; the other cargo commands (`test`, `install`, `bench`), pip's and the virtual environment's
+/// (`python3 -m venv ... && pip install ./python`) are not the program's and are left out.
 fn as_program(command: &str) -> Option<String> {
     if let Some(args) = command.strip_prefix("cargo run --release --") {
         return Some(format!("impact{args}"));
@@ -478,7 +478,7 @@ fn as_program(command: &str) -> Option<String> {
         return Some(format!("impact{rest}"));
     }
     // (`pip install ./python` builds the Python package: .ci/run runs it, and python/tests its examples.)
-    if command.starts_with("cargo ") || command.starts_with("pip ") {
+    if command.starts_with("cargo ") || command.starts_with("pip ") || command.starts_with("python3 -m venv ") {
         return None;
     }
     assert!(

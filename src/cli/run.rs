@@ -17,17 +17,19 @@ pub struct RunArgs {
     /// Print the JSON report on stdout instead of the readable one.
     #[arg(long)]
     pub json: bool,
-    /// Write the contact history as CSV to FILE (overrides the scene's [output] series); `-` writes it to stdout
-    /// (the readable report then goes to stderr).
+    /// Write the series as CSV to FILE (overrides the scene's [output] series): one impact's contact history; a
+    /// world's every body's position and velocity and every active contact's force, over the whole run
+    /// (docs/report.md). `-` writes it to stdout (the readable report then goes to stderr).
     #[arg(long, value_name = "FILE")]
     pub csv: Option<PathBuf>,
-    /// Resample the history at N instants evenly spaced over the contact (on the integrator's solution) instead
-    /// of writing the integrator's own steps and events; at most 1000000.
+    /// Resample one impact's history at N instants evenly spaced over the contact (on the integrator's solution)
+    /// instead of writing the integrator's own steps and events; at most 1000000. Not for a world.
     #[arg(long, value_name = "N")]
     pub samples: Option<u64>,
-    /// A folder, not a file name: write the three figures (force-time, force-penetration, velocities), each as PNG
-    /// and SVG, into folder DIR, creating it if needed (overrides the scene's [output] plots). A name ending in .png
-    /// or .svg is refused; `impact sweep --plot` is the one that takes a single figure file.
+    /// A folder, not a file name: write the figures, each as PNG and SVG, into folder DIR, creating it if needed
+    /// (overrides the scene's [output] plots): one impact's force_time, force_penetration and velocities; a world's
+    /// contact_forces, velocities and, under gravity, heights. A name ending in .png or .svg is refused; `impact
+    /// sweep --plot` is the one that takes a single figure file.
     #[arg(long, value_name = "DIR")]
     pub plot: Option<PathBuf>,
 }

@@ -82,7 +82,7 @@ fn world(report: &WorldReport) -> Section {
     section.row("gravity", vector(&w.gravity, "m/s²"));
     let why = match w.end_reason {
         "end_time" => "its end time",
-        "max_contacts" => "its number of contacts (max_contacts)",
+        "max_contacts" => "max_contacts reached",
         "no_more_contacts" => "no two bodies can touch any more",
         "at_rest" => "the bodies came to rest",
         "step_budget" => "stopped before its end: its step budget, or an integration that could not go on (notes)",
@@ -161,8 +161,12 @@ fn bodies(report: &WorldReport) -> Section {
     each_shown(&mut section, report.bodies.len(), |section, index| {
         let body = &report.bodies[index];
         let mass = if body.mass.is_infinite() { "immovable".into() } else { engineering(body.mass, "kg") };
-        let radius =
-            if body.radius.is_infinite() { "flat".into() } else { format!("radius {}", engineering(body.radius, "m")) };
+        // A body of several spheres has no radius of its own: the report's is the sphere that bounds them.
+        let radius = match (body.radius.is_infinite(), body.bounding) {
+            (true, _) => "flat".into(),
+            (false, true) => format!("bounding radius {}", engineering(body.radius, "m")),
+            (false, false) => format!("radius {}", engineering(body.radius, "m")),
+        };
         section.heading(format!("{}: {mass}, {radius}", body.name));
         section.row("  position before", vector(&body.position_before, "m"));
         section.row("  position after", vector(&body.position_after, "m"));

@@ -122,8 +122,13 @@ pub struct WorldBody {
     pub name: String,
     #[serde(serialize_with = "maybe_infinite")]
     pub mass: f64,
+    /// m; a body of `[[bodies.spheres]]`: its bounding radius, the largest |offset| + radius.
     #[serde(serialize_with = "maybe_infinite")]
     pub radius: f64,
+    /// Whether `radius` is a bounding radius (a body of `[[bodies.spheres]]`), for the readable report's label; the
+    /// JSON leaves it out (docs/report.md says what `radius` is).
+    #[serde(skip)]
+    pub bounding: bool,
     pub velocity_before: Vec3,
     /// rad/s (an addition).
     pub angular_velocity_before: Vec3,
@@ -225,6 +230,7 @@ pub fn build(scene: &WorldScene, outcome: &WorldOutcome, wall_time: f64) -> Worl
             name: body.name.clone(),
             mass: body.mass,
             radius: body.radius,
+            bounding: !body.spheres.is_empty(),
             velocity_before: vec3(&body.velocity),
             angular_velocity_before: vec3(&body.angular_velocity),
             position_before: vec3(&body.position.unwrap_or_default()),
@@ -727,6 +733,7 @@ pub fn from_impact(scene: &WorldScene, impact: &super::Report) -> WorldReport {
             name: body.name.clone(),
             mass: body.mass,
             radius: body.radius,
+            bounding: !body.spheres.is_empty(),
             velocity_before: report.velocity_before,
             angular_velocity_before: report.angular_velocity_before,
             position_before: vec3(&body.position.unwrap_or_default()),
