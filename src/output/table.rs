@@ -245,7 +245,7 @@ fn why_not_judged(key: &str, separated: bool) -> &'static str {
         "instantaneous" | "isolated" | "quasi_static" | "constant_e" | "smooth" if !separated => {
             "the bodies did not separate"
         }
-        "quasi_static" => "no sphere centred on its body with young and a density",
+        "quasi_static" => "no centred body with young and a density",
         "constant_e" => "e = 0, or a run at 0.9 or 1.1 v0 did not separate",
         _ => "does not apply",
     }

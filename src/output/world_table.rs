@@ -62,7 +62,7 @@ fn idealisation(report: &WorldReport) -> Option<Section> {
 fn why_not_judged(key: &str) -> &'static str {
     match key {
         "elastic" => "no body has a finite yield_stress",
-        "quasi_static" => "no sphere centred on its body with young and a density, or no contact ended",
+        "quasi_static" => "no centred body with young and a density, or no contact ended",
         "constant_e" => "no pair has contacts at two approach speeds with an e",
         "instantaneous" | "isolated" | "smooth" => "no contact ended",
         _ => "does not apply",
