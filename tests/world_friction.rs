@@ -14,28 +14,13 @@
 mod common;
 
 use common::vectors::{V, add, cross, dot, norm, scale, sub, unit};
-use impact::scene::{Parsed, WorldScene};
-use impact::setup::parse_any;
 use serde_json::Value;
-use std::path::Path;
 
 fn relative(value: f64, expected: f64) -> f64 {
     ((value - expected) / expected).abs()
 }
 
-fn world(text: &str) -> WorldScene {
-    match parse_any(text, Path::new("world_friction.toml")).unwrap_or_else(|e| panic!("{e}\n{text}")) {
-        Parsed::World(world) => *world,
-        Parsed::Impact(_) => panic!("not a world scene:\n{text}"),
-    }
-}
-
-/// Runs a world scene and returns its report as JSON (the friction fields are read by name from it).
-fn run(text: &str) -> Value {
-    let scene = world(text);
-    let report = impact::world_run::simulate(&scene).unwrap_or_else(|e| panic!("{e}\n{text}")).report;
-    serde_json::to_value(&report).expect("the world report serialises")
-}
+use common::world_report_json as run;
 
 #[track_caller]
 fn number(value: &Value, what: &str) -> f64 {

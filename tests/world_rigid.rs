@@ -8,24 +8,10 @@
 mod common;
 
 use common::vectors::{V, add, cross, norm, scale, sub};
-use impact::scene::{Parsed, WorldScene};
-use impact::setup::parse_any;
 use serde_json::Value;
 use std::path::Path;
 
-fn world(text: &str) -> WorldScene {
-    match parse_any(text, Path::new("world_rigid.toml")).unwrap_or_else(|e| panic!("{e}\n{text}")) {
-        Parsed::World(world) => *world,
-        Parsed::Impact(_) => panic!("not a world scene:\n{text}"),
-    }
-}
-
-/// Runs a world scene and returns its report as JSON.
-fn run(text: &str) -> Value {
-    let scene = world(text);
-    let report = impact::world_run::simulate(&scene).unwrap_or_else(|e| panic!("{e}\n{text}")).report;
-    serde_json::to_value(&report).expect("the world report serialises")
-}
+use common::{world_report_json as run, world_scene as world};
 
 #[track_caller]
 fn number(value: &Value) -> f64 {

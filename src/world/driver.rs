@@ -9,7 +9,7 @@
 
 use super::broad::{Neighbours, skin};
 use super::flight::{Kinematic, acceleration, first_touch};
-use super::island::{ActiveContact, Island, Units, turned_inertia};
+use super::island::{ActiveContact, Island, Units, rigid_body_at};
 use super::record::{
     Compression, ContactRecord, ContactSample, EndReason, Ending as ContactEnding, Observer, Progress, Stop,
     WorldOutcome,
@@ -377,15 +377,7 @@ impl<'a> World<'a> {
 
     /// Body `k` now as the instantaneous eccentric impact takes it (its inertia turned with it).
     fn rigid_body(&self, k: usize) -> crate::eccentric::RigidBody {
-        let (body, state) = (&self.scene.bodies[k], &self.states[k]);
-        crate::eccentric::RigidBody {
-            mass: body.mass,
-            inertia: if body.rotates() { turned_inertia(body, &state.orientation) } else { body.inertia_matrix() },
-            centre: state.position,
-            velocity: state.velocity,
-            spin: state.spin,
-            pivot: body.pivot,
-        }
+        rigid_body_at(&self.scene.bodies[k], &self.states[k])
     }
 
     /// Active contact `c`'s penetration (m) and penetration rate (m/s) at the bodies' states now.
@@ -1655,15 +1647,7 @@ pub fn angular_momentum(body: &crate::body::Body, state: &Kinematic) -> Vector3<
     if !body.is_eccentric() {
         return state.spin * body.inertia;
     }
-    let rigid = crate::eccentric::RigidBody {
-        mass: body.mass,
-        inertia: turned_inertia(body, &state.orientation),
-        centre: state.position,
-        velocity: state.velocity,
-        spin: state.spin,
-        pivot: body.pivot,
-    };
-    rigid.inertia_about_pivot() * state.spin
+    rigid_body_at(body, state).inertia_about_pivot() * state.spin
 }
 
 /// Contact `c` of `island` at state `y`: its record's index, penetration and force.

@@ -298,15 +298,7 @@ impl<'a> Island<'a> {
                 .fold(0.0, f64::max)
                 .max(f64::MIN_POSITIVE);
             let centre_arm = body.pivot.map_or(Vector3::zeros(), |pivot| state.position - pivot);
-            let rigid = crate::eccentric::RigidBody {
-                mass: body.mass,
-                inertia: turned_inertia(body, &state.orientation),
-                centre: state.position,
-                velocity: state.velocity,
-                spin: state.spin,
-                pivot: body.pivot,
-            };
-            let inertia = rigid.inertia_about_pivot();
+            let inertia = rigid_body_at(body, state).inertia_about_pivot();
             turning_slot[m] = Some(turning.len());
             turning.push(Turning {
                 body: k,
@@ -1116,6 +1108,19 @@ impl ModelOf<Dyn> for Island<'_> {
         }
         dy[self.immovable_work] = immovable_power;
         dy[self.clock] = 1.0;
+    }
+}
+
+/// Body `body` at `state` as the instantaneous eccentric impact takes it: its inertia turned with it (a body that does
+/// not rotate keeps its infinite inertia unturned).
+pub fn rigid_body_at(body: &crate::body::Body, state: &super::flight::Kinematic) -> crate::eccentric::RigidBody {
+    crate::eccentric::RigidBody {
+        mass: body.mass,
+        inertia: if body.rotates() { turned_inertia(body, &state.orientation) } else { body.inertia_matrix() },
+        centre: state.position,
+        velocity: state.velocity,
+        spin: state.spin,
+        pivot: body.pivot,
     }
 }
 

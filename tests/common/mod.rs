@@ -64,3 +64,17 @@ pub fn random_inertia(draw: &mut impact::draw::Draw, scale: f64) -> nalgebra::Ma
     let principal = Matrix3::from_diagonal(&Vector3::new(a, b, c)) * scale;
     turn.matrix() * principal * turn.matrix().transpose()
 }
+
+/// A world scene from TOML text (a test's scene: any error is the test's).
+pub fn world_scene(text: &str) -> impact::scene::WorldScene {
+    match impact::setup::parse_any(text, Path::new("world.toml")).unwrap_or_else(|e| panic!("{e}\n{text}")) {
+        impact::scene::Parsed::World(world) => *world,
+        impact::scene::Parsed::Impact(_) => panic!("not a world scene:\n{text}"),
+    }
+}
+
+/// Runs a world scene given as TOML text and returns its report as JSON (fields read by name, as users read them).
+pub fn world_report_json(text: &str) -> serde_json::Value {
+    let report = impact::world_run::simulate(&world_scene(text)).unwrap_or_else(|e| panic!("{e}\n{text}")).report;
+    serde_json::to_value(&report).expect("the world report serialises")
+}
