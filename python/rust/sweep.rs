@@ -5,7 +5,7 @@
 use crate::columns::text_array;
 use crate::errors::{Failure, guarded};
 use crate::scene::Source;
-use impact::files::{Destination, OutputFile};
+use impact::files::{Destination, Identity, OutputFile};
 use impact::sweep::columns::{Data, Table};
 use impact::sweep::merge::{ShardFile, merge as merge_shards};
 use impact::sweep::shard::Shard;
@@ -303,9 +303,19 @@ impl SweepTable {
 
     /// Writes the CSV to `path` as `impact sweep --out` does: completely or not at all (a temporary file renamed
     /// into place), `-` for standard output. Ctrl-C stops it and leaves no file.
-    fn write_csv(&self, py: Python<'_>, path: std::path::PathBuf) -> PyResult<()> {
+    /// `inputs`: the files the sweep read (its scene), which an output never replaces (links followed, as the
+    /// command's `--out` checks them).
+    fn write_csv(&self, py: Python<'_>, path: std::path::PathBuf, inputs: Vec<std::path::PathBuf>) -> PyResult<()> {
         let io = |error: impact::files::FileError| Failure::Io(error.to_string()).into_pyerr(py);
         let destination = Destination::resolve(&path).map_err(io)?;
+        if let Some(input) = inputs.iter().find(|input| destination.identity().same_as(&Identity::of(input))) {
+            return Err(Failure::Value(format!(
+                "{} is {}, the sweep's scene: an output never replaces an input of the run",
+                destination.shown(),
+                input.display()
+            ))
+            .into_pyerr(py));
+        }
         let mut output = OutputFile::create(&destination).map_err(io)?;
         let rows = self.table.rows();
         let mut start = 0;

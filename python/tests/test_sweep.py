@@ -3,6 +3,7 @@ laws, chosen columns, threads, and the errors of bad arguments."""
 
 import csv
 import math
+import os
 
 import numpy as np
 import pytest
@@ -189,3 +190,20 @@ def test_a_world_sweep_takes_no_laws_shards_or_executor():
 
     with pytest.raises(ValueError, match="world"):
         impact.sweep(scene, vary, executor=Pool(), progress=False)
+
+
+def test_to_csv_never_replaces_the_sweeps_scene(tmp_path):
+    # An output never replaces an input: the scene file itself, a symbolic link to it and a hard link to it are
+    # refused (as `impact sweep --out` refuses them), and the scene is left as it was; another file is written.
+    scene = tmp_path / "scene.toml"
+    text = (MODELS / "tsuji-dem-alumina.toml").read_text()
+    scene.write_text(text)
+    (tmp_path / "link.csv").symlink_to(scene)
+    os.link(scene, tmp_path / "hard.csv")
+    table = impact.sweep(scene, {"contact.restitution": [0.5, 0.6]})
+    for target in (scene, tmp_path / "link.csv", tmp_path / "hard.csv"):
+        with pytest.raises(ValueError, match="never replaces an input"):
+            table.to_csv(target)
+        assert scene.read_text() == text
+    table.to_csv(tmp_path / "rows.csv")
+    assert (tmp_path / "rows.csv").read_text() == table.csv()

@@ -56,8 +56,9 @@ class Sweep:
     """A sweep's table: ``columns`` by name (float64 arrays with NaN where the CSV cell is empty; ``status``, ``law``
     and the verdicts as arrays of str), one row per point and law in the command's order."""
 
-    def __init__(self, table: Any) -> None:
+    def __init__(self, table: Any, inputs: Sequence[str] = ()) -> None:
         self._table = table
+        self._inputs = list(inputs)  # the scene file it read: to_csv never replaces it
         self.columns: Dict[str, np.ndarray] = {
             name: table.column(k) for k, name in enumerate(table.names())
         }
@@ -73,7 +74,7 @@ class Sweep:
     def to_csv(self, path: Union[str, "os.PathLike[str]"]) -> None:
         """Writes the CSV ``impact sweep --out`` writes for the same sweep, byte for byte: completely or not at all
         (``-`` is standard output). Ctrl-C stops it and leaves no file."""
-        self._table.write_csv(os.fspath(path))
+        self._table.write_csv(os.fspath(path), self._inputs)
 
     def csv(self) -> str:
         """The CSV text ``to_csv`` writes."""
@@ -116,6 +117,7 @@ def _on_executor(executor: Any, kind: str, scene: Any, specs: List[str], laws: L
     rows, world = _impact.sweep_rows(kind, scene, specs, False, laws, columns)
     if world:
         raise ValueError("executor: a sweep of a world scene is not cut into shards (yet); run it here")
+    inputs = [scene] if kind == "path" else []
     if kind == "path":
         # Workers need not see the caller's files: the scene goes as its text.
         with open(scene, encoding="utf-8") as file:
@@ -144,7 +146,7 @@ def _on_executor(executor: Any, kind: str, scene: Any, specs: List[str], laws: L
         if drawn is not None:
             drawn.close()
     names = [f"shard {i}/{count}" for i in range(1, count + 1)]
-    return Sweep(_impact.merge(texts, names))
+    return Sweep(_impact.merge(texts, names), inputs)
 
 
 def sweep(
@@ -191,4 +193,4 @@ def sweep(
                               watcher if watcher.wanted else None)
     finally:
         watcher.close()
-    return Sweep(table)
+    return Sweep(table, [value] if kind == "path" else [])
