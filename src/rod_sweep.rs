@@ -13,9 +13,9 @@
 //! that has left the floor, not part of the impact. Its apparent e is the mass centre's vertical velocity then over
 //! its fall speed at first touch, `e_app = v_z⁺/v`: what an observer of the mass centre measures. Gravity acts during
 //! the sequence, which lasts tens of milliseconds where the other end must fall through L sin θ before it strikes
-//! (g τ is then a third of v), so e_app is not the floor's impulse over M v less one. For one contact of a rod without gravity it is the textbook's
-//! `(1 + e)/(1 + 3 cos²θ) - 1` (physics §11); Stoianovici & Hurmuzlu (1996) measured the same ratio on dropped steel
-//! bars.
+//! (g τ is then a third of v), so e_app is not the floor's impulse over M v less one. For one contact of a rod
+//! without gravity it is the textbook's `(1 + e)/(1 + 3 cos²θ) - 1` (physics §11); Stoianovici & Hurmuzlu (1996)
+//! measured the same ratio on dropped steel bars.
 
 use crate::report::world::WorldReport;
 use crate::scene::Parsed;
@@ -33,7 +33,8 @@ pub const SPEED: f64 = 1.0;
 pub const GAP: f64 = 1e-3;
 /// Gravity, m/s².
 pub const G: f64 = 9.81;
-/// The contacts' nominal e (Hunt–Crossley's map of it gives about 0.833: docs/world.md#damping-of-successive-contacts).
+/// The contacts' nominal e (Hunt–Crossley's map of it gives about 0.833,
+/// docs/world.md#damping-of-successive-contacts).
 pub const RESTITUTION: f64 = 0.8;
 /// The world's contacts at most: a sequence never comes near (the rigid rod's longest in 1°–89° is 9 contacts).
 const MAX_CONTACTS: usize = 40;
@@ -67,7 +68,7 @@ pub fn scene(degrees: f64, max_contacts: usize, end_time: f64) -> String {
          spheres, a thin\n# rod's inertia M L²/12 across its axis, a polar moment of 1e-3 of that along it) dropped \
          at {degrees} degrees at {SPEED} m/s,\n# its lower sphere {} mm above a steel floor, under gravity, \
          Hunt–Crossley with a nominal e = {RESTITUTION} at each contact.\n# Written by rod_sweep::scene \
-         (src/rod_sweep.rs), the sweep of the angle's scene (docs/rigid.md#a-rod-dropped-at-an-angle).\n\
+         (src/rod_sweep.rs), the scene of the angle sweep\n# (docs/rigid.md#a-rod-dropped-at-an-angle).\n\
          title = \"A rod dropped at {degrees} degrees on a floor\"\n\n[world]\ngravity = [0.0, 0.0, {:?}]\n\
          max_contacts = {max_contacts}\nend_time = {end_time:?}\n\n[[bodies]]\nname = \"rod\"\nmass = {MASS:?}\n\
          inertia = [{}, {}, {}]\nposition = [0.0, 0.0, {centre:?}]\nvelocity = [0.0, 0.0, {:?}]\nyoung = 2.1e11\n\
@@ -99,8 +100,8 @@ pub fn run(text: &str) -> Result<WorldReport, String> {
     }
 }
 
-/// A rigid rod in the x–z plane over a floor z = 0, its end spheres of radius [`RADIUS`] at ±(L/2)(cos θ, 0, sin θ)
-/// from its mass centre (end 0 at +, end 1 at -), turning about y.
+/// A rigid rod in the x–z plane over a floor z = 0, its end spheres of radius [`RADIUS`] at
+/// ±(L/2)(cos θ, 0, sin θ) from its mass centre (end 0 at +, end 1 at -), turning about y.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct PlanarRod {
     /// Mass centre's height above the floor, m.
