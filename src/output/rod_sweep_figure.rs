@@ -8,6 +8,9 @@ use super::chart::{Axis, Chart, Colour, Layer, Mark, Marker, PALETTE, Shape, Sta
 use super::figures::caption;
 use crate::rod_sweep::SweepPoint;
 
+/// A panel: its heading, its y label, and its three series (simulated, sequential, rigid; `None`: no value).
+type Panel = (&'static str, &'static str, [Vec<Option<(f64, f64)>>; 3]);
+
 /// Canvas heights of the two panels, px: the first carries the title, the last the x axis's labels and the legend.
 const HEIGHTS: [f64; 2] = [520.0, 500.0];
 
@@ -24,7 +27,7 @@ pub fn stack(title: &str, points: &[SweepPoint]) -> Stack {
     let series = |value: &dyn Fn(&SweepPoint) -> Option<f64>| -> Vec<Option<(f64, f64)>> {
         points.iter().map(|p| value(p).map(|y| (p.degrees, y))).collect()
     };
-    let panels: [(&str, &str, [Vec<Option<(f64, f64)>>; 3]); 2] = [
+    let panels: [Panel; 2] = [
         (
             "(a) apparent e: the mass centre's rebound speed when the sequence is over / its fall speed",
             "apparent e",
@@ -101,10 +104,10 @@ pub fn stack(title: &str, points: &[SweepPoint]) -> Stack {
             (Colour::BLACK, Stroke::dashed(Colour::BLACK, 1.6, 2.0, 3.0), None),
         ];
         for (i, points) in data.iter().enumerate() {
-            let (_, stroke, marker) = styles[i].clone();
+            let (_, stroke, marker) = styles[i];
             for (j, run) in points.split(Option::is_none).filter(|run| !run.is_empty()).enumerate() {
                 let run: Vec<(f64, f64)> = run.iter().flatten().copied().collect();
-                let line = Mark::Line { points: run, stroke: stroke.clone(), marker: marker.clone() };
+                let line = Mark::Line { points: run, stroke, marker };
                 let layer = Layer::new("series", line);
                 chart.push(if j == 0 { label(layer, names[i].to_string(), i as i32) } else { layer });
             }
