@@ -36,9 +36,10 @@ pub const G: f64 = 9.81;
 /// The contacts' nominal e (Hunt–Crossley's map of it gives about 0.833,
 /// docs/world.md#damping-of-successive-contacts).
 pub const RESTITUTION: f64 = 0.8;
-/// The world's contacts at most: a sequence never comes near (the rigid rod's longest in 1°–89° is 9 contacts).
+/// The world's contacts at most: a sequence never comes near (the rigid rod's longest in 1°–89° is 3 contacts).
 const MAX_CONTACTS: usize = 40;
-/// The run's end, s: past the apex of any rebound of the sequence (at most a few ms then e v/g = 0.09 s).
+/// The run's end, s: past the apex of any rebound of the sequence (a sequence of at most 0.1 s, then at most
+/// e v/g = 0.09 s to the apex).
 const END_TIME: f64 = 0.25;
 
 /// I_G across the rod's axis: a thin rod's M L²/12, kg m².
