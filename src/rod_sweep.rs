@@ -14,7 +14,7 @@
 //! its fall speed at first touch, `e_app = v_z⁺/v`: what an observer of the mass centre measures. Gravity acts during
 //! the sequence, which lasts tens of milliseconds where the other end must fall through L sin θ before it strikes
 //! (g τ is then a third of v), so e_app is not the floor's impulse over M v less one. For one contact of a rod
-//! without gravity it is the textbook's `(1 + e)/(1 + 3 cos²θ) - 1` (physics §11); Stoianovici & Hurmuzlu (1996)
+//! without gravity it is the textbook's `(1 + e)/(1 + 3 cos²θ) - 1` (docs/references.md#rigid-bodies-with-several-contacts); Stoianovici & Hurmuzlu (1996)
 //! measured the same ratio on dropped steel bars.
 
 use crate::report::world::WorldReport;
@@ -186,7 +186,7 @@ impl PlanarRod {
 
     /// The instantaneous impact of end `end` on the smooth floor with `e`: the impulse `P = -(1 + e) u/(1/M +
     /// r_x²/I_G)` on the end's vertical velocity u (none when it does not approach), `v_z += P/M`,
-    /// `ω -= r_x P/I_G` (physics §11). Returns the impulse, N s.
+    /// `ω -= r_x P/I_G` (docs/references.md#rigid-bodies-with-several-contacts). Returns the impulse, N s.
     pub fn strike(&mut self, end: usize, e: f64) -> f64 {
         let u = self.end_velocity(end);
         if u >= 0.0 {

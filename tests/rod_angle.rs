@@ -1,6 +1,6 @@
 //! The rod dropped at an angle (src/rod_sweep.rs, docs/rigid.md#a-rod-dropped-at-an-angle): its first blow, which
 //! end strikes next and when, and the sweep's apparent e and contact counts, against references worked here — the
-//! closed forms of physics §11 and a planar rigid rod flown and struck in this file (its own code, not the
+//! closed forms of rigid-body theory (docs/references.md#rigid-bodies-with-several-contacts) and a planar rigid rod flown and struck in this file (its own code, not the
 //! library's).
 
 use impact::rod_sweep::{self, G, LENGTH, MASS, RADIUS};
@@ -106,7 +106,7 @@ fn rigid(degrees: f64, v: f64, e: f64) -> (f64, Vec<usize>) {
 }
 
 /// Dropped at 80°, the rod's other end rises after the first blow (cos²80° = 0.030 < e/(3(2 + e)) = 0.098): one
-/// contact, whose blow is §11's with its own e — J/(M v) = (1 + e)/(1 + 3 cos²θ), ω' = 6 J cos θ/(M L), v_B > 0 —
+/// contact, whose blow is rigid-body theory's with its own e — J/(M v) = (1 + e)/(1 + 3 cos²θ), ω' = 6 J cos θ/(M L), v_B > 0 —
 /// to 3 ω' t_c (the rod turns by ω' t_c during the compliant contact), no contact before the apex of the rebound, and
 /// the other end landing where the rigid rod flown from the first touch (this file's) brings it down, to 3 t_c.
 /// At 30°, 45° and 60° the other end strikes next, at the rigid flight's time.
@@ -151,7 +151,7 @@ fn the_rod_at_80_degrees_rebounds_on_one_contact_and_at_30_to_60_its_other_end_s
 /// count is unambiguous (the same at θ ± 1° and at e ± 0.01), the simulation and the sequential model take as many
 /// contacts and end on the same ends, and their apparent e is the rigid rod's to 5e-3 (the compliant contacts'
 /// turning, ω t_c, and their e, which varies by 1e-3 with the speed, against one constant e); the library's own
-/// rigid rod is this file's to 1e-6. At 80° (one contact) the apparent e is §11's (1 + e)/(1 + 3 cos²θ) - 1: the
+/// rigid rod is this file's to 1e-6. At 80° (one contact) the apparent e is rigid-body theory's (1 + e)/(1 + 3 cos²θ) - 1: the
 /// rebound's apex is measured from the contact's end, and gravity acts only during the contact (g t_c/v = 1e-3).
 #[test]
 fn the_sweep_counts_the_rigid_rods_contacts_and_its_apparent_e_where_they_are_unambiguous() {
@@ -176,7 +176,7 @@ fn the_sweep_counts_the_rigid_rods_contacts_and_its_apparent_e_where_they_are_un
         }
         if p.degrees == 80.0 {
             let closed = (1.0 + p.e) / (1.0 + 3.0 * f64::to_radians(80.0).cos().powi(2)) - 1.0;
-            assert!((apparent - closed).abs() < 1e-9, "80°: the rigid rod {apparent} vs §11 {closed}");
+            assert!((apparent - closed).abs() < 1e-9, "80°: the rigid rod {apparent} vs the closed form {closed}");
             assert!((p.simulated.apparent_e - closed).abs() < 5e-3, "80°: {} vs {closed}", p.simulated.apparent_e);
         }
     }

@@ -2,7 +2,7 @@
 //! axis of the rod's angle to the floor, (a) the apparent e of its impact sequence — the mass centre's rebound speed
 //! when the sequence is over, over its fall speed — and (b) the number of contacts in the sequence; each simulated
 //! (solid, markers), by the sequential instantaneous model over the simulated contacts (dashed), and by the rigid rod
-//! with its own order of end impacts (dotted), with the contacts' e and §11's one strike without gravity for scale.
+//! with its own order of end impacts (dotted), with the contacts' e and the one strike without gravity of rigid-body theory for scale.
 
 use super::chart::{Axis, Chart, Colour, Layer, Mark, Marker, PALETTE, Shape, Stack, Stroke};
 use super::figures::caption;
@@ -80,7 +80,7 @@ pub fn stack(title: &str, points: &[SweepPoint]) -> Stack {
                 colour: Colour::GREY,
             };
             chart.push(Layer::new("material-note", note));
-            // §11: one strike of the lower end, no gravity: (1 + e)/(1 + 3 cos²θ) - 1, dashed grey, over 0–90°.
+            // Rigid-body theory (docs/references.md): one strike of the lower end, no gravity: (1 + e)/(1 + 3 cos²θ) - 1, dashed grey, over 0–90°.
             let closed: Vec<(f64, f64)> = (0..=180)
                 .map(|i| {
                     let t = f64::from(i) / 2.0;
@@ -95,7 +95,7 @@ pub fn stack(title: &str, points: &[SweepPoint]) -> Stack {
             // Its legend entry, under the last panel with the others (the line itself is in panel (a)).
             let entry =
                 Mark::Line { points: Vec::new(), stroke: Stroke::dashed(Colour::GREY, 1.0, 6.0, 4.0), marker: None };
-            let text = "(a) one strike without gravity (§11): (1 + e)/(1 + 3 cos²θ) − 1, under the points beyond 59°";
+            let text = "(a) one strike without gravity, rigid-body theory: (1 + e)/(1 + 3 cos²θ) − 1, under the points beyond 59°";
             chart.push(Layer::new("one-strike", entry).label(text).rank(3));
         }
         let styles = [
