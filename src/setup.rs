@@ -75,7 +75,7 @@ pub enum Motion {
     /// tangential motion and the spins.
     Full,
     /// Rigid bodies struck off their centre or turning about a pivot: each body's orientation is integrated, and its
-    /// contact sphere's centre moves with it (`dynamics::rigid`). Smooth contacts only.
+    /// contact sphere's centre moves with it (`dynamics::rigid`), with or without friction.
     Rigid,
 }
 

@@ -1,4 +1,4 @@
-//! Two rigid bodies through one smooth contact, each struck off its centre or turning about a pivot: the contact
+//! Two rigid bodies through one contact, smooth or frictional, each struck off its centre or turning about a pivot: the contact
 //! sphere of a body sits at its `contact_offset` from the mass centre and moves with the body's orientation, which
 //! is integrated through the contact (docs/rigid.md). The spheres' models (`normal`, `pair`) are its special case
 //! of a zero offset, no pivot and the same inertia about every axis.

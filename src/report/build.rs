@@ -148,7 +148,7 @@ pub fn build(
             brief(turned(1), "")
         ));
     }
-    if let Some(turn) = oblique.as_ref().and_then(|o| o.normal_turn_deg).filter(|_| !fixed_normal) {
+    if let Some(turn) = oblique.as_ref().and_then(|o| o.normal_turn_deg).filter(|_| !fixed_normal && !rigid) {
         notes.push(format!(
             "the line of centres turned by {} degrees during the contact: the exact references of a fixed normal do \
              not apply",
