@@ -183,7 +183,8 @@ struct Evaluation {
     tangential: Vector3<f64>,
     /// dT/dt of the spring.
     spring_rate: Vector3<f64>,
-    /// The normal force's rate (scaled), the tangential force's moments included.
+    /// The normal force's rate (scaled), the tangential force's moments included; zero for a smooth contact, which
+    /// computes it only where it is asked for.
     normal_force_rate: f64,
 }
 
@@ -364,8 +365,9 @@ impl<'a> RigidContact<'a> {
             spring_rate: Vector3::zeros(),
             normal_force_rate: 0.0,
         };
-        e.normal_force_rate = self.normal_force_rate(&e);
+        // (A smooth contact needs the rate only at the force-peak event: [`ContactModel::force_rate`].)
         if let Some(t) = &self.tangential {
+            e.normal_force_rate = self.normal_force_rate(&e);
             e.spring_rate = t.evaluate(mode(y), &spring, &e.kinematics, normal_force, e.normal_force_rate).spring_rate;
         }
         e
@@ -498,7 +500,8 @@ impl ContactModel<SIZE> for RigidContact<'_> {
     }
 
     fn force_rate(&self, y: &State<SIZE>) -> f64 {
-        self.evaluate(y).normal_force_rate
+        let e = self.evaluate(y);
+        if self.tangential.is_some() { e.normal_force_rate } else { self.normal_force_rate(&e) }
     }
 
     fn separation_force(&self, y: &State<SIZE>) -> f64 {
