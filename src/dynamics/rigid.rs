@@ -77,19 +77,11 @@ const PROBE: f64 = 1e-6;
 
 /// The tangential mode a state is in.
 fn mode(y: &State<SIZE>) -> Mode {
-    match y[index::MODE] {
-        m if m > 1.5 => Mode::SlipInTension,
-        m if m > 0.5 => Mode::Slip,
-        _ => Mode::Stick,
-    }
+    Mode::of_slot(y[index::MODE])
 }
 
 fn set_mode(y: &mut State<SIZE>, mode: Mode) {
-    y[index::MODE] = match mode {
-        Mode::Stick => 0.0,
-        Mode::Slip => 1.0,
-        Mode::SlipInTension => 2.0,
-    };
+    y[index::MODE] = mode.slot();
 }
 
 /// Scaled penetration below zero that still counts as the edge of the contact (see the normal model).
@@ -236,14 +228,7 @@ impl<'a> RigidContact<'a> {
                 fixed_spin,
             }
         };
-        let tangential = setup.friction.map(|f| Tangential {
-            friction: f.coefficient,
-            stiffness: f.stiffness * s.length.powf(f.stiffness_exponent + 1.0) / s.force,
-            exponent: f.stiffness_exponent,
-            damping: 2.0 * f.damping_ratio * (f.tangential_mass / setup.effective_mass).sqrt(),
-            cap: f.cap,
-            unloading: f.unloading,
-        });
+        let tangential = setup.friction.map(|f| Tangential::from_friction(&f, s.length, s.force, setup.effective_mass));
         let slip = setup.initial_slip;
         let slip_direction =
             if tangential.is_some() && slip.norm() > 0.0 { slip / slip.norm() } else { Vector3::zeros() };
@@ -577,11 +562,8 @@ impl ContactModel<SIZE> for RigidContact<'_> {
         let (elastic_energy, dissipated_normal) =
             self.normal(y, &e).energies(y[index::NORMAL_WORK], y[index::DISSIPATED], self.dissipation_scale);
         // The spring stores at most what the Coulomb cap lets it hold (as in the spheres' model).
-        let tangential_elastic = self.tangential.map_or(0.0, |t| {
-            let kt = t.stiffness_at(e.penetration);
-            let stored = t.held(mode(y), &e.spring, force);
-            if kt > 0.0 { stored * stored / (2.0 * kt) } else { 0.0 }
-        });
+        let tangential_elastic =
+            self.tangential.map_or(0.0, |t| t.stored_energy(mode(y), &e.spring, e.penetration, force));
         Snapshot {
             time,
             penetration: e.penetration * s.length,
