@@ -9,7 +9,7 @@
 mod common;
 
 use common::binary::{Scratch, impact, stderr};
-use common::run;
+use common::{run, toml_tensor, toml_vector};
 use impact::draw::Draw;
 use impact::impact::outcome;
 use impact::scene::Scene;
@@ -211,16 +211,6 @@ fn the_rod_on_the_floor_agrees_with_an_independent_integration() {
         assert!(own < 1e-8, "the RK4 converges: {own:e}");
         assert!(off < 1e-8, "mu {mu}: velocity {v:?} / {v_fine:?}, spin {w} / {w_fine}: off by {off:e} m/s");
     }
-}
-
-fn toml_vector(v: &Vector3<f64>) -> String {
-    format!("[{:?}, {:?}, {:?}]", v.x, v.y, v.z)
-}
-
-fn toml_tensor(m: &Matrix3<f64>) -> String {
-    let m = (m + m.transpose()) * 0.5;
-    let row = |i: usize| format!("[{:?}, {:?}, {:?}]", m[(i, 0)], m[(i, 1)], m[(i, 2)]);
-    format!("[{}, {}, {}]", row(0), row(1), row(2))
 }
 
 /// Momentum, angular momentum about the origin and the energy balance of a scene, from its outcome's snapshots:
