@@ -25,6 +25,7 @@ pub mod outcome;
 pub mod output;
 pub mod reference;
 pub mod report;
+pub mod rod_sweep;
 pub mod scales;
 pub mod scene;
 pub mod setup;

@@ -324,6 +324,7 @@ fn the_gallery_reports_only_the_figures_it_leaves() {
         "chung_ooi_test4.png",
         "bouncing_ball_heights.png",
         "newtons_cradle_3_velocities.png",
+        "rod_angle_sweep.png",
     ]
     .map(|name| format!("g/{name}"));
     let mut reported: Vec<String> = paths.iter().map(|p| p.to_string()).collect();

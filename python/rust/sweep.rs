@@ -307,6 +307,12 @@ impl SweepTable {
     /// command's `--out` checks them).
     fn write_csv(&self, py: Python<'_>, path: std::path::PathBuf, inputs: Vec<std::path::PathBuf>) -> PyResult<()> {
         let io = |error: impact::files::FileError| Failure::Io(error.to_string()).into_pyerr(py);
+        if path.as_os_str().is_empty() {
+            return Err(Failure::Value(
+                "to_csv: the path is empty: give a file's name, or \"-\" for standard output".into(),
+            )
+            .into_pyerr(py));
+        }
         let destination = Destination::resolve(&path).map_err(io)?;
         if let Some(input) = inputs.iter().find(|input| destination.identity().same_as(&Identity::of(input))) {
             return Err(Failure::Value(format!(

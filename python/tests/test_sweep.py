@@ -207,3 +207,10 @@ def test_to_csv_never_replaces_the_sweeps_scene(tmp_path):
         assert scene.read_text() == text
     table.to_csv(tmp_path / "rows.csv")
     assert (tmp_path / "rows.csv").read_text() == table.csv()
+
+
+def test_to_csv_refuses_an_empty_path(tmp_path):
+    # An empty path names no file: a clear ValueError, not the operating system's error.
+    table = impact.sweep(MODELS / "tsuji-dem-alumina.toml", {"contact.restitution": [0.5, 0.6]})
+    with pytest.raises(ValueError, match="path is empty"):
+        table.to_csv("")

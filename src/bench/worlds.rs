@@ -1,7 +1,9 @@
 //! World runs in the work–precision study (`impact bench --worlds`, docs/world.md#cost): a Hertzian chain of equal
-//! steel beads struck at one end, run until its pulse has crossed and the last bead left, and the 5-ball cradle of
-//! `models/newtons-cradle-5.toml`, each at a sweep of tolerances. The error of a run is the largest difference of any
-//! body's final velocity from a run of the same scene at [`REFERENCE_TOLERANCE`], over the largest initial speed;
+//! steel beads struck at one end, run until its pulse has crossed and the last bead left, the 5-ball cradle of
+//! `models/newtons-cradle-5.toml`, and the rod of `models/rod-chatter.toml` through 45 end strikes, each at a sweep
+//! of tolerances. The error of a run is the largest difference of any body's final velocity (and of the speed a
+//! rigid body's spin gives its farthest contact point) from a run of the same scene at [`REFERENCE_TOLERANCE`], over
+//! the largest initial speed;
 //! the time is the run alone (the report's `solver.wall_time_s`), the median of up to 5 runs on one thread. The reference is the program's
 //! own tight run: the test suite holds chains of 40 and 60 beads to an independent RK4 integration, and the 1000-bead
 //! chain agrees with LAMMPS at its finest step to LAMMPS's own rounding (3e-8, docs/world.md#cost).
@@ -33,7 +35,8 @@ pub struct WorldCase {
 pub struct WorldRow {
     pub case: String,
     pub tolerance: f64,
-    /// Largest difference of a body's final velocity from the reference run, over the largest initial speed.
+    /// Largest difference of a body's final velocity (or of the speed its spin gives its farthest contact point)
+    /// from the reference run, over the largest initial speed.
     pub error: f64,
     /// The run alone, s.
     pub seconds: f64,
@@ -78,9 +81,17 @@ pub fn cradle() -> WorldCase {
     WorldCase { name: "cradle-5".into(), text: include_str!("../../models/newtons-cradle-5.toml").to_string() }
 }
 
+/// The rod of `models/rod-chatter.toml` (dropped at 30 degrees on a floor) through its chatter: 45 end strikes in
+/// its first 2.2 s, while it still bounces (it comes to rest after 83, at 2.28 s).
+pub fn rod_chatter() -> WorldCase {
+    let text = include_str!("../../models/rod-chatter.toml")
+        .replace("max_contacts = 6", "max_contacts = 1000\nend_time = 2.2");
+    WorldCase { name: "rod-chatter".into(), text }
+}
+
 /// The cases of the study (`quick`: a chain of [`QUICK_BEADS`]).
 pub fn cases(quick: bool) -> Vec<WorldCase> {
-    vec![chain(if quick { QUICK_BEADS } else { BEADS }), cradle()]
+    vec![chain(if quick { QUICK_BEADS } else { BEADS }), cradle(), rod_chatter()]
 }
 
 /// The scene of `case` at `tolerance`.
@@ -97,6 +108,8 @@ fn scene(case: &WorldCase, tolerance: f64) -> Result<WorldScene, String> {
 struct Ran {
     /// Every body's final velocity, m/s.
     velocities: Vec<[f64; 3]>,
+    /// Every body's final angular velocity, rad/s.
+    spins: Vec<[f64; 3]>,
     /// The run alone, s.
     seconds: f64,
     steps: u64,
@@ -108,6 +121,7 @@ fn run(case: &WorldCase, tolerance: f64) -> Result<Ran, String> {
     let report = crate::world_run::simulate(&scene).map_err(|error| format!("{}: {error}", case.name))?.report;
     Ok(Ran {
         velocities: report.bodies.iter().map(|b| b.velocity_after).collect(),
+        spins: report.bodies.iter().map(|b| b.angular_velocity_after).collect(),
         seconds: report.solver.wall_time_s,
         steps: report.solver.steps,
         contacts: report.contacts.len(),
@@ -122,21 +136,26 @@ pub fn study(
 ) -> Result<Vec<WorldRow>, String> {
     let mut rows = Vec::new();
     for case in cases {
-        let speed = scene(case, REFERENCE_TOLERANCE)?.bodies.iter().map(|b| b.velocity.norm()).fold(0.0, f64::max);
-        let reference = run(case, REFERENCE_TOLERANCE)?.velocities;
+        let scene = scene(case, REFERENCE_TOLERANCE)?;
+        let speed = scene.bodies.iter().map(|b| b.velocity.norm()).fold(0.0, f64::max);
+        // A rigid body's spin counts by the speed it gives its farthest contact point (its bounding radius).
+        let reach: Vec<f64> = scene.bodies.iter().map(|b| if b.is_rigid() { b.radius } else { 0.0 }).collect();
+        let reference = run(case, REFERENCE_TOLERANCE)?;
         for &tolerance in tolerances {
             // The median time of up to 5 runs (as many as fit in about 2 s): one run is at the mercy of the machine.
-            let Ran { velocities, seconds: first, steps, contacts } = run(case, tolerance)?;
+            let Ran { velocities, spins, seconds: first, steps, contacts } = run(case, tolerance)?;
             let mut times = vec![first];
             while times.len() < 5 && times.iter().sum::<f64>() < 2.0 {
                 times.push(run(case, tolerance)?.seconds);
             }
             times.sort_by(f64::total_cmp);
             let seconds = times[times.len() / 2];
-            let error = velocities
-                .iter()
-                .zip(&reference)
-                .map(|(v, r)| (0..3).map(|k| (v[k] - r[k]).powi(2)).sum::<f64>().sqrt())
+            let distance = |a: &[f64; 3], b: &[f64; 3]| (0..3).map(|k| (a[k] - b[k]).powi(2)).sum::<f64>().sqrt();
+            let error = (0..velocities.len())
+                .map(|i| {
+                    let turning = distance(&spins[i], &reference.spins[i]) * reach[i];
+                    distance(&velocities[i], &reference.velocities[i]).max(turning)
+                })
                 .fold(0.0, f64::max)
                 / speed;
             let row = WorldRow { case: case.name.clone(), tolerance, error, seconds, steps, contacts };

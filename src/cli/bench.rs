@@ -224,9 +224,9 @@ fn worlds(args: &BenchArgs, outputs: Vec<Destination>) -> anyhow::Result<()> {
     .map_err(|why| anyhow::anyhow!("impact bench --worlds: {why}"))?;
     bar.finish_and_clear();
     let figure = BenchFigure {
-        title: "Work–precision of world runs: a Hertzian chain struck at one end, the 5-ball cradle".into(),
+        title: "Work–precision of world runs: a struck chain, the 5-ball cradle, a rod's chatter".into(),
         x_label: "time of the run (s, one core)".into(),
-        y_label: "largest velocity error over the bodies / v0 (against tolerance 1e-13)".into(),
+        y_label: "largest velocity error / v0 (against tolerance 1e-13)".into(),
         curves: cases
             .iter()
             .map(|case| {

@@ -5,7 +5,7 @@ use crate::files::write_atomically;
 use crate::history::Recording;
 use crate::impact::simulate;
 use crate::output::world_figures::{self, WorldTrace};
-use crate::output::{figures, render, sweep_figure};
+use crate::output::{figures, render, rod_sweep_figure, sweep_figure};
 use crate::scene::{Parsed, Scene};
 use crate::sweep::grid::{Axis, Grid, Spacing};
 use crate::sweep::key::SceneKey;
@@ -61,7 +61,22 @@ pub fn run(args: &GalleryArgs) -> anyhow::Result<()> {
     restitution_against_speed(&args.out)?;
     oblique_forces(&args.out)?;
     incidence(&args.out)?;
+    rod_angle_sweep(&args.out)?;
     worlds(&args.out)
+}
+
+/// The rod of models/rod-chatter.toml dropped at 1 m/s at every angle from 1 to 89 degrees (src/rod_sweep.rs): the
+/// apparent e and the number of contacts of its impact sequence, simulated, by the sequential model and by the rigid
+/// rod's own impacts.
+fn rod_angle_sweep(folder: &Path) -> anyhow::Result<()> {
+    let points = crate::rod_sweep::sweep(&crate::rod_sweep::gallery_angles()).map_err(|why| anyhow!(why))?;
+    let title = "A steel rod (0.2 kg, 0.2 m) dropped at θ onto a floor at 1 m/s, Hunt–Crossley ends, under gravity";
+    let svg = rod_sweep_figure::svg(title, &points);
+    let target = folder.join("rod_angle_sweep.png");
+    let png = render::png(&svg).with_context(|| format!("cannot render {}", target.display()))?;
+    write_atomically(&target, &png)?;
+    println!("wrote {}", target.display());
+    Ok(())
 }
 
 /// The world figures of the gallery: (scene name, scene text, the figure kept). The bouncing ball's heights beside

@@ -8,6 +8,7 @@ pub mod incidence_figure;
 pub mod json;
 pub mod map_figure;
 pub mod render;
+pub mod rod_sweep_figure;
 pub mod sweep_figure;
 pub mod table;
 pub mod world_figures;

@@ -937,8 +937,23 @@ impl<'a> World<'a> {
         self.counters.steps += stepper.counters.steps;
         self.counters.rejected_steps += stepper.counters.rejected_steps;
         self.counters.evaluations += stepper.counters.evaluations;
-        if let (Some(observer), Some(points)) = (self.observer.as_deref_mut(), stepper.recorded()) {
-            for (t, y) in points {
+        if self.observer.is_some() {
+            // The series shows every accepted step, and the flight between long ones (a turning body's steps in
+            // flight span most of it): instants on the integrator's own solution, evenly spaced, and each flyer's
+            // apex in a segment without contacts. (Work done for the series only: not counted in the run's.)
+            let g = scene.world.gravity;
+            let apexes: Vec<f64> = if island.contacts.is_empty() && g.norm() > 0.0 {
+                flyers.iter().map(|&k| -start[k].velocity.dot(&g) / g.norm_squared() / units.time).collect()
+            } else {
+                Vec::new()
+            };
+            let points = stepper.recorded().map(<[_]>::to_vec).unwrap_or_default();
+            let times = flight_instants(&points, end.time, &apexes);
+            let mut points = points;
+            points.extend(stepper.resample(&times)?);
+            points.sort_by(|a, b| a.0.total_cmp(&b.0));
+            let observer = self.observer.as_deref_mut().expect("an observer is present");
+            for (t, y) in &points {
                 let bodies: Vec<Kinematic> = (0..scene.bodies.len())
                     .map(|k| Kinematic {
                         position: island.position(k, y),
@@ -1655,4 +1670,26 @@ fn sample(island: &Island, c: usize, y: &DVector<f64>) -> ContactSample {
     let state = island.contact_state(c, y);
     let (elastic, dissipative) = island.force(c, &state, y);
     ContactSample { index: island.contacts[c].record, penetration: state.penetration, force: elastic + dissipative }
+}
+
+/// The instants (island time, ascending) a series adds inside a segment of `span` whose accepted steps are `points`:
+/// where two steps lie more than `span / FLIGHT_INSTANTS` apart, evenly spaced instants between them, and each of
+/// `apexes` inside the span.
+fn flight_instants<Y>(points: &[(f64, Y)], span: f64, apexes: &[f64]) -> Vec<f64> {
+    let most = span / FLIGHT_INSTANTS as f64;
+    let mut times: Vec<f64> = apexes.iter().copied().filter(|&t| t > 0.0 && t < span).collect();
+    if most > 0.0 && most.is_finite() {
+        for pair in points.windows(2) {
+            let (from, to) = (pair[0].0, pair[1].0);
+            let gap = to - from;
+            if gap > most {
+                // At most FLIGHT_INSTANTS in one gap: the count is bounded whatever the span.
+                let count = ((gap / most).ceil() as usize).min(FLIGHT_INSTANTS);
+                times.extend((1..count).map(|k| from + gap * k as f64 / count as f64));
+            }
+        }
+    }
+    times.sort_by(f64::total_cmp);
+    times.dedup();
+    times
 }
