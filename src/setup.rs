@@ -18,7 +18,7 @@ use crate::scene::{
     TangentialUnloading,
 };
 use crate::units::{apart, apart_vectors, brief, brief_vector, short};
-use nalgebra::Vector3;
+use nalgebra::{Matrix3, Vector3};
 use std::path::Path;
 
 pub mod world;
@@ -75,7 +75,7 @@ pub enum Motion {
     /// tangential motion and the spins.
     Full,
     /// Rigid bodies struck off their centre or turning about a pivot: each body's orientation is integrated, and its
-    /// contact sphere's centre moves with it (`dynamics::rigid`). Smooth contacts only.
+    /// contact sphere's centre moves with it (`dynamics::rigid`), with or without friction.
     Rigid,
 }
 
@@ -174,13 +174,25 @@ impl Setup {
             rounding(relative - normal * relative.dot(&normal), speeds)
         };
         let initial_slip = if eccentric {
-            Vector3::zeros()
+            let slip = eccentric_contact_point_slip(&scene.bodies, &positions, &normal);
+            let turning: f64 = (0..2)
+                .map(|i| {
+                    scene.bodies[i].angular_velocity.norm() * contact_points(&scene.bodies, &positions, &normal)[i].1
+                })
+                .sum();
+            rounding(slip, speeds + turning)
         } else {
             let [arm_a, arm_b] = Setup::lever_arms(&scene.bodies, &normal);
             let turning = a.angular_velocity.cross(&arm_a).norm() + b.angular_velocity.cross(&arm_b).norm();
             rounding(contact_point_slip(&scene.bodies, &normal), speeds + turning)
         };
-        let friction = friction(scene, effective_mass)?;
+        let friction = friction(scene, effective_mass)?.map(|f| {
+            if eccentric {
+                Friction { tangential_mass: eccentric_tangential_mass(&scene.bodies, &positions, &normal), ..f }
+            } else {
+                f
+            }
+        });
         let coupled = friction.is_some() && initial_slip.norm() > ACROSS_TOLERANCE * approach_speed;
         let turning = !a.is_flat() && !b.is_flat() && tangential_velocity.norm() > ACROSS_TOLERANCE * approach_speed;
         let motion = if eccentric {
@@ -463,6 +475,59 @@ pub fn check_law(
 }
 
 /// Slip of the contact points before impact: (v1 + w1 x a1) - (v2 + w2 x a2), its part across the normal.
+/// Each body's contact point at first contact, with the mass centres at `positions` (m), and its distance from the
+/// body's origin (mass centre or pivot; m): the point of its contact sphere towards the other body, as the rigid-body
+/// model's friction takes it (`dynamics::rigid`). A flat body's is the other's.
+pub fn contact_points(
+    bodies: &[Body; 2],
+    positions: &[Vector3<f64>; 2],
+    normal: &Vector3<f64>,
+) -> [(Vector3<f64>, f64); 2] {
+    let sphere = |i: usize| {
+        let body = &bodies[i];
+        let sign = if i == 0 { 1.0 } else { -1.0 };
+        positions[i] + body.contact_offset + normal * (sign * body.radius)
+    };
+    let point = |i: usize| if bodies[i].is_flat() { sphere(1 - i) } else { sphere(i) };
+    [0, 1].map(|i| {
+        let p = point(i);
+        (p, (p - bodies[i].pivot.unwrap_or(positions[i])).norm())
+    })
+}
+
+/// The contact points' slip at first contact for an eccentric or pivoted body (body 1's point relative to body 2's,
+/// across the normal; m/s): each point moves at `v + ω × r` from its body's mass centre (a pivot's: `ω × r_O`); a
+/// flat body's point at its velocity (its spin does not move its plane), as in the spheres' model.
+fn eccentric_contact_point_slip(
+    bodies: &[Body; 2],
+    positions: &[Vector3<f64>; 2],
+    normal: &Vector3<f64>,
+) -> Vector3<f64> {
+    let points = contact_points(bodies, positions, normal);
+    let velocity = |i: usize| {
+        let body = &bodies[i];
+        if body.is_flat() { body.velocity } else { rigid_body(body, positions[i]).point_velocity(&points[i].0) }
+    };
+    let relative = velocity(0) - velocity(1);
+    relative - normal * relative.dot(normal)
+}
+
+/// The mass the tangential force sees at the contact point of an eccentric or pivoted body, kg: `1/B` with `B` the
+/// mean of the contact points' compliance `K = K_1 + K_2` across the normal, `(tr K - n·K n)/2`
+/// (crate::eccentric::point_compliance). For two spheres `K` is `B 1` across the normal, with the spheres' `B`.
+fn eccentric_tangential_mass(bodies: &[Body; 2], positions: &[Vector3<f64>; 2], normal: &Vector3<f64>) -> f64 {
+    let points = contact_points(bodies, positions, normal);
+    let compliance = |i: usize| {
+        let body = &bodies[i];
+        if !body.rotates() || body.is_flat() {
+            return Matrix3::identity() * body.inverse_mass();
+        }
+        crate::eccentric::point_compliance(&rigid_body(body, positions[i]), &points[i].0)
+    };
+    let k = compliance(0) + compliance(1);
+    2.0 / (k.trace() - normal.dot(&(k * normal)))
+}
+
 fn contact_point_slip(bodies: &[Body; 2], normal: &Vector3<f64>) -> Vector3<f64> {
     let [a, b] = bodies;
     let [arm_a, arm_b] = Setup::lever_arms(bodies, normal);
@@ -683,13 +748,6 @@ fn eccentric_placement(scene: &Scene) -> Result<Placement, SetupError> {
     if !placed && !scene.bodies[0].is_flat() {
         let shift = scene.bodies[0].contact_offset;
         positions = positions.map(|x| x + shift);
-    }
-    if scene.contact.friction > 0.0 {
-        return fail(
-            "contact.friction",
-            "friction on an eccentric or pivoted body is not simulated yet: the rigid-body model is smooth \
-             (friction = 0)",
-        );
     }
     Ok((time, normal, positions))
 }

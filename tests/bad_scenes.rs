@@ -1296,12 +1296,6 @@ fn an_eccentric_body_spinning_before_contact_is_rejected() {
     assert_rejected(test, &text, "bodies.1.angular_velocity", At::Line("angular_velocity"), &["first contact"]);
 }
 
-#[test]
-fn friction_on_an_eccentric_body_is_rejected_as_not_simulated_yet() {
-    let text = scene(&striker(), HUNG_ROD, &with(HUNT_CROSSLEY, "friction = 0.3"));
-    assert_rejected("eccentric_friction", &text, "contact.friction", At::Line("friction"), &["not simulated yet"]);
-}
-
 /// A rod of two end spheres in a world (docs/scene.md#rigid-bodies-in-a-world): each test breaks one of its rules.
 const CLUMP_WORLD: &str = r#"title = "a rod over a floor"
 

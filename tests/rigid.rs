@@ -5,7 +5,7 @@
 
 mod common;
 
-use common::{assert_close, run};
+use common::{assert_close, run, toml_tensor, toml_vector};
 use impact::draw::Draw;
 use impact::impact::outcome;
 use impact::scene::Scene;
@@ -216,16 +216,6 @@ fn a_ball_whose_inertia_differs_between_axes_struck_centrally_is_a_sphere() {
         assert_eq!(b.bodies[i].angular_velocity_after.unwrap(), [0.0; 3], "a central blow spins nothing");
     }
     assert!(b.notes.iter().any(|n| n.contains("rigid bodies")), "{:?}", b.notes);
-}
-
-fn toml_vector(v: &Vector3<f64>) -> String {
-    format!("[{:?}, {:?}, {:?}]", v.x, v.y, v.z)
-}
-
-fn toml_tensor(m: &Matrix3<f64>) -> String {
-    let m = (m + m.transpose()) * 0.5;
-    let row = |i: usize| format!("[{:?}, {:?}, {:?}]", m[(i, 0)], m[(i, 1)], m[(i, 2)]);
-    format!("[{}, {}, {}]", row(0), row(1), row(2))
 }
 
 #[test]

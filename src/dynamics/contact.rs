@@ -107,6 +107,25 @@ impl Mode {
         self != Mode::Stick
     }
 
+    /// The mode a model's state slot holds (constant between switches): 0 sticking, 1 sliding, 2 sliding while the
+    /// normal force pulls.
+    pub fn of_slot(value: f64) -> Mode {
+        match value {
+            m if m > 1.5 => Mode::SlipInTension,
+            m if m > 0.5 => Mode::Slip,
+            _ => Mode::Stick,
+        }
+    }
+
+    /// The value of the mode in a model's state slot ([`Mode::of_slot`]).
+    pub fn slot(self) -> f64 {
+        match self {
+            Mode::Stick => 0.0,
+            Mode::Slip => 1.0,
+            Mode::SlipInTension => 2.0,
+        }
+    }
+
     /// The sign of the normal force a sliding mode's limit follows: -1 in tension, 1 otherwise.
     fn side(self) -> f64 {
         if self == Mode::SlipInTension { -1.0 } else { 1.0 }
@@ -147,6 +166,28 @@ pub struct TangentialForce {
 }
 
 impl Tangential {
+    /// The scene's friction in a model's units: lengths in `length` (m), forces in `force` (N), and the tangential
+    /// damping's mass ratio taken against `mass` (kg), the model's mass unit.
+    pub fn from_friction(f: &crate::setup::Friction, length: f64, force: f64, mass: f64) -> Tangential {
+        Tangential {
+            friction: f.coefficient,
+            stiffness: f.stiffness * length.powf(f.stiffness_exponent + 1.0) / force,
+            exponent: f.stiffness_exponent,
+            damping: 2.0 * f.damping_ratio * (f.tangential_mass / mass).sqrt(),
+            cap: f.cap,
+            unloading: f.unloading,
+        }
+    }
+
+    /// The energy the spring stores in `mode` (scaled), at penetration `d`, |T|²/(2 kt), with |T| no more than the
+    /// Coulomb cap lets it hold: at the contact's edge kt -> 0 and Fn -> 0, and an uncapped spring state (a
+    /// rounding-sized remainder) over a vanishing kt gave energies of 1e9 J in a 3 J impact.
+    pub fn stored_energy(&self, mode: Mode, spring: &Vector3<f64>, d: f64, normal_force: f64) -> f64 {
+        let kt = self.stiffness_at(d);
+        let held = self.held(mode, spring, normal_force);
+        if kt > 0.0 { held * held / (2.0 * kt) } else { 0.0 }
+    }
+
     /// kt at penetration `d` (scaled), zero out of contact.
     pub fn stiffness_at(&self, d: f64) -> f64 {
         if d <= 0.0 {

@@ -81,19 +81,11 @@ pub struct PairContact<'a> {
 
 /// The tangential mode a state is in.
 fn mode(y: &State<SIZE>) -> Mode {
-    match y[index::MODE] {
-        m if m > 1.5 => Mode::SlipInTension,
-        m if m > 0.5 => Mode::Slip,
-        _ => Mode::Stick,
-    }
+    Mode::of_slot(y[index::MODE])
 }
 
 fn set_mode(y: &mut State<SIZE>, mode: Mode) {
-    y[index::MODE] = match mode {
-        Mode::Stick => 0.0,
-        Mode::Slip => 1.0,
-        Mode::SlipInTension => 2.0,
-    };
+    y[index::MODE] = mode.slot();
 }
 
 /// Everything the derivative computes at one state, for the events and snapshots too.
@@ -127,18 +119,9 @@ impl<'a> PairContact<'a> {
             let reach = (a.radius + b.radius) / s.length;
             Shape::Spheres { reach, contact_vector: setup.normal * reach }
         };
-        let tangential = setup.friction.map(|f| {
-            let stiffness = f.stiffness * s.length.powf(f.stiffness_exponent + 1.0) / s.force;
-            let damping = 2.0 * f.damping_ratio * (f.tangential_mass / (setup.effective_mass * impulse_gain)).sqrt();
-            Tangential {
-                friction: f.coefficient,
-                stiffness,
-                exponent: f.stiffness_exponent,
-                damping,
-                cap: f.cap,
-                unloading: f.unloading,
-            }
-        });
+        let tangential = setup
+            .friction
+            .map(|f| Tangential::from_friction(&f, s.length, s.force, setup.effective_mass * impulse_gain));
         let spin_gain = |body: &Body| {
             let gain = setup.effective_mass * body.radius * body.radius / body.inertia;
             if body.rotates() { gain * impulse_gain } else { 0.0 }
@@ -359,11 +342,9 @@ impl ContactModel<SIZE> for PairContact<'_> {
             setup.positions[0] + a.velocity * time - pushed * self.shares[0],
             setup.positions[1] + b.velocity * time + pushed * self.shares[1],
         ];
-        let kt = self.tangential.map_or(0.0, |t| t.stiffness_at(k.penetration));
-        // The spring stores at most what the Coulomb cap lets it hold: at the contact's edge kt -> 0 and Fn -> 0, and an
-        // uncapped spring state (a rounding-sized remainder) over a vanishing kt gave energies of 1e9 J in a 3 J impact.
-        let stored = self.tangential.map_or(0.0, |t| t.held(mode(y), &e.spring, e.elastic + e.dissipative));
-        let tangential_elastic = if kt > 0.0 { stored * stored / (2.0 * kt) } else { 0.0 };
+        let tangential_elastic = self
+            .tangential
+            .map_or(0.0, |t| t.stored_energy(mode(y), &e.spring, k.penetration, e.elastic + e.dissipative));
         let normal_work = y[index::NORMAL_WORK] * s.energy;
         let (elastic_energy, dissipated_normal) =
             self.normal(y, k).energies(y[index::NORMAL_WORK], y[index::DISSIPATED], self.dissipation_scale);

@@ -1,4 +1,4 @@
-//! Two rigid bodies through one smooth contact, each struck off its centre or turning about a pivot: the contact
+//! Two rigid bodies through one contact, smooth or frictional, each struck off its centre or turning about a pivot: the contact
 //! sphere of a body sits at its `contact_offset` from the mass centre and moves with the body's orientation, which
 //! is integrated through the contact (docs/rigid.md). The spheres' models (`normal`, `pair`) are its special case
 //! of a zero offset, no pivot and the same inertia about every axis.
@@ -17,11 +17,20 @@
 //! does not move, so a pivoted body adds nothing to it.
 //!
 //! The angular velocity is `ω = R I_O⁻¹ Rᵀ h` (the inertia tensor turns with the body); Euler's equations in the
-//! scene's frame are `dh/dt = (R a) × F`, and the quaternion follows `q' = ½ (0, ω) ⊗ q`. A pivot passes whatever
-//! keeps it still: its impulse is `M Δv_cm - ∫F dt`, read at each snapshot from the momentum.
+//! scene's frame are `dh/dt = (R a) × F_n + (R a + r_i n_i) × F_t`, and the quaternion follows `q' = ½ (0, ω) ⊗ q`.
+//! A pivot passes whatever keeps it still: its impulse is `M Δv_cm - ∫F dt`, read at each snapshot from the momentum.
+//!
+//! Friction is the spheres' tangential contact ([`super::contact::Tangential`]: the spring, its Coulomb cap, its
+//! damping and options, the stick–slip switches as events), riding on the contact point: the point of each contact
+//! sphere where the contact points sit in the spheres' model (`r_i` from the sphere's centre towards the other body,
+//! the overlap shared in the ratio of the radii), whose velocity is `v + ω × r` from the body's origin. The slip is
+//! the relative velocity of these points across the normal; the tangential force acts at them, so its moment about
+//! each body's origin turns the body's spin with the body's turned inertia, and it pushes a free body's mass centre
+//! (a pivot passes what keeps the pivot still, as for the normal force). The spring, the tangential work and the
+//! mode are three more states, as in [`super::pair`].
 
-use super::contact::{Shape, set_vector, vector};
-use super::{ContactModel, Normal, Scales, Snapshot, dissipation_scale};
+use super::contact::{Kinematics, Mode, Shape, Tangential, set_vector, vector};
+use super::{ContactModel, Normal, Scales, Snapshot, dissipation_scale, unit_or_one};
 use crate::body::Body;
 use crate::integrate::{Model, State};
 use crate::law::ContactLaw;
@@ -29,7 +38,7 @@ use crate::setup::Setup;
 use nalgebra::{Matrix3, Quaternion, UnitQuaternion, Vector3};
 
 /// Size of the state.
-pub const SIZE: usize = 27;
+pub const SIZE: usize = 32;
 
 /// Where each scaled quantity sits in the state; a body's block starts at [`index::BODY`]`[i]`.
 pub mod index {
@@ -55,6 +64,24 @@ pub mod index {
     pub const DEEPEST: usize = 25;
     /// Work of an immovable body on the movable one, in the energy unit.
     pub const IMMOVABLE_WORK: usize = 26;
+    /// Tangential spring force (on body 1), in F0.
+    pub const SPRING: usize = 27;
+    /// ∫ Ft·slip dt, in the energy unit times mu.
+    pub const TANGENTIAL_WORK: usize = 30;
+    /// The tangential mode, constant between switches: 0 sticking, 1 sliding, 2 sliding while the normal force pulls.
+    pub const MODE: usize = 31;
+}
+
+/// Scaled penetration at which the initial stick-or-slip is read off the leading terms (as in the spheres' model).
+const PROBE: f64 = 1e-6;
+
+/// The tangential mode a state is in.
+fn mode(y: &State<SIZE>) -> Mode {
+    Mode::of_slot(y[index::MODE])
+}
+
+fn set_mode(y: &mut State<SIZE>, mode: Mode) {
+    y[index::MODE] = mode.slot();
 }
 
 /// Scaled penetration below zero that still counts as the edge of the contact (see the normal model).
@@ -81,6 +108,10 @@ struct Part {
     momentum: Vector3<f64>,
     /// Velocity at first contact, in v0.
     velocity: Vector3<f64>,
+    /// The contact sphere's radius, in L (zero for a flat body): the contact point's distance from its centre.
+    radius: f64,
+    /// The constant spin of a body that does not turn under the contact (an immovable sphere), ω T.
+    fixed_spin: Vector3<f64>,
 }
 
 /// One body's motion at one instant (scaled).
@@ -109,6 +140,12 @@ pub struct RigidContact<'a> {
     shape: Shape,
     parts: [Part; 2],
     dissipation_scale: f64,
+    /// The tangential contact (`None`: smooth), in the contact's scales.
+    tangential: Option<Tangential>,
+    /// The unit of the tangential-work state: mu, or 1 for a smooth contact.
+    friction_scale: f64,
+    /// The direction of the contact points' slip at first contact (zero without friction or without slip).
+    slip_direction: Vector3<f64>,
     bodies: &'a [Body; 2],
     setup: &'a Setup,
 }
@@ -129,6 +166,18 @@ struct Evaluation {
     deepest: f64,
     elastic: f64,
     dissipative: f64,
+    /// The contact points' kinematics as the tangential law reads them (the slip of body 1's point relative to
+    /// body 2's, in v0).
+    kinematics: Kinematics,
+    /// The tangential spring, kept in the tangent plane.
+    spring: Vector3<f64>,
+    /// The tangential force on body 1 (scaled).
+    tangential: Vector3<f64>,
+    /// dT/dt of the spring.
+    spring_rate: Vector3<f64>,
+    /// The normal force's rate (scaled), the tangential force's moments included; zero for a smooth contact, which
+    /// computes it only where it is asked for.
+    normal_force_rate: f64,
 }
 
 impl<'a> RigidContact<'a> {
@@ -164,6 +213,7 @@ impl<'a> RigidContact<'a> {
                 Vector3::zeros()
             };
             let radius = if body.is_flat() { 0.0 } else { body.radius / s.length };
+            let fixed_spin = if turns || body.is_flat() { Vector3::zeros() } else { body.angular_velocity * s.time };
             Part {
                 share: setup.effective_mass * body.inverse_mass(),
                 turns,
@@ -174,14 +224,23 @@ impl<'a> RigidContact<'a> {
                 gain,
                 momentum,
                 velocity: body.velocity / s.speed,
+                radius,
+                fixed_spin,
             }
         };
+        let tangential = setup.friction.map(|f| Tangential::from_friction(&f, s.length, s.force, setup.effective_mass));
+        let slip = setup.initial_slip;
+        let slip_direction =
+            if tangential.is_some() && slip.norm() > 0.0 { slip / slip.norm() } else { Vector3::zeros() };
         RigidContact {
             law: setup.law,
             scales: s,
             shape,
             parts: [part(0), part(1)],
             dissipation_scale: dissipation_scale(&setup.law, &s),
+            friction_scale: unit_or_one(tangential.map_or(0.0, |t| t.friction)),
+            tangential,
+            slip_direction,
             bodies,
             setup,
         }
@@ -253,12 +312,28 @@ impl<'a> RigidContact<'a> {
         // The spheres' centres relative to first contact: the origins' relative displacement and the turns.
         let displacement = vector(y, index::DISPLACEMENT) + m2.turned - m1.turned;
         let relative_velocity = m2.sphere_velocity - m1.sphere_velocity;
-        let k = self.shape.kinematics(&displacement, &relative_velocity, &[Vector3::zeros(); 2]);
+        // The spins as the contact's kinematics take them, ω r / v0 with r the contact sphere's radius: the contact
+        // points' velocities are the spheres' centres' and ω × (the arm from the centre to the point).
+        let spins = [0, 1].map(|i| {
+            let p = &self.parts[i];
+            let spin = if p.turns { motions[i].spin } else { p.fixed_spin };
+            spin * p.radius
+        });
+        let k = self.shape.kinematics(&displacement, &relative_velocity, &spins);
         let d = if k.penetration > -EDGE { k.penetration.max(0.0) } else { k.penetration };
         let deepest = y[index::DEEPEST].max(d) * s.length;
         let parts = self.law.split_force_after(d * s.length, k.rate * s.speed, deepest);
         let (elastic, dissipative) = (parts.elastic / s.force, parts.dissipative / s.force);
-        Evaluation {
+        let normal_force = elastic + dissipative;
+        let raw_spring = vector(y, index::SPRING);
+        let spring = raw_spring - k.normal * raw_spring.dot(&k.normal);
+        // The tangential force does not depend on the normal force's rate (only the sliding spring's rate does), and
+        // that rate depends on the tangential force through its moments: the force first, then the rate.
+        let tangential = match &self.tangential {
+            Some(t) => t.evaluate(mode(y), &spring, &k, normal_force, 0.0).force,
+            None => Vector3::zeros(),
+        };
+        let mut e = Evaluation {
             motions,
             normal: k.normal,
             normal_rate: k.normal_rate,
@@ -269,23 +344,49 @@ impl<'a> RigidContact<'a> {
             deepest,
             elastic,
             dissipative,
+            kinematics: k,
+            spring,
+            tangential,
+            spring_rate: Vector3::zeros(),
+            normal_force_rate: 0.0,
+        };
+        // (A smooth contact needs the rate only at the force-peak event: [`ContactModel::force_rate`].)
+        if let Some(t) = &self.tangential {
+            e.normal_force_rate = self.normal_force_rate(&e);
+            e.spring_rate = t.evaluate(mode(y), &spring, &e.kinematics, normal_force, e.normal_force_rate).spring_rate;
         }
+        e
+    }
+
+    /// Body `i`'s contact point's arm from its origin (mass centre or pivot), in L: its sphere's centre's, and from
+    /// the centre to the point (the contact's arm over the radius, times the radius).
+    fn lever(&self, i: usize, e: &Evaluation) -> Vector3<f64> {
+        e.motions[i].arm + e.kinematics.arms[i] * self.parts[i].radius
+    }
+
+    /// The force (scaled) on body `i` and its moment about the body's origin: the normal force along the normal
+    /// through the sphere's centre, the tangential force at the contact point (on body 1; its opposite on body 2).
+    fn loads(&self, i: usize, e: &Evaluation) -> (Vector3<f64>, Vector3<f64>) {
+        let sign = if i == 0 { -1.0 } else { 1.0 };
+        let normal = e.normal * (sign * (e.elastic + e.dissipative));
+        let tangential = e.tangential * -sign;
+        let torque = e.motions[i].arm.cross(&normal) + self.lever(i, e).cross(&tangential);
+        (normal + tangential, torque)
     }
 
     /// The normal force's rate dF/dt (scaled) at an evaluated state: F_d d' + F_v d'', with
-    /// d'' = -(dw/dt·n + w·dn/dt), dw/dt the spheres' centres' relative acceleration (Euler and centripetal terms).
+    /// d'' = -(dw/dt·n + w·dn/dt), dw/dt the spheres' centres' relative acceleration (Euler and centripetal terms;
+    /// the tangential force's moments turn the bodies, and so move the spheres' centres along the normal too).
     fn normal_force_rate(&self, e: &Evaluation) -> f64 {
         let s = &self.scales;
-        let force = e.elastic + e.dissipative;
-        let acceleration = |i: usize, push: f64| {
+        let acceleration = |i: usize| {
             let (p, m) = (&self.parts[i], &e.motions[i]);
-            let on = e.normal * (push * force);
+            let (on, torque) = self.loads(i, e);
             let linear = on * p.share;
             if !p.turns {
                 return linear;
             }
             let matrix = m.rotation.to_rotation_matrix();
-            let torque = m.arm.cross(&on);
             let angular = matrix * (p.gain * (matrix.transpose() * (torque - m.spin.cross(&m.momentum))));
             let lever = m.arm - matrix * p.centre;
             let centre = if p.pivoted {
@@ -296,7 +397,7 @@ impl<'a> RigidContact<'a> {
             };
             centre + angular.cross(&lever) + m.spin.cross(&m.spin.cross(&lever))
         };
-        let relative_acceleration = acceleration(1, 1.0) - acceleration(0, -1.0);
+        let relative_acceleration = acceleration(1) - acceleration(0);
         let rate_rate = -(relative_acceleration.dot(&e.normal) + e.relative_velocity.dot(&e.normal_rate));
         let (by_penetration, by_rate) = self.law.force_gradient_after(e.seen * s.length, e.rate * s.speed, e.deepest);
         (by_penetration * s.length * e.rate + by_rate * s.speed * rate_rate) / s.force
@@ -307,21 +408,29 @@ impl Model<SIZE> for RigidContact<'_> {
     fn derivative(&self, _t: f64, y: &State<SIZE>, dy: &mut State<SIZE>) {
         let e = self.evaluate(y);
         let force = e.elastic + e.dissipative;
-        let on_second = e.normal * force;
+        let mut immovable_work = 0.0;
         for i in 0..2 {
             let (p, m, at) = (&self.parts[i], &e.motions[i], index::BODY[i]);
-            let on = if i == 0 { -on_second } else { on_second };
+            let (on, torque) = self.loads(i, &e);
             set_vector(dy, at + index::IMPULSE, &on);
             if p.turns {
                 let turn = vector(y, at + index::TURN) / p.reach;
                 let w = y[at + index::TURN_SCALAR];
                 set_vector(dy, at + index::TURN, &((m.spin * w + m.spin.cross(&turn)) * (0.5 * p.reach)));
                 dy[at + index::TURN_SCALAR] = -0.5 * m.spin.dot(&turn);
-                set_vector(dy, at + index::MOMENTUM, &(m.arm.cross(&on) / p.reach));
+                set_vector(dy, at + index::MOMENTUM, &(torque / p.reach));
             } else {
                 set_vector(dy, at + index::TURN, &Vector3::zeros());
                 dy[at + index::TURN_SCALAR] = 0.0;
                 set_vector(dy, at + index::MOMENTUM, &Vector3::zeros());
+            }
+            if self.bodies[i].is_immovable() {
+                // Power the contact feeds into an immovable body, with the opposite sign: the work it does on the
+                // other. Its spin (constant) meets the tangential force's moment about its sphere's centre.
+                let velocity = self.bodies[i].velocity / self.scales.speed;
+                let sign = if i == 0 { 1.0 } else { -1.0 };
+                let about_centre = (e.kinematics.arms[i] * p.radius).cross(&(e.tangential * sign));
+                immovable_work -= on.dot(&velocity) + about_centre.dot(&p.fixed_spin);
             }
         }
         let relative = self.origin_velocity(1, &e.motions[1]) - self.origin_velocity(0, &e.motions[0]);
@@ -329,15 +438,10 @@ impl Model<SIZE> for RigidContact<'_> {
         dy[index::NORMAL_IMPULSE] = force;
         dy[index::NORMAL_WORK] = force * e.rate;
         dy[index::DISSIPATED] = self.normal(y, &e).dissipation_rate(e.dissipative, self.dissipation_scale);
-        let [a, b] = self.bodies;
-        let velocity = |body: &Body| body.velocity / self.scales.speed;
-        dy[index::IMMOVABLE_WORK] = if b.is_immovable() {
-            -on_second.dot(&velocity(b))
-        } else if a.is_immovable() {
-            on_second.dot(&velocity(a))
-        } else {
-            0.0
-        };
+        dy[index::IMMOVABLE_WORK] = immovable_work;
+        set_vector(dy, index::SPRING, &e.spring_rate);
+        dy[index::TANGENTIAL_WORK] = e.tangential.dot(&e.kinematics.slip) / self.friction_scale;
+        dy[index::MODE] = 0.0;
     }
 }
 
@@ -356,6 +460,14 @@ impl ContactModel<SIZE> for RigidContact<'_> {
         for at in index::BODY {
             y[at + index::TURN_SCALAR] = 1.0;
         }
+        if let Some(t) = &self.tangential {
+            // As the spheres' model: stick or slip from the leading terms at a tiny penetration.
+            let s = &self.scales;
+            let slip = self.setup.initial_slip.norm() / s.speed;
+            let contact_force = self.law.force(0.0, s.speed) / s.force;
+            let probe_force = self.law.force(PROBE * s.length, s.speed) / s.force;
+            set_mode(&mut y, t.initial_mode(slip, 1.0, PROBE, contact_force, probe_force));
+        }
         y
     }
 
@@ -373,7 +485,8 @@ impl ContactModel<SIZE> for RigidContact<'_> {
     }
 
     fn force_rate(&self, y: &State<SIZE>) -> f64 {
-        self.normal_force_rate(&self.evaluate(y))
+        let e = self.evaluate(y);
+        if self.tangential.is_some() { e.normal_force_rate } else { self.normal_force_rate(&e) }
     }
 
     fn separation_force(&self, y: &State<SIZE>) -> f64 {
@@ -382,6 +495,32 @@ impl ContactModel<SIZE> for RigidContact<'_> {
 
     fn uncut_force(&self, y: &State<SIZE>) -> Option<f64> {
         self.normal(y, &self.evaluate(y)).uncut()
+    }
+
+    fn switch_function(&self, y: &State<SIZE>) -> Option<f64> {
+        let t = self.tangential.as_ref()?;
+        let e = self.evaluate(y);
+        let force = e.elastic + e.dissipative;
+        Some(t.switch_function(mode(y), &e.spring, &e.kinematics, force, e.normal_force_rate, e.elastic))
+    }
+
+    fn switch(&self, y: &mut State<SIZE>) {
+        let Some(t) = &self.tangential else { return };
+        let e = self.evaluate(y);
+        let force = e.elastic + e.dissipative;
+        let (next, spring) = t.next_mode(mode(y), &e.spring, &e.kinematics, force, e.normal_force_rate, e.elastic);
+        if let Some(spring) = spring {
+            set_vector(y, index::SPRING, &spring);
+        }
+        set_mode(y, next);
+    }
+
+    fn sliding(&self, y: &State<SIZE>) -> bool {
+        self.tangential.is_some() && mode(y).is_sliding()
+    }
+
+    fn slip_along_start(&self, y: &State<SIZE>) -> Option<f64> {
+        (self.slip_direction != Vector3::zeros()).then(|| self.evaluate(y).kinematics.slip.dot(&self.slip_direction))
     }
 
     fn kinks(&self, compressing: bool) -> crate::law::Kinks {
@@ -422,24 +561,27 @@ impl ContactModel<SIZE> for RigidContact<'_> {
         let (a, b) = (part(0), part(1));
         let (elastic_energy, dissipated_normal) =
             self.normal(y, &e).energies(y[index::NORMAL_WORK], y[index::DISSIPATED], self.dissipation_scale);
+        // The spring stores at most what the Coulomb cap lets it hold (as in the spheres' model).
+        let tangential_elastic =
+            self.tangential.map_or(0.0, |t| t.stored_energy(mode(y), &e.spring, e.penetration, force));
         Snapshot {
             time,
             penetration: e.penetration * s.length,
             rate: e.rate * s.speed,
             normal_force: force * s.force,
             normal: e.normal,
-            tangential_force: Vector3::zeros(),
-            slip: Vector3::zeros(),
+            tangential_force: e.tangential * s.force,
+            slip: e.kinematics.slip * s.speed,
             velocities: [a.1, b.1],
             spins: [a.2, b.2],
             positions: [a.0, b.0],
             normal_impulse: y[index::NORMAL_IMPULSE] * s.impulse,
             normal_work: y[index::NORMAL_WORK] * s.energy,
             dissipated_normal,
-            tangential_work: 0.0,
+            tangential_work: y[index::TANGENTIAL_WORK] * s.energy * self.friction_scale,
             work_of_immovable_bodies: y[index::IMMOVABLE_WORK] * s.energy,
             elastic_energy,
-            tangential_elastic_energy: 0.0,
+            tangential_elastic_energy: tangential_elastic * s.energy,
             orientations: [a.3, b.3],
             pivot_impulses: [a.4, b.4],
         }

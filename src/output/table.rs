@@ -498,7 +498,8 @@ fn bodies(report: &Report, scales: &Scales) -> Section {
             let degrees = |value: f64| format!("{} deg", plain_digits(value, DIGITS));
             section.row("  angle from the tangent plane, before", maybe(body.angle_from_tangent_before_deg, degrees));
             section.row("  angle from the tangent plane, after", maybe(body.angle_from_tangent_after_deg, degrees));
-            if body.inertia.is_finite() {
+            // (An eccentric body's spins are given above.)
+            if body.inertia.is_finite() && !eccentric(report) {
                 section.row("  spin before", spin(&body.angular_velocity_before, scales));
                 section.row(
                     "  spin after",
@@ -513,7 +514,9 @@ fn bodies(report: &Report, scales: &Scales) -> Section {
 /// The idealised instantaneous impact with the simulated or the nominal e (`with`: which e, and its value).
 fn instantaneous(with: String, ideal: &InstantaneousReport, report: &Report, scales: &Scales) -> Section {
     // With an oblique section, say which idealisation this is (rigid-body friction comes in that section).
-    let kind = if report.oblique.is_some() {
+    let kind = if report.oblique.is_some() && eccentric(report) {
+        "smooth eccentric instantaneous impact"
+    } else if report.oblique.is_some() {
         "smooth instantaneous impact (the four equations)"
     } else {
         "instantaneous impact"

@@ -132,7 +132,12 @@ pub fn build(
             short(setup.law.exponent)
         ));
     }
-    let oblique = if rigid { None } else { oblique(scene, setup, outcome, e_velocity, friction_work) };
+    // The rigid-body model's oblique section is its friction's: a smooth eccentric impact has none.
+    let oblique = if rigid && scene.contact.friction == 0.0 {
+        None
+    } else {
+        oblique(scene, setup, outcome, e_velocity, friction_work)
+    };
     if rigid {
         let turned = |i: usize| end.orientations[i].angle().to_degrees();
         notes.push(format!(
@@ -143,7 +148,7 @@ pub fn build(
             brief(turned(1), "")
         ));
     }
-    if let Some(turn) = oblique.as_ref().and_then(|o| o.normal_turn_deg).filter(|_| !fixed_normal) {
+    if let Some(turn) = oblique.as_ref().and_then(|o| o.normal_turn_deg).filter(|_| !fixed_normal && !rigid) {
         notes.push(format!(
             "the line of centres turned by {} degrees during the contact: the exact references of a fixed normal do \
              not apply",
@@ -430,7 +435,8 @@ fn levers(scene: &Scene, setup: &Setup) -> [Option<idealisation::Lever>; 2] {
 fn oblique(scene: &Scene, setup: &Setup, outcome: &Outcome, e: f64, friction_work: f64) -> Option<ObliqueReport> {
     let bodies = &scene.bodies;
     let spinning = bodies.iter().any(|body| body.angular_velocity != Vector3::zeros());
-    if setup.tangential_velocity == Vector3::zeros() && !spinning {
+    let eccentric = setup.motion == Motion::Rigid;
+    if setup.tangential_velocity == Vector3::zeros() && !spinning && !eccentric {
         return None;
     }
     let done = outcome.separated;
@@ -468,6 +474,9 @@ fn oblique(scene: &Scene, setup: &Setup, outcome: &Outcome, e: f64, friction_wor
     // under the magnitude cap through the pulling one as well, J_n + 2 J_t, where rigid-body theory knows J_n alone.
     let tensile_impulse = (friction > 0.0 && outcome.tensile_impulse.is_finite()).then_some(outcome.tensile_impulse);
     let rigid_body = done.then(|| {
+        if eccentric {
+            return eccentric_rigid_body(scene, setup, e, end);
+        }
         let rigid = rigid_body_impact(bodies, &n, setup.effective_mass, e, friction, &slip, 0.0);
         let largest = |simulated: &[Vector3<f64>; 2], ideal: &[Vector3<f64>; 2]| {
             (0..2).map(|i| (simulated[i] - ideal[i]).amax()).fold(0.0, f64::max)
@@ -511,6 +520,50 @@ fn oblique(scene: &Scene, setup: &Setup, outcome: &Outcome, e: f64, friction_wor
         tensile_impulse,
         rigid_body,
     })
+}
+
+/// Rigid-body theory of an eccentric or pivoted body's frictional impact with the simulated e
+/// ([`crate::eccentric::frictional_impact`] at the contact point of first contact), against the simulated end.
+fn eccentric_rigid_body(scene: &Scene, setup: &Setup, e: f64, end: &Snapshot) -> RigidBodyReport {
+    let bodies = &scene.bodies;
+    let n = setup.normal;
+    let rigid = [0, 1].map(|i| crate::setup::rigid_body(&bodies[i], setup.positions[i]));
+    let point = crate::setup::contact_points(bodies, &setup.positions, &n)[0].0;
+    let friction = scene.contact.friction;
+    let ideal = crate::eccentric::frictional_impact(&rigid, &point, &n, e, friction);
+    let (velocities, spins, regime) = match ideal {
+        Some(i) => (
+            i.velocities_after,
+            i.spins_after,
+            match i.slide {
+                crate::eccentric::Slide::Smooth => "smooth",
+                crate::eccentric::Slide::Sticks => "sticking",
+                crate::eccentric::Slide::Slides => "sliding",
+            },
+        ),
+        None => ([rigid[0].velocity, rigid[1].velocity], [rigid[0].spin, rigid[1].spin], "smooth"),
+    };
+    let after = |i: usize| crate::eccentric::RigidBody { velocity: velocities[i], spin: spins[i], ..rigid[i] };
+    let relative = after(0).point_velocity(&point) - after(1).point_velocity(&point);
+    let rigid_slip = relative - n * relative.dot(&n);
+    let slip = setup.initial_slip;
+    let along = if slip.norm() > 0.0 { rigid_slip.dot(&slip) / slip.norm() } else { rigid_slip.norm() };
+    let centres = velocities[1] - velocities[0];
+    let centres = centres - n * centres.dot(&n);
+    let tangential = setup.tangential_velocity;
+    let largest = |simulated: &[Vector3<f64>; 2], ideal: &[Vector3<f64>; 2]| {
+        (0..2).map(|i| (simulated[i] - ideal[i]).amax()).fold(0.0, f64::max)
+    };
+    RigidBodyReport {
+        rebound_from_normal_deg: along.atan2(e * setup.approach_speed).to_degrees(),
+        tangential_restitution_centre: (tangential.norm() > 0.0)
+            .then(|| centres.dot(&tangential) / tangential.norm_squared()),
+        regime: regime.into(),
+        velocity_after: [vec3(&velocities[0]), vec3(&velocities[1])],
+        angular_velocity_after: [vec3(&spins[0]), vec3(&spins[1])],
+        max_velocity_difference: largest(&end.velocities, &velocities),
+        max_angular_velocity_difference: largest(&end.spins, &spins),
+    }
 }
 
 /// The direction of a velocity from the tangent plane of `normal`, degrees: 90 along the normal, negative towards

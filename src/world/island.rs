@@ -251,16 +251,7 @@ impl<'a> Island<'a> {
         let clock = immovable_work + 1;
         let tangentials: Vec<Option<Tangential>> = contacts
             .iter()
-            .map(|c| {
-                c.friction.map(|f| Tangential {
-                    friction: f.coefficient,
-                    stiffness: f.stiffness * units.length.powf(f.stiffness_exponent + 1.0) / units.force,
-                    exponent: f.stiffness_exponent,
-                    damping: 2.0 * f.damping_ratio * (f.tangential_mass / units.mass).sqrt(),
-                    cap: f.cap,
-                    unloading: f.unloading,
-                })
-            })
+            .map(|c| c.friction.map(|f| Tangential::from_friction(&f, units.length, units.force, units.mass)))
             .collect();
         let frictional = tangentials.iter().any(Option::is_some);
         let friction_units = tangentials.iter().map(|t| unit_or_one(t.map_or(0.0, |t| t.friction))).collect();

@@ -78,3 +78,15 @@ pub fn world_report_json(text: &str) -> serde_json::Value {
     let report = impact::world_run::simulate(&world_scene(text)).unwrap_or_else(|e| panic!("{e}\n{text}")).report;
     serde_json::to_value(&report).expect("the world report serialises")
 }
+
+/// A vector as a TOML array.
+pub fn toml_vector(v: &nalgebra::Vector3<f64>) -> String {
+    format!("[{:?}, {:?}, {:?}]", v.x, v.y, v.z)
+}
+
+/// A tensor as a TOML array of rows, symmetrised.
+pub fn toml_tensor(m: &nalgebra::Matrix3<f64>) -> String {
+    let m = (m + m.transpose()) * 0.5;
+    let row = |i: usize| format!("[{:?}, {:?}, {:?}]", m[(i, 0)], m[(i, 1)], m[(i, 2)]);
+    format!("[{}, {}, {}]", row(0), row(1), row(2))
+}
