@@ -225,24 +225,11 @@ impl Tangential {
         let cap = self.cap(normal_force);
         match mode {
             Mode::Stick => {
-                let damping = self.damping * kt.sqrt();
-                let trial = spring - k.slip * damping;
+                let trial = spring - k.slip * (self.damping * kt.sqrt());
                 let size = trial.norm();
+                let force = if size > cap { trial * (cap / size) } else { trial };
                 let rescaling = spring * self.rescale_rate(k);
-                if size > cap && damping > 0.0 {
-                    // The dashpot alone carries the force over the cap: the contact slides on it while the spring
-                    // still holds below it. The spring and dashpot are one element in series with Coulomb's slider:
-                    // the force, at the cap along the trial, is T - c s_e with s_e the spring's share of the slip,
-                    // so the slider takes s - s_e = (F - trial)/c, against the force (it dissipates), and the spring
-                    // loads only by s_e: dT/dt = -kt s + (kt/c) (F - trial). Loading by the whole slip would store
-                    // in the spring energy the capped force never took from the bodies.
-                    let force = trial * (cap / size);
-                    let slid = (force - trial) * (kt / damping);
-                    TangentialForce { force, spring_rate: loading + slid + rescaling + turning }
-                } else {
-                    let force = if size > cap { trial * (cap / size) } else { trial };
-                    TangentialForce { force, spring_rate: loading + rescaling + turning }
-                }
+                TangentialForce { force, spring_rate: loading + rescaling + turning }
             }
             // No compression, no friction: the spring (at the cap, so near zero) is left as it is, rather than turned
             // at a rate that grows without bound as its length vanishes.
@@ -303,13 +290,17 @@ impl Tangential {
         elastic: f64,
     ) -> f64 {
         match mode {
-            // With a dashpot, sticking is the whole law: spring and dashpot in series with Coulomb's slider, the force
-            // capped and the spring loaded only by the slip the slider leaves ([`Tangential::evaluate`]). A switch to
-            // sliding where the spring alone reaches the cap would drop the dashpot's force at once and start a slide
-            // that the spring, unloading faster than the cap falls, does not hold: its own switch function starts
-            // below zero, never falls through it, and the force, the spring on the cap, pushes the contact points
-            // along their slip — energy from nothing (the rocking block turned over its new corner).
-            Mode::Stick if self.damping > 0.0 => 1.0,
+            // With a dashpot, sticking turns to sliding where the spring reaches the cap only while the spring holds
+            // against the slip (T·s ≤ 0: the slip loads it). A spring along the slip is unloading: the cap fell onto
+            // it, and a slide started there would drop the dashpot's force at once and begin with its own switch
+            // function below zero (never falling through it), its force, the spring on the cap, pushing the contact
+            // points along their slip — energy from nothing (the rocking block turned over its new corner). Such a
+            // contact sticks on, its force capped, its spring unloading: the bodies get at most what the spring gives
+            // back. (T·s is in the scaled units of force times speed, the room in force: both cross zero together
+            // only at the switch, where the room decides.)
+            Mode::Stick if self.damping > 0.0 => {
+                (self.cap(normal_force) - spring.norm()).max(spring.dot(&kinematics.slip))
+            }
             Mode::Stick => match self.cap {
                 FrictionCap::Compressive => self.friction * normal_force - spring.norm(),
                 FrictionCap::Magnitude => self.friction * normal_force.abs() - spring.norm(),
@@ -392,8 +383,17 @@ impl Tangential {
         elastic: f64,
     ) -> (Mode, Option<Vector3<f64>>) {
         match mode {
-            Mode::Stick if self.cap == FrictionCap::Magnitude && normal_force < 0.0 => (Mode::SlipInTension, None),
-            Mode::Stick => (Mode::Slip, None),
+            // A damped spring may stand beyond the cap (it unloaded more slowly than the cap fell, the force capped
+            // meanwhile): it slides from the cap.
+            Mode::Stick => {
+                let next = if self.cap == FrictionCap::Magnitude && normal_force < 0.0 {
+                    Mode::SlipInTension
+                } else {
+                    Mode::Slip
+                };
+                let (size, cap) = (spring.norm(), self.cap(normal_force));
+                (next, (size > cap).then(|| spring * (cap / size)))
+            }
             Mode::Slip | Mode::SlipInTension => {
                 let (lifting, kink) =
                     self.sliding_parts(mode, spring, kinematics, normal_force, normal_force_rate, elastic);
