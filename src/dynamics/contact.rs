@@ -331,6 +331,17 @@ impl Tangential {
         elastic: f64,
     ) -> f64 {
         match mode {
+            // With a dashpot, sticking turns to sliding where the spring reaches the cap only while the spring holds
+            // against the slip (T·s ≤ 0: the slip loads it). A spring along the slip is unloading: the cap fell onto
+            // it, and a slide started there would drop the dashpot's force at once and begin with its own switch
+            // function below zero (never falling through it), its force, the spring on the cap, pushing the contact
+            // points along their slip — energy from nothing (the rocking block turned over its new corner). Such a
+            // contact sticks on, its force capped, its spring unloading: the bodies get at most what the spring gives
+            // back. (T·s is in the scaled units of force times speed, the room in force: both cross zero together
+            // only at the switch, where the room decides.)
+            Mode::Stick if self.damping > 0.0 => {
+                (self.cap(normal_force) - spring.norm()).max(spring.dot(&kinematics.slip))
+            }
             Mode::Stick => match self.cap {
                 FrictionCap::Compressive => self.friction * normal_force - spring.norm(),
                 FrictionCap::Magnitude => self.friction * normal_force.abs() - spring.norm(),
@@ -413,8 +424,17 @@ impl Tangential {
         elastic: f64,
     ) -> (Mode, Option<Vector3<f64>>) {
         match mode {
-            Mode::Stick if self.cap == FrictionCap::Magnitude && normal_force < 0.0 => (Mode::SlipInTension, None),
-            Mode::Stick => (Mode::Slip, None),
+            // A damped spring may stand beyond the cap (it unloaded more slowly than the cap fell, the force capped
+            // meanwhile): it slides from the cap.
+            Mode::Stick => {
+                let next = if self.cap == FrictionCap::Magnitude && normal_force < 0.0 {
+                    Mode::SlipInTension
+                } else {
+                    Mode::Slip
+                };
+                let (size, cap) = (spring.norm(), self.cap(normal_force));
+                (next, (size > cap).then(|| spring * (cap / size)))
+            }
             Mode::Slip | Mode::SlipInTension => {
                 let (lifting, kink) =
                     self.sliding_parts(mode, spring, kinematics, normal_force, normal_force_rate, elastic);
