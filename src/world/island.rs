@@ -172,6 +172,9 @@ pub struct Island<'a> {
     /// For each member, its place among the turning members (`None`: a sphere, whose orientation nobody reads).
     turning_slot: Vec<Option<usize>>,
     turning: Vec<Turning>,
+    /// Each turning member's last turn and the seven state values it was formed from: a turn is asked for many times
+    /// at one state (every site's arm and velocity, every contact and event), and formed once.
+    turn_cache: Vec<std::cell::Cell<Option<([u64; 7], Turn)>>>,
     /// Where the turning members' states (7 each) begin.
     rigid_base: usize,
     /// Every body's position and velocity when the segment began (scene-indexed), SI.
@@ -307,6 +310,7 @@ impl<'a> Island<'a> {
             site_start,
             site_arms,
             turning_slot,
+            turn_cache: vec![std::cell::Cell::new(None); turning.len()],
             turning,
             rigid_base,
             start,
@@ -370,6 +374,20 @@ impl<'a> Island<'a> {
 
     /// Turning member `r`'s motion at state `y`.
     fn turn(&self, r: usize, y: &DVector<f64>) -> Turn {
+        let at = self.rigid_base + 7 * r;
+        let key: [u64; 7] = std::array::from_fn(|i| y[at + i].to_bits());
+        if let Some((seen, turn)) = self.turn_cache[r].get()
+            && seen == key
+        {
+            return turn;
+        }
+        let turn = self.form_turn(r, y);
+        self.turn_cache[r].set(Some((key, turn)));
+        turn
+    }
+
+    /// Turning member `r`'s motion at state `y`, formed from its seven state values.
+    fn form_turn(&self, r: usize, y: &DVector<f64>) -> Turn {
         let part = &self.turning[r];
         let at = self.rigid_base + 7 * r;
         let vector = y.fixed_rows::<3>(at).into_owned() * (self.units.length / part.reach);
