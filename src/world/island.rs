@@ -151,6 +151,9 @@ struct Turn {
     inverse_inertia: Matrix3<f64>,
 }
 
+/// A turn and the bits of the seven state values it was formed from.
+type CachedTurn = ([u64; 7], Turn);
+
 impl Turn {
     /// (R - 1) a for an arm `a` as the segment began: the turn's displacement of a point of the body, without the
     /// cancellation of R a - a.
@@ -174,7 +177,7 @@ pub struct Island<'a> {
     turning: Vec<Turning>,
     /// Each turning member's last turn and the seven state values it was formed from: a turn is asked for many times
     /// at one state (every site's arm and velocity, every contact and event), and formed once.
-    turn_cache: Vec<std::cell::Cell<Option<([u64; 7], Turn)>>>,
+    turn_cache: Vec<std::cell::Cell<Option<CachedTurn>>>,
     /// Where the turning members' states (7 each) begin.
     rigid_base: usize,
     /// Every body's position and velocity when the segment began (scene-indexed), SI.
