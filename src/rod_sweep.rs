@@ -205,14 +205,19 @@ impl PlanarRod {
 pub struct Sequence {
     /// The apparent e: v_z⁺/v (module doc).
     pub apparent_e: f64,
-    /// The contacts of the sequence (for the sequential model: those that gave an impulse).
-    pub contacts: usize,
     /// Which end each contact of the sequence was of (0 the upper end at the start, 1 the lower).
     pub ends: Vec<usize>,
     /// Each contact's start, from first touch, s.
     pub times: Vec<f64>,
     /// τ: from first touch to the sequence's end (the last contact's end; its start in the instantaneous models), s.
     pub duration: f64,
+}
+
+impl Sequence {
+    /// The contacts of the sequence (for the sequential model: those that gave an impulse).
+    pub fn contacts(&self) -> usize {
+        self.ends.len()
+    }
 }
 
 /// The rigid rod's own sequence at `degrees`, dropped at `speed` (its speed at first touch) with instantaneous end
@@ -231,7 +236,7 @@ pub fn rigid_sequence(degrees: f64, speed: f64, e: f64, g: f64, limit: usize) ->
         let horizon = if rod.vz > 0.0 { rod.vz / g } else { (-rod.vz + (rod.vz * rod.vz + 2.0 * g).sqrt()) / g };
         match rod.next_touch(g, horizon) {
             None if rod.vz > 0.0 => {
-                return Some(Sequence { apparent_e: rod.vz / speed, contacts: ends.len(), ends, times, duration: now });
+                return Some(Sequence { apparent_e: rod.vz / speed, ends, times, duration: now });
             }
             None => return None,
             Some((t, next)) => {
@@ -273,7 +278,6 @@ pub fn simulated_sequences(report: &WorldReport) -> Result<(Sequence, Sequence),
             let sequence = &contacts[..=k];
             let simulated = Sequence {
                 apparent_e: vz / v,
-                contacts: k + 1,
                 ends: sequence.iter().map(|c| c.spheres[0].unwrap_or(usize::MAX)).collect(),
                 times: sequence.iter().map(|c| c.start_time - start).collect(),
                 duration: last_end - start,
@@ -305,7 +309,7 @@ fn sequential(report: &WorldReport, last: usize, g: f64) -> Result<Sequence, Str
         (before, previous) = (after, c.start_time);
     }
     let duration = previous - start;
-    Ok(Sequence { apparent_e: before / v, contacts: ends.len(), ends, times, duration })
+    Ok(Sequence { apparent_e: before / v, ends, times, duration })
 }
 
 /// One angle of the sweep: the simulation, the sequential model over its contacts, and the rigid rod with the

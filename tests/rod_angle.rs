@@ -166,7 +166,7 @@ fn the_sweep_counts_the_rigid_rods_contacts_and_its_apparent_e_where_they_are_un
             assert_eq!(nearby.len(), ends.len(), "{}°: the rigid count is ambiguous ({d}°, {de})", p.degrees);
         }
         assert_eq!(p.simulated.ends, ends, "{}°: simulated ends", p.degrees);
-        assert_eq!(p.simulated.contacts, ends.len());
+        assert_eq!(p.simulated.contacts(), ends.len());
         assert_eq!(p.sequential.ends, ends, "{}°: the sequential model's ends", p.degrees);
         let rigid = p.rigid.as_ref().expect("the library's rigid rod ends its sequence");
         assert_eq!(rigid.ends, ends, "{}°: the library's rigid ends", p.degrees);

@@ -41,9 +41,9 @@ pub fn stack(title: &str, points: &[SweepPoint]) -> Stack {
             "(b) contacts in the sequence (up to the rebound's apex)",
             "contacts",
             [
-                series(&|p| Some(p.simulated.contacts as f64)),
-                series(&|p| Some(p.sequential.contacts as f64)),
-                series(&|p| p.rigid.as_ref().map(|r| r.contacts as f64)),
+                series(&|p| Some(p.simulated.contacts() as f64)),
+                series(&|p| Some(p.sequential.contacts() as f64)),
+                series(&|p| p.rigid.as_ref().map(|r| r.contacts() as f64)),
             ],
         ),
     ];
