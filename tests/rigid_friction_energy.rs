@@ -13,73 +13,13 @@
 
 mod common;
 
+use common::rocking::{self, B, G, H, mass, principal, release_height};
 use common::world_report_json as run;
 use serde_json::Value;
 
-/// Half-width b, half-height h, depth (m), density (steel, kg/m³), the corner spheres' radius (m), the tilt (°).
-const B: f64 = 0.05;
-const H: f64 = 0.2;
-const DEPTH: f64 = 0.05;
-const DENSITY: f64 = 7850.0;
-const R_CORNER: f64 = 0.001;
-const TILT: f64 = 10.0;
-const G: f64 = 9.81;
-
-fn mass() -> f64 {
-    DENSITY * 2.0 * B * 2.0 * H * DEPTH
-}
-
-/// The box's principal inertias about its mass centre (x, y, z as the block stands level), kg m².
-fn principal() -> [f64; 3] {
-    let m = mass();
-    [
-        m * ((2.0 * H).powi(2) + DEPTH * DEPTH) / 12.0,
-        m * ((2.0 * B).powi(2) + (2.0 * H).powi(2)) / 12.0,
-        m * ((2.0 * B).powi(2) + DEPTH * DEPTH) / 12.0,
-    ]
-}
-
-/// The mass centre's height at release, standing on the -x corner sphere tilted φ0: `r + b sin φ0 + (h - r) cos φ0`.
-fn release_height() -> f64 {
-    let phi = TILT.to_radians();
-    R_CORNER + B * phi.sin() + (H - R_CORNER) * phi.cos()
-}
-
-fn exact(x: f64) -> String {
-    format!("{x:?}")
-}
-
-/// The block, tilted φ0 about y and resting on its -x corner sphere, on a steel floor, with `contact` lines.
+/// The block of tests/rocking_block.rs, on a steel floor, with `contact` lines.
 fn scene(contact: &str, max_contacts: usize) -> String {
-    let principal = principal();
-    let (c, s) = (TILT.to_radians().cos(), TILT.to_radians().sin());
-    let turn = [[c, 0.0, -s], [0.0, 1.0, 0.0], [s, 0.0, c]];
-    let entry = |i: usize, j: usize| (0..3).map(|k| turn[i][k] * principal[k] * turn[j][k]).sum::<f64>();
-    let row = |i: usize| format!("[{}, {}, {}]", exact(entry(i, 0)), exact(entry(i, 1)), exact(entry(i, 2)));
-    let corner = |side: f64| [side * B * c + (H - R_CORNER) * s, side * B * s - (H - R_CORNER) * c];
-    let sphere = |o: [f64; 2]| {
-        format!(
-            "[[bodies.spheres]]\noffset = [{}, 0.0, {}]\nradius = {}\n\n",
-            exact(o[0]),
-            exact(o[1]),
-            exact(R_CORNER)
-        )
-    };
-    format!(
-        "title = \"rocking block with friction\"\n[world]\ngravity = [0.0, 0.0, {}]\nmax_contacts = {max_contacts}\n\n\
-         [[bodies]]\nname = \"block\"\nmass = {}\ninertia = [{}, {}, {}]\nposition = [0.0, 0.0, {}]\n\
-         velocity = [0.0, 0.0, 0.0]\nyoung = 2.1e11\npoisson = 0.3\n\n{}{}\
-         [[bodies]]\nname = \"floor\"\nmass = inf\nradius = inf\nposition = [0.0, 0.0, 0.0]\n\
-         normal = [0.0, 0.0, 1.0]\nvelocity = [0.0, 0.0, 0.0]\nyoung = 2.1e11\npoisson = 0.3\n\n[contact]\n{contact}\n",
-        exact(-G),
-        exact(mass()),
-        row(0),
-        row(1),
-        row(2),
-        exact(release_height()),
-        sphere(corner(1.0)),
-        sphere(corner(-1.0)),
-    )
+    rocking::scene(2.1e11, contact, max_contacts)
 }
 
 /// Tsuji's law heavily damped, ended on its force, μ = 1 (models/rocking-block.toml).

@@ -20,20 +20,9 @@
 
 mod common;
 
+use common::rocking::{B, G, H, R_CORNER, TILT, scene};
 use common::world_report_json as run;
 use serde_json::Value;
-
-/// Half-width b, half-height h (m): h/b = 4.
-const B: f64 = 0.05;
-const H: f64 = 0.2;
-/// The corner spheres' radius, m.
-const R_CORNER: f64 = 0.001;
-/// The block's depth across the rocking plane (m) and its density (steel, kg/m³).
-const DEPTH: f64 = 0.05;
-const DENSITY: f64 = 7850.0;
-/// The release tilt, degrees.
-const TILT: f64 = 10.0;
-const G: f64 = 9.81;
 
 /// Housner's ratio of the spins after and before the transfer, `1 - (3/2) sin²α`.
 fn housner() -> f64 {
@@ -46,55 +35,6 @@ fn spin_from_energy() -> f64 {
     let phi = TILT.to_radians();
     let drop = R_CORNER + B * phi.sin() + (H - R_CORNER) * phi.cos() - H;
     (2.0 * G * drop / (4.0 / 3.0 * (B * B + H * H))).sqrt()
-}
-
-fn exact(x: f64) -> String {
-    format!("{x:?}")
-}
-
-/// The block's scene: its mass and inertia (a uniform box, turned by the tilt about y), its corner spheres, a floor
-/// of the same `young`, and the `[contact]` lines given.
-fn scene(young: f64, contact: &str, max_contacts: usize) -> String {
-    let mass = DENSITY * 2.0 * B * 2.0 * H * DEPTH;
-    let principal = [
-        mass * ((2.0 * H).powi(2) + DEPTH * DEPTH) / 12.0,
-        mass * ((2.0 * B).powi(2) + (2.0 * H).powi(2)) / 12.0,
-        mass * ((2.0 * B).powi(2) + DEPTH * DEPTH) / 12.0,
-    ];
-    // Turned by -φ0 about y: the body's +x axis goes to (cos φ0, 0, sin φ0), its +x side up.
-    let (c, s) = (TILT.to_radians().cos(), TILT.to_radians().sin());
-    let turn = [[c, 0.0, -s], [0.0, 1.0, 0.0], [s, 0.0, c]];
-    let entry = |i: usize, j: usize| (0..3).map(|k| turn[i][k] * principal[k] * turn[j][k]).sum::<f64>();
-    let row = |i: usize| format!("[{}, {}, {}]", exact(entry(i, 0)), exact(entry(i, 1)), exact(entry(i, 2)));
-    // A corner sphere's centre in the body, (±b, 0, -(h - r)), turned.
-    let corner = |side: f64| [side * B * c + (H - R_CORNER) * s, 0.0, side * B * s - (H - R_CORNER) * c];
-    let (plus, minus) = (corner(1.0), corner(-1.0));
-    let centre = R_CORNER - minus[2];
-    let sphere = |o: [f64; 3]| {
-        format!(
-            "[[bodies.spheres]]\noffset = [{}, 0.0, {}]\nradius = {}\n\n",
-            exact(o[0]),
-            exact(o[2]),
-            exact(R_CORNER)
-        )
-    };
-    format!(
-        "title = \"rocking block\"\n[world]\ngravity = [0.0, 0.0, {}]\nmax_contacts = {max_contacts}\n\n\
-         [[bodies]]\nname = \"block\"\nmass = {}\ninertia = [{}, {}, {}]\nposition = [0.0, 0.0, {}]\n\
-         velocity = [0.0, 0.0, 0.0]\nyoung = {}\npoisson = 0.3\n\n{}{}\
-         [[bodies]]\nname = \"floor\"\nmass = inf\nradius = inf\nposition = [0.0, 0.0, 0.0]\n\
-         normal = [0.0, 0.0, 1.0]\nvelocity = [0.0, 0.0, 0.0]\nyoung = {}\npoisson = 0.3\n\n[contact]\n{contact}\n",
-        exact(-G),
-        exact(mass),
-        row(0),
-        row(1),
-        row(2),
-        exact(centre),
-        exact(young),
-        sphere(plus),
-        sphere(minus),
-        exact(young)
-    )
 }
 
 /// Housner's limit: Tsuji's Hertzian law with five times its critical damping (the new corner's e is about 1e-3),

@@ -4,6 +4,7 @@
 
 pub mod binary;
 pub mod edge_ode;
+pub mod rocking;
 pub mod vectors;
 
 use impact::impact::simulate;
