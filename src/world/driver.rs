@@ -826,9 +826,30 @@ impl<'a> World<'a> {
                 functions.push(Box::new(move |y| isl.contact_state(c, y).penetration / isl.units.length));
                 kinds.push((Watched::Separation(c), true));
             }
-            functions.push(Box::new(move |y| isl.contact_state(c, y).rate / isl.units.speed));
+            // A maximum of the penetration, or of the force, is located only where it would be the deepest, or the
+            // largest, so far: the record keeps that one. Each function is the larger of the rate (falling through
+            // zero at a maximum) and the shortfall from the record at the segment's start (positive below it), so
+            // that it falls through zero exactly at a maximum at or beyond the record; a resting contact's ringing and
+            // noise below it are not stepped to (docs/world.md#resting-contacts).
+            let record = &self.records[isl.contacts[c].record];
+            let deepest = record.max_compression.map_or(f64::NEG_INFINITY, |m| m.penetration);
+            functions.push(Box::new(move |y| {
+                let state = isl.contact_state(c, y);
+                above_record(state.rate / isl.units.speed, (deepest - state.penetration) / isl.units.length)
+            }));
             kinds.push((Watched::MaxCompression(c), false));
-            functions.push(Box::new(move |y| isl.force_rate(c, y) * isl.units.time / isl.units.force));
+            let largest = record.peak_force.map_or(f64::NEG_INFINITY, |(_, peak)| peak);
+            functions.push(Box::new(move |y| {
+                let state = isl.contact_state(c, y);
+                let (elastic, dissipative) = isl.force(c, &state, y);
+                let short = (largest - (elastic + dissipative)) / isl.units.force;
+                // (The force's rate, which sums the forces on both bodies, only where the sign needs it.)
+                if short > 0.0 {
+                    short
+                } else {
+                    above_record(isl.force_rate(c, y) * isl.units.time / isl.units.force, short)
+                }
+            }));
             kinds.push((Watched::ForcePeak(c), false));
             if isl.contacts[c].friction.is_some() {
                 functions.push(Box::new(move |y| isl.switch_value(c, y).unwrap_or(1.0)));
@@ -1692,4 +1713,13 @@ fn flight_instants<Y>(points: &[(f64, Y)], span: f64, apexes: &[f64]) -> Vec<f64
     times.sort_by(f64::total_cmp);
     times.dedup();
     times
+}
+
+/// The function whose fall through zero is a maximum at or beyond a record: `rate` (the scaled rate of the quantity,
+/// falling through zero at its maxima) where `short` (the scaled shortfall of the quantity from the record) is not
+/// positive, and a positive value of the same sign as `max(rate, short)` elsewhere. It equals `max(rate, short)`
+/// wherever `short <= 0`, and so near every zero it has: it is continuous there, and zero exactly where the quantity
+/// peaks at or above the record.
+fn above_record(rate: f64, short: f64) -> f64 {
+    if short > 0.0 { short } else { rate.max(short) }
 }
