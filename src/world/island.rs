@@ -739,6 +739,12 @@ impl<'a> Island<'a> {
         ContactState { penetration, rate: -relative_velocity.dot(&normal), normal, relative_velocity, distance }
     }
 
+    /// The penetration of sites `p` and `q` (meeting as `meeting`) at state `y`, m: [`Island::site_state`]'s, without
+    /// the velocities (a watched pair's gap is read at every step).
+    pub fn site_penetration(&self, p: usize, q: usize, meeting: &Meeting, y: &DVector<f64>) -> f64 {
+        meeting.penetration(&self.site_relative_position(p, q, y)).0
+    }
+
     /// Contact `c`'s kinematics at state `y`.
     pub fn contact_state(&self, c: usize, y: &DVector<f64>) -> ContactState {
         let contact = &self.contacts[c];
