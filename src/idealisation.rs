@@ -428,12 +428,10 @@ fn across_contacts(measured: &Measured, speeds: &Neighbours) -> Option<Verdict> 
         }
     };
     verdict(slope, SLOPE_SCALE, SLOPE, ("d ln e / d ln v0", ""), |_| {
-        let change = 100.0 * (2f64.powf(slope) - 1.0);
         format!(
-            "the pair's e is {pair}: a slope of {}, so doubling the speed changes e by {} % — the idealisation's one e \
-             serves {}{}",
+            "the pair's e is {pair}: a slope of {}, so {} — the idealisation's one e serves {}{}",
             brief(slope, ""),
-            brief(change, ""),
+            doubling(slope),
             if slope.abs() < SLOPE_SCALE * SLOPE.holds_below { "all these speeds" } else { "one speed only" },
             if speeds.remapped {
                 " (the law's damping was mapped at each contact's own speed, which holds e by construction: what \
@@ -643,6 +641,18 @@ fn quasi_static(bodies: [&Body; 2], measured: &Measured) -> Option<Verdict> {
     })
 }
 
+/// What a local slope `d ln e / d ln v0` says of a doubling of the speed, in words: the change of e in percent, or,
+/// for a slope so steep that the power law it stands for would multiply e more than a hundredfold (a slope of
+/// hundreds between two slow contacts of a settling pile), that it would — never an overflowing percentage.
+fn doubling(slope: f64) -> String {
+    let change = 100.0 * (2f64.powf(slope) - 1.0);
+    if change.is_finite() && change <= 1e4 {
+        format!("doubling the speed changes e by {} %", brief(change, ""))
+    } else {
+        "doubling the speed would multiply e more than a hundredfold at this slope".to_string()
+    }
+}
+
 /// d ln e / d ln v0 by the central difference of the two trial runs, against [`SLOPE_SCALE`].
 fn constant_e(measured: &Measured) -> Option<Verdict> {
     let (slower, faster) = (measured.speed_trial.slower?, measured.speed_trial.faster?);
@@ -651,15 +661,14 @@ fn constant_e(measured: &Measured) -> Option<Verdict> {
     }
     let slope = (faster / slower).ln() / ((1.0 + SPEED_STEP) / (1.0 - SPEED_STEP)).ln();
     verdict(slope, SLOPE_SCALE, SLOPE, ("d ln e / d ln v0", ""), |_| {
-        let change = 100.0 * (2f64.powf(slope) - 1.0);
         let both = match two_values(slower, faster) {
             Ok((slower, faster)) => format!("{slower} at 0.9 and {faster} at 1.1 times the speed"),
             Err((e, difference)) => format!("{e} at 0.9 and 1.1 times the speed alike (to {difference})"),
         };
         format!(
-            "e is {both}: a slope of {}, so doubling the speed changes e by {} % — the idealisation's one e serves {}",
+            "e is {both}: a slope of {}, so {} — the idealisation's one e serves {}",
             brief(slope, ""),
-            brief(change, ""),
+            doubling(slope),
             if slope.abs() < SLOPE_SCALE * SLOPE.holds_below { "all nearby speeds" } else { "this speed only" }
         )
     })
