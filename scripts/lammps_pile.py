@@ -8,18 +8,23 @@ What it runs
     normal along an axis) and its `[contact]` (restitution, friction). LAMMPS integrates it with velocity Verlet
     (`fix nve/sphere`) at a fixed step dt, one MPI rank, one thread, with
         pair_style granular
-        pair_coeff * * hertz K_N E_EFF tangential mindlin K_T 0.0 MU damping coeff_restitution
+        pair_coeff * * hertz K_N E_EFF tangential mindlin/force K_T 0.0 MU damping coeff_restitution
         fix wall/gran granular (the same model) xplane / yplane / zplane
     so every contact, ball-ball or ball-wall, has
         normal      F = K_N sqrt(R* d) d,  K_N = (4/3) E*,  E* = E / (2 (1 - nu^2))  (`hertz/material`'s K_N;
                     R* = r/2 between balls, r against a wall, which LAMMPS takes as of infinite radius and mass),
-        damping     LAMMPS' `coeff_restitution`: a dashpot eta = sqrt(4 m* K_N a / (1 + (pi / ln e)^2)) times
-                    sqrt(5/6)-type Hertz scaling, Tsuji's exact map: every contact's head-on restitution is e at
-                    every speed (velocity Verlet adds a first-order error in dt; `--check` measures it);
-        tangential  Mindlin's spring K_T a, K_T = 8 G*, G* = G / (2 (2 - nu)), G = E / (2 (1 + nu)), with history,
-                    capped at mu |F_n|, no tangential dashpot; no rolling or twisting resistance.
+        damping     LAMMPS' `coeff_restitution`: the dashpot -2 sqrt(5/6) ln e / sqrt(pi^2 + ln^2 e)
+                    sqrt((3/2) m* F/d) d', which is Tsuji's law at its exact map (docs/laws.md): a contact's
+                    head-on e is the e asked at every speed (velocity Verlet adds an error of first order in dt,
+                    the dashpot acting on the half-step velocity: `--check` measures it);
+        tangential  Mindlin's stiffness K_T a, K_T = 8 G*, G* = G / (2 (2 - nu)), G = E / (2 (1 + nu)), on an
+                    incremental spring, dF_t = -K_T a v_t dt (`mindlin/force`: the force is the contact's history,
+                    as impact's dT/dt = -kt s with its default `tangential_unloading = "none"`), kept in the
+                    present tangent plane, capped at mu |F_n|; no tangential dashpot (the scene has none); no
+                    rolling or twisting resistance (nor has impact).
     These are the numbers `impact translate SCENE --to lammps --input DIR` writes (k_n = 1.538461538e11 Pa,
-    k_t = 1.900452489e11 Pa), with one difference: see "e" below.
+    k_t = 1.900452489e11 Pa), with two differences, the e and the tangential spring (below); `--translated DIR`
+    runs the translation's input as it stands.
 
     t_c, the Hertz contact time of two balls closing at v (elastic):
         t_c = C (m*^2 / (K^2 v))^(1/5),  C = 3.2180654597...,  K = (4/3) E* sqrt(R*),  m* = m / 2
@@ -35,13 +40,17 @@ What differs from impact's model of the same scene
       DEM equivalent, and this script gives it the e the scene's contact really has (0.832870), solved here by
       bisection. `impact translate --to lammps --input` writes the nominal 0.8 for a world (its two-body
       translation reproduces the contact's e); `--restitution 0.8` runs that.
-    - The force's shape. Hunt-Crossley's force is K d^(3/2) (1 + alpha d'), zero at first touch and at separation,
-      never pulling; LAMMPS' spring-dashpot jumps to eta v0 at first touch and pulls (by the dashpot) just before
-      separation. Same e, another force-time curve: a contact in a pile that is struck while loaded behaves a
-      little otherwise.
+    - The tangential spring. `impact translate` writes `tangential mindlin`, whose history is the tangential
+      displacement xi and whose force -K_T a xi follows the contact radius a as the contact unloads (impact's
+      `tangential_unloading = "rescale"` does the like); impact's default keeps the force, which is LAMMPS'
+      `mindlin/force`, this script's default. `--tangential mindlin` runs the translation's choice.
+    - The force's shape. Hunt-Crossley's force K d^(3/2) (1 + alpha d') never pulls and is zero at first touch
+      and at separation. LAMMPS' dashpot, proportional to d^(1/4) d', is zero at first touch too, but outlasts the
+      spring (d^(3/2)) as d -> 0 at the end, so that the contact pulls just before it separates. Same e, another
+      force-time curve: a contact struck again while loaded (a pile's) behaves a little otherwise.
     - Friction. LAMMPS caps the tangential force at mu |F_n| (impact: mu max(F_n, 0), `friction_cap =
-      "compressive"`); it integrates the Mindlin spring at a fixed step and places it on the cap when it slides.
-      impact locates each stick-slip switch as an event.
+      "compressive"`); it steps the spring at a fixed step and sets it on the cap when it slides. impact locates
+      each switch between sticking and sliding as an event.
     - Integration. LAMMPS: velocity Verlet at a fixed dt, each touch at the first step past it. impact: an
       adaptive 8th-order integrator, each contact's start and end located on the solution.
     Balls in a pile make a chaotic system: two runs part ways within a few dozen contacts, so runs are compared by
@@ -268,10 +277,10 @@ def load_lammps():
     return lammps_chain.load_lammps(), lammps_chain.package_version()
 
 
-def contact_model(k_n, e, k_t, mu, damping="coeff_restitution"):
+def contact_model(k_n, e, k_t, mu, damping="coeff_restitution", tangential="mindlin/force"):
     """One granular model, in pair_coeff's (and fix wall/gran granular's) words."""
-    return ("hertz %.17g %.17g tangential mindlin %.17g 0.0 %.17g damping %s"
-            % (k_n, e, k_t, mu, damping))
+    return ("hertz %.17g %.17g tangential %s %.17g 0.0 %.17g damping %s"
+            % (k_n, e, tangential, k_t, mu, damping))
 
 
 def make_world(lammps, scene, balls, walls, model, dt, gravity, pad=0.05):
@@ -336,9 +345,12 @@ def make_world(lammps, scene, balls, walls, model, dt, gravity, pad=0.05):
     return lmp
 
 
-def gather(lmp, name):
-    values = list(lmp.gather_atoms(name, 1, 3))
-    return [values[3 * i:3 * i + 3] for i in range(len(values) // 3)]
+def gather(lmp, name, count=3):
+    """A per-atom quantity of every atom, in atom-id order (the ids need not be consecutive)."""
+    ids = list(lmp.gather_atoms_concat("id", 0, 1))
+    values = list(lmp.gather_atoms_concat(name, 1, count))
+    rows = sorted((ids[i], values[count * i:count * i + count]) for i in range(len(ids)))
+    return [row if count > 1 else row[0] for _, row in rows]
 
 
 # ---------------------------------------------------------------------------------------------------------------
@@ -392,7 +404,7 @@ def run_pile(args):
     steps = max(1, int(math.ceil(scene.end_time / requested - 1e-9)))
     dt = scene.end_time / steps
     e = args.restitution if args.restitution is not None else scene.effective_e
-    model = contact_model(scene.k_n, e, scene.k_t, scene.friction)
+    model = contact_model(scene.k_n, e, scene.k_t, scene.friction, tangential=args.tangential)
     lmp = make_world(lammps, scene, scene.balls, scene.walls, model, dt, scene.gravity)
     print("pile: %d balls, %d walls, e = %.9g (nominal %g), mu = %g; t_c = %.4g s at 1 m/s, %.4g s at 2 m/s; "
           "dt = %.6g s (t_c(2 m/s) / %.3g), %d steps to %g s"
@@ -406,8 +418,7 @@ def run_pile(args):
     cpu_run = time.process_time() - cpu_run
 
     x, v, w = gather(lmp, "x"), gather(lmp, "v"), gather(lmp, "omega")
-    masses = list(lmp.gather_atoms("rmass", 1, 1))
-    radii = list(lmp.gather_atoms("radius", 1, 1))
+    masses, radii = gather(lmp, "rmass", 1), gather(lmp, "radius", 1)
     version = lmp.version()
     lmp.close()
     stats = pile_statistics(x, v, w, masses, radii, scene.gravity, scene.walls)
@@ -466,8 +477,7 @@ def run_translated(args):
     wall_run = time.perf_counter() - wall_run
     cpu_run = time.process_time() - cpu_run
     x, v, w = gather(lmp, "x"), gather(lmp, "v"), gather(lmp, "omega")
-    masses = list(lmp.gather_atoms("rmass", 1, 1))
-    radii = list(lmp.gather_atoms("radius", 1, 1))
+    masses, radii = gather(lmp, "rmass", 1), gather(lmp, "radius", 1)
     version = lmp.version()
     lmp.close()
     stats = pile_statistics(x, v, w, masses, radii, scene.gravity, scene.walls)
@@ -543,24 +553,28 @@ def report_statistics(path):
 # --table
 # ---------------------------------------------------------------------------------------------------------------
 def run_table(paths):
-    print("%-8s %-14s %9s %9s %10s %10s %9s %9s %6s %6s %9s"
-          % ("program", "step / rtol", "steps", "run [s]", "KE [J]", "PE [J]", "mean z", "highest", "floor",
-             "pairs", "contacts"))
+    """One row a run. The time is the run alone: LAMMPS' `run` command (wall and this process's CPU), impact's
+    solver.wall_time_s (wall only): whole processes are best timed from outside, alternated."""
+    print("%-8s %-16s %9s %8s %8s %10s %10s %10s %9s %9s %5s %5s %8s"
+          % ("program", "step / tol", "steps", "wall [s]", "CPU [s]", "KE [J]", "KE twist", "PE [J]", "mean z",
+             "highest", "floor", "pairs", "contacts"))
     for path in paths:
         with open(path) as f:
             run = json.load(f)
         s = run["statistics"]
         if run["program"] == "LAMMPS":
             setting = "dt %.3g us" % (1e6 * run["dt"])
-            seconds = run["cpu_s_run"]
+            if "mindlin/force" not in (run.get("pair_coeff") or ""):
+                setting += " (m)"  # the translation's `tangential mindlin`
+            cpu = "%8.2f" % run["cpu_s_run"]
             contacts = ""
         else:
             setting = "rtol %.0e" % run["rtol"]
-            seconds = run["wall_s_run"]
+            cpu = "%8s" % "-"
             contacts = "%d" % run["contacts"]
-        print("%-8s %-14s %9d %9.2f %10.3e %10.3e %9.5f %9.5f %6d %6d %9s"
-              % (run["program"], setting, run["steps"], seconds, s["kinetic"], s["potential"], s["mean_height"],
-                 s["highest"], s["on_floor"], s["ball_contacts"], contacts))
+        print("%-8s %-16s %9d %8.2f %s %10.3e %10.3e %10.3e %9.5f %9.5f %5d %5d %8s"
+              % (run["program"], setting, run["steps"], run["wall_s_run"], cpu, s["kinetic"], s["kinetic_twist"],
+                 s["potential"], s["mean_height"], s["highest"], s["on_floor"], s["ball_contacts"], contacts))
 
 
 # ---------------------------------------------------------------------------------------------------------------
@@ -627,6 +641,9 @@ def main():
     step.add_argument("--steps-per-contact", type=float, help="S: dt = t_c(--contact-speed) / S")
     parser.add_argument("--contact-speed", type=float, default=2.0,
                         help="the closing speed of t_c for --steps-per-contact, m/s (default 2)")
+    parser.add_argument("--tangential", default="mindlin/force", choices=["mindlin/force", "mindlin"],
+                        help="LAMMPS' Mindlin spring: mindlin/force (the default: the force is the history, as in "
+                             "impact) or mindlin (the displacement is, as `impact translate` writes)")
     parser.add_argument("--restitution", type=float,
                         help="e for coeff_restitution (default: the e the scene's contact gives)")
     parser.add_argument("--out", help="write the run (or the report's statistics) as JSON to this file")
