@@ -63,7 +63,8 @@ The statistics (at the scene's end time; z along -gravity, measured from the flo
                  slightly negative by the balls' static penetration, ~76 nm each)
     mean_height  m, the balls' centres;   highest  m, the highest centre
     on_floor     the balls that touch the floor (z < r);   ball_contacts  the pairs of balls in contact (|xi - xj|
-                 < 2 r);   outside  balls beyond a wall (a lost ball: should be 0)
+                 < 2 r);   outside  balls beyond a wall (a lost ball: should be 0; LAMMPS runs only, 0 for a
+                 report, which does not give the walls' normals)
 
 Modes
     scripts/lammps_pile.py [--scene FILE.toml] [--dt SECONDS | --steps-per-contact S [--contact-speed V]]
@@ -183,8 +184,10 @@ class Scene:
                              % (path, self.end_time))
         self.end_time = float(self.end_time)
 
-        contact = data.get("contact", {})
-        self.law = contact.get("law", "hunt-crossley")
+        contact = data.get("contact")
+        if not isinstance(contact, dict) or "law" not in contact:
+            raise SceneError("%s: contact.law: expected a [contact] table with its law" % path)
+        self.law = contact["law"]
         self.nominal_e = contact.get("restitution")
         if not isinstance(self.nominal_e, (int, float)) or not 0.0 < self.nominal_e <= 1.0:
             raise SceneError("%s: contact.restitution: expected a number in (0, 1], got %r"
@@ -192,9 +195,9 @@ class Scene:
         if self.law == "hunt-crossley":
             self.effective_e = hunt_crossley_effective_e(self.nominal_e)
         else:
-            # The laws whose map is exact (carvalho-martins, tsuji, ...) give the nominal e.
-            print("note: contact.law = %r: taking its restitution %g as the contact's e"
-                  % (self.law, self.nominal_e), file=sys.stderr)
+            # Other maps give other e's (docs/laws.md): the nominal one is exact for carvalho-martins and tsuji.
+            print("note: contact.law = %r: taking its restitution %g as the contact's e (exact only where the "
+                  "law's map is)" % (self.law, self.nominal_e), file=sys.stderr)
             self.effective_e = float(self.nominal_e)
         self.friction = float(contact.get("friction", 0.0))
         if data.get("pair"):
