@@ -68,12 +68,16 @@ The statistics (at the scene's end time; z along -gravity, measured from the flo
 
 Modes
     scripts/lammps_pile.py [--scene FILE.toml] [--dt SECONDS | --steps-per-contact S [--contact-speed V]]
-                           [--restitution E] [--tangential mindlin/force | mindlin] [--out FILE.json]
+                           [--restitution E] [--tangential mindlin/force | mindlin] [--series SECONDS]
+                           [--out FILE.json]
         Runs the scene to its end time (dt shrunk a little, if need be, to end there on a whole step) and writes
         JSON: {"dt", "steps", "end_time", "t_c_1m_s", "t_c_2m_s", "steps_per_contact_2m_s", "pair_coeff",
         "restitution", ..., "statistics": {...},
         "positions", "velocities", "angular_velocities", "wall_s_run": the `run` command alone, "cpu_s_run",
         "wall_s_total", "cpu_s_total": with Python's start, loading LAMMPS and the setup, "lammps_version"}.
+        With --series, "series" holds [t, translational KE, rotational KE, balls on the floor] every SECONDS
+        (from LAMMPS' computes ke, erotate/sphere and a count of z < radius, printed during the one run); at
+        t = 0.05 s, before the first ball lands, the KE is 20 m (g t)^2 / 2 = 0.0791109 J.
     scripts/lammps_pile.py --impact REPORT.json [--out FILE.json]
         The same statistics from impact's JSON report (`impact run SCENE --json`): each finite body's
         position_after, velocity_after, angular_velocity_after, mass and radius; with the report's own
@@ -114,6 +118,7 @@ import json
 import math
 import os
 import sys
+import tempfile
 import time
 
 # Single-threaded, whatever the environment says: set before liblammps (and its libgomp) is loaded.
@@ -412,6 +417,23 @@ def run_pile(args):
     e = args.restitution if args.restitution is not None else scene.effective_e
     model = contact_model(scene.k_n, e, scene.k_t, scene.friction, tangential=args.tangential)
     lmp = make_world(lammps, scene, scene.balls, scene.walls, model, dt, scene.gravity)
+    series_file = None
+    if args.series is not None:
+        # The kinetic energy (translation, rotation) and the balls on the floor every `series` seconds, printed by
+        # LAMMPS itself during the one run (quoted: evaluated at each print, not when the fix is defined).
+        if scene.gravity[0] != 0.0 or scene.gravity[1] != 0.0 or not scene.gravity[2] < 0.0:
+            sys.exit("--series: expected gravity along -z (the floor at z = 0)")
+        every = max(1, int(round(args.series / dt)))
+        series_file = tempfile.NamedTemporaryFile(prefix="lammps_pile_", suffix=".txt", delete=False).name
+        for command in [
+            "compute translation all ke",
+            "compute rotation all erotate/sphere",
+            "variable touches_floor atom \"z < radius\"",
+            "compute on_floor all reduce sum v_touches_floor",
+            "fix series all print %d \"$(time:%%.9g) $(c_translation:%%.9g) $(c_rotation:%%.9g) "
+            "$(c_on_floor:%%.0f)\" file %s screen no" % (every, series_file),
+        ]:
+            lmp.command(command)
     print("pile: %d balls, %d walls, e = %.9g (nominal %g), mu = %g; t_c = %.4g s at 1 m/s, %.4g s at 2 m/s; "
           "dt = %.6g s (t_c(2 m/s) / %.3g), %d steps to %g s"
           % (len(scene.balls), len(scene.walls), e, scene.nominal_e, scene.friction, t_c["1 m/s"], t_c["2 m/s"],
@@ -427,6 +449,11 @@ def run_pile(args):
     masses, radii = gather(lmp, "rmass", 1), gather(lmp, "radius", 1)
     version = lmp.version()
     lmp.close()
+    series = None
+    if series_file is not None:
+        with open(series_file) as f:
+            series = [[float(word) for word in line.split()] for line in f if line.strip() and line[0] != "#"]
+        os.unlink(series_file)
     stats = pile_statistics(x, v, w, masses, radii, scene.gravity, scene.walls)
     result = {
         "program": "LAMMPS",
@@ -443,6 +470,7 @@ def run_pile(args):
         "restitution_nominal": scene.nominal_e,
         "friction": scene.friction,
         "statistics": stats,
+        "series": series,
         "positions": x,
         "velocities": v,
         "angular_velocities": w,
@@ -650,6 +678,9 @@ def main():
     parser.add_argument("--tangential", default="mindlin/force", choices=["mindlin/force", "mindlin"],
                         help="LAMMPS' Mindlin spring: mindlin/force (the default: the force is the history, as in "
                              "impact) or mindlin (the displacement is, as `impact translate` writes)")
+    parser.add_argument("--series", type=float, metavar="SECONDS",
+                        help="also record [t, translational KE, rotational KE, balls on the floor] every SECONDS "
+                             "(JSON key series; costs a little)")
     parser.add_argument("--restitution", type=float,
                         help="e for coeff_restitution (default: the e the scene's contact gives)")
     parser.add_argument("--out", help="write the run (or the report's statistics) as JSON to this file")
