@@ -59,6 +59,8 @@ What differs from impact's model of the same scene
 The statistics (at the scene's end time; z along -gravity, measured from the floor)
     kinetic      J, translation + rotation (I = 2/5 m r^2), and each part; kinetic_twist: the spin about the
                  vertical, which neither model resists (no twisting friction), so that it outlasts the rest
+    mechanical   J, kinetic + potential: what the contacts have not yet dissipated. While balls still fly it is the
+                 statistic to compare (the kinetic energy alone depends on which balls are at the top of a bounce)
     potential    J, sum of m g (z - r): the energy above a layer of balls resting on the floor (0 for a monolayer,
                  slightly negative by the balls' static penetration, ~76 nm each)
     mean_height  m, the balls' centres;   highest  m, the highest centre
@@ -75,9 +77,10 @@ Modes
         "restitution", ..., "statistics": {...},
         "positions", "velocities", "angular_velocities", "wall_s_run": the `run` command alone, "cpu_s_run",
         "wall_s_total", "cpu_s_total": with Python's start, loading LAMMPS and the setup, "lammps_version"}.
-        With --series, "series" holds [t, translational KE, rotational KE, balls on the floor] every SECONDS
-        (from LAMMPS' computes ke, erotate/sphere and a count of z < radius, printed during the one run); at
-        t = 0.05 s, before the first ball lands, the KE is 20 m (g t)^2 / 2 = 0.0791109 J.
+        With --series, "series" holds [t, translational KE, rotational KE, balls on the floor, potential] every
+        SECONDS (LAMMPS' computes ke and erotate/sphere, a count of z < radius and a sum of m g (z - r), printed
+        during the one run); at t = 0.05 s, before the first ball lands, the KE is 20 m (g t)^2 / 2 = 0.0791109 J
+        and the potential energy has fallen by as much.
     scripts/lammps_pile.py --impact REPORT.json [--out FILE.json]
         The same statistics from impact's JSON report (`impact run SCENE --json`): each finite body's
         position_after, velocity_after, angular_velocity_after, mass and radius; with the report's own
@@ -392,6 +395,7 @@ def pile_statistics(positions, velocities, spins, masses, radii, gravity, walls=
         "kinetic_translational": translational,
         "kinetic_rotational": rotational,
         "kinetic_twist": twist,
+        "mechanical": translational + rotational + sum(m * g * (h - r) for m, h, r in zip(masses, heights, radii)),
         "potential": sum(m * g * (h - r) for m, h, r in zip(masses, heights, radii)),
         "mean_height": sum(heights) / n,
         "highest": max(heights),
@@ -430,8 +434,10 @@ def run_pile(args):
             "compute rotation all erotate/sphere",
             "variable touches_floor atom \"z < radius\"",
             "compute on_floor all reduce sum v_touches_floor",
+            "variable height_energy atom \"mass * %.17g * (z - radius)\"" % -scene.gravity[2],
+            "compute potential all reduce sum v_height_energy",
             "fix series all print %d \"$(time:%%.9g) $(c_translation:%%.9g) $(c_rotation:%%.9g) "
-            "$(c_on_floor:%%.0f)\" file %s screen no" % (every, series_file),
+            "$(c_on_floor:%%.0f) $(c_potential:%%.9g)\" file %s screen no" % (every, series_file),
         ]:
             lmp.command(command)
     print("pile: %d balls, %d walls, e = %.9g (nominal %g), mu = %g; t_c = %.4g s at 1 m/s, %.4g s at 2 m/s; "
@@ -589,8 +595,8 @@ def report_statistics(path):
 def run_table(paths):
     """One row a run. The time is the run alone: LAMMPS' `run` command (wall and this process's CPU), impact's
     solver.wall_time_s (wall only): whole processes are best timed from outside, alternated."""
-    print("%-8s %-16s %9s %8s %8s %10s %10s %10s %9s %9s %5s %5s %8s"
-          % ("program", "step / tol", "steps", "wall [s]", "CPU [s]", "KE [J]", "KE twist", "PE [J]", "mean z",
+    print("%-8s %-16s %9s %8s %8s %10s %10s %10s %10s %9s %9s %5s %5s %8s"
+          % ("program", "step / tol", "steps", "wall [s]", "CPU [s]", "KE [J]", "KE twist", "PE [J]", "KE+PE", "mean z",
              "highest", "floor", "pairs", "contacts"))
     for path in paths:
         with open(path) as f:
@@ -606,9 +612,10 @@ def run_table(paths):
             setting = "rtol %.0e" % run["rtol"]
             cpu = "%8s" % "-"
             contacts = "%d" % run["contacts"]
-        print("%-8s %-16s %9d %8.2f %s %10.3e %10.3e %10.3e %9.5f %9.5f %5d %5d %8s"
+        print("%-8s %-16s %9d %8.2f %s %10.3e %10.3e %10.3e %10.3e %9.5f %9.5f %5d %5d %8s"
               % (run["program"], setting, run["steps"], run["wall_s_run"], cpu, s["kinetic"], s["kinetic_twist"],
-                 s["potential"], s["mean_height"], s["highest"], s["on_floor"], s["ball_contacts"], contacts))
+                 s["potential"], s["kinetic"] + s["potential"], s["mean_height"], s["highest"], s["on_floor"],
+                 s["ball_contacts"], contacts))
 
 
 # ---------------------------------------------------------------------------------------------------------------
@@ -679,8 +686,8 @@ def main():
                         help="LAMMPS' Mindlin spring: mindlin/force (the default: the force is the history, as in "
                              "impact) or mindlin (the displacement is, as `impact translate` writes)")
     parser.add_argument("--series", type=float, metavar="SECONDS",
-                        help="also record [t, translational KE, rotational KE, balls on the floor] every SECONDS "
-                             "(JSON key series; costs a little)")
+                        help="also record [t, translational KE, rotational KE, balls on the floor, potential] "
+                             "every SECONDS (JSON key series; costs a little)")
     parser.add_argument("--restitution", type=float,
                         help="e for coeff_restitution (default: the e the scene's contact gives)")
     parser.add_argument("--out", help="write the run (or the report's statistics) as JSON to this file")
