@@ -755,3 +755,21 @@ fn central(bodies: [&Body; 2], measured: &Measured) -> Option<Verdict> {
         )
     })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::doubling;
+
+    #[test]
+    fn a_doubling_is_a_percentage_until_it_would_be_more_than_a_hundredfold() {
+        // 2^1 - 1 = 100 %, 2^-1 - 1 = -50 %; a slope of 1190 (measured between two slow contacts of a settling
+        // pile) would overflow 2^slope: words instead, never "inf".
+        assert_eq!(doubling(1.0), "doubling the speed changes e by 100 %");
+        assert_eq!(doubling(-1.0), "doubling the speed changes e by -50 %");
+        for slope in [1190.0, 2000.0, f64::MAX] {
+            let text = doubling(slope);
+            assert!(text.contains("more than a hundredfold") && !text.contains("inf"), "{slope}: {text}");
+        }
+        assert!(doubling(-2000.0).contains("-100 %"), "{}", doubling(-2000.0));
+    }
+}

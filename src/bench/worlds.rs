@@ -113,7 +113,8 @@ pub fn rod_chatter() -> WorldCase {
 /// The 20 balls of `models/settling-pile.toml` dropped into a box, for `end_time` seconds of scene time (its 2 s
 /// in the full study; the first `end_time` of it in `--quick`, while the balls still bounce).
 pub fn settling_pile(end_time: f64) -> WorldCase {
-    let text = include_str!("../../models/settling-pile.toml").replace("end_time = 2.0", &format!("end_time = {end_time:?}"));
+    let text =
+        include_str!("../../models/settling-pile.toml").replace("end_time = 2.0", &format!("end_time = {end_time:?}"));
     WorldCase { name: "settling-pile".into(), text, measure: Measure::EnergyBalance }
 }
 

@@ -50,9 +50,7 @@ pub struct BenchArgs {
 pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
     check_folder(args)?;
     if args.worlds && !args.cases.is_empty() {
-        return Err(
-            BadInput("--case selects the single-impact cases; --worlds runs its scenes whole".into()).into()
-        );
+        return Err(BadInput("--case selects the single-impact cases; --worlds runs its scenes whole".into()).into());
     }
     if args.oblique && !args.cases.is_empty() {
         return Err(BadInput("--case selects the single-impact cases; --oblique runs its own cases".into()).into());

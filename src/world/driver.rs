@@ -862,19 +862,16 @@ impl<'a> World<'a> {
         }
         for (p, (i, j, meeting, offset, tolerance)) in watched.iter().enumerate() {
             let (i, j, offset, tolerance) = (*i, *j, *offset, *tolerance);
-            functions
-                .push(Box::new(move |y| (offset - isl.site_penetration(i, j, meeting, y)) / isl.units.length));
+            functions.push(Box::new(move |y| (offset - isl.site_penetration(i, j, meeting, y)) / isl.units.length));
             kinds.push((Watched::Touch(p), true));
             if offset > 2.0 * tolerance {
                 // Overlapping at the start: the gap opening beyond the rounding ends the segment.
                 let open = 2.0 * tolerance;
-                functions
-                    .push(Box::new(move |y| (open + isl.site_penetration(i, j, meeting, y)) / isl.units.length));
+                functions.push(Box::new(move |y| (open + isl.site_penetration(i, j, meeting, y)) / isl.units.length));
                 kinds.push((Watched::Reopened(p), true));
             } else if offset > 0.0 {
                 let open = 8.0 * offset;
-                functions
-                    .push(Box::new(move |y| (open + isl.site_penetration(i, j, meeting, y)) / isl.units.length));
+                functions.push(Box::new(move |y| (open + isl.site_penetration(i, j, meeting, y)) / isl.units.length));
                 kinds.push((Watched::Opened(p), false));
             } else if [i, j].iter().any(|&s| isl.turns(sites.body(s))) {
                 // The gap's minima (its rate, -d', rising through zero), watched for a dip below zero between steps.
