@@ -308,6 +308,16 @@ impl SceneKey {
         groups
     }
 
+    /// Whether setting this key can change a scene's [`crate::setup::Approach`], which the bodies and the contact's
+    /// normal decide: every key of a body, and `contact.normal` (and, were one added, any key of another table).
+    pub fn moves_approach(&self) -> bool {
+        match self.table {
+            "contact" => self.field == "normal",
+            "solver" => false,
+            _ => true,
+        }
+    }
+
     /// Sets this key to `value` on a typed scene, with exactly the switching rules of [`SceneKey::set`] (a point of a
     /// sweep applied without writing and re-reading TOML). The caller re-derives the scene ([`Scene::resolve`]) and
     /// checks it ([`Scene::check`]) after setting every key of the point.

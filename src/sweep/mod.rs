@@ -20,11 +20,12 @@ pub mod table;
 pub mod world;
 
 use crate::history::Recording;
-use crate::impact::{Options, simulate_prepared_read};
+use crate::impact::{Options, simulate_prepared_into};
+use crate::report::Report;
 use crate::law::LawKind;
 use crate::scene::SetupError;
 use crate::scene::{RuleGroups, Scene, SceneError};
-use crate::setup::Setup;
+use crate::setup::{Approach, Setup};
 use crate::text::{MESSAGE_CHARS, cut};
 use grid::Grid;
 use rayon::prelude::*;
@@ -90,6 +91,9 @@ struct Base {
     known: RuleGroups,
     /// The tables the varied keys set (as groups of rules: a body, the contact, the solver).
     reached: RuleGroups,
+    /// The approach every point shares, where no varied key can change it (none sets a body or the contact's
+    /// normal) and the base has one: each point's setup then derives only what the law's numbers decide.
+    approach: Option<Approach>,
 }
 
 impl Base {
@@ -117,9 +121,13 @@ impl Base {
     }
 }
 
-/// A worker's copies of the sweep's base scenes ([`Sweep::evaluate_in`]), one a law, made at its first row.
+/// What a worker keeps from row to row ([`Sweep::evaluate_in`]): its copies of the sweep's base scenes, one a law,
+/// made at its first row, and the report each row is written into.
 #[derive(Debug, Clone, Default)]
-pub struct Scratch(Vec<Option<Scene>>);
+pub struct Scratch {
+    scenes: Vec<Option<Scene>>,
+    report: Report,
+}
 
 /// The laws named in `--law` (scene spellings), checked.
 pub fn parse_laws(names: &[String]) -> Result<Vec<LawKind>, SweepError> {
@@ -292,39 +300,40 @@ impl Sweep {
     /// [`Sweep::evaluate`] on a worker's copies of the scene (`scratch`, kept from row to row): the same row, for a
     /// copy of only the tables the varied keys reach.
     pub fn evaluate_in(&self, index: usize, scratch: &mut Scratch) -> Row {
-        self.evaluate_by(index, Some(scratch))
+        self.evaluate_by(index, true, scratch)
     }
 
     /// Row `index` through the document: the point written into the scene's TOML and read back like a file. This
     /// is what a point means; [`Sweep::evaluate`] applies it to a typed scene instead, and must give the same row
     /// (the tests hold it to that).
     pub fn evaluate_written(&self, index: usize) -> Row {
-        self.evaluate_by(index, None)
+        self.evaluate_by(index, false, &mut Scratch::default())
     }
 
-    /// Row `index` on the typed scene (with `scratch`) or through the document (without).
-    fn evaluate_by(&self, index: usize, scratch: Option<&mut Scratch>) -> Row {
+    /// Row `index` on the typed scene (`typed`, on the worker's copy in `scratch`) or through the document; either
+    /// way the report is written into `scratch`'s.
+    fn evaluate_by(&self, index: usize, typed: bool, scratch: &mut Scratch) -> Row {
         let (values, law) = self.point(index);
         let law = self.law_name(law);
         let (columns, options) = (&self.columns, self.options);
-        // The cells are taken from the report where it was built, and the scene and its setup stay where they were
-        // made (a report is 2.9 kB, a scene 1.1: moving them out through Results cost more than the cells).
-        let cells_of = |scene: &Scene, setup: &Setup| {
+        let Scratch { scenes, report } = scratch;
+        // The cells are taken from the report where it was built, the worker's, and the scene and its setup stay
+        // where they were made (a report is 2.9 kB, a scene 1.1: moving them out through results cost more than the
+        // cells).
+        let mut cells_of = |scene: &Scene, setup: &Setup| {
             // (No column shows the run's wall time: not measured.)
-            simulate_prepared_read(scene, setup, options, |report| {
-                let status = if report.contact.separated { Status::Ok } else { Status::NotSeparated };
-                (status, columns.pick(report))
-            })
-            .map_err(|error| error.to_string())
+            simulate_prepared_into(scene, setup, options, report).map_err(|error| error.to_string())?;
+            let status = if report.contact.separated { Status::Ok } else { Status::NotSeparated };
+            Ok((status, columns.pick(report)))
         };
         let law_index = index % self.law_count();
-        let cells = match (&self.bases[law_index], scratch) {
-            (Some(base), Some(scratch)) => {
-                if scratch.0.len() < self.bases.len() {
-                    scratch.0.resize(self.bases.len(), None);
+        let cells = match &self.bases[law_index] {
+            Some(base) if typed => {
+                if scenes.len() < self.bases.len() {
+                    scenes.resize(self.bases.len(), None);
                 }
-                let scene = base.restored(&mut scratch.0[law_index]);
-                self.apply_point(scene, base.known, &values).and_then(|setup| cells_of(scene, &setup))
+                let scene = base.restored(&mut scenes[law_index]);
+                self.apply_point(scene, base, &values).and_then(|setup| cells_of(scene, &setup))
             }
             _ => self.scene_text(index).and_then(|text| {
                 let scene = Scene::parse(&text, &self.path).map_err(scene_message)?;
@@ -372,18 +381,21 @@ impl Sweep {
             contact: passed.contact && !reached.contact,
             solver: passed.solver && !reached.solver,
         };
-        Some(Base { scene, known, reached })
+        let shared = !self.grid.axes.iter().any(|axis| axis.key.moves_approach());
+        let approach = if shared { Approach::new(&resolved).ok() } else { None };
+        Some(Base { scene, known, reached, approach })
     }
 
     /// A point applied to (a copy of) a law's typed scene and checked by the rules a scene file obeys: the same scene,
-    /// and the same error text, as writing the point into the document and reading it back (the groups of rules in
-    /// `known` pass unchecked: the base passes them and the point does not reach them). Returns its setup.
-    fn apply_point(&self, scene: &mut Scene, known: RuleGroups, values: &[f64]) -> Result<Setup, String> {
+    /// and the same error text, as writing the point into the document and reading it back (the groups of rules the
+    /// base knows pass unchecked: the base passes them and the point does not reach them; its approach, where every
+    /// point shares it, is not found again). Returns its setup.
+    fn apply_point(&self, scene: &mut Scene, base: &Base, values: &[f64]) -> Result<Setup, String> {
         for (axis, &value) in self.grid.axes.iter().zip(values) {
             axis.key.apply(scene, value).map_err(|why| format!("{}: {why}", axis.key))?;
         }
         scene.resolve();
-        scene.check_except(known).map_err(setup_message)
+        scene.check_except(base.known, base.approach.as_ref()).map_err(setup_message)
     }
 
     /// The global indices of the rows of `shard` (all rows without one), in increasing order.
