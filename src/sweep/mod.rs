@@ -81,6 +81,8 @@ pub struct Sweep {
     written_law: Cow<'static, str>,
     /// What a row's run computes: what [`Sweep::columns`] show (found once, not a row at a time).
     options: Options,
+    /// Each law's `law` cell as CSV writes it (found once, not a row at a time).
+    quoted_laws: Vec<table::Quoted>,
 }
 
 /// A law's typed scene, which its rows copy and set their point on, and the groups of value rules its points pass
@@ -127,6 +129,26 @@ impl Base {
 pub struct Scratch {
     scenes: Vec<Option<Scene>>,
     report: Report,
+    /// The row's varied values and its result cells, refilled for each row.
+    values: Vec<f64>,
+    cells: Vec<Cell>,
+}
+
+/// Rows a worker runs in one go within a chunk ([`Sweep::stream`]): their lines go into one text
+/// ([`Sweep::stream_lines`]), handed to the writer at once. Enough that a block's text and hand-over cost little
+/// beside its rows, few enough that a chunk's blocks keep both cores busy to its end.
+pub const BLOCK: usize = 64;
+
+/// The CSV lines of consecutive rows as one text ([`table::push_line`] of each), and how the rows ended.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Lines {
+    pub text: String,
+    /// How many rows, and how many of them ended `ok` and `not separated`.
+    pub rows: usize,
+    pub ok: usize,
+    pub stuck: usize,
+    /// The first row's status (`None` without rows).
+    pub first: Option<Status>,
 }
 
 /// The laws named in `--law` (scene spellings), checked.
@@ -207,8 +229,11 @@ impl Sweep {
             bases: Vec::new(),
             columns: Columns::default(),
             options: Sweep::row_options(&Columns::default()),
+            quoted_laws: Vec::new(),
         };
         sweep.bases = (0..sweep.law_count()).map(|i| sweep.base(i)).collect();
+        sweep.quoted_laws =
+            (0..sweep.law_count()).map(|i| table::Quoted::new(&sweep.law_name(sweep.laws.get(i).copied()))).collect();
         match sweep.grid.points().and_then(|points| points.checked_mul(sweep.law_count())) {
             Some(rows) if rows <= MAX_ROWS => Ok(sweep),
             _ => Err(SweepError::Usage(format!("the sweep has more than {MAX_ROWS} rows: split it into several"))),
@@ -300,40 +325,57 @@ impl Sweep {
     /// [`Sweep::evaluate`] on a worker's copies of the scene (`scratch`, kept from row to row): the same row, for a
     /// copy of only the tables the varied keys reach.
     pub fn evaluate_in(&self, index: usize, scratch: &mut Scratch) -> Row {
-        self.evaluate_by(index, true, scratch)
+        let status = self.evaluate_by(index, true, scratch);
+        self.row(index, status, scratch)
     }
 
     /// Row `index` through the document: the point written into the scene's TOML and read back like a file. This
     /// is what a point means; [`Sweep::evaluate`] applies it to a typed scene instead, and must give the same row
     /// (the tests hold it to that).
     pub fn evaluate_written(&self, index: usize) -> Row {
-        self.evaluate_by(index, false, &mut Scratch::default())
+        let mut scratch = Scratch::default();
+        let status = self.evaluate_by(index, false, &mut scratch);
+        self.row(index, status, &scratch)
     }
 
-    /// Row `index` on the typed scene (`typed`, on the worker's copy in `scratch`) or through the document; either
-    /// way the report is written into `scratch`'s.
-    fn evaluate_by(&self, index: usize, typed: bool, scratch: &mut Scratch) -> Row {
-        let (values, law) = self.point(index);
-        let law = self.law_name(law);
+    /// The CSV line of row `index`, [`table::line`] of [`Sweep::evaluate_in`], appended to `text` straight from the
+    /// worker's `scratch` (no row formed); returns the row's status.
+    pub fn line_in(&self, index: usize, scratch: &mut Scratch, text: &mut String) -> Status {
+        let status = self.evaluate_by(index, true, scratch);
+        let law = &self.quoted_laws[index % self.law_count()];
+        table::push_line(text, index, &status, law, &scratch.values, &scratch.cells);
+        status
+    }
+
+    /// The row `index` that ended with `status`, its values and cells those in `scratch`.
+    fn row(&self, index: usize, status: Status, scratch: &Scratch) -> Row {
+        let law = self.law_name(self.laws.get(index % self.law_count()).copied());
+        Row { index, status, law, values: scratch.values.clone(), results: scratch.cells.clone() }
+    }
+
+    /// Row `index` on the typed scene (`typed`, on the worker's copy in `scratch`) or through the document: its
+    /// values and cells into `scratch`'s (the report too); returns its status.
+    fn evaluate_by(&self, index: usize, typed: bool, scratch: &mut Scratch) -> Status {
+        let law_index = index % self.law_count();
         let (columns, options) = (&self.columns, self.options);
-        let Scratch { scenes, report } = scratch;
+        let Scratch { scenes, report, values, cells } = scratch;
+        self.grid.values_into(index / self.law_count(), values);
         // The cells are taken from the report where it was built, the worker's, and the scene and its setup stay
         // where they were made (a report is 2.9 kB, a scene 1.1: moving them out through results cost more than the
         // cells).
         let mut cells_of = |scene: &Scene, setup: &Setup| {
             // (No column shows the run's wall time: not measured.)
             simulate_prepared_into(scene, setup, options, report).map_err(|error| error.to_string())?;
-            let status = if report.contact.separated { Status::Ok } else { Status::NotSeparated };
-            Ok((status, columns.pick(report)))
+            columns.pick_into(report, cells);
+            Ok(if report.contact.separated { Status::Ok } else { Status::NotSeparated })
         };
-        let law_index = index % self.law_count();
-        let cells = match &self.bases[law_index] {
+        let status = match &self.bases[law_index] {
             Some(base) if typed => {
                 if scenes.len() < self.bases.len() {
                     scenes.resize(self.bases.len(), None);
                 }
                 let scene = base.restored(&mut scenes[law_index]);
-                self.apply_point(scene, base, &values).and_then(|setup| cells_of(scene, &setup))
+                self.apply_point(scene, base, values).and_then(|setup| cells_of(scene, &setup))
             }
             _ => self.scene_text(index).and_then(|text| {
                 let scene = Scene::parse(&text, &self.path).map_err(scene_message)?;
@@ -341,8 +383,11 @@ impl Sweep {
                 cells_of(&scene, &setup)
             }),
         };
-        let (status, results) = cells.unwrap_or_else(|why| (Status::Error(why), vec![Cell::Empty; columns.len()]));
-        Row { index, status, law, values, results }
+        status.unwrap_or_else(|why| {
+            cells.clear();
+            cells.resize(columns.len(), Cell::Empty);
+            Status::Error(why)
+        })
     }
 
     /// The typed scene a law's rows start from: the document with the law's defaults, converted once; `None` when it
@@ -433,19 +478,83 @@ impl Sweep {
         shape: impl Fn(Row) -> T + Sync,
         mut write: impl FnMut(T) -> Result<(), E> + Send,
     ) -> Result<(), E> {
-        let (send, receive) = std::sync::mpsc::sync_channel::<Vec<Option<T>>>(1);
+        self.stream_blocks(
+            indices,
+            pool,
+            stop,
+            done,
+            |rows, scratch| {
+                // (A row is checked before it starts: a chunk of slow rows stops within one row's time.)
+                rows.iter()
+                    .map(|&index| (!stop.load(Ordering::Relaxed)).then(|| shape(self.evaluate_in(index, scratch))))
+                    .collect::<Option<Vec<T>>>()
+            },
+            |shaped| shaped.into_iter().try_for_each(&mut write),
+        )
+    }
+
+    /// The CSV lines of the rows `indices` (`impact sweep`'s file), computed on `pool` as [`Sweep::stream`] computes
+    /// its rows and written by `write` in the same order, a [`BLOCK`] of rows at a time: each worker writes its
+    /// rows' lines straight into the block's text ([`Sweep::line_in`]), the same bytes as [`table::line`] of each
+    /// row.
+    pub fn stream_lines<E: Send>(
+        &self,
+        indices: impl Iterator<Item = usize>,
+        pool: &rayon::ThreadPool,
+        done: impl Fn(usize) + Sync,
+        write: impl FnMut(Lines) -> Result<(), E> + Send,
+    ) -> Result<(), E> {
+        let width = 64 + 24 * (self.grid.axes.len() + self.columns.len());
+        self.stream_blocks(
+            indices,
+            pool,
+            &AtomicBool::new(false),
+            done,
+            |rows, scratch| {
+                let mut lines = Lines {
+                    text: String::with_capacity(rows.len() * width),
+                    rows: rows.len(),
+                    ok: 0,
+                    stuck: 0,
+                    first: None,
+                };
+                for &index in rows {
+                    let status = self.line_in(index, scratch, &mut lines.text);
+                    lines.ok += usize::from(status == Status::Ok);
+                    lines.stuck += usize::from(status == Status::NotSeparated);
+                    lines.first.get_or_insert(status);
+                }
+                Some(lines)
+            },
+            write,
+        )
+    }
+
+    /// The machinery of [`Sweep::stream_until`] and [`Sweep::stream_lines`]: the rows `indices` in chunks of [`CHUNK`],
+    /// each cut into blocks of [`BLOCK`] consecutive rows that the workers of `pool` run with their own scratch
+    /// (`block` gives `None` once it sees `stop`); the writer thread passes each chunk's blocks to `write` in order.
+    fn stream_blocks<B: Send, E: Send>(
+        &self,
+        indices: impl Iterator<Item = usize>,
+        pool: &rayon::ThreadPool,
+        stop: &AtomicBool,
+        done: impl Fn(usize) + Sync,
+        block: impl Fn(&[usize], &mut Scratch) -> Option<B> + Sync,
+        mut write: impl FnMut(B) -> Result<(), E> + Send,
+    ) -> Result<(), E> {
+        let (send, receive) = std::sync::mpsc::sync_channel::<Vec<Option<B>>>(1);
         // The writer hands each chunk's emptied vector back, so that the chunks reuse two or three buffers: a fresh
-        // one per chunk (100 kB of row handles, freed on the writer's thread) cost a page fault per chunk, 6 % of
-        // the e-alone sweep's time.
-        let (give_back, spare) = std::sync::mpsc::channel::<Vec<Option<T>>>();
+        // one per chunk (freed on the writer's thread) cost a page fault per chunk, 6 % of the e-alone sweep's time
+        // when a chunk held a handle per row.
+        let (give_back, spare) = std::sync::mpsc::channel::<Vec<Option<B>>>();
         std::thread::scope(|scope| {
             let writer = scope.spawn(move || {
-                for mut rows in receive {
-                    for row in rows.drain(..).flatten() {
-                        write(row)?;
+                for mut blocks in receive {
+                    for shaped in blocks.drain(..).flatten() {
+                        write(shaped)?;
                     }
                     // (The computing side may have finished: the buffer is then dropped here.)
-                    let _ = give_back.send(rows);
+                    let _ = give_back.send(blocks);
                 }
                 Ok(())
             });
@@ -454,22 +563,21 @@ impl Sweep {
             while indices.peek().is_some() {
                 chunk.clear();
                 chunk.extend(indices.by_ref().take(CHUNK));
-                let mut rows = spare.try_recv().unwrap_or_else(|_| Vec::with_capacity(CHUNK));
-                // (A row is checked before it starts: a chunk of slow rows stops within one row's time.)
+                let mut blocks = spare.try_recv().unwrap_or_else(|_| Vec::with_capacity(CHUNK.div_ceil(BLOCK)));
                 pool.install(|| {
                     chunk
-                        .par_iter()
-                        .map_init(Scratch::default, |scratch, &index| {
-                            (!stop.load(Ordering::Relaxed)).then(|| shape(self.evaluate_in(index, scratch)))
+                        .par_chunks(BLOCK)
+                        .map_init(Scratch::default, |scratch, rows| {
+                            if stop.load(Ordering::Relaxed) { None } else { block(rows, scratch) }
                         })
-                        .collect_into_vec(&mut rows)
+                        .collect_into_vec(&mut blocks)
                 });
-                if stop.load(Ordering::Relaxed) || rows.iter().any(Option::is_none) {
+                if stop.load(Ordering::Relaxed) || blocks.iter().any(Option::is_none) {
                     break;
                 }
-                done(rows.len());
+                done(chunk.len());
                 // The writer has stopped on an error: it is returned below.
-                if send.send(rows).is_err() {
+                if send.send(blocks).is_err() {
                     break;
                 }
             }
