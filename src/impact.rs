@@ -174,10 +174,9 @@ fn through_phases(
     recording: Recording,
     quantities: Quantities,
 ) -> Result<(Outcome, Option<History>), SimulationError> {
-    let setup = *setup;
     let method = scene.solver.method;
     if let Some(scheme) = fixed_scheme(method) {
-        return fixed_step_outcome(scheme, scene, &setup, recording);
+        return fixed_step_outcome(scheme, scene, setup, recording);
     }
     let covered = setup.motion == Motion::Normal && crate::fast::covers(&setup.law);
     if method == Method::Taylor && !covered {
@@ -204,9 +203,9 @@ fn through_phases(
         Method::Auto => covered && recording == Recording::Off,
         Method::Dop853 | Method::Dopri5 | Method::Verlet | Method::SymplecticEuler => false,
     };
-    let normal = NormalContact::new(&scene.bodies, &setup);
+    let normal = NormalContact::new(&scene.bodies, setup);
     if fast {
-        match fast_outcome(&normal, scene, &setup, quantities) {
+        match fast_outcome(&normal, scene, setup, quantities) {
             // (Returned from here, the outcome is written once into the caller's place: a sweep row's path.)
             Ok(outcome) if recording == Recording::Off => return Ok((outcome, None)),
             Ok(outcome) => return Ok((outcome, run(&normal, scene, setup.contact_time, recording)?.1)),
@@ -229,7 +228,7 @@ fn through_phases(
             if method == Method::Auto
                 && recording == Recording::Off
                 && smooth_in_regularised_time(&setup.law)
-                && let Some(wall) = WallContact::new(&scene.bodies, &setup)
+                && let Some(wall) = WallContact::new(&scene.bodies, setup)
                 && let Ok((mut outcome, None)) = run(&wall, scene, setup.contact_time, Recording::Off)
                 && outcome.separated
                 && outcome.ending == Ending::Event(0)
@@ -237,9 +236,9 @@ fn through_phases(
                 outcome.method = REGULARISED;
                 return Ok((outcome, None));
             }
-            run(&PairContact::new(&scene.bodies, &setup), scene, setup.contact_time, recording)
+            run(&PairContact::new(&scene.bodies, setup), scene, setup.contact_time, recording)
         }
-        Motion::Rigid => run(&RigidContact::new(&scene.bodies, &setup), scene, setup.contact_time, recording),
+        Motion::Rigid => run(&RigidContact::new(&scene.bodies, setup), scene, setup.contact_time, recording),
     }
 }
 

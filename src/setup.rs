@@ -915,8 +915,11 @@ fn check_scales(scales: &Scales) -> Result<(), SetupError> {
 /// the smaller finite radius; the stiffness key is named (the softer body's `young` for a Hertz stiffness).
 fn check_size(contact: &ContactSpec, bodies: [&Body; 2], law: &ContactLaw, scales: &Scales) -> Result<(), SetupError> {
     let smallest = bodies.iter().map(|body| body.radius).fold(f64::INFINITY, f64::min);
+    thread_local! {
+        static FACTOR: crate::scales::Remembered = const { crate::scales::Remembered::new() };
+    }
     let n = law.exponent;
-    let elastic = ((n + 1.0) / 2.0).powf(1.0 / (n + 1.0)) * scales.length;
+    let elastic = crate::scales::powf_remembered(&FACTOR, (n + 1.0) / 2.0, 1.0 / (n + 1.0)) * scales.length;
     // A yielding contact goes deeper than an elastic one: its deepest point by energy (Thornton's loading curve).
     let plastic = || crate::reference::thornton(law.yield_penetration / scales.length).max_penetration * scales.length;
     // (A plastic penetration that is not a number is refused too.)

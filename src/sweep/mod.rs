@@ -421,10 +421,14 @@ impl Sweep {
             reached.contact |= key.contact;
             reached.solver |= key.solver;
         }
+        // (Where every key that reaches the contact sets its damping alone, a point checks only the damping's rules
+        // of the contact's: the others read what the base has.)
+        let damping_only = self.grid.axes.iter().all(|axis| !axis.key.reaches().contact || axis.key.sets_damping());
         let known = RuleGroups {
             bodies: [0, 1].map(|i| passed.bodies[i] && !reached.bodies[i]),
             contact: passed.contact && !reached.contact,
             solver: passed.solver && !reached.solver,
+            contact_but_damping: passed.contact && damping_only,
         };
         let shared = !self.grid.axes.iter().any(|axis| axis.key.moves_approach());
         let approach = if shared { Approach::new(&resolved).ok() } else { None };
