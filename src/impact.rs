@@ -127,9 +127,14 @@ pub fn simulate_prepared_into(
     options: Options,
     report: &mut Report,
 ) -> Result<(), SimulationError> {
-    let (outcome, _) = through_phases(scene, setup, Recording::Off, options.quantities)?;
+    // (The outcome is read where it lies in the result, not moved out of it: 1 kB.)
+    let phases = through_phases(scene, setup, Recording::Off, options.quantities);
+    let outcome = match &phases {
+        Ok((outcome, _)) => outcome,
+        Err(_) => return phases.map(|_| ()),
+    };
     let trial = options.idealisation.then(|| speed_trial(scene, setup));
-    crate::report::build_into(report, scene, setup, &outcome, options.reference, f64::NAN, trial, options.sections);
+    crate::report::build_into(report, scene, setup, outcome, options.reference, f64::NAN, trial, options.sections);
     Ok(())
 }
 
@@ -440,6 +445,8 @@ fn run<const N: usize, M: ContactModel<N>>(
 }
 
 /// The normal impact through the fast path ([`crate::fast`]), as an [`Outcome`] of the normal model's snapshots.
+/// (Inlined into its one caller, so that the outcome is formed where the caller returns it, not copied there.)
+#[inline(always)]
 fn fast_outcome(
     model: &NormalContact,
     scene: &Scene,

@@ -137,8 +137,9 @@ pub struct Approach {
     approach_speed: f64,
     /// m*, kg.
     effective_mass: f64,
-    /// Each body's inverse effective mass at the contact along the normal, 1/kg.
-    inverse_masses: [f64; 2],
+    /// Each body's effective mass at the contact along the normal, kg (the inverse of its inverse, infinite for an
+    /// immovable body).
+    effective_masses: [f64; 2],
     /// (v2 - v1) across the normal at first contact, m/s (zero at the rounding of the bodies' velocities).
     tangential_velocity: Vector3<f64>,
     /// The contact points' slip across the normal at first contact, m/s (likewise).
@@ -217,7 +218,7 @@ impl Approach {
             positions,
             approach_speed,
             effective_mass,
-            inverse_masses,
+            effective_masses: inverse_masses.map(|w| 1.0 / w),
             tangential_velocity,
             initial_slip,
             eccentric,
@@ -243,7 +244,7 @@ impl Setup {
             positions,
             approach_speed,
             effective_mass,
-            inverse_masses,
+            effective_masses,
             tangential_velocity,
             initial_slip,
             eccentric,
@@ -298,7 +299,7 @@ impl Setup {
             initial_slip,
             motion,
             graze_depth,
-            effective_masses: inverse_masses.map(|w| 1.0 / w),
+            effective_masses,
         })
     }
 

@@ -267,7 +267,14 @@ pub fn build_into(
         separated: done,
         permanent_dent: (done && setup.law.yields()).then_some(end.penetration.max(0.0)),
     };
-    *bodies = if sections.bodies || trial.is_some() { [body(0, a), body(1, b)] } else { Default::default() };
+    if sections.bodies || trial.is_some() {
+        *bodies = [body(0, a), body(1, b)];
+    } else {
+        // (Each emptied where it lies: no empty pair formed aside and copied in.)
+        for body in bodies.iter_mut() {
+            *body = BodyReport::default();
+        }
+    }
     *energy = EnergyReport {
         kinetic_before,
         kinetic_after: when(kinetic(0, a) + kinetic(1, b)),
