@@ -52,6 +52,15 @@ impl Scales {
     }
 }
 
+/// `length^exponent` ([`powf_remembered`]): the fast path's check that a law's scales are its own
+/// (`fast::regularised`) forms `L^n`, the same on every row of a sweep of the damping.
+pub fn length_power(length: f64, exponent: f64) -> f64 {
+    thread_local! {
+        static POWER: Remembered = const { Remembered::new() };
+    }
+    powf_remembered(&POWER, length, exponent)
+}
+
 /// The last power one call site of [`powf_remembered`] formed on this thread: its arguments' bits and `x^y`.
 pub struct Remembered(std::cell::Cell<(u64, u64, f64)>);
 

@@ -21,8 +21,8 @@ pub mod world;
 
 use crate::history::Recording;
 use crate::impact::{Options, simulate_prepared_into};
-use crate::report::Report;
 use crate::law::LawKind;
+use crate::report::Report;
 use crate::scene::SetupError;
 use crate::scene::{RuleGroups, Scene, SceneError};
 use crate::setup::{Approach, Setup};

@@ -739,7 +739,10 @@ mod result_tests {
             "approach_speed" | "effective_mass" => (format!("/{name}"), false),
             "stiffness" | "exponent" | "damping" | "restitution_nominal" => (format!("/law/{name}"), false),
             "reference_restitution" => ("/reference/restitution".into(), false),
-            "kinetic_before" | "kinetic_after" | "dissipated" | "elastic_left_at_separation"
+            "kinetic_before"
+            | "kinetic_after"
+            | "dissipated"
+            | "elastic_left_at_separation"
             | "work_of_immovable_bodies" => (format!("/energy/{name}"), false),
             "max_velocity_difference" => ("/instantaneous/max_velocity_difference".into(), false),
             "steps" | "force_evaluations" => (format!("/solver/{name}"), false),
