@@ -282,10 +282,10 @@ pub fn build_into(
         elastic_left_at_separation: when(elastic_left + end.tangential_elastic_energy),
         work_of_immovable_bodies: when(end.work_of_immovable_bodies),
     };
-    *oblique_section = oblique;
-    *instantaneous_section = when(e_velocity).filter(|_| instantaneous).map(compare);
-    *instantaneous_nominal = nominal.filter(|_| instantaneous).map(compare);
-    *reference_section = reference;
+    set(oblique_section, oblique);
+    set(instantaneous_section, when(e_velocity).filter(|_| instantaneous).map(compare));
+    set(instantaneous_nominal, nominal.filter(|_| instantaneous).map(compare));
+    set(reference_section, reference);
     *idealisation = Idealisation::default();
     *solver = SolverReport {
         method: outcome.method,
@@ -314,6 +314,15 @@ pub fn build_into(
     if let Some(trial) = trial {
         let measured = measured_by(&report, scene.contact.friction, trial, levers(scene, setup));
         report.idealisation = idealisation::judge(scene.bodies.each_ref(), &measured);
+    }
+}
+
+/// Writes `value` into the optional section `place`, where either holds one: a section that was none and stays none
+/// (a sweep row's, leaving it out) is not written over with a few hundred bytes of nothing.
+#[inline]
+fn set<T>(place: &mut Option<T>, value: Option<T>) {
+    if value.is_some() || place.is_some() {
+        *place = value;
     }
 }
 
