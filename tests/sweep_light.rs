@@ -164,7 +164,7 @@ fn a_light_rows_line_is_the_full_reports_line_byte_for_byte() {
 /// in order, on two threads and on one, and the counts of how the rows ended those of the rows' statuses.
 #[test]
 fn the_streamed_lines_are_the_full_reports_lines() {
-    let mut draw = Draw(0x0dd_b10c_5_11e5);
+    let mut draw = Draw(0x0ddb_10c5_11e5);
     let laws = ["hunt-crossley", "hertz", "kelvin-voigt", "tsuji", "gonthier"];
     for case in 0..12 {
         let law = laws[draw.below(laws.len())];

@@ -304,7 +304,7 @@ pub fn build_into(
     };
     *report_notes = notes;
     if let Some(fixed) = outcome.fixed_step {
-        report.notes.push(fixed_step_note(&report, outcome.method, fixed.dt));
+        report.notes.push(fixed_step_note(report, outcome.method, fixed.dt));
     } else if let Some(note) = energy_balance(&report.energy).and_then(|relative| {
         let bound = super::energy_balance_bound(scene.solver.tolerances.rtol, scene.solver.tolerances.atol);
         super::balance_note(relative, "the largest energy term", bound)
@@ -312,7 +312,7 @@ pub fn build_into(
         report.notes.push(note);
     }
     if let Some(trial) = trial {
-        let measured = measured_by(&report, scene.contact.friction, trial, levers(scene, setup));
+        let measured = measured_by(report, scene.contact.friction, trial, levers(scene, setup));
         report.idealisation = idealisation::judge(scene.bodies.each_ref(), &measured);
     }
 }
