@@ -132,6 +132,9 @@ pub struct Scratch {
     /// The row's varied values and its result cells, refilled for each row.
     values: Vec<f64>,
     cells: Vec<Cell>,
+    /// The longest CSV line this worker has written (bytes, with its newline): the room a block's text is given a
+    /// row ([`Sweep::stream_lines`]).
+    widest: usize,
 }
 
 /// Rows a worker runs in one go within a chunk ([`Sweep::stream`]): their lines go into one text
@@ -358,7 +361,7 @@ impl Sweep {
     fn evaluate_by(&self, index: usize, typed: bool, scratch: &mut Scratch) -> Status {
         let law_index = index % self.law_count();
         let (columns, options) = (&self.columns, self.options);
-        let Scratch { scenes, report, values, cells } = scratch;
+        let Scratch { scenes, report, values, cells, .. } = scratch;
         self.grid.values_into(index / self.law_count(), values);
         // The cells are taken from the report where it was built, the worker's, and the scene and its setup stay
         // where they were made (a report is 2.9 kB, a scene 1.1: moving them out through results cost more than the
@@ -508,13 +511,16 @@ impl Sweep {
         done: impl Fn(usize) + Sync,
         write: impl FnMut(Lines) -> Result<(), E> + Send,
     ) -> Result<(), E> {
-        let width = 64 + 24 * (self.grid.axes.len() + self.columns.len());
+        // (Room for the longest numbers, 24 bytes each, until the worker has seen its lines: then as wide as the
+        // widest, so that the chunks in memory hold about what they will write.)
+        let guess = 64 + 24 * (self.grid.axes.len() + self.columns.len());
         self.stream_blocks(
             indices,
             pool,
             &AtomicBool::new(false),
             done,
             |rows, scratch| {
+                let width = if scratch.widest > 0 { scratch.widest } else { guess };
                 let mut lines = Lines {
                     text: String::with_capacity(rows.len() * width),
                     rows: rows.len(),
@@ -523,7 +529,9 @@ impl Sweep {
                     first: None,
                 };
                 for &index in rows {
+                    let start = lines.text.len();
                     let status = self.line_in(index, scratch, &mut lines.text);
+                    scratch.widest = scratch.widest.max(lines.text.len() - start);
                     lines.ok += usize::from(status == Status::Ok);
                     lines.stuck += usize::from(status == Status::NotSeparated);
                     lines.first.get_or_insert(status);
