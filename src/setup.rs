@@ -121,9 +121,37 @@ pub const MAX_DAMPING_RATIO: f64 = 1e10;
 /// (their momentum is m* v0 (1 + e)).
 pub const MIN_RESTITUTION: f64 = 1e-10;
 
-impl Setup {
-    /// Resolves a scene's contact, checking the rules that involve more than one key.
-    pub fn new(scene: &Scene) -> Result<Setup, SetupError> {
+/// The part of a [`Setup`] that the bodies and the contact's normal decide alone, whatever the law: first contact,
+/// the approach speed, the effective masses, the velocities across the normal, with the rules they involve. A sweep
+/// whose keys set only the law's numbers (its damping, its restitution, its stiffness...) finds it once for all its
+/// points ([`Setup::after`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Approach {
+    /// Time of first contact, s.
+    contact_time: f64,
+    /// Unit normal at first contact, body 1 -> body 2.
+    normal: Vector3<f64>,
+    /// Where the bodies are at first contact, m.
+    positions: [Vector3<f64>; 2],
+    /// v0, m/s (> 0).
+    approach_speed: f64,
+    /// m*, kg.
+    effective_mass: f64,
+    /// Each body's effective mass at the contact along the normal, kg (the inverse of its inverse, infinite for an
+    /// immovable body).
+    effective_masses: [f64; 2],
+    /// (v2 - v1) across the normal at first contact, m/s (zero at the rounding of the bodies' velocities).
+    tangential_velocity: Vector3<f64>,
+    /// The contact points' slip across the normal at first contact, m/s (likewise).
+    initial_slip: Vector3<f64>,
+    /// A body is struck off its centre or turns about a pivot.
+    eccentric: bool,
+}
+
+impl Approach {
+    /// The approach of a scene's bodies, checking the rules of their placement and motion (the first rules
+    /// [`Setup::new`] checks, in its order).
+    pub fn new(scene: &Scene) -> Result<Approach, SetupError> {
         let [a, b] = &scene.bodies;
         let Some(effective_mass) = geometry::effective_mass(a, b) else {
             return fail("bodies.1.mass", "both bodies are immovable (mass = inf): nothing can move");
@@ -159,8 +187,6 @@ impl Setup {
         } else {
             effective_mass
         };
-        let law = resolve_law(&scene.contact, [a, b], effective_mass, approach_speed)?;
-        let scales = check_law(&scene.contact, [a, b], &law, effective_mass, approach_speed)?;
         // A velocity across the normal at the rounding of the bodies' own velocities is none: a common motion far
         // faster than the relative one (stress case 9579 of seed 8675309 moves at 740 m/s and closes at 1.3 um/s)
         // leaves its rounding across the normal, and the ratios of the report's oblique section would be ratios of
@@ -186,6 +212,45 @@ impl Setup {
             let turning = a.angular_velocity.cross(&arm_a).norm() + b.angular_velocity.cross(&arm_b).norm();
             rounding(contact_point_slip(&scene.bodies, &normal), speeds + turning)
         };
+        Ok(Approach {
+            contact_time,
+            normal,
+            positions,
+            approach_speed,
+            effective_mass,
+            effective_masses: inverse_masses.map(|w| 1.0 / w),
+            tangential_velocity,
+            initial_slip,
+            eccentric,
+        })
+    }
+}
+
+impl Setup {
+    /// Resolves a scene's contact, checking the rules that involve more than one key.
+    pub fn new(scene: &Scene) -> Result<Setup, SetupError> {
+        Setup::after(scene, &Approach::new(scene)?)
+    }
+
+    /// [`Setup::new`] of a scene whose [`Approach`] is known: `approach` must be that of a scene with the same bodies
+    /// and the same contact normal (a sweep's point that sets only the law's numbers, and its base). The same setup,
+    /// bit for bit, and the same first broken rule: the rules [`Approach::new`] checks come first in [`Setup::new`],
+    /// and the approach depends on nothing else.
+    pub fn after(scene: &Scene, approach: &Approach) -> Result<Setup, SetupError> {
+        let [a, b] = &scene.bodies;
+        let Approach {
+            contact_time,
+            normal,
+            positions,
+            approach_speed,
+            effective_mass,
+            effective_masses,
+            tangential_velocity,
+            initial_slip,
+            eccentric,
+        } = *approach;
+        let law = resolve_law(&scene.contact, [a, b], effective_mass, approach_speed)?;
+        let scales = check_law(&scene.contact, [a, b], &law, effective_mass, approach_speed)?;
         let friction = friction(scene, effective_mass)?.map(|f| {
             if eccentric {
                 Friction { tangential_mass: eccentric_tangential_mass(&scene.bodies, &positions, &normal), ..f }
@@ -234,7 +299,7 @@ impl Setup {
             initial_slip,
             motion,
             graze_depth,
-            effective_masses: inverse_masses.map(|w| 1.0 / w),
+            effective_masses,
         })
     }
 
@@ -274,10 +339,18 @@ impl Scene {
     }
 
     /// [`Scene::check`] without the groups of value rules in `known`, which the caller knows this scene passes
-    /// ([`Scene::check_rules_except`]): the same setup, or the same error.
-    pub fn check_except(&self, known: crate::scene::RuleGroups) -> Result<Setup, SetupError> {
+    /// ([`Scene::check_rules_except`]), and with its [`Approach`] when the caller knows it (that of a scene with the
+    /// same bodies and contact normal: [`Setup::after`]): the same setup, or the same error.
+    pub fn check_except(
+        &self,
+        known: crate::scene::RuleGroups,
+        approach: Option<&Approach>,
+    ) -> Result<Setup, SetupError> {
         self.check_rules_except(known)?;
-        Setup::new(self)
+        match approach {
+            Some(approach) => Setup::after(self, approach),
+            None => Setup::new(self),
+        }
     }
 }
 
@@ -843,8 +916,11 @@ fn check_scales(scales: &Scales) -> Result<(), SetupError> {
 /// the smaller finite radius; the stiffness key is named (the softer body's `young` for a Hertz stiffness).
 fn check_size(contact: &ContactSpec, bodies: [&Body; 2], law: &ContactLaw, scales: &Scales) -> Result<(), SetupError> {
     let smallest = bodies.iter().map(|body| body.radius).fold(f64::INFINITY, f64::min);
+    thread_local! {
+        static FACTOR: crate::scales::Remembered = const { crate::scales::Remembered::new() };
+    }
     let n = law.exponent;
-    let elastic = ((n + 1.0) / 2.0).powf(1.0 / (n + 1.0)) * scales.length;
+    let elastic = crate::scales::powf_remembered(&FACTOR, (n + 1.0) / 2.0, 1.0 / (n + 1.0)) * scales.length;
     // A yielding contact goes deeper than an elastic one: its deepest point by energy (Thornton's loading curve).
     let plastic = || crate::reference::thornton(law.yield_penetration / scales.length).max_penetration * scales.length;
     // (A plastic penetration that is not a number is refused too.)

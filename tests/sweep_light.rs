@@ -158,3 +158,63 @@ fn a_light_rows_line_is_the_full_reports_line_byte_for_byte() {
     // The draws reach rows that run and rows that break a rule.
     assert!(rows > 100 && errors > 5 && ran > 50, "{rows} rows, {errors} errors, {ran} run");
 }
+
+/// `impact sweep`'s own path: each worker writes its rows' lines straight into a block's text
+/// (`Sweep::line_in`, `Sweep::stream_lines`). Its text must be byte for byte the lines of the rows run the long way,
+/// in order, on two threads and on one, and the counts of how the rows ended those of the rows' statuses.
+#[test]
+fn the_streamed_lines_are_the_full_reports_lines() {
+    let mut draw = Draw(0x0ddb_10c5_11e5);
+    let laws = ["hunt-crossley", "hertz", "kelvin-voigt", "tsuji", "gonthier"];
+    for case in 0..12 {
+        let law = laws[draw.below(laws.len())];
+        let text = scene(&mut draw, law);
+        // The sweep of the damping alone (the setup's approach found once, the damping's rules alone) and others.
+        let axes =
+            if case % 3 == 0 { vec!["contact.damping=0.01,0.3,-1,2".to_string()] } else { vec![axis(&mut draw)] };
+        let grid = Grid::new(axes.iter().map(|spec| Axis::parse(spec, Spacing::Linear).unwrap()).collect()).unwrap();
+        let listed = if draw.below(3) == 0 { vec![LawKind::HuntCrossley, LawKind::Hertz] } else { Vec::new() };
+        let mut sweep = Sweep::new(Path::new("light.toml"), text.clone(), grid, listed).unwrap();
+        let chosen = columns(&mut draw);
+        if !chosen.is_empty() {
+            sweep.select(Columns::parse(&chosen).unwrap());
+        }
+        let rows: Vec<Row> = (0..sweep.rows()).map(|index| long_way(&sweep, index)).collect();
+        let expected: String = rows.iter().map(line).collect();
+        // One row at a time on one worker's scratch, backwards (a row starts from what the next one left).
+        let mut scratch = Scratch::default();
+        let mut backwards = Vec::new();
+        for index in (0..sweep.rows()).rev() {
+            let mut one = String::new();
+            let status = sweep.line_in(index, &mut scratch, &mut one);
+            assert_eq!(status, rows[index].status, "row {index} of {axes:?}\n{text}");
+            backwards.push(one);
+        }
+        backwards.reverse();
+        assert_eq!(backwards.concat(), expected, "{axes:?}, columns {chosen:?}\n{text}");
+        for threads in [1, 2] {
+            let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+            let (mut streamed, mut counted, mut ok, mut stuck, mut first) = (String::new(), 0, 0, 0, None);
+            sweep
+                .stream_lines(
+                    0..sweep.rows(),
+                    &pool,
+                    |_| {},
+                    |lines| {
+                        streamed.push_str(&lines.text);
+                        counted += lines.rows;
+                        ok += lines.ok;
+                        stuck += lines.stuck;
+                        first = first.take().or(lines.first);
+                        Ok::<(), ()>(())
+                    },
+                )
+                .unwrap();
+            assert_eq!(streamed, expected, "{threads} threads, {axes:?}, columns {chosen:?}\n{text}");
+            assert_eq!(counted, rows.len());
+            assert_eq!(ok, rows.iter().filter(|row| row.status == Status::Ok).count());
+            assert_eq!(stuck, rows.iter().filter(|row| row.status == Status::NotSeparated).count());
+            assert_eq!(first, rows.first().map(|row| row.status.clone()));
+        }
+    }
+}

@@ -8,7 +8,7 @@ use crate::output::sweep_figure;
 use crate::scene::SceneError;
 use crate::sweep::shard::Shard;
 use crate::sweep::table::{self, Status};
-use crate::sweep::{self as sweeps, Sweep, SweepError};
+use crate::sweep::{self as sweeps, Lines, Sweep, SweepError};
 use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
 use std::path::{Path, PathBuf};
@@ -155,14 +155,13 @@ pub fn run(args: &SweepArgs) -> anyhow::Result<()> {
     }
     put(&(header + "\n"))?;
     let mut tally = Tally::default();
-    sweep.stream(
+    sweep.stream_lines(
         indices,
         &pool,
         |rows| bar.inc(rows as u64),
-        |row| (table::line(&row), row.status),
-        |(line, status)| {
-            tally.add(&status);
-            put(&line)
+        |lines| {
+            tally.add(&lines);
+            put(&lines.text)
         },
     )?;
     bar.finish_and_clear();
@@ -255,11 +254,13 @@ struct Tally {
 }
 
 impl Tally {
-    fn add(&mut self, status: &Status) {
-        self.rows += 1;
-        self.ok += usize::from(*status == Status::Ok);
-        self.stuck += usize::from(*status == Status::NotSeparated);
-        self.first.get_or_insert_with(|| status.text());
+    fn add(&mut self, lines: &Lines) {
+        self.rows += lines.rows;
+        self.ok += lines.ok;
+        self.stuck += lines.stuck;
+        if self.first.is_none() {
+            self.first = lines.first.as_ref().map(Status::text);
+        }
     }
 }
 

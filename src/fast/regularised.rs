@@ -227,7 +227,7 @@ impl Regularised {
             )));
         }
         // The scaled equations take K L^n = F0 (so that F/F0 = δ^n): the scales must be those of this law.
-        let stiffness_unit = law.stiffness * scales.length.powf(n) / scales.force;
+        let stiffness_unit = law.stiffness * crate::scales::length_power(scales.length, n) / scales.force;
         if stiffness_unit.is_nan() || (stiffness_unit - 1.0).abs() > SCALE_MISMATCH {
             return Err(FastError::Invalid(format!(
                 "the scales are not those of this law: K L^n / F0 = {} (expected 1)",

@@ -30,6 +30,26 @@ pub fn build(
     trial: Option<SpeedTrial>,
     sections: Sections,
 ) -> Report {
+    let mut report = Report::default();
+    build_into(&mut report, scene, setup, outcome, detail, wall_time, trial, sections);
+    report
+}
+
+/// [`build`] written into `report`, whatever it held: every field is written (a report kept from run to run — a
+/// sweep worker's — keeps nothing of the run before, and its text and lists keep their room). The same numbers as
+/// [`build`], which is this on an empty report; a sweep's row reads its cells here rather than moving 2.9 kB of
+/// report out of a function a row.
+#[allow(clippy::too_many_arguments)]
+pub fn build_into(
+    report: &mut Report,
+    scene: &Scene,
+    setup: &Setup,
+    outcome: &Outcome,
+    detail: ReferenceDetail,
+    wall_time: f64,
+    trial: Option<SpeedTrial>,
+    sections: Sections,
+) {
     let [a, b] = &scene.bodies;
     let n = setup.normal;
     let (max, end) = (&outcome.max_compression, &outcome.end);
@@ -114,7 +134,9 @@ pub fn build(
     // The exact references describe the relative motion along a fixed normal: a turning line of centres couples it
     // to the tangential motion, and they no longer apply.
     let fixed_normal = !rigid && (setup.motion == Motion::Normal || a.is_flat() || b.is_flat());
-    let mut notes = Vec::new();
+    // (The report's own list, emptied: its room is kept.)
+    let mut notes = std::mem::take(&mut report.notes);
+    notes.clear();
     if !done {
         notes.push(outcome.note.clone().unwrap_or_else(|| stuck_note(outcome, scene.contact.friction > 0.0)));
     }
@@ -189,74 +211,100 @@ pub fn build(
     let reference = if fixed_normal { accuracy::reference(scene, setup, measured, detail, &mut notes) } else { None };
     let ratios = Ratios::of(done, deformation_impulse, restitution_impulse, compression_work, restitution_work);
     notes.extend(ratios.notes());
-    let mut report = Report {
-        title: name(&scene.title),
-        law: LawReport {
-            name: setup.law.kind.name(),
-            stiffness: setup.law.stiffness,
-            exponent: setup.law.exponent,
-            damping: setup.law.damping,
-            restitution_nominal: nominal,
-            // A yielding contact ends where its force returns to zero, at its dent.
-            separation: if setup.law.yields() { "force" } else { scene.contact.separation.name() },
-            yield_pressure: setup.law.yields().then(|| crate::setup::yield_pressure(&scene.contact, [a, b])).flatten(),
-            yield_speed: setup.law.yields().then(|| {
-                let scaled = setup.law.yield_penetration / setup.scales.length;
-                crate::reference::thornton_yield_speed(scaled) * setup.approach_speed
-            }),
-        },
-        effective_mass: setup.effective_mass,
-        approach_speed: setup.approach_speed,
-        normal: vec3(&n),
-        contact: ContactReport {
-            start_time: setup.contact_time,
-            max_compression_time: setup.contact_time + max.time,
-            end_time: when(setup.contact_time + end.time),
-            duration: when(end.time),
-            max_penetration: max.penetration,
-            max_force: outcome.peak_force.1,
-            max_force_time: setup.contact_time + outcome.peak_force.0,
-            common_normal_velocity,
-            deformation_impulse,
-            restitution_impulse: when(restitution_impulse),
-            restitution_impulse_ratio: ratios.impulse,
-            restitution_velocity_ratio: when(e_velocity),
-            restitution_energy: ratios.energy,
-            separated: done,
-            permanent_dent: (done && setup.law.yields()).then_some(end.penetration.max(0.0)),
-        },
-        bodies: if sections.bodies || trial.is_some() { [body(0, a), body(1, b)] } else { Default::default() },
-        energy: EnergyReport {
-            kinetic_before,
-            kinetic_after: when(kinetic(0, a) + kinetic(1, b)),
-            dissipated: when(end.dissipated_normal + friction_work),
-            elastic_left_at_separation: when(elastic_left + end.tangential_elastic_energy),
-            work_of_immovable_bodies: when(end.work_of_immovable_bodies),
-        },
-        oblique,
-        instantaneous: when(e_velocity).filter(|_| instantaneous).map(compare),
-        instantaneous_nominal: nominal.filter(|_| instantaneous).map(compare),
-        reference,
-        idealisation: Idealisation::default(),
-        solver: SolverReport {
-            method: outcome.method,
-            rtol: scene.solver.tolerances.rtol,
-            atol: scene.solver.tolerances.atol,
-            dt: outcome.fixed_step.map(|fixed| fixed.dt),
-            restitution_continuous: outcome.fixed_step.and_then(|fixed| fixed.restitution_continuous),
-            steps: outcome.counters.steps,
-            rejected_steps: outcome.counters.rejected_steps,
-            force_evaluations: outcome.counters.evaluations,
-            wall_time_s: wall_time,
-            gave_up: match &outcome.ending {
-                Ending::GaveUp(reason) if !done => Some(reason.clone()),
-                _ => None,
-            },
-        },
-        notes,
+    // Each field is named (a field added to the report and not written here does not compile).
+    let Report {
+        title,
+        law,
+        effective_mass,
+        approach_speed,
+        normal,
+        contact,
+        bodies,
+        energy,
+        oblique: oblique_section,
+        instantaneous: instantaneous_section,
+        instantaneous_nominal,
+        reference: reference_section,
+        idealisation,
+        solver,
+        notes: report_notes,
+    } = report;
+    title.clear();
+    if sections.names {
+        title.push_str(&scene.title);
+    }
+    *law = LawReport {
+        name: setup.law.kind.name(),
+        stiffness: setup.law.stiffness,
+        exponent: setup.law.exponent,
+        damping: setup.law.damping,
+        restitution_nominal: nominal,
+        // A yielding contact ends where its force returns to zero, at its dent.
+        separation: if setup.law.yields() { "force" } else { scene.contact.separation.name() },
+        yield_pressure: setup.law.yields().then(|| crate::setup::yield_pressure(&scene.contact, [a, b])).flatten(),
+        yield_speed: setup.law.yields().then(|| {
+            let scaled = setup.law.yield_penetration / setup.scales.length;
+            crate::reference::thornton_yield_speed(scaled) * setup.approach_speed
+        }),
     };
+    *effective_mass = setup.effective_mass;
+    *approach_speed = setup.approach_speed;
+    *normal = vec3(&n);
+    *contact = ContactReport {
+        start_time: setup.contact_time,
+        max_compression_time: setup.contact_time + max.time,
+        end_time: when(setup.contact_time + end.time),
+        duration: when(end.time),
+        max_penetration: max.penetration,
+        max_force: outcome.peak_force.1,
+        max_force_time: setup.contact_time + outcome.peak_force.0,
+        common_normal_velocity,
+        deformation_impulse,
+        restitution_impulse: when(restitution_impulse),
+        restitution_impulse_ratio: ratios.impulse,
+        restitution_velocity_ratio: when(e_velocity),
+        restitution_energy: ratios.energy,
+        separated: done,
+        permanent_dent: (done && setup.law.yields()).then_some(end.penetration.max(0.0)),
+    };
+    if sections.bodies || trial.is_some() {
+        *bodies = [body(0, a), body(1, b)];
+    } else {
+        // (Each emptied where it lies: no empty pair formed aside and copied in.)
+        for body in bodies.iter_mut() {
+            *body = BodyReport::default();
+        }
+    }
+    *energy = EnergyReport {
+        kinetic_before,
+        kinetic_after: when(kinetic(0, a) + kinetic(1, b)),
+        dissipated: when(end.dissipated_normal + friction_work),
+        elastic_left_at_separation: when(elastic_left + end.tangential_elastic_energy),
+        work_of_immovable_bodies: when(end.work_of_immovable_bodies),
+    };
+    set(oblique_section, oblique);
+    set(instantaneous_section, when(e_velocity).filter(|_| instantaneous).map(compare));
+    set(instantaneous_nominal, nominal.filter(|_| instantaneous).map(compare));
+    set(reference_section, reference);
+    *idealisation = Idealisation::default();
+    *solver = SolverReport {
+        method: outcome.method,
+        rtol: scene.solver.tolerances.rtol,
+        atol: scene.solver.tolerances.atol,
+        dt: outcome.fixed_step.map(|fixed| fixed.dt),
+        restitution_continuous: outcome.fixed_step.and_then(|fixed| fixed.restitution_continuous),
+        steps: outcome.counters.steps,
+        rejected_steps: outcome.counters.rejected_steps,
+        force_evaluations: outcome.counters.evaluations,
+        wall_time_s: wall_time,
+        gave_up: match &outcome.ending {
+            Ending::GaveUp(reason) if !done => Some(reason.clone()),
+            _ => None,
+        },
+    };
+    *report_notes = notes;
     if let Some(fixed) = outcome.fixed_step {
-        report.notes.push(fixed_step_note(&report, outcome.method, fixed.dt));
+        report.notes.push(fixed_step_note(report, outcome.method, fixed.dt));
     } else if let Some(note) = energy_balance(&report.energy).and_then(|relative| {
         let bound = super::energy_balance_bound(scene.solver.tolerances.rtol, scene.solver.tolerances.atol);
         super::balance_note(relative, "the largest energy term", bound)
@@ -264,10 +312,18 @@ pub fn build(
         report.notes.push(note);
     }
     if let Some(trial) = trial {
-        let measured = measured_by(&report, scene.contact.friction, trial, levers(scene, setup));
+        let measured = measured_by(report, scene.contact.friction, trial, levers(scene, setup));
         report.idealisation = idealisation::judge(scene.bodies.each_ref(), &measured);
     }
-    report
+}
+
+/// Writes `value` into the optional section `place`, where either holds one: a section that was none and stays none
+/// (a sweep row's, leaving it out) is not written over with a few hundred bytes of nothing.
+#[inline]
+fn set<T>(place: &mut Option<T>, value: Option<T>) {
+    if value.is_some() || place.is_some() {
+        *place = value;
+    }
 }
 
 /// The energy balance of a separated contact, `(in - out)` over its largest term: `kinetic_before +

@@ -5,7 +5,7 @@ pub mod accuracy;
 mod build;
 pub mod world;
 
-pub use build::build;
+pub use build::{build, build_into};
 
 use crate::idealisation::Idealisation;
 use serde::{Serialize, Serializer};
@@ -45,8 +45,8 @@ pub type Vec3 = [f64; 3];
 /// A run's own report (`impact run`) computes everything. A sweep's row may ask the fast path for less
 /// ([`crate::impact::Options::quantities`]: only what its columns show); what was not computed — the contact's
 /// times, its force peak, the dissipated energy and what follows from them, the wall time — is NaN here, and no view
-/// shows it (a row writes only its columns).
-#[derive(Debug, Clone, PartialEq, Serialize)]
+/// shows it (a row writes only its columns). The default is an empty report, which [`build_into`] writes over.
+#[derive(Debug, Clone, Default, PartialEq, Serialize)]
 pub struct Report {
     pub title: String,
     pub law: LawReport,
@@ -75,7 +75,7 @@ pub struct Report {
     pub notes: Vec<String>,
 }
 
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, Default, PartialEq, Serialize)]
 pub struct LawReport {
     /// Scene spelling of the law.
     pub name: &'static str,
@@ -97,7 +97,7 @@ pub struct LawReport {
 }
 
 /// The contact phases and what was measured in them. Times in s from the scene's t = 0.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, Default, PartialEq, Serialize)]
 pub struct ContactReport {
     pub start_time: f64,
     /// End of compression: d' = 0, maximum penetration.
@@ -165,7 +165,7 @@ pub struct BodyReport {
 /// Energies in J; kinetic energies count finite bodies only and include rotation. The balance
 /// `kinetic_before + work_of_immovable_bodies = kinetic_after + dissipated + elastic_left_at_separation` closes to
 /// integration accuracy (every term is integrated separately).
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, Default, PartialEq, Serialize)]
 pub struct EnergyReport {
     pub kinetic_before: f64,
     pub kinetic_after: Option<f64>,
@@ -309,7 +309,7 @@ pub struct ReferenceErrors {
     pub common_normal_velocity: f64,
 }
 
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, Default, PartialEq, Serialize)]
 pub struct SolverReport {
     pub method: &'static str,
     pub rtol: f64,

@@ -228,17 +228,24 @@ pub struct RuleGroups {
     pub bodies: [bool; 2],
     pub contact: bool,
     pub solver: bool,
+    /// The contact's rules other than those that read its damping (`damping` or `restitution`, one value of the
+    /// scene): a scene that differs from one passing the contact's rules only in its damping needs only
+    /// [`check_damping`]'s. (Meaningful among groups to skip; `contact` covers it.)
+    pub contact_but_damping: bool,
 }
 
 impl RuleGroups {
-    pub const NONE: RuleGroups = RuleGroups { bodies: [false; 2], contact: false, solver: false };
+    pub const NONE: RuleGroups =
+        RuleGroups { bodies: [false; 2], contact: false, solver: false, contact_but_damping: false };
 
     /// The groups whose rules `scene` passes.
     pub fn passed_by(scene: &Scene) -> RuleGroups {
+        let contact = check_contact(&scene.contact).is_ok();
         RuleGroups {
             bodies: [0, 1].map(|i| check_body(i, &scene.bodies[i]).is_ok()),
-            contact: check_contact(&scene.contact).is_ok(),
+            contact,
             solver: check_solver(&scene.solver).is_ok(),
+            contact_but_damping: contact,
         }
     }
 }
@@ -251,7 +258,9 @@ pub fn check_groups(scene: &Scene, skip: RuleGroups) -> Checked {
             check_body(i, body)?;
         }
     }
-    if !skip.contact {
+    if skip.contact_but_damping && !skip.contact {
+        check_damping(&scene.contact)?;
+    } else if !skip.contact {
         check_contact(&scene.contact)?;
     }
     if skip.solver { Ok(()) } else { check_solver(&scene.solver) }
@@ -558,24 +567,26 @@ fn exponent_in_range(n: f64) -> Checked {
     )
 }
 
-fn check_contact(contact: &super::ContactSpec) -> Checked {
+/// The contact's rules that read its damping (`damping` or `restitution`), in [`check_contact`]'s order: the
+/// value's range, then whether the law takes it. The other contact rules read no damping.
+pub fn check_damping(contact: &super::ContactSpec) -> Checked {
+    check_damping_value(contact)?;
+    check_damping_for_law(contact)
+}
+
+/// The damping's (or restitution's) range.
+fn check_damping_value(contact: &super::ContactSpec) -> Checked {
+    match contact.damping {
+        DampingSpec::Restitution(e) => number("contact.restitution", e, Allowed::Fraction),
+        DampingSpec::Parameter(c) => number("contact.damping", c, Allowed::NonNegative),
+        DampingSpec::None => Ok(()),
+    }
+}
+
+/// Whether the law takes the damping (or restitution) given, or needs one that is not.
+fn check_damping_for_law(contact: &super::ContactSpec) -> Checked {
     let law = contact.law;
     let name = law.name();
-    match contact.damping {
-        DampingSpec::Restitution(e) => number("contact.restitution", e, Allowed::Fraction)?,
-        DampingSpec::Parameter(c) => number("contact.damping", c, Allowed::NonNegative)?,
-        DampingSpec::None => {}
-    }
-    if let Some(pressure) = contact.yield_pressure {
-        number("contact.yield_pressure", pressure, Allowed::PositiveOrInfinite)?;
-        if law.family() != Family::Plastic {
-            return fail(
-                "contact.yield_pressure",
-                format!("`{name}` does not yield: `yield_pressure` belongs to law = \"thornton\""),
-            );
-        }
-    }
-    check_simulator_keys(contact)?;
     match (law.family(), contact.damping) {
         (Family::Elastic | Family::Plastic | Family::Impedance | Family::Ramp, DampingSpec::None) => {}
         (Family::Impedance, DampingSpec::Restitution(_)) => fail(
@@ -631,6 +642,24 @@ fn check_contact(contact: &super::ContactSpec) -> Checked {
             }
         },
     }
+    Ok(())
+}
+
+fn check_contact(contact: &super::ContactSpec) -> Checked {
+    let law = contact.law;
+    let name = law.name();
+    check_damping_value(contact)?;
+    if let Some(pressure) = contact.yield_pressure {
+        number("contact.yield_pressure", pressure, Allowed::PositiveOrInfinite)?;
+        if law.family() != Family::Plastic {
+            return fail(
+                "contact.yield_pressure",
+                format!("`{name}` does not yield: `yield_pressure` belongs to law = \"thornton\""),
+            );
+        }
+    }
+    check_simulator_keys(contact)?;
+    check_damping_for_law(contact)?;
     if let StiffnessSpec::Value(k) = contact.stiffness {
         number("contact.stiffness", k, Allowed::Positive)?;
     }

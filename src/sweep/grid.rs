@@ -401,14 +401,21 @@ impl Grid {
     }
 
     /// The values at point `point` (lexicographic order: the first axis slowest).
-    pub fn values(&self, mut point: usize) -> Vec<f64> {
-        let mut values = vec![0.0; self.axes.len()];
+    pub fn values(&self, point: usize) -> Vec<f64> {
+        let mut values = Vec::with_capacity(self.axes.len());
+        self.values_into(point, &mut values);
+        values
+    }
+
+    /// [`Grid::values`] into `values` (a sweep worker's, kept from row to row).
+    pub fn values_into(&self, mut point: usize, values: &mut Vec<f64>) {
+        values.clear();
+        values.resize(self.axes.len(), 0.0);
         for (slot, axis) in values.iter_mut().zip(&self.axes).rev() {
             let count = axis.count();
             *slot = axis.value(point % count);
             point /= count;
         }
-        values
     }
 }
 

@@ -303,9 +303,25 @@ impl SceneKey {
             ("contact", _) => groups.contact = true,
             ("solver", _) => groups.solver = true,
             // (No other key is settable; were one added, it would reach everything until said otherwise.)
-            _ => groups = RuleGroups { bodies: [true; 2], contact: true, solver: true },
+            _ => groups = RuleGroups { bodies: [true; 2], contact: true, solver: true, contact_but_damping: true },
         }
         groups
+    }
+
+    /// Whether this key sets the contact's damping (`contact.damping` or `contact.restitution`) and nothing else of
+    /// the scene: a point's contact then differs from its base's only there ([`RuleGroups::contact_but_damping`]).
+    pub fn sets_damping(&self) -> bool {
+        self.table == "contact" && matches!((self.field, self.component), ("damping" | "restitution", None))
+    }
+
+    /// Whether setting this key can change a scene's [`crate::setup::Approach`], which the bodies and the contact's
+    /// normal decide: every key of a body, and `contact.normal` (and, were one added, any key of another table).
+    pub fn moves_approach(&self) -> bool {
+        match self.table {
+            "contact" => self.field == "normal",
+            "solver" => false,
+            _ => true,
+        }
     }
 
     /// Sets this key to `value` on a typed scene, with exactly the switching rules of [`SceneKey::set`] (a point of a

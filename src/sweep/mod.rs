@@ -20,11 +20,12 @@ pub mod table;
 pub mod world;
 
 use crate::history::Recording;
-use crate::impact::{Options, simulate_prepared_read};
+use crate::impact::{Options, simulate_prepared_into};
 use crate::law::LawKind;
+use crate::report::Report;
 use crate::scene::SetupError;
 use crate::scene::{RuleGroups, Scene, SceneError};
-use crate::setup::Setup;
+use crate::setup::{Approach, Setup};
 use crate::text::{MESSAGE_CHARS, cut};
 use grid::Grid;
 use rayon::prelude::*;
@@ -80,6 +81,8 @@ pub struct Sweep {
     written_law: Cow<'static, str>,
     /// What a row's run computes: what [`Sweep::columns`] show (found once, not a row at a time).
     options: Options,
+    /// Each law's `law` cell as CSV writes it (found once, not a row at a time).
+    quoted_laws: Vec<table::Quoted>,
 }
 
 /// A law's typed scene, which its rows copy and set their point on, and the groups of value rules its points pass
@@ -90,6 +93,9 @@ struct Base {
     known: RuleGroups,
     /// The tables the varied keys set (as groups of rules: a body, the contact, the solver).
     reached: RuleGroups,
+    /// The approach every point shares, where no varied key can change it (none sets a body or the contact's
+    /// normal) and the base has one: each point's setup then derives only what the law's numbers decide.
+    approach: Option<Approach>,
 }
 
 impl Base {
@@ -117,9 +123,36 @@ impl Base {
     }
 }
 
-/// A worker's copies of the sweep's base scenes ([`Sweep::evaluate_in`]), one a law, made at its first row.
+/// What a worker keeps from row to row ([`Sweep::evaluate_in`]): its copies of the sweep's base scenes, one a law,
+/// made at its first row, and the report each row is written into.
 #[derive(Debug, Clone, Default)]
-pub struct Scratch(Vec<Option<Scene>>);
+pub struct Scratch {
+    scenes: Vec<Option<Scene>>,
+    report: Report,
+    /// The row's varied values and its result cells, refilled for each row.
+    values: Vec<f64>,
+    cells: Vec<Cell>,
+    /// The longest CSV line this worker has written (bytes, with its newline): the room a block's text is given a
+    /// row ([`Sweep::stream_lines`]).
+    widest: usize,
+}
+
+/// Rows a worker runs in one go within a chunk ([`Sweep::stream`]): their lines go into one text
+/// ([`Sweep::stream_lines`]), handed to the writer at once. Enough that a block's text and hand-over cost little
+/// beside its rows, few enough that a chunk's blocks keep both cores busy to its end.
+pub const BLOCK: usize = 64;
+
+/// The CSV lines of consecutive rows as one text ([`table::push_line`] of each), and how the rows ended.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Lines {
+    pub text: String,
+    /// How many rows, and how many of them ended `ok` and `not separated`.
+    pub rows: usize,
+    pub ok: usize,
+    pub stuck: usize,
+    /// The first row's status (`None` without rows).
+    pub first: Option<Status>,
+}
 
 /// The laws named in `--law` (scene spellings), checked.
 pub fn parse_laws(names: &[String]) -> Result<Vec<LawKind>, SweepError> {
@@ -199,8 +232,11 @@ impl Sweep {
             bases: Vec::new(),
             columns: Columns::default(),
             options: Sweep::row_options(&Columns::default()),
+            quoted_laws: Vec::new(),
         };
         sweep.bases = (0..sweep.law_count()).map(|i| sweep.base(i)).collect();
+        sweep.quoted_laws =
+            (0..sweep.law_count()).map(|i| table::Quoted::new(&sweep.law_name(sweep.laws.get(i).copied()))).collect();
         match sweep.grid.points().and_then(|points| points.checked_mul(sweep.law_count())) {
             Some(rows) if rows <= MAX_ROWS => Ok(sweep),
             _ => Err(SweepError::Usage(format!("the sweep has more than {MAX_ROWS} rows: split it into several"))),
@@ -292,39 +328,57 @@ impl Sweep {
     /// [`Sweep::evaluate`] on a worker's copies of the scene (`scratch`, kept from row to row): the same row, for a
     /// copy of only the tables the varied keys reach.
     pub fn evaluate_in(&self, index: usize, scratch: &mut Scratch) -> Row {
-        self.evaluate_by(index, Some(scratch))
+        let status = self.evaluate_by(index, true, scratch);
+        self.row(index, status, scratch)
     }
 
     /// Row `index` through the document: the point written into the scene's TOML and read back like a file. This
     /// is what a point means; [`Sweep::evaluate`] applies it to a typed scene instead, and must give the same row
     /// (the tests hold it to that).
     pub fn evaluate_written(&self, index: usize) -> Row {
-        self.evaluate_by(index, None)
+        let mut scratch = Scratch::default();
+        let status = self.evaluate_by(index, false, &mut scratch);
+        self.row(index, status, &scratch)
     }
 
-    /// Row `index` on the typed scene (with `scratch`) or through the document (without).
-    fn evaluate_by(&self, index: usize, scratch: Option<&mut Scratch>) -> Row {
-        let (values, law) = self.point(index);
-        let law = self.law_name(law);
-        let (columns, options) = (&self.columns, self.options);
-        // The cells are taken from the report where it was built, and the scene and its setup stay where they were
-        // made (a report is 2.9 kB, a scene 1.1: moving them out through Results cost more than the cells).
-        let cells_of = |scene: &Scene, setup: &Setup| {
-            // (No column shows the run's wall time: not measured.)
-            simulate_prepared_read(scene, setup, options, |report| {
-                let status = if report.contact.separated { Status::Ok } else { Status::NotSeparated };
-                (status, columns.pick(report))
-            })
-            .map_err(|error| error.to_string())
-        };
+    /// The CSV line of row `index`, [`table::line`] of [`Sweep::evaluate_in`], appended to `text` straight from the
+    /// worker's `scratch` (no row formed); returns the row's status.
+    pub fn line_in(&self, index: usize, scratch: &mut Scratch, text: &mut String) -> Status {
+        let status = self.evaluate_by(index, true, scratch);
+        let law = &self.quoted_laws[index % self.law_count()];
+        table::push_line(text, index, &status, law, &scratch.values, &scratch.cells);
+        status
+    }
+
+    /// The row `index` that ended with `status`, its values and cells those in `scratch`.
+    fn row(&self, index: usize, status: Status, scratch: &Scratch) -> Row {
+        let law = self.law_name(self.laws.get(index % self.law_count()).copied());
+        Row { index, status, law, values: scratch.values.clone(), results: scratch.cells.clone() }
+    }
+
+    /// Row `index` on the typed scene (`typed`, on the worker's copy in `scratch`) or through the document: its
+    /// values and cells into `scratch`'s (the report too); returns its status.
+    fn evaluate_by(&self, index: usize, typed: bool, scratch: &mut Scratch) -> Status {
         let law_index = index % self.law_count();
-        let cells = match (&self.bases[law_index], scratch) {
-            (Some(base), Some(scratch)) => {
-                if scratch.0.len() < self.bases.len() {
-                    scratch.0.resize(self.bases.len(), None);
+        let (columns, options) = (&self.columns, self.options);
+        let Scratch { scenes, report, values, cells, .. } = scratch;
+        self.grid.values_into(index / self.law_count(), values);
+        // The cells are taken from the report where it was built, the worker's, and the scene and its setup stay
+        // where they were made (a report is 2.9 kB, a scene 1.1: moving them out through results cost more than the
+        // cells).
+        let mut cells_of = |scene: &Scene, setup: &Setup| {
+            // (No column shows the run's wall time: not measured.)
+            simulate_prepared_into(scene, setup, options, report).map_err(|error| error.to_string())?;
+            columns.pick_into(report, cells);
+            Ok(if report.contact.separated { Status::Ok } else { Status::NotSeparated })
+        };
+        let status = match &self.bases[law_index] {
+            Some(base) if typed => {
+                if scenes.len() < self.bases.len() {
+                    scenes.resize(self.bases.len(), None);
                 }
-                let scene = base.restored(&mut scratch.0[law_index]);
-                self.apply_point(scene, base.known, &values).and_then(|setup| cells_of(scene, &setup))
+                let scene = base.restored(&mut scenes[law_index]);
+                self.apply_point(scene, base, values).and_then(|setup| cells_of(scene, &setup))
             }
             _ => self.scene_text(index).and_then(|text| {
                 let scene = Scene::parse(&text, &self.path).map_err(scene_message)?;
@@ -332,8 +386,11 @@ impl Sweep {
                 cells_of(&scene, &setup)
             }),
         };
-        let (status, results) = cells.unwrap_or_else(|why| (Status::Error(why), vec![Cell::Empty; columns.len()]));
-        Row { index, status, law, values, results }
+        status.unwrap_or_else(|why| {
+            cells.clear();
+            cells.resize(columns.len(), Cell::Empty);
+            Status::Error(why)
+        })
     }
 
     /// The typed scene a law's rows start from: the document with the law's defaults, converted once; `None` when it
@@ -367,23 +424,30 @@ impl Sweep {
             reached.contact |= key.contact;
             reached.solver |= key.solver;
         }
+        // (Where every key that reaches the contact sets its damping alone, a point checks only the damping's rules
+        // of the contact's: the others read what the base has.)
+        let damping_only = self.grid.axes.iter().all(|axis| !axis.key.reaches().contact || axis.key.sets_damping());
         let known = RuleGroups {
             bodies: [0, 1].map(|i| passed.bodies[i] && !reached.bodies[i]),
             contact: passed.contact && !reached.contact,
             solver: passed.solver && !reached.solver,
+            contact_but_damping: passed.contact && damping_only,
         };
-        Some(Base { scene, known, reached })
+        let shared = !self.grid.axes.iter().any(|axis| axis.key.moves_approach());
+        let approach = if shared { Approach::new(&resolved).ok() } else { None };
+        Some(Base { scene, known, reached, approach })
     }
 
     /// A point applied to (a copy of) a law's typed scene and checked by the rules a scene file obeys: the same scene,
-    /// and the same error text, as writing the point into the document and reading it back (the groups of rules in
-    /// `known` pass unchecked: the base passes them and the point does not reach them). Returns its setup.
-    fn apply_point(&self, scene: &mut Scene, known: RuleGroups, values: &[f64]) -> Result<Setup, String> {
+    /// and the same error text, as writing the point into the document and reading it back (the groups of rules the
+    /// base knows pass unchecked: the base passes them and the point does not reach them; its approach, where every
+    /// point shares it, is not found again). Returns its setup.
+    fn apply_point(&self, scene: &mut Scene, base: &Base, values: &[f64]) -> Result<Setup, String> {
         for (axis, &value) in self.grid.axes.iter().zip(values) {
             axis.key.apply(scene, value).map_err(|why| format!("{}: {why}", axis.key))?;
         }
         scene.resolve();
-        scene.check_except(known).map_err(setup_message)
+        scene.check_except(base.known, base.approach.as_ref()).map_err(setup_message)
     }
 
     /// The global indices of the rows of `shard` (all rows without one), in increasing order.
@@ -421,19 +485,88 @@ impl Sweep {
         shape: impl Fn(Row) -> T + Sync,
         mut write: impl FnMut(T) -> Result<(), E> + Send,
     ) -> Result<(), E> {
-        let (send, receive) = std::sync::mpsc::sync_channel::<Vec<Option<T>>>(1);
+        self.stream_blocks(
+            indices,
+            pool,
+            stop,
+            done,
+            |rows, scratch| {
+                // (A row is checked before it starts: a chunk of slow rows stops within one row's time.)
+                rows.iter()
+                    .map(|&index| (!stop.load(Ordering::Relaxed)).then(|| shape(self.evaluate_in(index, scratch))))
+                    .collect::<Option<Vec<T>>>()
+            },
+            |shaped| shaped.into_iter().try_for_each(&mut write),
+        )
+    }
+
+    /// The CSV lines of the rows `indices` (`impact sweep`'s file), computed on `pool` as [`Sweep::stream`] computes
+    /// its rows and written by `write` in the same order, a [`BLOCK`] of rows at a time: each worker writes its
+    /// rows' lines straight into the block's text ([`Sweep::line_in`]), the same bytes as [`table::line`] of each
+    /// row.
+    pub fn stream_lines<E: Send>(
+        &self,
+        indices: impl Iterator<Item = usize>,
+        pool: &rayon::ThreadPool,
+        done: impl Fn(usize) + Sync,
+        write: impl FnMut(Lines) -> Result<(), E> + Send,
+    ) -> Result<(), E> {
+        // (Room for the longest numbers, 24 bytes each, until the worker has seen its lines: then as wide as the
+        // widest, so that the chunks in memory hold about what they will write.)
+        let guess = 64 + 24 * (self.grid.axes.len() + self.columns.len());
+        self.stream_blocks(
+            indices,
+            pool,
+            &AtomicBool::new(false),
+            done,
+            |rows, scratch| {
+                let width = if scratch.widest > 0 { scratch.widest } else { guess };
+                let mut lines = Lines {
+                    text: String::with_capacity(rows.len() * width),
+                    rows: rows.len(),
+                    ok: 0,
+                    stuck: 0,
+                    first: None,
+                };
+                for &index in rows {
+                    let start = lines.text.len();
+                    let status = self.line_in(index, scratch, &mut lines.text);
+                    scratch.widest = scratch.widest.max(lines.text.len() - start);
+                    lines.ok += usize::from(status == Status::Ok);
+                    lines.stuck += usize::from(status == Status::NotSeparated);
+                    lines.first.get_or_insert(status);
+                }
+                Some(lines)
+            },
+            write,
+        )
+    }
+
+    /// The machinery of [`Sweep::stream_until`] and [`Sweep::stream_lines`]: the rows `indices` in chunks of [`CHUNK`],
+    /// each cut into blocks of [`BLOCK`] consecutive rows that the workers of `pool` run with their own scratch
+    /// (`block` gives `None` once it sees `stop`); the writer thread passes each chunk's blocks to `write` in order.
+    fn stream_blocks<B: Send, E: Send>(
+        &self,
+        indices: impl Iterator<Item = usize>,
+        pool: &rayon::ThreadPool,
+        stop: &AtomicBool,
+        done: impl Fn(usize) + Sync,
+        block: impl Fn(&[usize], &mut Scratch) -> Option<B> + Sync,
+        mut write: impl FnMut(B) -> Result<(), E> + Send,
+    ) -> Result<(), E> {
+        let (send, receive) = std::sync::mpsc::sync_channel::<Vec<Option<B>>>(1);
         // The writer hands each chunk's emptied vector back, so that the chunks reuse two or three buffers: a fresh
-        // one per chunk (100 kB of row handles, freed on the writer's thread) cost a page fault per chunk, 6 % of
-        // the e-alone sweep's time.
-        let (give_back, spare) = std::sync::mpsc::channel::<Vec<Option<T>>>();
+        // one per chunk (freed on the writer's thread) cost a page fault per chunk, 6 % of the e-alone sweep's time
+        // when a chunk held a handle per row.
+        let (give_back, spare) = std::sync::mpsc::channel::<Vec<Option<B>>>();
         std::thread::scope(|scope| {
             let writer = scope.spawn(move || {
-                for mut rows in receive {
-                    for row in rows.drain(..).flatten() {
-                        write(row)?;
+                for mut blocks in receive {
+                    for shaped in blocks.drain(..).flatten() {
+                        write(shaped)?;
                     }
                     // (The computing side may have finished: the buffer is then dropped here.)
-                    let _ = give_back.send(rows);
+                    let _ = give_back.send(blocks);
                 }
                 Ok(())
             });
@@ -442,22 +575,21 @@ impl Sweep {
             while indices.peek().is_some() {
                 chunk.clear();
                 chunk.extend(indices.by_ref().take(CHUNK));
-                let mut rows = spare.try_recv().unwrap_or_else(|_| Vec::with_capacity(CHUNK));
-                // (A row is checked before it starts: a chunk of slow rows stops within one row's time.)
+                let mut blocks = spare.try_recv().unwrap_or_else(|_| Vec::with_capacity(CHUNK.div_ceil(BLOCK)));
                 pool.install(|| {
                     chunk
-                        .par_iter()
-                        .map_init(Scratch::default, |scratch, &index| {
-                            (!stop.load(Ordering::Relaxed)).then(|| shape(self.evaluate_in(index, scratch)))
+                        .par_chunks(BLOCK)
+                        .map_init(Scratch::default, |scratch, rows| {
+                            if stop.load(Ordering::Relaxed) { None } else { block(rows, scratch) }
                         })
-                        .collect_into_vec(&mut rows)
+                        .collect_into_vec(&mut blocks)
                 });
-                if stop.load(Ordering::Relaxed) || rows.iter().any(Option::is_none) {
+                if stop.load(Ordering::Relaxed) || blocks.iter().any(Option::is_none) {
                     break;
                 }
-                done(rows.len());
+                done(chunk.len());
                 // The writer has stopped on an error: it is returned below.
-                if send.send(rows).is_err() {
+                if send.send(blocks).is_err() {
                     break;
                 }
             }

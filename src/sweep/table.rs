@@ -220,18 +220,26 @@ impl Columns {
     /// The chosen cells of a report: of its [`results`], and of its [`verdicts`] when one is chosen, in the chosen
     /// order.
     pub fn pick(&self, report: &Report) -> Vec<Cell> {
-        let all = results(report);
-        // (Every column in its own order, the default: one copy rather than a lookup a cell.)
-        if self.chosen.len() == all.len() && self.chosen.iter().enumerate().all(|(k, &i)| k == i) {
-            return all.to_vec();
+        let mut cells = Vec::with_capacity(self.chosen.len());
+        self.pick_into(report, &mut cells);
+        cells
+    }
+
+    /// [`Columns::pick`] into `cells` (emptied first: a sweep worker's, kept from row to row).
+    pub fn pick_into(&self, report: &Report, cells: &mut Vec<Cell>) {
+        cells.clear();
+        // (Every column in its own order, the default: all at once rather than a cell at a time.)
+        if self.chosen.len() == RESULT_COLUMNS.len() && self.chosen.iter().enumerate().all(|(k, &i)| k == i) {
+            cells.extend_from_slice(&results(report));
+            return;
         }
         let judged = self.verdicts().then(|| verdicts(&report.idealisation));
-        let cell = |i: usize| match (all.get(i), &judged) {
-            (Some(cell), _) => *cell,
-            (None, Some(judged)) => judged[i - all.len()],
-            (None, None) => Cell::Empty,
+        let cell = |i: usize| match (i < RESULT_COLUMNS.len(), &judged) {
+            (true, _) => result(report, i),
+            (false, Some(judged)) => judged[i - RESULT_COLUMNS.len()],
+            (false, None) => Cell::Empty,
         };
-        self.chosen.iter().map(|&i| cell(i)).collect()
+        cells.extend(self.chosen.iter().map(|&i| cell(i)));
     }
 }
 
@@ -287,70 +295,67 @@ pub struct Row {
     pub results: Vec<Cell>,
 }
 
-/// The result cells of a report, in [`RESULT_COLUMNS`] order.
+/// The result cells of a report, in [`RESULT_COLUMNS`] order ([`result`] for each; on the stack: a row's cells
+/// allocate nothing until the chosen ones are picked).
 pub fn results(report: &Report) -> [Cell; RESULT_COLUMNS.len()] {
+    std::array::from_fn(|i| result(report, i))
+}
+
+/// Cell `i` of a report's [`results`], column `RESULT_COLUMNS[i]` (empty past the last): a row that writes a few
+/// columns forms only those. Each is the report's value of the same name (`tests::each_result_is_the_reports_value`),
+/// the spins as magnitudes; the oblique columns are empty for a direct central impact without spin.
+pub fn result(report: &Report, i: usize) -> Cell {
     let c = &report.contact;
     let law = &report.law;
     let number = Cell::Number;
-    // The columns of every impact, then the oblique section's: their counts add up to the header's, or this does
-    // not compile.
-    const CENTRAL: usize = 27;
-    const OBLIQUE: usize = RESULT_COLUMNS.len() - CENTRAL;
-    let central: [Cell; CENTRAL] = [
-        number(report.approach_speed),
-        number(report.effective_mass),
-        number(law.stiffness),
-        number(law.exponent),
-        number(law.damping),
-        law.restitution_nominal.into(),
-        c.restitution_velocity_ratio.into(),
-        c.restitution_impulse_ratio.into(),
-        c.restitution_energy.into(),
-        report.reference.as_ref().and_then(|r| r.restitution).into(),
-        number(c.start_time),
-        number(c.max_compression_time),
-        c.duration.into(),
-        number(c.max_penetration),
-        number(c.max_force),
-        number(c.max_force_time),
-        number(c.common_normal_velocity),
-        number(c.deformation_impulse),
-        c.restitution_impulse.into(),
-        number(report.energy.kinetic_before),
-        report.energy.kinetic_after.into(),
-        report.energy.dissipated.into(),
-        report.instantaneous.as_ref().and_then(|i| i.max_velocity_difference).into(),
-        Cell::Count(report.solver.steps),
-        Cell::Count(report.solver.force_evaluations),
-        report.energy.elastic_left_at_separation.into(),
-        report.energy.work_of_immovable_bodies.into(),
-    ];
     let oblique = report.oblique.as_ref();
-    let rigid = oblique.and_then(|o| o.rigid_body.as_ref());
+    let rigid = || oblique.and_then(|o| o.rigid_body.as_ref());
     let size = |v: &[f64; 3]| (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
     let spin = |i: usize| report.bodies[i].angular_velocity_after.as_ref().map(size);
-    let turned: [Cell; OBLIQUE] = [
-        oblique.map(|o| o.incidence_from_normal_deg).into(),
-        oblique.and_then(|o| o.rebound_from_normal_deg).into(),
-        oblique.and_then(|o| o.tangential_restitution_centre).into(),
-        oblique.and_then(|o| o.tangential_restitution_contact).into(),
-        oblique.and_then(|o| o.friction_work).into(),
-        oblique.and_then(|o| o.slip_rest_time).into(),
-        oblique.and_then(|o| o.below_friction_limit_duration).into(),
-        oblique.and_then(|o| o.normal_turn_deg).into(),
-        oblique.and(spin(0)).into(),
-        oblique.and(spin(1)).into(),
-        rigid.map(|r| r.rebound_from_normal_deg).into(),
-        rigid.and_then(|r| r.tangential_restitution_centre).into(),
-        rigid.map(|r| size(&r.angular_velocity_after[0])).into(),
-        rigid.map(|r| size(&r.angular_velocity_after[1])).into(),
-    ];
-    // (On the stack: a row's cells allocate nothing until the chosen ones are picked.)
-    let mut cells = [Cell::Empty; RESULT_COLUMNS.len()];
-    let (first, rest) = cells.split_at_mut(CENTRAL);
-    first.copy_from_slice(&central);
-    rest.copy_from_slice(&turned);
-    cells
+    match i {
+        0 => number(report.approach_speed),
+        1 => number(report.effective_mass),
+        2 => number(law.stiffness),
+        3 => number(law.exponent),
+        4 => number(law.damping),
+        5 => law.restitution_nominal.into(),
+        6 => c.restitution_velocity_ratio.into(),
+        7 => c.restitution_impulse_ratio.into(),
+        8 => c.restitution_energy.into(),
+        9 => report.reference.as_ref().and_then(|r| r.restitution).into(),
+        10 => number(c.start_time),
+        11 => number(c.max_compression_time),
+        12 => c.duration.into(),
+        13 => number(c.max_penetration),
+        14 => number(c.max_force),
+        15 => number(c.max_force_time),
+        16 => number(c.common_normal_velocity),
+        17 => number(c.deformation_impulse),
+        18 => c.restitution_impulse.into(),
+        19 => number(report.energy.kinetic_before),
+        20 => report.energy.kinetic_after.into(),
+        21 => report.energy.dissipated.into(),
+        22 => report.instantaneous.as_ref().and_then(|i| i.max_velocity_difference).into(),
+        23 => Cell::Count(report.solver.steps),
+        24 => Cell::Count(report.solver.force_evaluations),
+        25 => report.energy.elastic_left_at_separation.into(),
+        26 => report.energy.work_of_immovable_bodies.into(),
+        27 => oblique.map(|o| o.incidence_from_normal_deg).into(),
+        28 => oblique.and_then(|o| o.rebound_from_normal_deg).into(),
+        29 => oblique.and_then(|o| o.tangential_restitution_centre).into(),
+        30 => oblique.and_then(|o| o.tangential_restitution_contact).into(),
+        31 => oblique.and_then(|o| o.friction_work).into(),
+        32 => oblique.and_then(|o| o.slip_rest_time).into(),
+        33 => oblique.and_then(|o| o.below_friction_limit_duration).into(),
+        34 => oblique.and_then(|o| o.normal_turn_deg).into(),
+        35 => oblique.and(spin(0)).into(),
+        36 => oblique.and(spin(1)).into(),
+        37 => rigid().map(|r| r.rebound_from_normal_deg).into(),
+        38 => rigid().and_then(|r| r.tangential_restitution_centre).into(),
+        39 => rigid().map(|r| size(&r.angular_velocity_after[0])).into(),
+        40 => rigid().map(|r| size(&r.angular_velocity_after[1])).into(),
+        _ => Cell::Empty,
+    }
 }
 
 /// The verdict cells of a report's idealisation, in [`VERDICT_COLUMNS`] order: all empty where nothing was judged
@@ -531,32 +536,51 @@ pub fn line(row: &Row) -> String {
     // the writer takes it.)
     let filled = row.results.iter().filter(|cell| **cell != Cell::Empty).count();
     let mut text = String::with_capacity(64 + 24 * (row.values.len() + filled));
+    push_line(&mut text, row.index, &row.status, &Quoted::new(&row.law), &row.values, &row.results);
+    text
+}
+
+/// A cell's text as CSV writes it (quoted when it holds a comma, a quote or a line break: [`push_quoted`]), formed
+/// once: a sweep writes its law's name on every row.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Quoted(String);
+
+impl Quoted {
+    pub fn new(text: &str) -> Quoted {
+        let mut quoted = String::with_capacity(text.len());
+        push_quoted(&mut quoted, text);
+        Quoted(quoted)
+    }
+}
+
+/// Appends the CSV line of row `index` (with its newline) to `text`: its status, its law, its varied values and its
+/// result cells. ([`line`] is this on a row; a sweep's worker writes its rows' lines straight into one text.)
+pub fn push_line(text: &mut String, index: usize, status: &Status, law: &Quoted, values: &[f64], results: &[Cell]) {
     let mut integer = itoa::Buffer::new();
-    text.push_str(integer.format(row.index));
+    text.push_str(integer.format(index));
     text.push(',');
-    match &row.status {
+    match status {
         // (The common statuses without building their text.)
         Status::Ok => text.push_str("ok"),
         Status::NotSeparated => text.push_str("not separated"),
-        status => push_quoted(&mut text, &status.text()),
+        status => push_quoted(text, &status.text()),
     }
     text.push(',');
-    push_quoted(&mut text, &row.law);
-    for value in &row.values {
+    text.push_str(&law.0);
+    for value in values {
         text.push(',');
-        push_number(&mut text, *value);
+        push_number(text, *value);
     }
-    for cell in &row.results {
+    for cell in results {
         text.push(',');
         match cell {
-            Cell::Number(x) => push_number(&mut text, *x),
+            Cell::Number(x) => push_number(text, *x),
             Cell::Count(n) => text.push_str(integer.format(*n)),
-            Cell::Text(name) => push_quoted(&mut text, name),
+            Cell::Text(name) => push_quoted(text, name),
             Cell::Empty => {}
         }
     }
     text.push('\n');
-    text
 }
 
 /// The first line of a shard's file.
@@ -697,5 +721,82 @@ mod tests {
         assert_eq!(cell_count("1,\"error: a, b\",hertz,"), 4);
         assert_eq!(cell_count("2,\"say \"\"x, y\"\"\",z"), 3);
         assert_eq!(cell_count(""), 1);
+    }
+}
+
+#[cfg(test)]
+mod result_tests {
+    use super::*;
+    use crate::history::Recording;
+    use crate::scene::Scene;
+    use serde_json::Value;
+
+    /// Where each result column's value sits in the JSON report (docs/report.md): the column of the same name in its
+    /// section; the spins are the sizes of the vectors there (`None`: a magnitude of the vector at that place).
+    fn place(name: &str) -> (String, bool) {
+        let magnitude = |at: &str| (at.to_string(), true);
+        match name {
+            "approach_speed" | "effective_mass" => (format!("/{name}"), false),
+            "stiffness" | "exponent" | "damping" | "restitution_nominal" => (format!("/law/{name}"), false),
+            "reference_restitution" => ("/reference/restitution".into(), false),
+            "kinetic_before"
+            | "kinetic_after"
+            | "dissipated"
+            | "elastic_left_at_separation"
+            | "work_of_immovable_bodies" => (format!("/energy/{name}"), false),
+            "max_velocity_difference" => ("/instantaneous/max_velocity_difference".into(), false),
+            "steps" | "force_evaluations" => (format!("/solver/{name}"), false),
+            "spin_after_1" => magnitude("/bodies/0/angular_velocity_after"),
+            "spin_after_2" => magnitude("/bodies/1/angular_velocity_after"),
+            "rigid_spin_after_1" => magnitude("/oblique/rigid_body/angular_velocity_after/0"),
+            "rigid_spin_after_2" => magnitude("/oblique/rigid_body/angular_velocity_after/1"),
+            _ => match name.strip_prefix("rigid_") {
+                Some(rest) => (format!("/oblique/rigid_body/{rest}"), false),
+                None if RESULT_COLUMNS[27..].contains(&name) => (format!("/oblique/{name}"), false),
+                None => (format!("/contact/{name}"), false),
+            },
+        }
+    }
+
+    /// Each result column holds the report's value of its name, read from the report written as JSON (every section
+    /// filled): a head-on impact on a wall (no oblique section: those cells empty) and an oblique frictional impact
+    /// of two spheres (every section filled). A cell put under the wrong column fails here.
+    #[test]
+    fn each_result_is_the_reports_value() {
+        let head_on = "[[bodies]]\nradius = 0.01\nmass = 0.03\nvelocity = [1.5, 0.0, 0.0]\nyoung = 2e11\npoisson = 0.3\n\n\
+                       [[bodies]]\nradius = inf\nmass = inf\nvelocity = [0.0, 0.0, 0.0]\nyoung = 7e10\npoisson = 0.33\n\n\
+                       [contact]\nlaw = \"hunt-crossley\"\nrestitution = 0.6\n";
+        let oblique = "[[bodies]]\nradius = 0.01\nmass = 0.03\nvelocity = [1.5, 0.7, 0.0]\nposition = [0.0, 0.0, 0.0]\n\
+                       young = 2e11\npoisson = 0.3\n\n[[bodies]]\nradius = 0.02\nmass = 0.2\nvelocity = [-0.5, 0.0, 0.0]\n\
+                       position = [0.03, 0.0, 0.0]\nyoung = 7e10\npoisson = 0.33\n\n\
+                       [contact]\nlaw = \"hunt-crossley\"\nrestitution = 0.6\nfriction = 0.2\n";
+        for (text, filled) in [(head_on, false), (oblique, true)] {
+            let scene = Scene::parse(text, std::path::Path::new("result.toml")).unwrap();
+            let report = crate::impact::simulate(&scene, Recording::Off).unwrap().report;
+            let json = serde_json::to_value(&report).unwrap();
+            assert_eq!(json.pointer("/oblique").is_some_and(|o| !o.is_null()), filled, "{text}");
+            for (i, name) in RESULT_COLUMNS.iter().enumerate() {
+                let (at, magnitude) = place(name);
+                let value = json.pointer(&at).unwrap_or(&Value::Null);
+                let expected = match value {
+                    Value::Null => Cell::Empty,
+                    Value::Array(v) if magnitude => {
+                        let v: Vec<f64> = v.iter().map(|c| c.as_f64().unwrap()).collect();
+                        Cell::Number((v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt())
+                    }
+                    Value::Number(n) if n.is_u64() && (*name == "steps" || *name == "force_evaluations") => {
+                        Cell::Count(n.as_u64().unwrap())
+                    }
+                    Value::Number(n) => Cell::Number(n.as_f64().unwrap()),
+                    other => panic!("{name} at {at}: {other}"),
+                };
+                // (The spins of a head-on impact: its oblique section is null, and so are they.)
+                let expected = if magnitude && !filled && !name.starts_with("rigid") { Cell::Empty } else { expected };
+                assert_eq!(result(&report, i), expected, "{name} at {at}");
+                assert_eq!(results(&report)[i], expected, "{name}");
+            }
+            // Past the last column: empty.
+            assert_eq!(result(&report, RESULT_COLUMNS.len()), Cell::Empty);
+        }
     }
 }
