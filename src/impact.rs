@@ -235,6 +235,7 @@ fn through_phases(
                 && outcome.ending == Ending::Event(0)
             {
                 outcome.method = SLIDE;
+                outcome.switches -= slide.unloadings();
                 return Ok((outcome, None));
             }
             if method == Method::Auto

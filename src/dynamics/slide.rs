@@ -19,6 +19,7 @@
 //! model's, at a fraction of its cost.
 
 use super::contact::{Kinematics, Mode, Tangential};
+use crate::scene::FrictionCap;
 use super::{ContactModel, Normal, Scales, Snapshot, dissipation_scale, unit_or_one};
 use crate::body::Body;
 use crate::integrate::{Model, State};
@@ -94,6 +95,9 @@ pub struct SlideContact<'a> {
     spin_changes: [Vector3<f64>; 2],
     dissipation_scale: f64,
     friction_scale: f64,
+    /// The switches into and out of [`UNLOADED`] so far: the 3-D model has no such switch, and the run's count of
+    /// switches leaves them out ([`SlideContact::unloadings`]).
+    unloadings: std::cell::Cell<u32>,
     bodies: &'a [Body; 2],
     setup: &'a Setup,
 }
@@ -107,16 +111,31 @@ struct Evaluation {
     rate: f64,
     elastic: f64,
     dissipative: f64,
-    force_rate: f64,
     slip: f64,
     /// The tangential force on body 1 along `ê`, and the spring's rate.
     force: f64,
     spring_rate: f64,
 }
 
+/// The mode slot's value, beyond [`Mode::slot`]'s, of a contact sliding on the compressive limit `mu max(Fn, 0)`
+/// while the normal force pulls: no friction, the spring left as it is (the 3-D model's sliding mode there). A
+/// mode of this model's own, entered and left where the compression ratio `Fn / F_elastic` passes through zero
+/// (a located switch), so that the limit's corner at `Fn = 0` is a step boundary rather than a kink inside a step
+/// (the error control's: some 25 steps crowding into it under Tsuji's pull).
+const UNLOADED: f64 = 3.0;
+
+/// The share of the Coulomb limit added to a stick's room under it in its switch function (see
+/// [`SlideContact::switch_function`]).
+const STICK_MARGIN: f64 = 2.0 * f64::EPSILON;
+
+/// The tangential mode of a state, and whether it is [`UNLOADED`] (then sliding).
+fn mode_of(y: &State<SIZE>) -> (Mode, bool) {
+    if y[MODE] > 2.5 { (Mode::Slip, true) } else { (Mode::of_slot(y[MODE]), false) }
+}
+
 /// The tangential mode a state is in.
 fn mode(y: &State<SIZE>) -> Mode {
-    Mode::of_slot(y[MODE])
+    mode_of(y).0
 }
 
 impl<'a> SlideContact<'a> {
@@ -186,9 +205,15 @@ impl<'a> SlideContact<'a> {
             spin_changes,
             dissipation_scale: dissipation_scale(&law, &s),
             friction_scale: unit_or_one(tangential.friction),
+            unloadings: std::cell::Cell::new(0),
             bodies,
             setup,
         })
+    }
+
+    /// How many of the run's switches were into or out of [`UNLOADED`].
+    pub fn unloadings(&self) -> u32 {
+        self.unloadings.get()
     }
 
     /// The scaled penetration at `y` (`q |q|³`).
@@ -209,39 +234,112 @@ impl<'a> SlideContact<'a> {
         }
     }
 
-    fn spring(y: &State<SIZE>) -> Vector3<f64> {
-        Vector3::new(y[index::SPRING], 0.0, 0.0)
-    }
-
-    fn evaluate(&self, y: &State<SIZE>) -> Evaluation {
+    /// The normal force's parts (scaled) at penetration `d` and rate `rate`.
+    fn normal_force(&self, d: f64, rate: f64) -> (f64, f64) {
         let s = &self.scales;
-        let d = Self::depth(y);
-        let rate = self.initial_rate - y[index::NORMAL_IMPULSE];
-        let slip = self.initial_slip + self.slip_gain * y[index::TANGENTIAL_IMPULSE];
         // The located edge of the contact sees the force from inside (Kelvin–Voigt's jump), as in the normal model.
         let inside = if d > -EDGE { d.max(0.0) } else { d };
         let parts = self.law.split_force(inside * s.length, rate * s.speed);
-        let (elastic, dissipative) = (parts.elastic / s.force, parts.dissipative / s.force);
-        let normal_force = elastic + dissipative;
-        let acceleration = -normal_force;
+        (parts.elastic / s.force, parts.dissipative / s.force)
+    }
+
+    /// The normal force's rate dFn/dt (scaled) at penetration `d`, rate `rate` and normal force `normal_force`.
+    fn normal_force_rate(&self, d: f64, rate: f64, normal_force: f64) -> f64 {
+        let s = &self.scales;
+        let inside = if d > -EDGE { d.max(0.0) } else { d };
         let (by_penetration, by_rate) = self.law.force_gradient(inside * s.length, rate * s.speed);
-        let force_rate = (by_penetration * s.length * rate + by_rate * s.speed * acceleration) / s.force;
-        let k = Self::kinematics(d, rate, slip);
-        let f = self.tangential.evaluate(mode(y), &Self::spring(y), &k, normal_force, force_rate);
-        Evaluation {
-            d,
-            rate,
-            elastic,
-            dissipative,
-            force_rate,
-            slip,
-            force: f.force.x,
-            spring_rate: f.spring_rate.x,
+        (by_penetration * s.length * rate - by_rate * s.speed * normal_force) / s.force
+    }
+
+    /// The state's normal and tangential quantities. The tangential force and the spring's rate are
+    /// [`Tangential::evaluate`]'s on the line, written out (every vector of it lies on `ê`, and the spring's
+    /// turning vanishes); the normal force's rate, which costs a gradient of the law, only where the mode needs it
+    /// (sliding under compression).
+    fn evaluate(&self, y: &State<SIZE>) -> Evaluation {
+        let t = &self.tangential;
+        let d = Self::depth(y);
+        let rate = self.initial_rate - y[index::NORMAL_IMPULSE];
+        let slip = self.initial_slip + self.slip_gain * y[index::TANGENTIAL_IMPULSE];
+        let (elastic, dissipative) = self.normal_force(d, rate);
+        let normal_force = elastic + dissipative;
+        let spring = y[index::SPRING];
+        let cap = t.cap(normal_force);
+        let (mode, unloaded) = mode_of(y);
+        let (force, spring_rate) = match mode {
+            Mode::Stick => {
+                let kt = t.stiffness_at(d);
+                let trial = if t.damping > 0.0 { spring - slip * (t.damping * kt.sqrt()) } else { spring };
+                // (Capped, as the 3-D model's: a stick interval too short for the steps to see its end slides on the
+                // limit rather than pushing beyond it.)
+                let force = if trial.abs() > cap { cap.copysign(trial) } else { trial };
+                (force, -slip * kt + spring * t.rescale_rate(&Self::kinematics(d, rate, slip)))
+            }
+            // Sliding: the force is the limit along the spring's direction (against the slip where the spring is
+            // zero: from the start, or released at the magnitude cap's corner), in closed form. The 3-D model
+            // integrates a spring made to follow the limit (its rate the limit's, `mu dFn/dt`, along it), which
+            // is the same force but for the integration's error; held in closed form, a slide that ends (the spring
+            // then placed on the limit, `switch`) hands the stick a spring exactly at the limit, whatever the
+            // tolerance, and the derivative needs no gradient of the law. The spring's state carries only the
+            // direction meanwhile.
+            Mode::Slip if unloaded => (0.0, 0.0),
+            Mode::Slip => (sign_or_zero(spring, -slip) * self.sliding_limit(normal_force), 0.0),
+            Mode::SlipInTension => (sign_or_zero(spring, -slip) * cap, 0.0),
+        };
+        Evaluation { d, rate, elastic, dissipative, slip, force, spring_rate }
+    }
+
+    /// The limit a sliding (not [`UNLOADED`]) contact's force stands at: the Coulomb limit, or, where the compressive
+    /// limit's corner is watched, `mu Fn` continued through it up to the located switch into [`UNLOADED`], so that
+    /// the step that crosses it is smooth (capped, `mu max(Fn, 0)` has a corner that the error control meets before
+    /// the switch is located: some 25 steps crowding into it under Tsuji's pull).
+    fn sliding_limit(&self, normal_force: f64) -> f64 {
+        if self.watches_unloading() { self.tangential.friction * normal_force } else { self.tangential.cap(normal_force) }
+    }
+
+    /// The spring as the tangential law sees it, in the line's frame: the state's, or while sliding the limit along
+    /// its direction (the closed form [`SlideContact::evaluate`] takes).
+    fn spring_vector(&self, y: &State<SIZE>, e: &Evaluation) -> Vector3<f64> {
+        let (mode, unloaded) = mode_of(y);
+        let spring = y[index::SPRING];
+        let value = if mode == Mode::Slip && !unloaded {
+            sign_or_zero(spring, -e.slip) * self.tangential.cap(e.elastic + e.dissipative)
+        } else {
+            spring
+        };
+        Vector3::new(value, 0.0, 0.0)
+    }
+
+    /// The compression ratio `Fn / F_elastic` (1 without an elastic force, or its sign at the edge: see
+    /// [`Tangential::switch_function`]'s magnitude cap), whose zeros are where the normal force turns tensile and back.
+    fn compression_ratio(e: &Evaluation) -> f64 {
+        let force = e.elastic + e.dissipative;
+        if e.elastic > 0.0 {
+            force / e.elastic
+        } else if force != 0.0 {
+            force.signum()
+        } else {
+            1.0
         }
+    }
+
+    /// Whether the corner of the compressive limit at `Fn = 0` is watched ([`UNLOADED`]).
+    fn watches_unloading(&self) -> bool {
+        self.tangential.cap == FrictionCap::Compressive && self.law.kind.can_pull()
     }
 
     fn normal_part<'b>(&'b self, y: &State<SIZE>, e: &Evaluation) -> Normal<'b> {
         Normal { law: &self.law, scales: &self.scales, d: e.d, rate: e.rate, deepest_state: y[index::DISSIPATED] }
+    }
+}
+
+/// The sign of `x` (±1), or of `otherwise` where `x` is zero (0 where both are).
+fn sign_or_zero(x: f64, otherwise: f64) -> f64 {
+    if x.abs() > 1e-300 {
+        x.signum()
+    } else if otherwise != 0.0 {
+        otherwise.signum()
+    } else {
+        0.0
     }
 }
 
@@ -308,7 +406,8 @@ impl ContactModel<SIZE> for SlideContact<'_> {
     }
 
     fn force_rate(&self, y: &State<SIZE>) -> f64 {
-        self.evaluate(y).force_rate
+        let e = self.evaluate(y);
+        self.normal_force_rate(e.d, e.rate, e.elastic + e.dissipative)
     }
 
     fn separation_force(&self, y: &State<SIZE>) -> f64 {
@@ -321,23 +420,59 @@ impl ContactModel<SIZE> for SlideContact<'_> {
         self.normal_part(y, &e).uncut()
     }
 
+    /// [`Tangential::switch_function`] on the line; while sliding on the compressive limit of a law that can pull,
+    /// also the compression ratio, whose fall through zero is the entry into [`UNLOADED`] and whose rise (its
+    /// negative's fall) the way out.
     fn switch_function(&self, y: &State<SIZE>) -> Option<f64> {
         let e = self.evaluate(y);
+        let ratio = Self::compression_ratio(&e);
+        let (mode, unloaded) = mode_of(y);
+        if unloaded {
+            return Some(-ratio);
+        }
         let k = Self::kinematics(e.d, e.rate, e.slip);
         let force = e.elastic + e.dissipative;
-        Some(self.tangential.switch_function(mode(y), &Self::spring(y), &k, force, e.force_rate, e.elastic))
+        let rate = self.normal_force_rate(e.d, e.rate, force);
+        let spring = self.spring_vector(y, &e);
+        let function = self.tangential.switch_function(mode, &spring, &k, force, rate, e.elastic);
+        Some(match mode {
+            // A slide that ends hands the stick a spring exactly on the limit (`switch`): its room under the limit
+            // starts at zero, and a stick that ends within the first step (where the limit falls to zero with a
+            // force turning tensile) would not be seen to fall from above zero. The room counts from a rounding's
+            // share of the limit above it: positive at the start, it falls through zero with the room, 4e-16 of the
+            // limit later.
+            Mode::Stick => function + STICK_MARGIN * self.tangential.cap(force),
+            Mode::Slip if self.watches_unloading() => function.min(ratio),
+            _ => function,
+        })
     }
 
     fn switch(&self, y: &mut State<SIZE>) {
         let e = self.evaluate(y);
+        let ratio = Self::compression_ratio(&e);
+        let (mode, unloaded) = mode_of(y);
+        if unloaded {
+            y[MODE] = Mode::Slip.slot();
+            self.unloadings.set(self.unloadings.get() + 1);
+            return;
+        }
         let k = Self::kinematics(e.d, e.rate, e.slip);
         let force = e.elastic + e.dissipative;
-        let (next, spring) =
-            self.tangential.next_mode(mode(y), &Self::spring(y), &k, force, e.force_rate, e.elastic);
-        if let Some(spring) = spring {
-            y[index::SPRING] = spring.x;
+        let rate = self.normal_force_rate(e.d, e.rate, force);
+        let watched = self.watches_unloading();
+        let spring = self.spring_vector(y, &e);
+        if mode == Mode::Slip && watched {
+            let function = self.tangential.switch_function(mode, &spring, &k, force, rate, e.elastic);
+            if ratio < function {
+                y[MODE] = UNLOADED;
+                self.unloadings.set(self.unloadings.get() + 1);
+                return;
+            }
         }
-        y[MODE] = next.slot();
+        let (next, placed) = self.tangential.next_mode(mode, &spring, &k, force, rate, e.elastic);
+        // (A slide that ends in a stick leaves the spring where it stood, on the limit.)
+        y[index::SPRING] = placed.unwrap_or(spring).x;
+        y[MODE] = if next == Mode::Slip && watched && ratio <= 0.0 { UNLOADED } else { next.slot() };
     }
 
     fn sliding(&self, y: &State<SIZE>) -> bool {
@@ -386,7 +521,7 @@ impl ContactModel<SIZE> for SlideContact<'_> {
             setup.positions[1] + b.velocity * time + pushed * self.shares[1],
         ];
         let normal_force = e.elastic + e.dissipative;
-        let tangential_elastic = self.tangential.stored_energy(mode(y), &Self::spring(y), e.d, normal_force);
+        let tangential_elastic = self.tangential.stored_energy(mode(y), &self.spring_vector(y, &e), e.d, normal_force);
         let (elastic_energy, dissipated_normal) =
             self.normal_part(y, &e).energies(y[index::NORMAL_WORK], y[index::DISSIPATED], self.dissipation_scale);
         Snapshot {
