@@ -41,7 +41,8 @@ const TEST4: &str = "law = \"tsuji\"\nrestitution = 0.98\nfriction = 0.092";
 fn balance(r: &Report) -> f64 {
     let e = &r.energy;
     let inflow = e.kinetic_before + e.work_of_immovable_bodies.unwrap_or(0.0);
-    let outflow = e.kinetic_after.expect("after") + e.dissipated.expect("D") + e.elastic_left_at_separation.unwrap_or(0.0);
+    let outflow =
+        e.kinetic_after.expect("after") + e.dissipated.expect("D") + e.elastic_left_at_separation.unwrap_or(0.0);
     (inflow - outflow) / e.kinetic_before
 }
 
@@ -136,7 +137,12 @@ fn laws_options_spin_and_a_moving_wall_agree_with_the_3d_model() {
             [0.0; 3],
             0.0,
         ),
-        scene(40.0, "law = \"kelvin-voigt\"\nstiffness = 1e7\nexponent = 1.0\nrestitution = 0.5\nfriction = 0.25", [0.0; 3], 0.0),
+        scene(
+            40.0,
+            "law = \"kelvin-voigt\"\nstiffness = 1e7\nexponent = 1.0\nrestitution = 0.5\nfriction = 0.25",
+            [0.0; 3],
+            0.0,
+        ),
         scene(20.0, TEST4, [0.0, 0.0, 3000.0], 0.3),
     ];
     for text in cases {

@@ -19,11 +19,11 @@
 //! model's, at a fraction of its cost.
 
 use super::contact::{Kinematics, Mode, Tangential};
-use crate::scene::FrictionCap;
 use super::{ContactModel, Normal, Scales, Snapshot, dissipation_scale, unit_or_one};
 use crate::body::Body;
 use crate::integrate::{Model, State};
 use crate::law::ContactLaw;
+use crate::scene::FrictionCap;
 use crate::setup::{Motion, Setup};
 use nalgebra::Vector3;
 
@@ -293,7 +293,11 @@ impl<'a> SlideContact<'a> {
     /// the step that crosses it is smooth (capped, `mu max(Fn, 0)` has a corner that the error control meets before
     /// the switch is located: some 25 steps crowding into it under Tsuji's pull).
     fn sliding_limit(&self, normal_force: f64) -> f64 {
-        if self.watches_unloading() { self.tangential.friction * normal_force } else { self.tangential.cap(normal_force) }
+        if self.watches_unloading() {
+            self.tangential.friction * normal_force
+        } else {
+            self.tangential.cap(normal_force)
+        }
     }
 
     /// The spring as the tangential law sees it, in the line's frame: the state's, or while sliding the limit along
