@@ -15,8 +15,11 @@
 //!
 //! The time is regularised as in [`super::wall`] (`dt = d^(3/4) dσ`, `q = d^(1/4)`), so that every rate times `q³` is
 //! smooth through the contact's edges. The tangential force, its switches and the stored energy are the functions of
-//! [`Tangential`], evaluated in a frame of the line (`ê` along x, the normal along z): the same physics as the 3-D
-//! model's, at a fraction of its cost.
+//! [`Tangential`], on the line (written out, or evaluated in a frame of it: `ê` along x, the normal along z): the same
+//! physics as the 3-D model's, at a fraction of its cost. Three departures, in what the steps meet rather than in the
+//! physics (docs/numerics.md#the-slide-path): the sliding force is the limit in closed form and a slide is judged
+//! along its own direction; the compressive limit's corner where the normal force turns tensile is a located
+//! switch; a stick's room under the limit is counted from a rounding's share of the limit.
 
 use super::contact::{Kinematics, Mode, Tangential};
 use super::{ContactModel, Normal, Scales, Snapshot, dissipation_scale, unit_or_one};
@@ -253,8 +256,8 @@ impl<'a> SlideContact<'a> {
 
     /// The state's normal and tangential quantities. The tangential force and the spring's rate are
     /// [`Tangential::evaluate`]'s on the line, written out (every vector of it lies on `ê`, and the spring's
-    /// turning vanishes); the normal force's rate, which costs a gradient of the law, only where the mode needs it
-    /// (sliding under compression).
+    /// turning vanishes), but for the sliding force, the limit in closed form (see the match below): the derivative
+    /// needs no gradient of the law.
     fn evaluate(&self, y: &State<SIZE>) -> Evaluation {
         let t = &self.tangential;
         let d = Self::depth(y);
