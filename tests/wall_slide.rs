@@ -34,6 +34,14 @@ fn scene(degrees: f64, contact: &str, spin: [f64; 3], wall_speed: f64) -> String
     )
 }
 
+/// The scene `text` (a wall at rest) with the wall moving at `velocity` m/s.
+fn moving_wall(text: String, velocity: [f64; 3]) -> String {
+    let [x, y, z] = velocity;
+    let at_rest = "velocity = [0.0, 0.0, 0.0]\nyoung = inf";
+    assert!(text.contains(at_rest));
+    text.replace(at_rest, &format!("velocity = [{x:?}, {y:?}, {z:?}]\nyoung = inf"))
+}
+
 /// Chung & Ooi's test 4: Tsuji's law, e = 0.98, mu = 0.092.
 const TEST4: &str = "law = \"tsuji\"\nrestitution = 0.98\nfriction = 0.092";
 
@@ -120,8 +128,8 @@ fn test_4_over_its_angles_agrees_with_the_3d_model() {
 
 /// The other laws and the tangential options the path takes: Hertz and Hunt–Crossley, Kelvin–Voigt, a constant
 /// tangential spring, tangential damping, the rescaled unloading, the magnitude cap under Tsuji's pull; spin
-/// across the plane of incidence, about the normal and along it; a wall moving across the normal and towards the
-/// sphere.
+/// across the plane of incidence, about the normal and along it; a wall moving across the normal, towards the sphere
+/// and away from it.
 #[test]
 fn laws_options_spin_and_a_moving_wall_agree_with_the_3d_model() {
     let cases = [
@@ -144,6 +152,9 @@ fn laws_options_spin_and_a_moving_wall_agree_with_the_3d_model() {
             0.0,
         ),
         scene(20.0, TEST4, [0.0, 0.0, 3000.0], 0.3),
+        // A wall moving towards the sphere and across, and away from it (its work on the sphere in the balance).
+        moving_wall(scene(30.0, TEST4, [0.0; 3], 0.0), [0.2, 0.3, 0.5]),
+        moving_wall(scene(60.0, TEST4, [100.0, -200.0, 50.0], 0.0), [-0.5, 0.1, -0.4]),
     ];
     for text in cases {
         agrees(&text);

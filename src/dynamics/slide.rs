@@ -25,7 +25,7 @@ use super::contact::{Kinematics, Mode, Tangential};
 use super::{ContactModel, Normal, Scales, Snapshot, dissipation_scale, unit_or_one};
 use crate::body::Body;
 use crate::integrate::{Model, State};
-use crate::law::ContactLaw;
+use crate::law::{ContactLaw, Separation};
 use crate::scene::FrictionCap;
 use crate::setup::{Motion, Setup};
 use nalgebra::Vector3;
@@ -101,6 +101,14 @@ pub struct SlideContact<'a> {
     /// The switches into and out of [`UNLOADED`] so far: the 3-D model has no such switch, and the run's count of
     /// switches leaves them out ([`SlideContact::unloadings`]).
     unloadings: std::cell::Cell<u32>,
+    /// Whether the compressive limit's corner at `Fn = 0` is watched ([`UNLOADED`]): a law that can pull under the
+    /// compressive cap, unless the contact ends where its force returns to zero (`separation = "force"` for a law
+    /// that turns tensile: the separation is that zero, and a switch located there first would hide it).
+    /// (Watched up to the first return into compression: a creeping contact whose force hovers about zero would
+    /// otherwise switch at every passage — 20 and more, each a restart, and over 20,000 cases of `impact stress`
+    /// (seed 7) two durations came out 1.6e-9 off their exact reference; past it the corner is met as the 3-D model
+    /// meets it.)
+    watches_unloading: std::cell::Cell<bool>,
     bodies: &'a [Body; 2],
     setup: &'a Setup,
 }
@@ -143,8 +151,9 @@ fn mode(y: &State<SIZE>) -> Mode {
 
 impl<'a> SlideContact<'a> {
     /// The contact of a resolved scene whose bodies are a sphere and a flat wall, with friction, on the 3-D model
-    /// ([`Motion::Full`]); `None` otherwise.
-    pub fn new(bodies: &'a [Body; 2], setup: &'a Setup) -> Option<SlideContact<'a>> {
+    /// ([`Motion::Full`]); `None` otherwise. `separation` is the scene's criterion: a contact that ends where its force
+    /// returns to zero never slides under tension.
+    pub fn new(bodies: &'a [Body; 2], setup: &'a Setup, separation: Separation) -> Option<SlideContact<'a>> {
         let [a, b] = bodies;
         let friction = setup.friction.as_ref()?;
         if setup.motion != Motion::Full || !(a.is_flat() || b.is_flat()) || a.is_flat() && b.is_flat() {
@@ -209,6 +218,11 @@ impl<'a> SlideContact<'a> {
             dissipation_scale: dissipation_scale(&law, &s),
             friction_scale: unit_or_one(tangential.friction),
             unloadings: std::cell::Cell::new(0),
+            watches_unloading: std::cell::Cell::new(
+                tangential.cap == FrictionCap::Compressive
+                    && law.kind.can_pull()
+                    && !(separation == Separation::Force && law.kind.can_turn_tensile()),
+            ),
             bodies,
             setup,
         })
@@ -355,7 +369,7 @@ impl<'a> SlideContact<'a> {
 
     /// Whether the corner of the compressive limit at `Fn = 0` is watched ([`UNLOADED`]).
     fn watches_unloading(&self) -> bool {
-        self.tangential.cap == FrictionCap::Compressive && self.law.kind.can_pull()
+        self.watches_unloading.get()
     }
 
     fn normal_part<'b>(&'b self, y: &State<SIZE>, e: &Evaluation) -> Normal<'b> {
@@ -407,12 +421,12 @@ impl ContactModel<SIZE> for SlideContact<'_> {
         &self.scales
     }
 
-    /// The law's: the rate is the approach speed less the integrated normal impulse (momentum exactly), and
-    /// the friction's force and work follow the limit in closed form while sliding, so that the few integrals
-    /// left close the energy balance well within its bound at the scene's own tolerances (2e-11 of the kinetic
-    /// energy at worst over tests/wall_slide.rs's cases, for a bound of 1e-9; the 3-D model integrates at a tenth).
+    /// A tenth of the law's, as the 3-D model integrates at. At the scene's own tolerances the velocities and
+    /// spins, the energy balance (within 2.2e-11 of the kinetic energy over tests/wall_slide.rs's cases) and the
+    /// switches were as accurate, but the time, a state here, was not: over 20,000 cases of `impact stress` (seed 7)
+    /// two durations came out 3e-9 and 4.7e-9 off their exact normal reference (1e-12 at a tenth).
     fn tolerance_factor(&self) -> f64 {
-        self.law.tolerance_factor()
+        0.1 * self.law.tolerance_factor()
     }
 
     fn start(&self) -> State<SIZE> {
@@ -499,6 +513,7 @@ impl ContactModel<SIZE> for SlideContact<'_> {
         if unloaded {
             y[MODE] = Mode::Slip.slot();
             self.unloadings.set(self.unloadings.get() + 1);
+            self.watches_unloading.set(false);
             return;
         }
         let t = &self.tangential;
