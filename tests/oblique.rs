@@ -701,8 +701,9 @@ fn a_sweep_turns_the_velocity_to_each_angle_of_incidence_keeping_its_speed() {
     assert!(scratch.read("bad.csv").lines().nth(2).unwrap().contains("error: bodies.0.incidence_deg"));
 }
 
-/// A frictional sphere on a wall runs in regularised time (`dt = d^(3/4) dσ`, `solver.method` "dop853-regularised":
-/// src/dynamics/wall.rs), the 3-D model's own equations in a variable where its forces are smooth. Held to the
+/// A frictional sphere on a wall runs in regularised time (`dt = d^(3/4) dσ`, `solver.method` "dop853-slide":
+/// src/dynamics/slide.rs, its tangential motion on the initial slip's line; the 3-D model's own equations in the
+/// same variable, src/dynamics/wall.rs, when that path does not end in a separation), where its forces are smooth. Held to the
 /// 3-D model in physical time at tolerance 1e-13 (a different variable and step sequence): the velocities and
 /// spins after the impact (the spins times the radius) within 1e-9 of the approach speed, the time below the
 /// Coulomb limit and the slip's rest within 1e-9 of the duration, the friction work and the dissipation within
@@ -745,7 +746,7 @@ fn a_sphere_on_a_wall_in_regularised_time_agrees_with_the_general_path() {
     for text in cases {
         let regularised = run(&text);
         let reference = run(&format!("{text}\n[solver]\nmethod = \"dop853\"\nrtol = 1e-13\natol = 1e-14\n"));
-        assert_eq!(regularised.solver.method, "dop853-regularised", "{text}");
+        assert_eq!(regularised.solver.method, "dop853-slide", "{text}");
         assert_eq!(reference.solver.method, "dop853");
         let speed = reference.approach_speed;
         let mut errors = Vec::new();
@@ -801,5 +802,5 @@ fn a_history_or_dop853_keeps_a_wall_on_the_general_path() {
     assert_eq!(recorded.report.solver.method, "dop853");
     assert!(recorded.history.is_some());
     assert_eq!(run(&format!("{text}\n[solver]\nmethod = \"dop853\"\n")).solver.method, "dop853");
-    assert_eq!(run(text).solver.method, "dop853-regularised");
+    assert_eq!(run(text).solver.method, "dop853-slide");
 }

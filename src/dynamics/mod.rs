@@ -14,6 +14,7 @@ pub mod contact;
 pub mod normal;
 pub mod pair;
 pub mod rigid;
+pub mod slide;
 pub mod wall;
 
 use crate::integrate::{Model, State};
