@@ -236,7 +236,7 @@ fn through_phases(
             if method == Method::Auto
                 && recording == Recording::Off
                 && smooth_in_regularised_time(&setup.law)
-                && let Some(slide) = SlideContact::new(&scene.bodies, &setup, scene.contact.separation)
+                && let Some(slide) = SlideContact::new(&scene.bodies, setup, scene.contact.separation)
                 && let Ok((mut outcome, None)) = run(&slide, scene, setup.contact_time, Recording::Off)
                 && outcome.separated
                 && outcome.ending == Ending::Event(0)
