@@ -748,39 +748,8 @@ fn a_sphere_on_a_wall_in_regularised_time_agrees_with_the_general_path() {
         let reference = run(&format!("{text}\n[solver]\nmethod = \"dop853\"\nrtol = 1e-13\natol = 1e-14\n"));
         assert_eq!(regularised.solver.method, "dop853-slide", "{text}");
         assert_eq!(reference.solver.method, "dop853");
-        let speed = reference.approach_speed;
-        let mut errors = Vec::new();
-        for (a, b) in regularised.bodies.iter().zip(&reference.bodies) {
-            let (va, vb) = (a.velocity_after.expect("after"), b.velocity_after.expect("after"));
-            let (wa, wb) = (a.angular_velocity_after.expect("spin"), b.angular_velocity_after.expect("spin"));
-            let arm = if a.radius.is_finite() { a.radius } else { 0.0 };
-            for i in 0..3 {
-                errors.push(("velocity", (va[i] - vb[i]).abs() / speed));
-                errors.push(("spin", (wa[i] - wb[i]).abs() * arm / speed));
-            }
-        }
+        let errors = common::oblique::differences(&regularised, &reference);
         let (oa, ob) = (regularised.oblique.as_ref().expect("oblique"), reference.oblique.as_ref().expect("oblique"));
-        let duration = reference.contact.duration.expect("a duration");
-        let time = |a: Option<f64>, b: Option<f64>| match (a, b) {
-            (Some(a), Some(b)) => (a - b).abs() / duration,
-            (None, None) => 0.0,
-            _ => f64::INFINITY,
-        };
-        errors.push(("below the limit", time(oa.below_friction_limit_duration, ob.below_friction_limit_duration)));
-        errors.push(("slip's rest", time(oa.slip_rest_time, ob.slip_rest_time)));
-        // The friction work with the tangential spring's energy left at separation: under the magnitude cap a
-        // Tsuji contact ends with a spring whose energy (mu |Fn|)²/(2 kt) tends to a finite limit as d -> 0 and is 0
-        // at d = 0 (kt = 0), so which of the two a path reports depends on the side of d = 0 its located end lies
-        // on; their sum does not.
-        let energy = reference.energy.kinetic_before;
-        let left = |r: &Report| r.energy.elastic_left_at_separation.unwrap_or(0.0);
-        let friction =
-            (oa.friction_work.unwrap_or(0.0) + left(&regularised) - ob.friction_work.unwrap_or(0.0) - left(&reference))
-                .abs()
-                / energy;
-        errors.push(("friction work and energy left", friction));
-        let lost = |r: &Report| r.energy.dissipated.expect("D") + left(r);
-        errors.push(("dissipated and left", (lost(&regularised) - lost(&reference)).abs() / energy));
         assert_eq!(oa.regime, ob.regime, "{text}");
         for (what, error) in errors {
             worst = worst.max(error);

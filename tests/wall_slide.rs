@@ -4,6 +4,8 @@
 //! independent integration of the same equations, in other variables and steps) and, for a sphere that slides
 //! throughout, to Coulomb's law in closed form. No expected number here comes from the path under test.
 
+mod common;
+
 use impact::history::Recording;
 use impact::impact::simulate;
 use impact::report::Report;
@@ -54,38 +56,10 @@ fn balance(r: &Report) -> f64 {
     (inflow - outflow) / e.kinetic_before
 }
 
-/// The largest difference of the two runs' velocities and spins times the radius after the impact (over the
-/// approach speed), of their times below the Coulomb limit and of the slip's rest (over the duration), of their
-/// friction works and dissipations (over the kinetic energy); with the name of the worst.
+/// The differences of the slide path's run from the 3-D model's ([`common::oblique::differences`]) and its own
+/// energy balance.
 fn differences(slide: &Report, exact: &Report) -> Vec<(&'static str, f64)> {
-    let speed = exact.approach_speed;
-    let mut errors = Vec::new();
-    for (a, b) in slide.bodies.iter().zip(&exact.bodies) {
-        let (va, vb) = (a.velocity_after.expect("after"), b.velocity_after.expect("after"));
-        let (wa, wb) = (a.angular_velocity_after.expect("spin"), b.angular_velocity_after.expect("spin"));
-        let arm = if a.radius.is_finite() { a.radius } else { 0.0 };
-        for i in 0..3 {
-            errors.push(("velocity", (va[i] - vb[i]).abs() / speed));
-            errors.push(("spin", (wa[i] - wb[i]).abs() * arm / speed));
-        }
-    }
-    let (oa, ob) = (slide.oblique.as_ref().expect("oblique"), exact.oblique.as_ref().expect("oblique"));
-    let duration = exact.contact.duration.expect("a duration");
-    let time = |a: Option<f64>, b: Option<f64>| match (a, b) {
-        (Some(a), Some(b)) => (a - b).abs() / duration,
-        (None, None) => 0.0,
-        _ => f64::INFINITY,
-    };
-    errors.push(("time below the limit", time(oa.below_friction_limit_duration, ob.below_friction_limit_duration)));
-    errors.push(("slip's rest", time(oa.slip_rest_time, ob.slip_rest_time)));
-    // The friction work with the spring's energy left at separation (under the magnitude cap a Tsuji contact ends
-    // with a spring whose energy depends on the side of d = 0 the located end lies on; their sum does not).
-    let energy = exact.energy.kinetic_before;
-    let left = |r: &Report| r.energy.elastic_left_at_separation.unwrap_or(0.0);
-    let friction = |r: &Report| r.oblique.as_ref().and_then(|o| o.friction_work).unwrap_or(0.0) + left(r);
-    errors.push(("friction work", (friction(slide) - friction(exact)).abs() / energy));
-    let lost = |r: &Report| r.energy.dissipated.expect("D") + left(r);
-    errors.push(("dissipated", (lost(slide) - lost(exact)).abs() / energy));
+    let mut errors = common::oblique::differences(slide, exact);
     errors.push(("energy balance", balance(slide).abs()));
     errors
 }

@@ -4,6 +4,7 @@
 
 pub mod binary;
 pub mod edge_ode;
+pub mod oblique;
 pub mod rocking;
 pub mod vectors;
 
