@@ -704,6 +704,19 @@ def main():
     parser.add_argument("--check-steps", type=int, nargs="+", default=[50, 200, 1000],
                         help="steps per contact for --check (default: 50 200 1000)")
     args = parser.parse_args()
+    if args.out is not None:
+        # An output never replaces an input: not the scene, the report read, or a file of the table.
+        inputs = [args.scene, args.impact] + (args.table or [])
+        out = os.path.realpath(args.out)
+        if args.out in ("", "-") or os.path.isdir(out):
+            parser.error("--out: expected a file name, got %r" % args.out)
+        for given in (path for path in inputs if path is not None):
+            if os.path.exists(given) and os.path.exists(out):
+                same = os.path.samefile(given, out)  # a hard link too
+            else:
+                same = os.path.realpath(given) == out
+            if same:
+                parser.error("--out %s is an input of this run (%s): it would be replaced" % (args.out, given))
     if args.dt is None and args.steps_per_contact is None:
         args.dt = 1e-6
     for name in ("dt", "steps_per_contact", "contact_speed"):
@@ -735,8 +748,11 @@ def main():
     if args.out:
         folder = os.path.dirname(os.path.abspath(args.out))
         os.makedirs(folder, exist_ok=True)
-        with open(args.out, "w") as f:
+        # Written whole or not at all: into a file beside it, then renamed over it.
+        partial = os.path.join(folder, ".%s.partial" % os.path.basename(args.out))
+        with open(partial, "w") as f:
             json.dump(result, f)
+        os.replace(partial, os.path.realpath(args.out))
         print("wrote " + args.out, file=sys.stderr)
 
 
