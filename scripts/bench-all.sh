@@ -75,7 +75,7 @@ out=$(cd "$out" && pwd)
 cd "$root" || die "cannot enter the repository $root"
 
 rm -rf "$out/logs" "$out/bench" "$out/oblique" "$out/worlds" "$out/peers" "$out/lammps" "$out/steps.tsv" \
-    "$out/summary.md"
+    "$out/run.tsv" "$out/summary.md"
 mkdir -p "$out/logs" "$out/lammps" || die "cannot write into OUT_DIR '$out'"
 : > "$out/steps.tsv"
 failures=0
@@ -201,9 +201,11 @@ fi
 load_end=$(cut -d' ' -f1-3 /proc/loadavg 2>/dev/null || echo unknown)
 duration=$(($(date +%s) - started))
 machine="$(grep -m1 'model name' /proc/cpuinfo 2>/dev/null | cut -d: -f2 | sed 's/^ //'), $(nproc) cores"
-python3 scripts/bench_summary.py "$out" --quick "$quick" --build "$build" --machine "$machine" \
-    --load-start "$load_start" --load-end "$load_end" --duration "$duration" > "$out/summary.md.partial" \
-    2> "$out/logs/summary.log"
+# The run's own facts, beside its files: scripts/bench_summary.py OUT_DIR rebuilds the summary from them alone.
+printf 'quick\t%s\nbuild\t%s\nmachine\t%s\nload_start\t%s\nload_end\t%s\nduration\t%s\nstarted\t%s\n' "$quick" \
+    "$build" "$machine" "$load_start" "$load_end" "$duration" "$(date -u -d "@$started" '+%Y-%m-%d %H:%M UTC')" \
+    > "$out/run.tsv"
+python3 scripts/bench_summary.py "$out" > "$out/summary.md.partial" 2> "$out/logs/summary.log"
 if [ $? -eq 0 ]; then
     mv "$out/summary.md.partial" "$out/summary.md"
     echo "$me: wrote $out/summary.md ($duration s, load average $load_start at the start, $load_end at the end)" >&2

@@ -1,8 +1,7 @@
 #!/usr/bin/env python3
 """OUT_DIR/summary.md of scripts/bench-all.sh, built from the CSV and JSON files its runs wrote (no number typed here).
 
-    scripts/bench_summary.py OUT_DIR [--quick 0|1] [--build B] [--machine M] [--load-start L] [--load-end L]
-                             [--duration SECONDS]               # the markdown on standard output
+    scripts/bench_summary.py OUT_DIR                                  # the markdown on standard output
     scripts/bench_summary.py --chain-scene BEADS END_TIME TOLERANCE  # the bead chain of `impact bench --worlds`
 
 One table per study; every row gives the case, the program and its setting, the error against the study's reference,
@@ -161,14 +160,15 @@ def peers(out):
     taylor = [r for r in bench if r["method"] == "taylor"]
     body = []
 
-    def fastest(method, bound, case=None):
-        """impact's fastest setting of `method` within `bound` (on `case`, or on every case: by its slowest)."""
+    def fastest(method, bound, case=None, column="error"):
+        """impact's fastest setting of `method` whose `column` is within `bound` (on `case`, or on every case: by its
+        slowest)."""
         groups = {}
         for r in bench:
             if r["method"] == method and (case is None or r["case"] == case):
                 groups.setdefault(r["tolerance"], []).append(r)
         ncases = len({r["case"] for r in bench}) if case is None else 1
-        good = [rs for rs in groups.values() if len(rs) == ncases and max(float(r["error"]) for r in rs) <= bound]
+        good = [rs for rs in groups.values() if len(rs) == ncases and max(float(r[column]) for r in rs) <= bound]
         if not good:
             return None
         return min(good, key=lambda rs: max(float(r["seconds_per_impact"]) for r in rs))
@@ -178,14 +178,15 @@ def peers(out):
         if not os.path.exists(path):
             continue
         peer = read_json(path)
-        best = fastest("taylor", peer["relative_error"], "hunt-crossley x=0.5 n=1.5")
+        best = fastest("taylor", peer["relative_error"], "hunt-crossley x=0.5 n=1.5", "error_e")
         body.append(["x = 0.5", "scipy `solve_ivp` %s with events, rtol %g (peer)" % (peer["method"], peer["rtol"]),
                      sci(peer["relative_error"]), us(peer["seconds_per_impact"]),
                      ratio(peer["seconds_per_impact"], float(best[0]["seconds_per_impact"])) if best else "n/a"])
         if best:
             r = best[0]
-            body.append(["x = 0.5", "impact, fast path at tolerance %s (its fastest within scipy's error)"
-                         % r["tolerance"], sci(float(r["error"])), us(float(r["seconds_per_impact"])), "1"])
+            body.append(["x = 0.5", "impact, fast path at tolerance %s (its fastest within scipy's error in e; "
+                         "every quantity within %s)" % (r["tolerance"], sci(float(r["error"]))),
+                         sci(float(r["error_e"])), us(float(r["seconds_per_impact"])), "1"])
     path = os.path.join(folder, "numba.json")
     if os.path.exists(path):
         numba = read_json(path)
@@ -196,7 +197,8 @@ def peers(out):
                      us(numba["seconds_per_impact"]), ratio(numba["seconds_per_impact"], slowest)])
         if best:
             body.append(["x = 0.01, 0.5, 2", "impact, `taylor-motion` at tolerance %s (its fastest within numba's "
-                         "error on every case; the slowest case's time)" % best[0]["tolerance"],
+                         "error in e, on e, dmax, V0 and Jr of every case; the slowest case's time)"
+                         % best[0]["tolerance"],
                          sci(max(float(r["error"]) for r in best)), us(slowest), "1"])
         for name, label in (("sweep-one-core", "`impact sweep`, e alone, tolerance 1e-6, 1 core (taskset), CSV "
                              "written"), ("sweep-all-cores", "`impact sweep`, e alone, default tolerance, all "
@@ -358,25 +360,24 @@ def main():
         sys.stdout.write(chain_scene(beads, end, tolerance))
         return
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    parser.add_argument("out", help="the folder scripts/bench-all.sh wrote")
-    parser.add_argument("--quick", default="0")
-    parser.add_argument("--build", default="unknown")
-    parser.add_argument("--machine", default="unknown")
-    parser.add_argument("--load-start", default="unknown")
-    parser.add_argument("--load-end", default="unknown")
-    parser.add_argument("--duration", type=float)
+    parser.add_argument("out", help="the folder scripts/bench-all.sh wrote (its run.tsv, steps.tsv and files)")
     args = parser.parse_args()
     if not os.path.isdir(args.out):
         sys.exit("bench_summary.py: %s: not a folder" % args.out)
     steps = Steps(os.path.join(args.out, "steps.tsv"))
-    import datetime
-
-    when = datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M UTC")
-    print("# Speed: every study beside its peers (`scripts/bench-all.sh%s`)\n" % (" --quick" if args.quick == "1" else ""))
-    print("- date: %s; duration %s" % (when, "%.0f s" % args.duration if args.duration is not None else "unknown"))
-    print("- machine: %s" % args.machine)
-    print("- build: %s (`git describe --always --dirty`)" % args.build)
-    print("- load average (1, 5, 15 min): %s at the start, %s at the end" % (args.load_start, args.load_end))
+    run = {}
+    try:
+        with open(os.path.join(args.out, "run.tsv")) as f:
+            run = dict(line.rstrip("\n").split("\t", 1) for line in f if "\t" in line)
+    except OSError:
+        pass
+    print("# Speed: every study beside its peers (`scripts/bench-all.sh%s`)\n"
+          % (" --quick" if run.get("quick") == "1" else ""))
+    print("- started %s; took %s s" % (run.get("started", "(unknown)"), run.get("duration", "(unknown)")))
+    print("- machine: %s" % run.get("machine", "unknown"))
+    print("- build: %s (`git describe --always --dirty`)" % run.get("build", "unknown"))
+    print("- load average (1, 5, 15 min): %s at the start, %s at the end"
+          % (run.get("load_start", "unknown"), run.get("load_end", "unknown")))
     print("- steps: " + "; ".join("%s %s" % (name, ("%s s" % detail) if status == "0" else
                                             ("skipped" if status == "skipped" else "failed (exit %s)" % status))
                                   for name, (status, detail) in steps.rows.items()))
