@@ -300,10 +300,10 @@ def worlds(out, steps):
                 against = "impact at %s (LAMMPS is more accurate than every impact row)" % match["tolerance"]
             else:
                 match, against = None, "no impact row"
-            body.append([case, "LAMMPS %s, dt = t_c/%g (%d steps; `run` alone, processor time)"
-                         % (run["lammps_version"].split(" ")[0], run["tau"] / run["dt"], run["steps"]), sci(error),
-                         secs(run["cpu_s_run"]), run["steps"], "",
-                         "%s (%s)" % (ratio(run["cpu_s_run"], float(match["seconds"])), against) if match else "n/a"])
+            body.append([case, "LAMMPS %s, dt = t_c/%g (%d steps; `run` alone, processor time %s)"
+                         % (run["lammps_version"].split(" ")[0], run["tau"] / run["dt"], run["steps"],
+                            secs(run["cpu_s_run"])), sci(error), secs(run["wall_s_run"]), run["steps"], "",
+                         "%s (%s)" % (ratio(run["wall_s_run"], float(match["seconds"])), against) if match else "n/a"])
     piles = sorted((f for f in os.listdir(folder) if f.startswith("pile-") and f.endswith(".json")),
                    key=lambda f: -float(f[5:-5])) if os.path.isdir(folder) else []
     for name in piles:
@@ -311,20 +311,23 @@ def worlds(out, steps):
         ours = [r for r in rows if r["case"] == "settling-pile"]
         match = next((r for r in ours if float(r["tolerance"]) == 1e-10), ours[-1] if ours else None)
         s = run["statistics"]
-        body.append(["settling-pile", "LAMMPS, dt = %.3g µs (`run` alone, processor time)" % (1e6 * run["dt"]),
+        body.append(["settling-pile", "LAMMPS, dt = %.3g µs (`run` alone, processor time %s)"
+                     % (1e6 * run["dt"], secs(run["cpu_s_run"])),
                      "chaotic: KE + PE left %.2g J, %d of %d balls on the floor" % (s["mechanical"], s["on_floor"],
                                                                                    s["balls"]),
-                     secs(run["cpu_s_run"]), run["steps"], "",
-                     "%s (impact at %s)" % (ratio(run["cpu_s_run"], float(match["seconds"])), match["tolerance"])
+                     secs(run["wall_s_run"]), run["steps"], "",
+                     "%s (impact at %s)" % (ratio(run["wall_s_run"], float(match["seconds"])), match["tolerance"])
                      if match else "n/a"])
     text = ("### World runs (`impact bench --worlds`, LAMMPS by `scripts/lammps_chain.py` and `scripts/lammps_pile.py`)"
             "\n\nThe error is the largest difference of a body's final velocity from impact's run at 1e-13, over the "
             "largest initial speed (for LAMMPS' chain: from impact's run of the same chain at 1e-13), except the "
             "settling pile's: impact's energy balance's residual over the energy supplied (a chaotic pile's runs "
             "part ways; LAMMPS keeps no such books, so its row gives the energy left and the balls on the floor). "
-            "impact's time is its report's `solver.wall_time_s` (the run alone, one thread, median of up to 5 runs); "
-            "LAMMPS' is its `run` command's processor time. The ratio is LAMMPS' time over that of impact's row "
-            "named: its cheapest tolerance at least as accurate (chain), its run at 1e-10 (pile).\n\n")
+            "The times are wall-clock times of the run alone, on one thread: impact's report's `solver.wall_time_s` "
+            "(the median of up to 5 runs; the pile's, of one), LAMMPS' `run` command (its processor time beside it; "
+            "in a loaded hour the wall time exceeds it, for both programs). The ratio is LAMMPS' wall time over that "
+            "of impact's row named: its cheapest tolerance at least as accurate (chain), its run at 1e-10 "
+            "(pile).\n\n")
     text += table(["case", "program and setting", "error", "time", "steps", "contacts", "ratio to impact"], body)
     if not chain_runs and not piles:
         notes.append("LAMMPS: %s" % steps.why_missing("lammps", "lammps-chain-50", "lammps-pile-1e-6"))
