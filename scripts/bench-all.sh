@@ -10,7 +10,8 @@
 #   scripts/bench-all.sh [--quick] [OUT_DIR]       # OUT_DIR: default out/bench-all
 #
 #   --quick      each study's short form (a 100-bead chain, the pile's first 0.3 s, 17 angles of test 4, the coarser
-#                LAMMPS steps): a few minutes; the full run takes longer (docs/bench.md says how long).
+#                LAMMPS steps): under a minute; the full run took 6-7 minutes on this project's 2-core machine
+#                (docs/bench.md).
 #
 # Environment:
 #   PEERS_DIR       the folder of scipy_peer.py and numba_peer.py (default /work/shared/tools)
