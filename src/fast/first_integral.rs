@@ -21,6 +21,7 @@
 //! it the restitution creeps for long, and how it ends (the time limit, the step budget, a contact whose motion
 //! dies out) is the integrator's to say.
 
+use super::first_integral_times::{self, Times};
 use super::regularised::{Form, Regularised};
 use super::{Ending, Outcome, PhasePoint, Quantities};
 use crate::reference::{hunt_crossley_loss, hunt_crossley_restitution, phi2};
@@ -91,6 +92,15 @@ pub fn impact(system: &Regularised, quantities: Quantities) -> Outcome {
     }
 }
 
+/// The times of the impact of `F = d^n (1 + x d')` (scaled: `x = alpha v0`, `0 <= x <= MAX_DAMPING`, `n` from 1
+/// to 3 tested), by quadrature over the first integral ([`first_integral_times`]): of maximum compression, of
+/// separation and of the force peak, in `T`.
+pub fn times(x: f64, n: f64) -> Times {
+    let e = hunt_crossley_restitution(x);
+    let peak = if x == 0.0 { None } else { Some(peak_rate(x, n, phi2(x))) };
+    first_integral_times::times(x, n, e, peak, true)
+}
+
 /// `∫_0^1 u²/(1 + x u) du` (the compression's dissipation over `x`): its series `Σ (-x)^k/(k+3)` for `x <= 1/4`,
 /// `(ln(1+x) - x + x²/2)/x³` beyond (a cancellation of at most 4 ulps there).
 fn compression_loss(x: f64) -> f64 {
@@ -104,7 +114,7 @@ fn compression_loss(x: f64) -> f64 {
 
 /// The rate at the force peak: the root in `(0, 1)` of `h(v) = n v - x (n+1) (φ₂(x) - v² φ₂(x v))`
 /// (`h(0) < 0 < h(1) = n`, `h' = n + x (n+1) v/(1 + x v) > 0`), by Newton's method kept inside a shrinking bracket.
-fn peak_rate(x: f64, n: f64, elastic: f64) -> f64 {
+pub(super) fn peak_rate(x: f64, n: f64, elastic: f64) -> f64 {
     let h = |v: f64| n * v - x * (n + 1.0) * (elastic - v * v * phi2(x * v));
     let (mut low, mut high) = (0.0_f64, 1.0_f64);
     // Light damping peaks near v = x (n+1)/(2n), heavy near 1.

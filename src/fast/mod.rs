@@ -35,6 +35,7 @@
 //! `F0`, impulse in `m* v0`, energy in `m* v0²`.
 
 mod first_integral;
+mod first_integral_times;
 mod panels;
 mod quadrature;
 mod regularised;
@@ -47,6 +48,8 @@ use crate::outcome::SETTLED;
 use panels::{End, Segments};
 use quadrature::{JacobiRules, node_digits, nodes_needed};
 use regularised::{Expansion, Regularised, State};
+pub use first_integral::{MAX_DAMPING, times as first_integral_times};
+pub use first_integral_times::Times;
 pub use taylor::HARDWARE_FMA;
 
 /// One normal impact to integrate.
