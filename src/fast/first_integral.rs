@@ -31,12 +31,20 @@ use crate::reference::{hunt_crossley_loss, hunt_crossley_restitution, phi2};
 pub const MAX_DAMPING: f64 = 1e3;
 
 /// Whether [`impact`] answers for `system` when `quantities` are asked: a hysteresis law (Hertz's elastic one
-/// included) with `x <= MAX_DAMPING`, and no time asked for.
+/// included) with `x <= MAX_DAMPING`, and no time asked for. (It can give the times too, by quadrature over the
+/// first integral, [`first_integral_times`]; measured slower than the Taylor integration for a damped law,
+/// docs/numerics.md#the-first-integral, so only [`super::simulate_first_integral`] asks it for them.)
 pub fn covers(system: &Regularised, quantities: Quantities) -> bool {
-    system.form == Form::Hysteresis && !quantities.time && system.damping <= MAX_DAMPING
+    system.form == Form::Hysteresis && !quantities.time && covers_law(system)
 }
 
-/// The impact of a hysteresis law from its first integral (see the module): what [`covers`] admits.
+/// Whether [`impact`] can answer for `system` whatever is asked: a hysteresis law with `x <= MAX_DAMPING`.
+pub fn covers_law(system: &Regularised) -> bool {
+    system.form == Form::Hysteresis && system.damping <= MAX_DAMPING
+}
+
+/// The impact of a hysteresis law from its first integral (see the module): what [`covers_law`] admits, the times by
+/// quadrature ([`first_integral_times`]) where they are asked for.
 pub fn impact(system: &Regularised, quantities: Quantities) -> Outcome {
     let (x, n) = (system.damping, system.exponent);
     let e = hunt_crossley_restitution(x);
@@ -67,22 +75,30 @@ pub fn impact(system: &Regularised, quantities: Quantities) -> Outcome {
         elastic: 0.0,
         force: 0.0,
     };
-    let peak_force = if !quantities.peak {
-        f64::NAN
-    } else if x == 0.0 {
-        max_compression.force
-    } else {
-        let v = peak_rate(x, n, elastic);
-        let w = ((n + 1.0) * (elastic - v * v * phi2(x * v))).max(0.0).sqrt();
-        system.force(w, v)
+    // The force peaks where `n v = x w²` (at maximum compression for Hertz).
+    let peak = if quantities.peak && x > 0.0 { Some(peak_rate(x, n, elastic)) } else { None };
+    let peak_force = match peak {
+        _ if !quantities.peak => f64::NAN,
+        None => max_compression.force,
+        Some(v) => {
+            let w = ((n + 1.0) * (elastic - v * v * phi2(x * v))).max(0.0).sqrt();
+            system.force(w, v)
+        }
     };
+    let times = if quantities.time {
+        first_integral_times::times(x, n, e, peak, quantities.peak)
+    } else {
+        Times { max_compression: f64::NAN, separation: f64::NAN, peak_force: f64::NAN }
+    };
+    let max_compression = PhasePoint { time: times.max_compression, ..max_compression };
+    let end = PhasePoint { time: times.separation, ..end };
     Outcome {
         max_compression,
         end,
         restitution_impulse: e,
         restitution_work: 0.5 * e * e,
         peak_force,
-        peak_force_time: f64::NAN,
+        peak_force_time: times.peak_force,
         separated: true,
         ending: Ending::Separated,
         steps: 0,

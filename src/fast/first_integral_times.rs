@@ -34,6 +34,11 @@ use std::cell::RefCell;
 /// Gauss–Jacobi nodes for the compression (`x <= 1e3`: the complex zeros of `H` at distance `2π/x` from first
 /// contact, at least 0.9 of the phase's length `ln(1+x)/x`, bound the error by about 1e-15).
 const COMPRESSION_NODES: usize = 11;
+/// The compression's and the restitution's Gauss–Jacobi nodes for a light damping, `x <= LIGHT` (the nearest zero
+/// of `H` the phase's length away from its end, or farther: about 1e-14).
+const LIGHT_NODES: usize = 9;
+/// See [`LIGHT_NODES`].
+const LIGHT: f64 = 1.0;
 /// Gauss–Jacobi nodes from first contact to the force peak (a part of the compression).
 const PEAK_NODES: usize = 9;
 /// Gauss–Jacobi nodes for the restitution's panel that ends at separation.
@@ -86,7 +91,8 @@ pub fn times(x: f64, n: f64, e: f64, peak_rate: Option<f64>, peak_asked: bool) -
             let sum: f64 = nodes.iter().zip(weights).map(|(&s, &w)| w * f(length * s)).sum();
             length.powf(1.0 - k) * sum
         };
-        let max_compression = jacobi(first, COMPRESSION_NODES, &compression);
+        let nodes = if x <= LIGHT { LIGHT_NODES } else { COMPRESSION_NODES };
+        let max_compression = jacobi(first, nodes, &compression);
         let peak_force = match (peak_asked, peak_rate) {
             (false, _) => f64::NAN,
             (true, None) => max_compression,
@@ -142,7 +148,7 @@ fn restitution_time(
                 let (shrink, _, bracket) = parts(s);
                 negative_power(scale * shrink * bracket, k)
             };
-            total += jacobi(upper, SEPARATION_NODES, &f);
+            total += jacobi(upper, if x <= LIGHT { LIGHT_NODES } else { SEPARATION_NODES }, &f);
             return total;
         }
         if upper <= creep {

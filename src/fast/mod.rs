@@ -45,11 +45,11 @@ use crate::scales::Scales;
 // Scaled `δ + |v|` below which the relative motion counts as died out: the general path's level.
 use crate::law::{ContactLaw, Family, Separation};
 use crate::outcome::SETTLED;
+pub use first_integral::{MAX_DAMPING, times as first_integral_times};
+pub use first_integral_times::Times;
 use panels::{End, Segments};
 use quadrature::{JacobiRules, node_digits, nodes_needed};
 use regularised::{Expansion, Regularised, State};
-pub use first_integral::{MAX_DAMPING, times as first_integral_times};
-pub use first_integral_times::Times;
 pub use taylor::HARDWARE_FMA;
 
 /// One normal impact to integrate.
@@ -209,6 +209,22 @@ pub fn simulate_normal(request: &Request) -> Result<Outcome, FastError> {
 /// the first integral, and the tests hold to it).
 pub fn simulate_taylor(request: &Request) -> Result<Outcome, FastError> {
     simulate_system(Regularised::new(&request.law, &request.scales)?, request)
+}
+
+/// [`simulate_normal`] by the first integral alone, whatever is asked for: the times too, by quadrature over it
+/// ([`first_integral_times`]: what `impact bench` measures as `first-integral-timed`, against the Taylor integration
+/// of every quantity). For the hysteresis family with `x <= MAX_DAMPING` ([`FastError::Invalid`] otherwise).
+pub fn simulate_first_integral(request: &Request) -> Result<Outcome, FastError> {
+    let system = Regularised::new(&request.law, &request.scales)?;
+    if !first_integral::covers_law(&system) {
+        return Err(FastError::Invalid(format!(
+            "the first integral answers for the hysteresis family with a scaled damping x = alpha v0 up to {} only \
+             (x = {})",
+            crate::units::short(MAX_DAMPING),
+            crate::units::short(system.damping)
+        )));
+    }
+    Ok(first_integral::impact(&system, request.quantities))
 }
 
 fn simulate_system(system: Regularised, request: &Request) -> Result<Outcome, FastError> {
