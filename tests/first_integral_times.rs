@@ -227,11 +227,11 @@ fn hunt_crossley_times_match_an_rk4_integration() {
 /// Taylor integration at tolerance 1e-13 (an independent method: it integrates the equation of motion in its own
 /// variables and takes the times by its own Gauss rules), over random dampings from 1e-6 to 1e3 and exponents from 1
 /// to 3: every quantity within 1e-11 (the kinetic energy lost against the energy in play, as in tests/fast_path.rs).
-/// The run's own path still integrates when a time is asked for.
+/// A run's own path takes it, asked for a time, from `x >= TIMED_FROM`.
 #[test]
 fn every_quantity_agrees_with_a_tight_taylor_integration() {
     use fast_support::Case;
-    use impact::fast::{Quantities, Request, simulate_first_integral, simulate_normal, simulate_taylor};
+    use impact::fast::{Quantities, Request, TIMED_FROM, simulate_first_integral, simulate_normal, simulate_taylor};
     let mut random = Random(0x2545_f491_4f6c_dd1d);
     let mut worst: f64 = 0.0;
     for i in 0..200 {
@@ -261,13 +261,69 @@ fn every_quantity_agrees_with_a_tight_taylor_integration() {
         }
         let lost = (out.end.work - tight.end.work).abs() / 0.5;
         assert!(lost < 1e-11, "{}: W {} vs {}", case.name(), out.end.work, tight.end.work);
-        // A run asking for a time takes the integration.
+        // A run asking for a time takes the first integral from x = TIMED_FROM (n from 1 to 3, a tolerance of at
+        // least 1e-13), the same numbers; the integration below.
         let timed = simulate_normal(&case.request(1e-10)).unwrap();
-        assert!(!timed.first_integral && timed.steps > 0, "{}", case.name());
+        if x >= TIMED_FROM {
+            assert!(timed.first_integral && timed.steps == 0, "{}", case.name());
+            assert_eq!(timed.end.time.to_bits(), out.end.time.to_bits(), "{}", case.name());
+            let tight = simulate_normal(&case.request(1e-14)).unwrap();
+            assert!(!tight.first_integral && tight.steps > 0, "{}: tolerance 1e-14", case.name());
+        } else {
+            assert!(!timed.first_integral && timed.steps > 0, "{}", case.name());
+        }
     }
     assert!(worst > 0.0, "the comparison compared nothing");
     eprintln!("largest relative difference from the Taylor integration at 1e-13: {worst:e}");
     // Beyond its limit it does not answer: the creep's ending is the integration's to say.
     let heavy = Case::Hysteresis { x: 2e3, n: 1.5 }.request(1e-10);
     assert!(simulate_first_integral(&Request { quantities: Quantities::ALL, ..heavy }).is_err());
+}
+
+/// The costs behind docs/numerics.md#the-first-integral, printed, not asserted (speed is the study's to measure):
+/// `cargo test --release --test first_integral_times -- --ignored --nocapture`. For each damping, the median over
+/// 21 batches of the time per impact: the first integral without the times, with them, and the Taylor integration
+/// asked for every quantity at 1e-10 and 1e-13.
+#[test]
+#[ignore]
+fn costs() {
+    use fast_support::Case;
+    use impact::fast::{Quantities, Request, simulate_first_integral, simulate_normal, simulate_taylor};
+    use std::hint::black_box;
+    use std::time::Instant;
+    let median = |f: &dyn Fn()| {
+        let mut times: Vec<f64> = (0..21)
+            .map(|_| {
+                let clock = Instant::now();
+                for _ in 0..2000 {
+                    f();
+                }
+                clock.elapsed().as_secs_f64() / 2000.0 * 1e6
+            })
+            .collect();
+        times.sort_by(f64::total_cmp);
+        times[10]
+    };
+    for x in [0.0, 1e-3, 0.1, 0.5, 2.0, 10.0, 100.0, 1e3] {
+        let case = if x == 0.0 { Case::Elastic { n: 1.5 } } else { Case::Hysteresis { x, n: 1.5 } };
+        let untimed = Request { quantities: Quantities { time: false, ..Quantities::ALL }, ..case.request(1e-10) };
+        let all = case.request(1e-10);
+        let tight = case.request(1e-13);
+        let a = median(&|| {
+            black_box(simulate_normal(black_box(&untimed)).unwrap());
+        });
+        let b = median(&|| {
+            black_box(simulate_first_integral(black_box(&all)).unwrap());
+        });
+        let c = median(&|| {
+            black_box(simulate_taylor(black_box(&all)).unwrap());
+        });
+        let d = median(&|| {
+            black_box(simulate_taylor(black_box(&tight)).unwrap());
+        });
+        println!(
+            "x = {x:7}: first integral {a:.3} µs, with the times {b:.3} µs, Taylor every quantity {c:.3} µs (1e-10), \
+             {d:.3} µs (1e-13)"
+        );
+    }
 }

@@ -45,7 +45,7 @@ use crate::scales::Scales;
 // Scaled `δ + |v|` below which the relative motion counts as died out: the general path's level.
 use crate::law::{ContactLaw, Family, Separation};
 use crate::outcome::SETTLED;
-pub use first_integral::{MAX_DAMPING, times as first_integral_times};
+pub use first_integral::{MAX_DAMPING, TIMED_FROM, TIMED_TOLERANCE, times as first_integral_times};
 pub use first_integral_times::Times;
 use panels::{End, Segments};
 use quadrature::{JacobiRules, node_digits, nodes_needed};
@@ -196,10 +196,14 @@ pub fn covers(law: &ContactLaw) -> bool {
 }
 
 /// One normal impact from first contact to separation: from the exact first integral where it answers for what is
-/// asked (the hysteresis family without the time: [`first_integral`]), by the Taylor integration otherwise.
+/// asked (the hysteresis family without the time; with it, from `x >= TIMED_FROM`, by quadrature over the first
+/// integral: [`first_integral::covers`]), by the Taylor integration otherwise.
 pub fn simulate_normal(request: &Request) -> Result<Outcome, FastError> {
     let system = Regularised::new(&request.law, &request.scales)?;
-    if first_integral::covers(&system, request.quantities) && request.tolerance.is_finite() && request.tolerance > 0.0 {
+    if first_integral::covers(&system, request.quantities, request.tolerance)
+        && request.tolerance.is_finite()
+        && request.tolerance > 0.0
+    {
         return Ok(first_integral::impact(&system, request.quantities));
     }
     simulate_system(system, request)
