@@ -17,7 +17,8 @@
 //!   `n v - x (n+1) (φ₂(x) - v² φ₂(x v))`, increasing in `v` (safeguarded Newton).
 //!
 //! Everything is a closed form or a scalar root to rounding (about 1e-16 relative), for a few hundred
-//! nanoseconds; only the times need the integration. The path is taken for dampings up to [`MAX_DAMPING`]: beyond
+//! nanoseconds; the times are integrals over the rate, taken by Gauss rules ([`first_integral_times`], to about
+//! 1e-14; for a time-asking run only from [`TIMED_FROM`], where they measured faster than the integration). The path is taken for dampings up to [`MAX_DAMPING`]: beyond
 //! it the restitution creeps for long, and how it ends (the time limit, the step budget, a contact whose motion
 //! dies out) is the integrator's to say.
 
@@ -26,8 +27,9 @@ use super::regularised::{Form, Regularised};
 use super::{Ending, Outcome, PhasePoint, Quantities};
 use crate::reference::{hunt_crossley_loss, hunt_crossley_restitution, phi2};
 
-/// Largest scaled damping `x = alpha v0` the first integral answers for (e = 6.9e-3 there, a contact of about 10
-/// elastic time units; the creep that the time limit can stop begins orders of magnitude beyond).
+/// Largest scaled damping `x = alpha v0` the first integral answers for (e = 1.0e-3 there, a contact of 45, 91 and
+/// 252 elastic time units for n = 1, 1.5 and 3; the creep that the time limit can stop begins orders of magnitude
+/// beyond).
 pub const MAX_DAMPING: f64 = 1e3;
 
 /// Whether [`impact`] answers for `system` when `quantities` are asked at `tolerance`: a hysteresis law (Hertz's

@@ -85,37 +85,26 @@ pub fn times(x: f64, n: f64, e: f64, peak_rate: Option<f64>, peak_asked: bool) -
     // η1 = ln(1+x)/x.
     let first = ln1p_over(x);
     RULES.with(|cell| {
-        let mut rules = cell.borrow_mut();
-        let mut jacobi = |length: f64, m: usize, f: &dyn Fn(f64) -> f64| {
-            let (nodes, weights) = rules.rule(k, m);
-            let sum: f64 = nodes.iter().zip(weights).map(|(&s, &w)| w * f(length * s)).sum();
-            length.powf(1.0 - k) * sum
-        };
+        let rules = &mut *cell.borrow_mut();
         let nodes = if x <= LIGHT { LIGHT_NODES } else { COMPRESSION_NODES };
-        let max_compression = jacobi(first, nodes, &compression);
+        let max_compression = jacobi(rules, k, first, nodes, compression);
         let peak_force = match (peak_asked, peak_rate) {
             (false, _) => f64::NAN,
             (true, None) => max_compression,
             (true, Some(v)) => {
                 // σ' at the peak: ln((1+x)/(1+x v))/x = ln(1 + r)/x, r = x (1-v)/(1+x v).
                 let a = (1.0 - v) / (1.0 + x * v);
-                jacobi(a * ln1p_over(x * a), PEAK_NODES, &compression)
+                jacobi(rules, k, a * ln1p_over(x * a), PEAK_NODES, compression)
             }
         };
-        let restitution = restitution_time(x, n, e, first, &mut jacobi);
+        let restitution = restitution_time(x, n, e, first, rules);
         Times { max_compression, separation: max_compression + restitution, peak_force }
     })
 }
 
 /// The restitution's time, from maximum compression (`η = 0`) to separation (`η_end`), with `η1` the first
 /// contact's `η` (see the module).
-fn restitution_time(
-    x: f64,
-    n: f64,
-    e: f64,
-    first: f64,
-    jacobi: &mut dyn FnMut(f64, usize, &dyn Fn(f64) -> f64) -> f64,
-) -> f64 {
+fn restitution_time(x: f64, n: f64, e: f64, first: f64, rules: &mut JacobiRules) -> f64 {
     let k = n / (n + 1.0);
     let scale = n + 1.0;
     // The restitution's length in η, -η_end = -ln(1 - x e)/x (= e at x = 0): `ln q` by its logarithm where
@@ -148,7 +137,7 @@ fn restitution_time(
                 let (shrink, _, bracket) = parts(s);
                 negative_power(scale * shrink * bracket, k)
             };
-            total += jacobi(upper, if x <= LIGHT { LIGHT_NODES } else { SEPARATION_NODES }, &f);
+            total += jacobi(rules, k, upper, if x <= LIGHT { LIGHT_NODES } else { SEPARATION_NODES }, f);
             return total;
         }
         if upper <= creep {
@@ -169,6 +158,13 @@ fn restitution_time(
         total += half * sum;
         upper = lower;
     }
+}
+
+/// `∫_0^length s^(-k) f(s) ds` by the `m`-node Gauss–Jacobi rule of that weight.
+fn jacobi(rules: &mut JacobiRules, k: f64, length: f64, m: usize, f: impl Fn(f64) -> f64) -> f64 {
+    let (nodes, weights) = rules.rule(k, m);
+    let sum: f64 = nodes.iter().zip(weights).map(|(&s, &w)| w * f(length * s)).sum();
+    length.powf(1.0 - k) * sum
 }
 
 /// `(e^z - 1)/z` (1 at `z = 0`).
