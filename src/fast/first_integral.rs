@@ -122,7 +122,7 @@ pub fn impact(system: &Regularised, quantities: Quantities) -> Outcome {
 }
 
 /// The times of the impact of `F = d^n (1 + x d')` (scaled: `x = alpha v0`, `0 <= x <= MAX_DAMPING`, `n` from 1
-/// to 3 tested), by quadrature over the first integral ([`first_integral_times`]): of maximum compression, of
+/// to 3 tested), by quadrature over the first integral (`src/fast/first_integral_times.rs`): of maximum compression, of
 /// separation and of the force peak, in `T`.
 pub fn times(x: f64, n: f64) -> Times {
     let e = hunt_crossley_restitution(x);
