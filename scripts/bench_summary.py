@@ -104,7 +104,8 @@ class Steps:
 # ---------------------------------------------------------------------------------------------------------------
 # The studies
 # ---------------------------------------------------------------------------------------------------------------
-METHOD_ORDER = ["taylor", "taylor-motion", "first-integral", "first-integral-timed", "dop853", "dopri5", "rk4", "verlet"]
+METHOD_ORDER = ["taylor", "taylor-motion", "first-integral", "first-integral-timed", "dop853", "dopri5", "rk4",
+                "verlet"]
 METHOD_NAMES = {
     "taylor": "fast path (`taylor`)",
     "taylor-motion": "fast path, the motion alone (`taylor-motion`: e, dmax, V0, Jr)",
