@@ -104,11 +104,13 @@ class Steps:
 # ---------------------------------------------------------------------------------------------------------------
 # The studies
 # ---------------------------------------------------------------------------------------------------------------
-METHOD_ORDER = ["taylor", "taylor-motion", "first-integral", "dop853", "dopri5", "rk4", "verlet"]
+METHOD_ORDER = ["taylor", "taylor-motion", "first-integral", "first-integral-timed", "dop853", "dopri5", "rk4",
+                "verlet"]
 METHOD_NAMES = {
     "taylor": "fast path (`taylor`)",
     "taylor-motion": "fast path, the motion alone (`taylor-motion`: e, dmax, V0, Jr)",
     "first-integral": "first integral (`first-integral`: e, dmax, Fmax, V0, Jr)",
+    "first-integral-timed": "first integral with its times by quadrature (`first-integral-timed`: every quantity)",
     "dop853": "Dop853, the general path",
     "dopri5": "Dopri5",
     "rk4": "RK4, fixed steps, events located",

@@ -14,7 +14,9 @@ fn the_study_writes_its_table_and_figure() {
     assert_success(&output);
     let text = stdout(&output);
     assert!(text.contains("machine:") && text.contains("load average"), "{text}");
-    for method in ["taylor", "taylor-motion", "first-integral", "dop853", "dopri5", "rk4", "verlet"] {
+    for method in
+        ["taylor", "taylor-motion", "first-integral", "first-integral-timed", "dop853", "dopri5", "rk4", "verlet"]
+    {
         assert!(text.lines().any(|l| l.starts_with(method)), "{method} missing from the summary:\n{text}");
     }
     let csv = scratch.read("study/bench.csv");
@@ -25,9 +27,10 @@ fn the_study_writes_its_table_and_figure() {
     }
     let column = |name: &str| header.iter().position(|c| *c == name).expect("a column");
     let rows: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();
-    // Quick: the fast path at 3 tolerances (every quantity, and the motion alone), the first integral once (Hertz is
-    // of its family), Dop853 and Dopri5 at 2, RK4 and Verlet at 2 step counts; one case.
-    assert_eq!(rows.len(), 15, "{csv}");
+    // Quick: the fast path at 3 tolerances (every quantity, and the motion alone), the first integral once without
+    // the times and once with them (Hertz is of its family), Dop853 and Dopri5 at 2, RK4 and Verlet at 2 step
+    // counts; one case.
+    assert_eq!(rows.len(), 16, "{csv}");
     for row in &rows {
         assert_eq!(row.len(), header.len(), "{row:?}");
         assert_eq!(row[column("case")], "hertz n=1.5");
@@ -58,6 +61,8 @@ fn the_study_writes_its_table_and_figure() {
             ("taylor" | "taylor-motion", _) => 10.0 * tolerance.parse::<f64>().expect("a tolerance") + 1e-14,
             // Closed forms and a root, to rounding.
             ("first-integral", _) => 1e-14,
+            // The times by quadrature, to about 1e-15 against Hertz's Beta function.
+            ("first-integral-timed", _) => 1e-14,
             ("dop853" | "dopri5", _) => 1e3 * tolerance.parse::<f64>().expect("a tolerance"),
             ("rk4", _) => 1e-5,
             // Events at the first step past them: a time late by up to a step of tc/N.

@@ -91,6 +91,10 @@ pub enum Method {
     /// time: what a sweep writing e, the impulses or the peak force computes for these laws), on the Hunt–Crossley
     /// and Hertz cases alone: measured on e, the maximum penetration, the peak force and both impulses.
     FirstIntegral,
+    /// The same asked for every quantity ([`crate::fast::simulate_first_integral`]): the times by quadrature over the
+    /// first integral ([`crate::fast::first_integral_times`]), on the Hunt–Crossley and Hertz cases alone; measured
+    /// on every quantity. (A run's own path integrates instead: this was measured slower for a damped law.)
+    FirstIntegralTimed,
     /// The general path with Dop853 at `rtol` (`atol = rtol / 100`).
     Dop853,
     /// The general path with Dopri5 at `rtol` (`atol = rtol / 100`).
@@ -102,10 +106,11 @@ pub enum Method {
 }
 
 impl Method {
-    pub const ALL: [Method; 7] = [
+    pub const ALL: [Method; 8] = [
         Method::Taylor,
         Method::TaylorMotion,
         Method::FirstIntegral,
+        Method::FirstIntegralTimed,
         Method::Dop853,
         Method::Dopri5,
         Method::Rk4,
@@ -118,6 +123,7 @@ impl Method {
             Method::Taylor => "taylor",
             Method::TaylorMotion => "taylor-motion",
             Method::FirstIntegral => "first-integral",
+            Method::FirstIntegralTimed => "first-integral-timed",
             Method::Dop853 => "dop853",
             Method::Dopri5 => "dopri5",
             Method::Rk4 => "rk4",
@@ -131,6 +137,7 @@ impl Method {
             Method::Taylor => "Taylor series, regularised (fast path)",
             Method::TaylorMotion => "the same, the motion alone (error over e, dmax, V0, Jr)",
             Method::FirstIntegral => "first integral, Hunt-Crossley and Hertz (e, dmax, Fmax, V0, Jr)",
+            Method::FirstIntegralTimed => "the same with its times by quadrature (every quantity)",
             Method::Dop853 => "Dop853 (ode_solvers), events re-stepped",
             Method::Dopri5 => "Dopri5 (ode_solvers), events re-stepped",
             Method::Rk4 => "RK4, fixed step, events located",
@@ -149,7 +156,8 @@ impl Method {
 
     /// Whether the method runs `case` (the first integral answers for the hysteresis family alone).
     pub fn covers(self, case: &Case) -> bool {
-        self != Method::FirstIntegral || matches!(case, Case::HuntCrossley { .. } | Case::Hertz { .. })
+        !matches!(self, Method::FirstIntegral | Method::FirstIntegralTimed)
+            || matches!(case, Case::HuntCrossley { .. } | Case::Hertz { .. })
     }
 }
 
@@ -199,6 +207,7 @@ pub fn settings(quick: bool) -> Vec<(Method, Setting)> {
     all.extend(taylor.iter().map(|&s| (Method::TaylorMotion, s)));
     // (Exact to rounding whatever the tolerance: one setting.)
     all.push((Method::FirstIntegral, Setting::Tolerance(1e-10)));
+    all.push((Method::FirstIntegralTimed, Setting::Tolerance(1e-10)));
     for method in [Method::Dop853, Method::Dopri5] {
         all.extend(general.iter().map(|&s| (method, s)));
     }
@@ -213,6 +222,7 @@ pub fn settings(quick: bool) -> Vec<(Method, Setting)> {
 pub enum Runner {
     Taylor(Request),
     FirstIntegral(Request),
+    FirstIntegralTimed(Request),
     General(Box<(Scene, Setup)>),
     Rk4(baselines::Fixed),
     Verlet(baselines::Fixed),
@@ -232,6 +242,9 @@ impl Runner {
                     ..case.request(tolerance)
                 }))
             }
+            (Method::FirstIntegralTimed, Setting::Tolerance(tolerance)) => {
+                Ok(Runner::FirstIntegralTimed(Request { quantities: Quantities::ALL, ..case.request(tolerance) }))
+            }
             (Method::Dop853 | Method::Dopri5, Setting::Tolerance(rtol)) => {
                 let text = case.scene_text(method.name(), rtol);
                 let scene = Scene::parse(&text, Path::new("bench.toml")).map_err(|e| e.to_string())?;
@@ -247,13 +260,14 @@ impl Runner {
     /// One impact: what it measured and the force evaluations it took.
     pub fn run(&self) -> Result<(Measured, u64), String> {
         match self {
-            Runner::Taylor(request) | Runner::FirstIntegral(request) => {
+            Runner::Taylor(request) | Runner::FirstIntegral(request) | Runner::FirstIntegralTimed(request) => {
                 let out = match self {
                     Runner::FirstIntegral(_) => crate::fast::simulate_normal(request),
+                    Runner::FirstIntegralTimed(_) => crate::fast::simulate_first_integral(request),
                     _ => crate::fast::simulate_taylor(request),
                 }
                 .map_err(|e| e.to_string())?;
-                if matches!(self, Runner::FirstIntegral(_)) != out.first_integral {
+                if matches!(self, Runner::FirstIntegral(_) | Runner::FirstIntegralTimed(_)) != out.first_integral {
                     return Err("the first integral does not answer for this case".into());
                 }
                 if !out.separated {

@@ -17,25 +17,47 @@
 //!   `n v - x (n+1) (φ₂(x) - v² φ₂(x v))`, increasing in `v` (safeguarded Newton).
 //!
 //! Everything is a closed form or a scalar root to rounding (about 1e-16 relative), for a few hundred
-//! nanoseconds; only the times need the integration. The path is taken for dampings up to [`MAX_DAMPING`]: beyond
+//! nanoseconds; the times are integrals over the rate, taken by Gauss rules ([`first_integral_times`], to about
+//! 1e-14; for a time-asking run only from [`TIMED_FROM`], where they measured faster than the integration). The path is taken for dampings up to [`MAX_DAMPING`]: beyond
 //! it the restitution creeps for long, and how it ends (the time limit, the step budget, a contact whose motion
 //! dies out) is the integrator's to say.
 
+use super::first_integral_times::{self, Times};
 use super::regularised::{Form, Regularised};
 use super::{Ending, Outcome, PhasePoint, Quantities};
 use crate::reference::{hunt_crossley_loss, hunt_crossley_restitution, phi2};
 
-/// Largest scaled damping `x = alpha v0` the first integral answers for (e = 6.9e-3 there, a contact of about 10
-/// elastic time units; the creep that the time limit can stop begins orders of magnitude beyond).
+/// Largest scaled damping `x = alpha v0` the first integral answers for (e = 1.0e-3 there, a contact of 45, 91 and
+/// 252 elastic time units for n = 1, 1.5 and 3; the creep that the time limit can stop begins orders of magnitude
+/// beyond).
 pub const MAX_DAMPING: f64 = 1e3;
 
-/// Whether [`impact`] answers for `system` when `quantities` are asked: a hysteresis law (Hertz's elastic one
-/// included) with `x <= MAX_DAMPING`, and no time asked for.
-pub fn covers(system: &Regularised, quantities: Quantities) -> bool {
-    system.form == Form::Hysteresis && !quantities.time && system.damping <= MAX_DAMPING
+/// Whether [`impact`] answers for `system` when `quantities` are asked at `tolerance`: a hysteresis law (Hertz's
+/// elastic one included) with `x <= MAX_DAMPING`; where a time is asked for, only from `x >= TIMED_FROM` with
+/// `1 <= n <= 3` (the times by quadrature over the first integral, [`first_integral_times`], tested there to about
+/// 1e-13, and measured faster than the Taylor integration there: docs/numerics.md#the-first-integral), at a
+/// tolerance of at least [`TIMED_TOLERANCE`].
+pub fn covers(system: &Regularised, quantities: Quantities, tolerance: f64) -> bool {
+    covers_law(system)
+        && (!quantities.time
+            || (system.damping >= TIMED_FROM && (1.0..=3.0).contains(&system.exponent) && tolerance >= TIMED_TOLERANCE))
 }
 
-/// The impact of a hysteresis law from its first integral (see the module): what [`covers`] admits.
+/// Smallest scaled damping for which a run asking for a time takes the first integral and its quadratures: measured
+/// slower than the Taylor integration below about 2 (2.6 µs against 2.0 µs at x = 0.5; 3.4 against 3.9 at x = 10).
+pub const TIMED_FROM: f64 = 4.0;
+
+/// Smallest tolerance at which a run asking for a time takes the first integral (its times are good to about 1e-14;
+/// a run asking for more integrates, down to the rounding floor).
+pub const TIMED_TOLERANCE: f64 = 1e-13;
+
+/// Whether [`impact`] can answer for `system` whatever is asked: a hysteresis law with `x <= MAX_DAMPING`.
+pub fn covers_law(system: &Regularised) -> bool {
+    system.form == Form::Hysteresis && system.damping <= MAX_DAMPING
+}
+
+/// The impact of a hysteresis law from its first integral (see the module): what [`covers_law`] admits, the times by
+/// quadrature ([`first_integral_times`]) where they are asked for.
 pub fn impact(system: &Regularised, quantities: Quantities) -> Outcome {
     let (x, n) = (system.damping, system.exponent);
     let e = hunt_crossley_restitution(x);
@@ -66,22 +88,30 @@ pub fn impact(system: &Regularised, quantities: Quantities) -> Outcome {
         elastic: 0.0,
         force: 0.0,
     };
-    let peak_force = if !quantities.peak {
-        f64::NAN
-    } else if x == 0.0 {
-        max_compression.force
-    } else {
-        let v = peak_rate(x, n, elastic);
-        let w = ((n + 1.0) * (elastic - v * v * phi2(x * v))).max(0.0).sqrt();
-        system.force(w, v)
+    // The force peaks where `n v = x w²` (at maximum compression for Hertz).
+    let peak = if quantities.peak && x > 0.0 { Some(peak_rate(x, n, elastic)) } else { None };
+    let peak_force = match peak {
+        _ if !quantities.peak => f64::NAN,
+        None => max_compression.force,
+        Some(v) => {
+            let w = ((n + 1.0) * (elastic - v * v * phi2(x * v))).max(0.0).sqrt();
+            system.force(w, v)
+        }
     };
+    let times = if quantities.time {
+        first_integral_times::times(x, n, e, peak, quantities.peak)
+    } else {
+        Times { max_compression: f64::NAN, separation: f64::NAN, peak_force: f64::NAN }
+    };
+    let max_compression = PhasePoint { time: times.max_compression, ..max_compression };
+    let end = PhasePoint { time: times.separation, ..end };
     Outcome {
         max_compression,
         end,
         restitution_impulse: e,
         restitution_work: 0.5 * e * e,
         peak_force,
-        peak_force_time: f64::NAN,
+        peak_force_time: times.peak_force,
         separated: true,
         ending: Ending::Separated,
         steps: 0,
@@ -89,6 +119,15 @@ pub fn impact(system: &Regularised, quantities: Quantities) -> Outcome {
         order: 0,
         first_integral: true,
     }
+}
+
+/// The times of the impact of `F = d^n (1 + x d')` (scaled: `x = alpha v0`, `0 <= x <= MAX_DAMPING`, `n` from 1
+/// to 3 tested), by quadrature over the first integral (`src/fast/first_integral_times.rs`): of maximum compression, of
+/// separation and of the force peak, in `T`.
+pub fn times(x: f64, n: f64) -> Times {
+    let e = hunt_crossley_restitution(x);
+    let peak = if x == 0.0 { None } else { Some(peak_rate(x, n, phi2(x))) };
+    first_integral_times::times(x, n, e, peak, true)
 }
 
 /// `∫_0^1 u²/(1 + x u) du` (the compression's dissipation over `x`): its series `Σ (-x)^k/(k+3)` for `x <= 1/4`,
@@ -104,7 +143,7 @@ fn compression_loss(x: f64) -> f64 {
 
 /// The rate at the force peak: the root in `(0, 1)` of `h(v) = n v - x (n+1) (φ₂(x) - v² φ₂(x v))`
 /// (`h(0) < 0 < h(1) = n`, `h' = n + x (n+1) v/(1 + x v) > 0`), by Newton's method kept inside a shrinking bracket.
-fn peak_rate(x: f64, n: f64, elastic: f64) -> f64 {
+pub(super) fn peak_rate(x: f64, n: f64, elastic: f64) -> f64 {
     let h = |v: f64| n * v - x * (n + 1.0) * (elastic - v * v * phi2(x * v));
     let (mut low, mut high) = (0.0_f64, 1.0_f64);
     // Light damping peaks near v = x (n+1)/(2n), heavy near 1.

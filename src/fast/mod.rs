@@ -35,6 +35,7 @@
 //! `F0`, impulse in `m* v0`, energy in `m* v0²`.
 
 mod first_integral;
+mod first_integral_times;
 mod panels;
 mod quadrature;
 mod regularised;
@@ -44,6 +45,8 @@ use crate::scales::Scales;
 // Scaled `δ + |v|` below which the relative motion counts as died out: the general path's level.
 use crate::law::{ContactLaw, Family, Separation};
 use crate::outcome::SETTLED;
+pub use first_integral::{MAX_DAMPING, TIMED_FROM, TIMED_TOLERANCE, times as first_integral_times};
+pub use first_integral_times::Times;
 use panels::{End, Segments};
 use quadrature::{JacobiRules, node_digits, nodes_needed};
 use regularised::{Expansion, Regularised, State};
@@ -193,10 +196,14 @@ pub fn covers(law: &ContactLaw) -> bool {
 }
 
 /// One normal impact from first contact to separation: from the exact first integral where it answers for what is
-/// asked (the hysteresis family without the time: [`first_integral`]), by the Taylor integration otherwise.
+/// asked (the hysteresis family without the time; with it, from `x >= TIMED_FROM`, by quadrature over the first
+/// integral: [`first_integral::covers`]), by the Taylor integration otherwise.
 pub fn simulate_normal(request: &Request) -> Result<Outcome, FastError> {
     let system = Regularised::new(&request.law, &request.scales)?;
-    if first_integral::covers(&system, request.quantities) && request.tolerance.is_finite() && request.tolerance > 0.0 {
+    if first_integral::covers(&system, request.quantities, request.tolerance)
+        && request.tolerance.is_finite()
+        && request.tolerance > 0.0
+    {
         return Ok(first_integral::impact(&system, request.quantities));
     }
     simulate_system(system, request)
@@ -206,6 +213,22 @@ pub fn simulate_normal(request: &Request) -> Result<Outcome, FastError> {
 /// the first integral, and the tests hold to it).
 pub fn simulate_taylor(request: &Request) -> Result<Outcome, FastError> {
     simulate_system(Regularised::new(&request.law, &request.scales)?, request)
+}
+
+/// [`simulate_normal`] by the first integral alone, whatever is asked for: the times too, by quadrature over it
+/// ([`first_integral_times`]: what `impact bench` measures as `first-integral-timed`, against the Taylor integration
+/// of every quantity). For the hysteresis family with `x <= MAX_DAMPING` ([`FastError::Invalid`] otherwise).
+pub fn simulate_first_integral(request: &Request) -> Result<Outcome, FastError> {
+    let system = Regularised::new(&request.law, &request.scales)?;
+    if !first_integral::covers_law(&system) {
+        return Err(FastError::Invalid(format!(
+            "the first integral answers for the hysteresis family with a scaled damping x = alpha v0 up to {} only \
+             (x = {})",
+            crate::units::short(MAX_DAMPING),
+            crate::units::short(system.damping)
+        )));
+    }
+    Ok(first_integral::impact(&system, request.quantities))
 }
 
 fn simulate_system(system: Regularised, request: &Request) -> Result<Outcome, FastError> {
