@@ -457,10 +457,9 @@ impl<'a> Island<'a> {
         }
     }
 
-    /// Site `s`'s centre relative to site `p`'s (m): their relative position when the segment began plus the
-    /// difference of their small displacements.
-    fn site_relative_position(&self, p: usize, q: usize, y: &DVector<f64>) -> Vector3<f64> {
-        (self.site_start[q] - self.site_start[p]) + (self.site_arm(q, y).1 - self.site_arm(p, y).1)
+    /// Site `q`'s centre relative to site `p`'s (m) in two parts: when the segment began, and the change since.
+    fn site_relative_parts(&self, p: usize, q: usize, y: &DVector<f64>) -> (Vector3<f64>, Vector3<f64>) {
+        (self.site_start[q] - self.site_start[p], self.site_arm(q, y).1 - self.site_arm(p, y).1)
     }
 
     /// Site `s`'s centre, m.
@@ -729,20 +728,17 @@ impl<'a> Island<'a> {
 
     /// How sites `p` and `q` (meeting as `meeting`) stand at state `y`.
     pub fn site_state(&self, p: usize, q: usize, meeting: &Meeting, y: &DVector<f64>) -> ContactState {
-        let relative = self.site_relative_position(p, q, y);
-        let (penetration, normal) = meeting.penetration(&relative);
+        let (start, moved) = self.site_relative_parts(p, q, y);
+        let (penetration, normal, distance) = meeting.penetration_moved(&start, &moved);
         let relative_velocity = self.site_velocity(q, y) - self.site_velocity(p, y);
-        let distance = match meeting {
-            Meeting::Spheres { .. } => relative.norm(),
-            Meeting::Face { .. } => f64::INFINITY,
-        };
         ContactState { penetration, rate: -relative_velocity.dot(&normal), normal, relative_velocity, distance }
     }
 
     /// The penetration of sites `p` and `q` (meeting as `meeting`) at state `y`, m: [`Island::site_state`]'s, without
     /// the velocities (a watched pair's gap is read at every step).
     pub fn site_penetration(&self, p: usize, q: usize, meeting: &Meeting, y: &DVector<f64>) -> f64 {
-        meeting.penetration(&self.site_relative_position(p, q, y)).0
+        let (start, moved) = self.site_relative_parts(p, q, y);
+        meeting.penetration_moved(&start, &moved).0
     }
 
     /// Contact `c`'s kinematics at state `y`.
