@@ -105,6 +105,18 @@ pub struct ActiveContact {
     pub tangential_work: f64,
 }
 
+/// What the derivative reads of one contact at an instant: its kinematics, its normal force's parts (N) and their
+/// sum in the island's force unit, and, with friction, its kinematics as the tangential law reads them and that law's
+/// force and spring rate.
+#[derive(Debug, Clone, Copy)]
+struct ContactParts {
+    state: ContactState,
+    elastic: f64,
+    dissipative: f64,
+    force: f64,
+    tangential: Option<(Kinematics, crate::dynamics::contact::TangentialForce)>,
+}
+
 /// One contact's kinematics at an instant (SI).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ContactState {
@@ -802,9 +814,21 @@ impl<'a> Island<'a> {
     /// accelerations and the turning of the normal. Its fall through zero is the force peak.
     pub fn force_rate(&self, c: usize, y: &DVector<f64>) -> f64 {
         let state = self.contact_state(c, y);
-        let contact = &self.contacts[c];
-        let [p, q] = contact.sites;
+        let [p, q] = self.contacts[c].sites;
         let relative_acceleration = self.site_acceleration(q, y) - self.site_acceleration(p, y);
+        self.force_rate_at(c, &state, &relative_acceleration, y)
+    }
+
+    /// [`Island::force_rate`] from contact `c`'s kinematics `state` and the relative acceleration (m/s²) of its two
+    /// spheres' centres, q's less p's.
+    fn force_rate_at(
+        &self,
+        c: usize,
+        state: &ContactState,
+        relative_acceleration: &Vector3<f64>,
+        y: &DVector<f64>,
+    ) -> f64 {
+        let contact = &self.contacts[c];
         let u = &state.relative_velocity;
         let turning = if state.distance.is_finite() {
             (u - state.normal * state.normal.dot(u)) / state.distance
@@ -819,6 +843,57 @@ impl<'a> Island<'a> {
             contact.law.force_gradient(d, state.rate)
         };
         by_penetration * state.rate + by_rate * second
+    }
+
+    /// Every contact's [`ContactParts`] at `y`, as the derivative reads them. A sliding spring's rate needs the normal
+    /// force's rate, and that the accelerations of both bodies, which sum the forces of all their contacts: they are
+    /// summed here from the forces already found (in the order and the arithmetic of [`Island::acceleration_of`], so
+    /// that the rate is the same number), rather than each contact's forces found again for each sliding neighbour.
+    fn contact_parts(&self, y: &DVector<f64>) -> Vec<ContactParts> {
+        let u = &self.units;
+        let mut parts: Vec<ContactParts> = (0..self.contacts.len())
+            .map(|c| {
+                let state = self.contact_state(c, y);
+                let (elastic, dissipative) = self.force(c, &state, y);
+                let force = (elastic + dissipative) / u.force;
+                // (The tangential force does not depend on the normal force's rate; only a sliding spring's rate does.)
+                let tangential = self.tangential(c, &state, force, 0.0, y);
+                ContactParts { state, elastic, dissipative, force, tangential }
+            })
+            .collect();
+        for c in 0..parts.len() {
+            let Some(law) = self.tangentials[c].as_ref() else { continue };
+            let force = parts[c].force;
+            if !(self.contacts[c].mode.is_sliding() && (force > 0.0 || law.cap == FrictionCap::Magnitude)) {
+                continue;
+            }
+            let [p, q] = self.contacts[c].sites;
+            let relative_acceleration =
+                self.site_acceleration_from(q, &parts, y) - self.site_acceleration_from(p, &parts, y);
+            let force_rate = self.force_rate_at(c, &parts[c].state, &relative_acceleration, y) * u.time / u.force;
+            parts[c].tangential = self.tangential(c, &parts[c].state, force, force_rate, y);
+        }
+        parts
+    }
+
+    /// [`Island::site_acceleration`] from the contacts' forces `parts` (the turning bodies' as that finds them).
+    fn site_acceleration_from(&self, s: usize, parts: &[ContactParts], y: &DVector<f64>) -> Vector3<f64> {
+        let k = self.sites.body(s);
+        if self.turning_of(k).is_some() {
+            return self.site_acceleration(s, y);
+        }
+        let body = &self.scene.bodies[k];
+        let Some(m) = self.slots[k] else { return self.flight[k] };
+        let mut a = self.scene.world.gravity;
+        for &c in &self.touching[m] {
+            let part = &parts[c];
+            let mut on_j = part.state.normal * ((part.elastic + part.dissipative) / body.mass);
+            if let Some((_, tangential)) = &part.tangential {
+                on_j -= tangential.force * (self.units.force / body.mass);
+            }
+            if self.contacts[c].pair[1] == k { a += on_j } else { a -= on_j }
+        }
+        a
     }
 
     /// The torque (N m) on turning member `r` about its origin at `y`: its contacts' normal forces at its spheres'
@@ -1025,10 +1100,9 @@ impl ModelOf<Dyn> for Island<'_> {
             }
         }
         let mut immovable_power = 0.0;
-        for c in 0..self.contacts.len() {
-            let state = self.contact_state(c, y);
-            let (elastic, dissipative) = self.force(c, &state, y);
-            let force = (elastic + dissipative) / u.force;
+        let parts = self.contact_parts(y);
+        for (c, part) in parts.iter().enumerate() {
+            let ContactParts { state, elastic: _, dissipative, force, .. } = *part;
             let rate = state.rate / u.speed;
             let on_j = state.normal * force;
             let [i, j] = self.contacts[c].pair;
@@ -1063,13 +1137,10 @@ impl ModelOf<Dyn> for Island<'_> {
             } else {
                 dissipative / u.force * rate / self.dissipation_units[c]
             };
-            let Some(law) = self.tangentials[c].as_ref() else { continue };
             // Friction: the tangential force Ft on body i (-Ft on body j) at the contact point, its torques, and the
-            // spring's rate (a sliding spring follows the Coulomb cap, so it needs the normal force's rate).
-            let sliding = self.contacts[c].mode.is_sliding() && (force > 0.0 || law.cap == FrictionCap::Magnitude);
-            let force_rate = if sliding { self.force_rate(c, y) * u.time / u.force } else { 0.0 };
-            let (kinematics, tangential) =
-                self.tangential(c, &state, force, force_rate, y).expect("a frictional contact");
+            // spring's rate (a sliding spring follows the Coulomb cap, so it needs the normal force's rate: see
+            // `contact_parts`).
+            let Some((kinematics, tangential)) = part.tangential else { continue };
             let levers = if self.turns_at(c) { Some(self.levers(c, &kinematics.arms, y)) } else { None };
             for (side, k, sign, arm) in [(0, i, 1.0, kinematics.arms[0]), (1, j, -1.0, kinematics.arms[1])] {
                 let on_k = tangential.force * sign;
