@@ -996,6 +996,30 @@ impl<'a> Island<'a> {
     /// when no immovable body holds it (`held` false: bodies stuck together and drifting are at rest relative to each
     /// other), zero otherwise.
     pub fn motion_energy(&self, y: &DVector<f64>, group: &[usize], held: bool) -> f64 {
+        self.motion_energy_beyond(y, group, held, f64::INFINITY)
+    }
+
+    /// [`Island::motion_energy`] where it is at most `bound` (J); beyond, a lower bound of it that is itself beyond
+    /// `bound`: the kinetic energy of the members' translation (relative to their mean for a free group), which
+    /// every other term adds to. A watch of rest reads the whole sum only near rest; a body that moves is seen to
+    /// without its contacts' forces.
+    pub fn motion_energy_beyond(&self, y: &DVector<f64>, group: &[usize], held: bool, bound: f64) -> f64 {
+        if bound.is_finite() {
+            let mass = |m: usize| self.scene.bodies[self.members[m]].mass;
+            let mean = if held {
+                Vector3::zeros()
+            } else {
+                let total: f64 = group.iter().map(|&m| mass(m)).sum();
+                group
+                    .iter()
+                    .fold(Vector3::zeros(), |sum, &m| sum + self.velocity(self.members[m], y) * (mass(m) / total))
+            };
+            let translation: f64 =
+                group.iter().map(|&m| 0.5 * mass(m) * (self.velocity(self.members[m], y) - mean).norm_squared()).sum();
+            if translation > bound {
+                return translation;
+            }
+        }
         let masses: Vec<f64> = group.iter().map(|&m| self.scene.bodies[self.members[m]].mass).collect();
         let accelerations: Vec<Vector3<f64>> =
             group.iter().map(|&m| self.acceleration_of(self.members[m], y)).collect();
