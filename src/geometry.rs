@@ -211,3 +211,47 @@ pub fn first_contact(a: &Body, b: &Body, wall_normal: &Vector3<f64>) -> Result<F
     let at_contact = separation + relative_velocity * time;
     Ok(FirstContact { time, normal: at_contact / at_contact.norm() })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A unit in the last place of `x`.
+    fn ulp(x: f64) -> f64 {
+        f64::from_bits(x.abs().to_bits() + 1) - x.abs()
+    }
+
+    /// The penetration's change as the bodies move by `moved` from `start` is, to first order, `-n·moved` (n the
+    /// unit normal from i to j), with a second-order part below |moved|²/R: a change of 1e-15 m in a 20 mm pair must
+    /// show as that, not in steps of an ulp of the radii (1.7e-18 m) as `R - |start + moved|` would give it.
+    #[test]
+    fn the_penetration_changes_smoothly_with_the_displacement() {
+        let meetings = [
+            (Meeting::Spheres { reach: 0.02 }, Vector3::new(0.3, -0.4, 0.866).normalize() * (0.02 - 8e-8)),
+            (
+                Meeting::Face { face: Vector3::new(0.0, 0.0, 1.0), radius: 0.01, sign: 1.0 },
+                Vector3::new(0.02, 0.0, 0.00999992396),
+            ),
+            (
+                Meeting::Face { face: Vector3::new(0.6, 0.0, 0.8), radius: 0.01, sign: -1.0 },
+                Vector3::new(-0.006, 0.3, -0.0079999),
+            ),
+        ];
+        for (meeting, start) in meetings {
+            let (d0, n, _) = meeting.penetration_moved(&start, &Vector3::zeros());
+            assert!(d0 > 0.0 && d0 < 1e-6, "{meeting:?}: an overlap of a resting contact, {d0}");
+            for k in 1..=200 {
+                let size = 1e-17 * k as f64;
+                let moved = Vector3::new(0.3, -0.5, 0.81).normalize() * size;
+                let (d, _, _) = meeting.penetration_moved(&start, &moved);
+                let expected = -n.dot(&moved);
+                let bound = 1e-9 * size + 8.0 * ulp(d0);
+                assert!(
+                    ((d - d0) - expected).abs() <= bound,
+                    "{meeting:?}: moved {size:e} m: the penetration changed by {:e}, expected {expected:e}",
+                    d - d0
+                );
+            }
+        }
+    }
+}
