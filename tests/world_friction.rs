@@ -147,6 +147,9 @@ fn a_sliding_ball_ends_rolling_at_five_sevenths_of_its_speed() {
     assert_eq!(contacts.len(), 1, "{contacts:?}");
     let c = &contacts[0];
     assert_eq!(text(&c["regime"], "regime"), "sticking", "the slip stopped: {c}");
+    // The slip comes to rest where the slide ends, at t* (since first touch: the ball starts on the floor).
+    let slip_rest = number(&c["slip_rest_time"], "slip_rest_time");
+    assert!(relative(slip_rest, t_roll) < 1e-6, "slip rest {slip_rest} s vs 2 v0/(7 mu g) = {t_roll} s");
     assert_vector("spins at first touch, ball", vector(&c["angular_velocities_before"][0], "ω_i"), [0.0; 3], 0.0);
     assert_vector("spins at first touch, floor", vector(&c["angular_velocities_before"][1], "ω_j"), [0.0; 3], 0.0);
     assert_eq!(c["angular_velocities_after"].is_null(), c["velocities_after"].is_null(), "{c}");

@@ -321,7 +321,12 @@ where
             }
             located.sort_by(|a, b| a.1.time.total_cmp(&b.1.time));
             let terminal = located.iter().find(|(i, _)| events[*i].terminal).map(|(_, c)| c.clone());
-            let cutoff = terminal.as_ref().map_or(f64::INFINITY, |c| c.time);
+            // A crossing located within the location's resolution after the terminal one is the same instant: two
+            // functions whose zeros coincide (a slide that ends where its slip comes to rest) are each located to a
+            // few units in the last place, in either order.
+            let cutoff = terminal
+                .as_ref()
+                .map_or(f64::INFINITY, |c| c.time + 8.0 * f64::EPSILON * c.time.abs().max(right.0 - left.0));
             let passed: Vec<CrossingOf<D>> =
                 located.into_iter().map(|(_, c)| c).filter(|c| !events[c.event].terminal && c.time <= cutoff).collect();
             for crossing in &passed {

@@ -46,6 +46,11 @@ const SEGMENT_TIME: f64 = 1e4;
 /// The motion energy about rest, in the island's energy unit, below which an island is at rest.
 pub const AT_REST: f64 = 1e-14;
 
+/// Above this energy (in the island's unit) a watch of rest reads a lower bound of a group's motion energy rather than
+/// the whole sum ([`Island::motion_energy_beyond`]): its function is then positive, as the whole one, and the two agree
+/// wherever it is near zero.
+const WATCHED_REST: f64 = 4.0 * AT_REST;
+
 /// A contact of two free bodies is quiet — ended, the bodies given one velocity — when its penetration and its rate
 /// are both within this many times the integration's absolute tolerance (in the island's units L and V), or within the
 /// rounding of the positions and velocities ([`ROUNDING`]): what is left of it is the integration's own noise
@@ -881,7 +886,10 @@ impl<'a> World<'a> {
         }
         for (k, (group, held)) in components.iter().enumerate() {
             if *held {
-                functions.push(Box::new(move |y| isl.motion_energy(y, group, true) / isl.units.energy - AT_REST));
+                functions.push(Box::new(move |y| {
+                    isl.motion_energy_beyond(y, group, true, WATCHED_REST * isl.units.energy) / isl.units.energy
+                        - AT_REST
+                }));
                 kinds.push((Watched::Frozen(k), true));
             }
         }
@@ -901,7 +909,10 @@ impl<'a> World<'a> {
         }
         if everyone && all_free {
             let members = &all_members;
-            functions.push(Box::new(move |y| isl.motion_energy(y, members, false) / isl.units.energy - AT_REST));
+            functions.push(Box::new(move |y| {
+                isl.motion_energy_beyond(y, members, false, WATCHED_REST * isl.units.energy) / isl.units.energy
+                    - AT_REST
+            }));
             kinds.push((Watched::Rest, true));
         }
         let events: Vec<EventOf<'_, Dyn>> = functions

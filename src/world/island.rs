@@ -105,6 +105,18 @@ pub struct ActiveContact {
     pub tangential_work: f64,
 }
 
+/// What the derivative reads of one contact at an instant: its kinematics, its normal force's parts (N) and their
+/// sum in the island's force unit, and, with friction, its kinematics as the tangential law reads them and that law's
+/// force and spring rate.
+#[derive(Debug, Clone, Copy)]
+struct ContactParts {
+    state: ContactState,
+    elastic: f64,
+    dissipative: f64,
+    force: f64,
+    tangential: Option<(Kinematics, crate::dynamics::contact::TangentialForce)>,
+}
+
 /// One contact's kinematics at an instant (SI).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ContactState {
@@ -457,10 +469,9 @@ impl<'a> Island<'a> {
         }
     }
 
-    /// Site `s`'s centre relative to site `p`'s (m): their relative position when the segment began plus the
-    /// difference of their small displacements.
-    fn site_relative_position(&self, p: usize, q: usize, y: &DVector<f64>) -> Vector3<f64> {
-        (self.site_start[q] - self.site_start[p]) + (self.site_arm(q, y).1 - self.site_arm(p, y).1)
+    /// Site `q`'s centre relative to site `p`'s (m) in two parts: when the segment began, and the change since.
+    fn site_relative_parts(&self, p: usize, q: usize, y: &DVector<f64>) -> (Vector3<f64>, Vector3<f64>) {
+        (self.site_start[q] - self.site_start[p], self.site_arm(q, y).1 - self.site_arm(p, y).1)
     }
 
     /// Site `s`'s centre, m.
@@ -729,20 +740,17 @@ impl<'a> Island<'a> {
 
     /// How sites `p` and `q` (meeting as `meeting`) stand at state `y`.
     pub fn site_state(&self, p: usize, q: usize, meeting: &Meeting, y: &DVector<f64>) -> ContactState {
-        let relative = self.site_relative_position(p, q, y);
-        let (penetration, normal) = meeting.penetration(&relative);
+        let (start, moved) = self.site_relative_parts(p, q, y);
+        let (penetration, normal, distance) = meeting.penetration_moved(&start, &moved);
         let relative_velocity = self.site_velocity(q, y) - self.site_velocity(p, y);
-        let distance = match meeting {
-            Meeting::Spheres { .. } => relative.norm(),
-            Meeting::Face { .. } => f64::INFINITY,
-        };
         ContactState { penetration, rate: -relative_velocity.dot(&normal), normal, relative_velocity, distance }
     }
 
     /// The penetration of sites `p` and `q` (meeting as `meeting`) at state `y`, m: [`Island::site_state`]'s, without
     /// the velocities (a watched pair's gap is read at every step).
     pub fn site_penetration(&self, p: usize, q: usize, meeting: &Meeting, y: &DVector<f64>) -> f64 {
-        meeting.penetration(&self.site_relative_position(p, q, y)).0
+        let (start, moved) = self.site_relative_parts(p, q, y);
+        meeting.penetration_moved(&start, &moved).0
     }
 
     /// Contact `c`'s kinematics at state `y`.
@@ -806,9 +814,21 @@ impl<'a> Island<'a> {
     /// accelerations and the turning of the normal. Its fall through zero is the force peak.
     pub fn force_rate(&self, c: usize, y: &DVector<f64>) -> f64 {
         let state = self.contact_state(c, y);
-        let contact = &self.contacts[c];
-        let [p, q] = contact.sites;
+        let [p, q] = self.contacts[c].sites;
         let relative_acceleration = self.site_acceleration(q, y) - self.site_acceleration(p, y);
+        self.force_rate_at(c, &state, &relative_acceleration, y)
+    }
+
+    /// [`Island::force_rate`] from contact `c`'s kinematics `state` and the relative acceleration (m/s²) of its two
+    /// spheres' centres, q's less p's.
+    fn force_rate_at(
+        &self,
+        c: usize,
+        state: &ContactState,
+        relative_acceleration: &Vector3<f64>,
+        y: &DVector<f64>,
+    ) -> f64 {
+        let contact = &self.contacts[c];
         let u = &state.relative_velocity;
         let turning = if state.distance.is_finite() {
             (u - state.normal * state.normal.dot(u)) / state.distance
@@ -823,6 +843,57 @@ impl<'a> Island<'a> {
             contact.law.force_gradient(d, state.rate)
         };
         by_penetration * state.rate + by_rate * second
+    }
+
+    /// Every contact's [`ContactParts`] at `y`, as the derivative reads them. A sliding spring's rate needs the normal
+    /// force's rate, and that the accelerations of both bodies, which sum the forces of all their contacts: they are
+    /// summed here from the forces already found (in the order and the arithmetic of [`Island::acceleration_of`], so
+    /// that the rate is the same number), rather than each contact's forces found again for each sliding neighbour.
+    fn contact_parts(&self, y: &DVector<f64>) -> Vec<ContactParts> {
+        let u = &self.units;
+        let mut parts: Vec<ContactParts> = (0..self.contacts.len())
+            .map(|c| {
+                let state = self.contact_state(c, y);
+                let (elastic, dissipative) = self.force(c, &state, y);
+                let force = (elastic + dissipative) / u.force;
+                // (The tangential force does not depend on the normal force's rate; only a sliding spring's rate does.)
+                let tangential = self.tangential(c, &state, force, 0.0, y);
+                ContactParts { state, elastic, dissipative, force, tangential }
+            })
+            .collect();
+        for c in 0..parts.len() {
+            let Some(law) = self.tangentials[c].as_ref() else { continue };
+            let force = parts[c].force;
+            if !(self.contacts[c].mode.is_sliding() && (force > 0.0 || law.cap == FrictionCap::Magnitude)) {
+                continue;
+            }
+            let [p, q] = self.contacts[c].sites;
+            let relative_acceleration =
+                self.site_acceleration_from(q, &parts, y) - self.site_acceleration_from(p, &parts, y);
+            let force_rate = self.force_rate_at(c, &parts[c].state, &relative_acceleration, y) * u.time / u.force;
+            parts[c].tangential = self.tangential(c, &parts[c].state, force, force_rate, y);
+        }
+        parts
+    }
+
+    /// [`Island::site_acceleration`] from the contacts' forces `parts` (the turning bodies' as that finds them).
+    fn site_acceleration_from(&self, s: usize, parts: &[ContactParts], y: &DVector<f64>) -> Vector3<f64> {
+        let k = self.sites.body(s);
+        if self.turning_of(k).is_some() {
+            return self.site_acceleration(s, y);
+        }
+        let body = &self.scene.bodies[k];
+        let Some(m) = self.slots[k] else { return self.flight[k] };
+        let mut a = self.scene.world.gravity;
+        for &c in &self.touching[m] {
+            let part = &parts[c];
+            let mut on_j = part.state.normal * ((part.elastic + part.dissipative) / body.mass);
+            if let Some((_, tangential)) = &part.tangential {
+                on_j -= tangential.force * (self.units.force / body.mass);
+            }
+            if self.contacts[c].pair[1] == k { a += on_j } else { a -= on_j }
+        }
+        a
     }
 
     /// The torque (N m) on turning member `r` about its origin at `y`: its contacts' normal forces at its spheres'
@@ -925,6 +996,30 @@ impl<'a> Island<'a> {
     /// when no immovable body holds it (`held` false: bodies stuck together and drifting are at rest relative to each
     /// other), zero otherwise.
     pub fn motion_energy(&self, y: &DVector<f64>, group: &[usize], held: bool) -> f64 {
+        self.motion_energy_beyond(y, group, held, f64::INFINITY)
+    }
+
+    /// [`Island::motion_energy`] where it is at most `bound` (J); beyond, a lower bound of it that is itself beyond
+    /// `bound`: the kinetic energy of the members' translation (relative to their mean for a free group), which
+    /// every other term adds to. A watch of rest reads the whole sum only near rest; a body that moves is seen to
+    /// without its contacts' forces.
+    pub fn motion_energy_beyond(&self, y: &DVector<f64>, group: &[usize], held: bool, bound: f64) -> f64 {
+        if bound.is_finite() {
+            let mass = |m: usize| self.scene.bodies[self.members[m]].mass;
+            let mean = if held {
+                Vector3::zeros()
+            } else {
+                let total: f64 = group.iter().map(|&m| mass(m)).sum();
+                group
+                    .iter()
+                    .fold(Vector3::zeros(), |sum, &m| sum + self.velocity(self.members[m], y) * (mass(m) / total))
+            };
+            let translation: f64 =
+                group.iter().map(|&m| 0.5 * mass(m) * (self.velocity(self.members[m], y) - mean).norm_squared()).sum();
+            if translation > bound {
+                return translation;
+            }
+        }
         let masses: Vec<f64> = group.iter().map(|&m| self.scene.bodies[self.members[m]].mass).collect();
         let accelerations: Vec<Vector3<f64>> =
             group.iter().map(|&m| self.acceleration_of(self.members[m], y)).collect();
@@ -1029,10 +1124,9 @@ impl ModelOf<Dyn> for Island<'_> {
             }
         }
         let mut immovable_power = 0.0;
-        for c in 0..self.contacts.len() {
-            let state = self.contact_state(c, y);
-            let (elastic, dissipative) = self.force(c, &state, y);
-            let force = (elastic + dissipative) / u.force;
+        let parts = self.contact_parts(y);
+        for (c, part) in parts.iter().enumerate() {
+            let ContactParts { state, elastic: _, dissipative, force, .. } = *part;
             let rate = state.rate / u.speed;
             let on_j = state.normal * force;
             let [i, j] = self.contacts[c].pair;
@@ -1067,13 +1161,10 @@ impl ModelOf<Dyn> for Island<'_> {
             } else {
                 dissipative / u.force * rate / self.dissipation_units[c]
             };
-            let Some(law) = self.tangentials[c].as_ref() else { continue };
             // Friction: the tangential force Ft on body i (-Ft on body j) at the contact point, its torques, and the
-            // spring's rate (a sliding spring follows the Coulomb cap, so it needs the normal force's rate).
-            let sliding = self.contacts[c].mode.is_sliding() && (force > 0.0 || law.cap == FrictionCap::Magnitude);
-            let force_rate = if sliding { self.force_rate(c, y) * u.time / u.force } else { 0.0 };
-            let (kinematics, tangential) =
-                self.tangential(c, &state, force, force_rate, y).expect("a frictional contact");
+            // spring's rate (a sliding spring follows the Coulomb cap, so it needs the normal force's rate: see
+            // `contact_parts`).
+            let Some((kinematics, tangential)) = part.tangential else { continue };
             let levers = if self.turns_at(c) { Some(self.levers(c, &kinematics.arms, y)) } else { None };
             for (side, k, sign, arm) in [(0, i, 1.0, kinematics.arms[0]), (1, j, -1.0, kinematics.arms[1])] {
                 let on_k = tangential.force * sign;
