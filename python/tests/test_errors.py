@@ -207,13 +207,13 @@ def test_what_exits_1_is_a_simulation_error(command, tmp_path):
 
 CREEPING = (
     "[[bodies]]\nradius = 1.0\nmass = 1.0\nvelocity = [1.0, 0.0, 0.0]\n\n[[bodies]]\nradius = inf\nmass = inf\n"
-    "velocity = [0.0, 0.0, 0.0]\n\n[contact]\nlaw = \"hunt-crossley\"\ndamping = 1e6\nstiffness = 1e6\n\n"
+    "velocity = [0.0, 0.0, 0.0]\n\n[contact]\nlaw = \"kelvin-voigt\"\ndamping = 1e6\nstiffness = 1e6\n\n"
     "[solver]\nmethod = \"dop853\"\n"
 )
 
 
 def test_an_impact_whose_integration_gave_up_is_a_simulation_error_holding_its_report(command, tmp_path):
-    # A Hunt–Crossley contact damped so heavily (alpha = 1e6 s/m at 1 m/s) that the ball creeps into the wall: the
+    # A Kelvin–Voigt contact damped so heavily (c = 1e6 N s/m for k = 1e6 N/m) that the ball creeps into the wall: the
     # command writes the report and exits 1; Python raises SimulationError whose report is the command's.
     path = tmp_path / "creeping.toml"
     path.write_text(CREEPING)
@@ -246,7 +246,7 @@ def test_a_world_its_step_budget_stopped_is_a_simulation_error_holding_its_repor
 def test_a_settled_impact_is_no_error():
     # A critically damped Kelvin–Voigt contact dies out at d = 0 without separating: it ends on its own terms.
     settled = CREEPING.replace(
-        'law = "hunt-crossley"\ndamping = 1e6\nstiffness = 1e6',
+        'law = "kelvin-voigt"\ndamping = 1e6\nstiffness = 1e6',
         'law = "kelvin-voigt"\nrestitution = 0.0\nstiffness = 1e6\nexponent = 1.0\nseparation = "penetration"',
     )
     report = impact.run(settled)

@@ -138,9 +138,11 @@ impl ContactLaw {
         match self.kind.family() {
             Family::Elastic => ForceParts { elastic: k * power(d, self.exponent), dissipative: 0.0 },
             Family::Hysteresis => {
-                // F = K d^n (1 + alpha d')  (Hunt & Crossley 1975 and its damping maps)
+                // F = K d^n (1 + alpha d')  (Hunt & Crossley 1975 and its damping maps): it never pulls, as
+                // `1 + alpha d'` stays positive along the motion; where a creeping restitution brings it within
+                // rounding of zero, the sum is kept from rounding below it.
                 let spring = k * power(d, self.exponent);
-                ForceParts { elastic: spring, dissipative: spring * c * rate }
+                never_pulling(spring, spring * c * rate)
             }
             // F = k d + c d'  (linear Kelvin–Voigt)
             Family::Linear => ForceParts { elastic: k * d, dissipative: c * rate },
