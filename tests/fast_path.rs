@@ -3,6 +3,8 @@
 
 mod fast_support;
 
+mod common;
+use common::random::Random;
 use fast_support::{Case, QUANTITIES, errors, reference_cases};
 use impact::fast::{Ending, FastError, Outcome, Quantities, Request, covers, simulate_normal, simulate_taylor};
 use impact::law::{ContactLaw, LawKind, Separation};
@@ -35,26 +37,6 @@ fn tsuji_request(a: f64, separation: Separation, tolerance: f64) -> Request {
 
 fn rel(got: f64, want: f64) -> f64 {
     ((got - want) / want).abs()
-}
-
-/// A small deterministic generator (xorshift64*), so that the random cases are the same on every run.
-struct Random(u64);
-
-impl Random {
-    fn next(&mut self) -> f64 {
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        (self.0.wrapping_mul(0x2545_f491_4f6c_dd1d) >> 11) as f64 / (1u64 << 53) as f64
-    }
-
-    fn uniform(&mut self, low: f64, high: f64) -> f64 {
-        low + (high - low) * self.next()
-    }
-
-    fn log_uniform(&mut self, low: f64, high: f64) -> f64 {
-        (low.ln() + (high.ln() - low.ln()) * self.next()).exp()
-    }
 }
 
 /// The Hunt–Crossley quadrature table of docs/references.md#the-hunt-crossley-family: x, n, e, dmax/L, t0/T, tc/T,

@@ -5,6 +5,7 @@
 pub mod binary;
 pub mod edge_ode;
 pub mod oblique;
+pub mod random;
 pub mod rocking;
 pub mod vectors;
 
