@@ -1,5 +1,5 @@
 #!/bin/sh
-# The cost of a world run against its error (issue 23): a Hertzian chain of N equal steel beads (r = 5 mm, touching,
+# The cost of a world run against its error: a Hertzian chain of N equal steel beads (r = 5 mm, touching,
 # the first struck at 1 m/s, elastic Hertz contacts, no gravity; the scene of scripts/lammps_chain.py) run to the
 # time its pulse has crossed the chain and the last bead left (498 two-ball contact times, 14.98 ms for 1000 beads),
 # and the 5-ball cradle (models/newtons-cradle-5.toml). Each at tolerances 1e-6 to 1e-11; the error is the largest

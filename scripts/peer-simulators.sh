@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The real simulators on the same contact as `impact` (issue 25): MuJoCo, LAMMPS, Kratos DEM and Drake each run a
+# The real simulators on the same contact as `impact`: MuJoCo, LAMMPS, Kratos DEM and Drake each run a
 # sphere on a wall or two spheres head-on (no gravity, no friction), and each driver prints the e the program gives
 # beside impact's prediction at the program's time step (and in the continuous limit). Not run in CI: the programs
 # are large. A program that is not installed is skipped with a message, and the script still exits 0 (1 if a

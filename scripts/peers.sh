@@ -135,7 +135,7 @@ for method, error, seconds, note in table:
     shown = "n/a" if error != error else f"{error:.1e}"
     print(f"{method:<58} {shown:>10} {seconds * 1e6:>11.3f}  {note}")
 
-# The comparisons of issue 8, on this run's numbers.
+# The comparisons with the peers, on this run's numbers.
 taylor = [r for r in rows if r["method"] == "taylor" and r["case"] == "hunt-crossley x=0.5 n=1.5"]
 print()
 for name in ("scipy-1e-10", "scipy-1e-6"):

@@ -415,7 +415,7 @@ mod tests {
 
     #[test]
     fn numbers_in_messages_read_like_the_report() {
-        // The example: 1.0933620739432781 m and a radius of 1e-2 m.
+        // A length as a user would write it in a message: 1.0933620739432781 m, and a radius of 1e-2 m.
         assert_eq!(brief(1.0933620739432781, "m"), "1.09 m");
         assert_eq!(brief(1e-2, "m"), "10 mm");
         // 3.288200310757317e-2 kg = 32.882 g.

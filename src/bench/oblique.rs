@@ -3,7 +3,7 @@
 //! at 10° (its slip comes to rest and the Mindlin spring takes over) and at 30° with a spin about two axes, and two
 //! free steel spheres with and without spin (Hunt–Crossley, mu = 0.3, the line of centres turning), each on the
 //! path `auto` takes and on the 3-D model in physical time at a sweep of tolerances, beside the same contact without
-//! friction (for the wall on the normal fast path) — what the goal measures a frictional impact against.
+//! friction (for the wall on the normal fast path) — what a frictional impact's cost is measured against.
 //!
 //! The error of a run is the largest difference, from a run of the same scene at [`REFERENCE_TOLERANCE`], of the
 //! bodies' velocities and of their spins times their radii after the impact, over the approach speed; the time is

@@ -187,7 +187,7 @@ fn study(args: &BenchArgs, outputs: Vec<Destination>) -> anyhow::Result<()> {
     println!("cases: {}\n", cases.iter().map(|c| c.name()).collect::<Vec<_>>().join(", "));
     print!("{}", bench::summary_table(&summaries));
     if summaries.iter().any(|s| s.method == Method::Taylor && matches!(s.setting, Setting::Tolerance(_))) {
-        println!("\nfast path targets (issue 8), over these cases:");
+        println!("\nthe fast path's targets, over these cases:");
         print!("{}", bench::targets(&summaries));
     }
     println!("\nwrote {}", outputs.iter().map(|d| d.shown().to_string()).collect::<Vec<_>>().join(", "));

@@ -1,4 +1,4 @@
-//! The fast, accurate path for the normal contact problem (issue 8): a Taylor-series integrator of the
+//! The fast, accurate path for the normal contact problem: a Taylor-series integrator of the
 //! regularised equations of docs/numerics.md#the-fast-path.
 //!
 //! * **Equations** (`regularised.rs`). With `w = δ^((n+1)/2)` and `dτ = δ^((n-1)/2) dt` every covered law

@@ -110,7 +110,7 @@ fn vector(v: &Vector3<f64>) -> String {
 
 /// The scene text of case `index` of seed `seed`. `quick` narrows the ranges to what runs fast (for the test suite,
 /// in debug builds): damping ratios up to 10 and e >= 0.1, no friction (the frictional
-/// 3-D model is still short of 1e-9 against rigid-body theory and can be slow: see the note of issue 6).
+/// 3-D model was once short of 1e-9 against rigid-body theory and slow: the full ranges test it).
 pub fn scene_text(seed: u64, index: u64, quick: bool) -> String {
     let mut r = Draw::new(seed, index);
     // The fourteen laws that do not yield, drawn as before Thornton's law came; one case in fifteen then takes it
