@@ -102,16 +102,10 @@ class Sphere:
     """The sphere, the rigid wall and the contact of a sphere-on-wall scene, in SI units, as LAMMPS needs them."""
 
     def __init__(self, path):
-        import tomllib
+        import lammps_pile
 
         self.path = path
-        try:
-            with open(path, "rb") as f:
-                data = tomllib.load(f)
-        except OSError as err:
-            raise Failure("%s: cannot read: %s" % (path, err.strerror))
-        except tomllib.TOMLDecodeError as err:
-            raise Failure("%s: not TOML: %s" % (path, err))
+        data = lammps_pile.read_toml(path, Failure)
         bodies = data.get("bodies")
         if not isinstance(bodies, list) or len(bodies) != 2:
             raise Failure("%s: bodies: expected two bodies, a sphere and a wall" % path)

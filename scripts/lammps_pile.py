@@ -172,20 +172,27 @@ def hunt_crossley_effective_e(nominal):
     return 0.5 * (lo + hi)
 
 
+def read_toml(path, error=None):
+    """The TOML file at `path` as a dict; a file that cannot be read or is not TOML raises `error` (an exception
+    class, SceneError by default) with a message naming the file."""
+    import tomllib
+
+    error = error or SceneError
+    try:
+        with open(path, "rb") as f:
+            return tomllib.load(f)
+    except OSError as err:
+        raise error("%s: cannot read: %s" % (path, err.strerror))
+    except tomllib.TOMLDecodeError as err:
+        raise error("%s: not TOML: %s" % (path, err))
+
+
 class Scene:
     """The balls, walls and contact of a world scene, in SI units, as LAMMPS needs them."""
 
     def __init__(self, path):
-        import tomllib
-
         self.path = path
-        try:
-            with open(path, "rb") as f:
-                data = tomllib.load(f)
-        except OSError as err:
-            raise SceneError("%s: cannot read: %s" % (path, err.strerror))
-        except tomllib.TOMLDecodeError as err:
-            raise SceneError("%s: not TOML: %s" % (path, err))
+        data = read_toml(path)
 
         world = data.get("world")
         if not isinstance(world, dict):
@@ -375,6 +382,19 @@ def gather(lmp, name, count=3):
 # ---------------------------------------------------------------------------------------------------------------
 # Statistics of a pile
 # ---------------------------------------------------------------------------------------------------------------
+def timed_run(lmp, action):
+    """Runs `action` (LAMMPS commands on `lmp`), then gathers the balls' state and closes `lmp`: the run's wall and
+    CPU seconds, LAMMPS' version, and (positions, velocities, spins, masses, radii)."""
+    wall, cpu = time.perf_counter(), time.process_time()
+    action()
+    wall, cpu = time.perf_counter() - wall, time.process_time() - cpu
+    state = (gather(lmp, "x"), gather(lmp, "v"), gather(lmp, "omega"), gather(lmp, "rmass", 1),
+             gather(lmp, "radius", 1))
+    version = lmp.version()
+    lmp.close()
+    return wall, cpu, version, state
+
+
 def pile_statistics(positions, velocities, spins, masses, radii, gravity, walls=()):
     """The statistics that two runs of a chaotic pile can share (see the header). walls: (axis, position, side)."""
     g = math.sqrt(sum(c * c for c in gravity))
@@ -450,16 +470,8 @@ def run_pile(args):
           % (len(scene.balls), len(scene.walls), e, scene.nominal_e, scene.friction, t_c["1 m/s"], t_c["2 m/s"],
              dt, t_c["2 m/s"] / dt, steps, scene.end_time), file=sys.stderr)
 
-    wall_run = time.perf_counter()
-    cpu_run = time.process_time()
-    lmp.command("run %d" % steps)  # one run: a second would recompute the forces with full-step velocities
-    wall_run = time.perf_counter() - wall_run
-    cpu_run = time.process_time() - cpu_run
-
-    x, v, w = gather(lmp, "x"), gather(lmp, "v"), gather(lmp, "omega")
-    masses, radii = gather(lmp, "rmass", 1), gather(lmp, "radius", 1)
-    version = lmp.version()
-    lmp.close()
+    # One run: a second would recompute the forces with full-step velocities.
+    wall_run, cpu_run, version, (x, v, w, masses, radii) = timed_run(lmp, lambda: lmp.command("run %d" % steps))
     series = None
     if series_file is not None:
         with open(series_file) as f:
@@ -516,15 +528,8 @@ def run_translated(args):
         sys.exit("%s: expected one `timestep` and one `run` line" % source)
     os.chdir(folder)  # read_data data.impact, and final.txt, are relative to it
     lmp = lammps.lammps(cmdargs=["-log", "none", "-screen", "none", "-nocite"])
-    wall_run = time.perf_counter()
-    cpu_run = time.process_time()
-    lmp.file(source)  # its setup (read_data, a few commands) is negligible beside the run
-    wall_run = time.perf_counter() - wall_run
-    cpu_run = time.process_time() - cpu_run
-    x, v, w = gather(lmp, "x"), gather(lmp, "v"), gather(lmp, "omega")
-    masses, radii = gather(lmp, "rmass", 1), gather(lmp, "radius", 1)
-    version = lmp.version()
-    lmp.close()
+    # (Its setup, read_data and a few commands, is negligible beside the run.)
+    wall_run, cpu_run, version, (x, v, w, masses, radii) = timed_run(lmp, lambda: lmp.file(source))
     stats = pile_statistics(x, v, w, masses, radii, scene.gravity, scene.walls)
     print("translated input: %d steps of %.6g s; run %.3f s wall, %.3f s CPU" % (steps[0], dt[0], wall_run, cpu_run),
           file=sys.stderr)
