@@ -190,6 +190,8 @@ pub struct Island<'a> {
     /// Each turning member's last turn and the seven state values it was formed from: a turn is asked for many times
     /// at one state (every site's arm and velocity, every contact and event), and formed once.
     turn_cache: Vec<std::cell::Cell<Option<CachedTurn>>>,
+    /// The derivative's buffer of [`ContactParts`], kept between its calls.
+    parts: std::cell::RefCell<Vec<ContactParts>>,
     /// Where the turning members' states (7 each) begin.
     rigid_base: usize,
     /// Every body's position and velocity when the segment began (scene-indexed), SI.
@@ -326,6 +328,7 @@ impl<'a> Island<'a> {
             site_arms,
             turning_slot,
             turn_cache: vec![std::cell::Cell::new(None); turning.len()],
+            parts: std::cell::RefCell::new(Vec::new()),
             turning,
             rigid_base,
             start,
@@ -849,18 +852,18 @@ impl<'a> Island<'a> {
     /// force's rate, and that the accelerations of both bodies, which sum the forces of all their contacts: they are
     /// summed here from the forces already found (in the order and the arithmetic of [`Island::acceleration_of`], so
     /// that the rate is the same number), rather than each contact's forces found again for each sliding neighbour.
-    fn contact_parts(&self, y: &DVector<f64>) -> Vec<ContactParts> {
+    /// (Written into `parts`, the buffer of an earlier call: the derivative allocates nothing per evaluation.)
+    fn contact_parts(&self, y: &DVector<f64>, parts: &mut Vec<ContactParts>) {
         let u = &self.units;
-        let mut parts: Vec<ContactParts> = (0..self.contacts.len())
-            .map(|c| {
-                let state = self.contact_state(c, y);
-                let (elastic, dissipative) = self.force(c, &state, y);
-                let force = (elastic + dissipative) / u.force;
-                // (The tangential force does not depend on the normal force's rate; only a sliding spring's rate does.)
-                let tangential = self.tangential(c, &state, force, 0.0, y);
-                ContactParts { state, elastic, dissipative, force, tangential }
-            })
-            .collect();
+        parts.clear();
+        parts.extend((0..self.contacts.len()).map(|c| {
+            let state = self.contact_state(c, y);
+            let (elastic, dissipative) = self.force(c, &state, y);
+            let force = (elastic + dissipative) / u.force;
+            // (The tangential force does not depend on the normal force's rate; only a sliding spring's rate does.)
+            let tangential = self.tangential(c, &state, force, 0.0, y);
+            ContactParts { state, elastic, dissipative, force, tangential }
+        }));
         for c in 0..parts.len() {
             let Some(law) = self.tangentials[c].as_ref() else { continue };
             let force = parts[c].force;
@@ -869,11 +872,10 @@ impl<'a> Island<'a> {
             }
             let [p, q] = self.contacts[c].sites;
             let relative_acceleration =
-                self.site_acceleration_from(q, &parts, y) - self.site_acceleration_from(p, &parts, y);
+                self.site_acceleration_from(q, parts, y) - self.site_acceleration_from(p, parts, y);
             let force_rate = self.force_rate_at(c, &parts[c].state, &relative_acceleration, y) * u.time / u.force;
             parts[c].tangential = self.tangential(c, &parts[c].state, force, force_rate, y);
         }
-        parts
     }
 
     /// [`Island::site_acceleration`] from the contacts' forces `parts` (the turning bodies' as that finds them).
@@ -1124,7 +1126,8 @@ impl ModelOf<Dyn> for Island<'_> {
             }
         }
         let mut immovable_power = 0.0;
-        let parts = self.contact_parts(y);
+        let mut parts = self.parts.take();
+        self.contact_parts(y, &mut parts);
         for (c, part) in parts.iter().enumerate() {
             let ContactParts { state, elastic: _, dissipative, force, .. } = *part;
             let rate = state.rate / u.speed;
@@ -1217,6 +1220,7 @@ impl ModelOf<Dyn> for Island<'_> {
         }
         dy[self.immovable_work] = immovable_power;
         dy[self.clock] = 1.0;
+        self.parts.replace(parts);
     }
 }
 
