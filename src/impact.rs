@@ -233,6 +233,21 @@ fn through_phases(
             // is run again as the general path runs it, so that how a contact ends is that path's to say.
             // Its tangential motion stays on one line (dynamics/slide.rs): the normal motion and three tangential
             // states take the place of the 3-D model's, at a fraction of its cost.
+            // The slide by Taylor series first, where its laws are polynomials in its state (dynamics/slide/series.rs).
+            if method == Method::Auto
+                && recording == Recording::Off
+                && smooth_in_regularised_time(&setup.law)
+                && let Some(slide) = SlideContact::new(&scene.bodies, setup, scene.contact.separation)
+                && slide.has_series()
+                && let Ok((mut outcome, None)) =
+                    run_with(&slide, scene, setup.contact_time, Recording::Off, Scheme::Taylor)
+                && outcome.separated
+                && outcome.ending == Ending::Event(0)
+            {
+                outcome.method = TAYLOR_SLIDE;
+                outcome.switches -= slide.unloadings();
+                return Ok((outcome, None));
+            }
             if method == Method::Auto
                 && recording == Recording::Off
                 && smooth_in_regularised_time(&setup.law)
@@ -266,6 +281,10 @@ fn through_phases(
 /// ([`WallContact`]).
 pub const REGULARISED: &str = "dop853-regularised";
 
+/// The report's `solver.method` for a frictional sphere on a wall whose tangential motion stays on one line, by
+/// Taylor series in regularised time ([`SlideContact`], [`Scheme::Taylor`]).
+pub const TAYLOR_SLIDE: &str = "taylor-slide";
+
 /// The report's `solver.method` for a frictional sphere on a wall whose tangential motion stays on one line,
 /// integrated in regularised time ([`SlideContact`]).
 pub const SLIDE: &str = "dop853-slide";
@@ -285,11 +304,22 @@ fn run<const N: usize, M: ContactModel<N>>(
     contact_time: f64,
     recording: Recording,
 ) -> Result<(Outcome, Option<History>), SimulationError> {
+    // Dopri5 when the scene names it; Dop853 otherwise (and for `taylor`'s history).
+    let scheme = if scene.solver.method == Method::Dopri5 { Scheme::Dopri5 } else { Scheme::Dop853 };
+    run_with(model, scene, contact_time, recording, scheme)
+}
+
+/// The phases of one impact over `model`, integrated by `scheme`.
+fn run_with<const N: usize, M: ContactModel<N>>(
+    model: &M,
+    scene: &Scene,
+    contact_time: f64,
+    recording: Recording,
+    scheme: Scheme,
+) -> Result<(Outcome, Option<History>), SimulationError> {
     let requested = scene.solver.tolerances;
     let factor = model.tolerance_factor();
     let tolerances = Tolerances { rtol: requested.rtol * factor, atol: requested.atol * factor };
-    // Dopri5 when the scene names it; Dop853 otherwise (and for `taylor`'s history).
-    let scheme = if scene.solver.method == Method::Dopri5 { Scheme::Dopri5 } else { Scheme::Dop853 };
     let mut stepper = Stepper::new(model, tolerances, recording != Recording::Off).scheme(scheme);
     let start = model.start();
     let frictional = model.switch_function(&start).is_some();

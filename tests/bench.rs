@@ -232,7 +232,7 @@ fn the_oblique_study_measures_frictional_impacts_beside_their_twins() {
         let (path, method) = (row[column("path")], row[column("method")]);
         let wall = row[column("case")].starts_with("chung-ooi");
         match path {
-            "auto" => assert_eq!(method, if wall { "dop853-slide" } else { "dop853" }, "{row:?}"),
+            "auto" => assert_eq!(method, if wall { "taylor-slide" } else { "dop853" }, "{row:?}"),
             "dop853" => assert_eq!(method, "dop853", "{row:?}"),
             "frictionless" => assert_eq!(method, if wall { "taylor" } else { "dop853" }, "{row:?}"),
             "central" => assert!(!wall && method == "taylor", "{row:?}"),

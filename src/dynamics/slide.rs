@@ -21,6 +21,8 @@
 //! along its own direction; the compressive limit's corner where the normal force turns tensile is a located
 //! switch; a stick's room under the limit is counted from a rounding's share of the limit.
 
+mod series;
+
 use super::contact::{Kinematics, Mode, Tangential};
 use super::{ContactModel, Normal, Scales, Snapshot, dissipation_scale, unit_or_one};
 use crate::body::Body;
@@ -111,6 +113,11 @@ pub struct SlideContact<'a> {
     watches_unloading: std::cell::Cell<bool>,
     bodies: &'a [Body; 2],
     setup: &'a Setup,
+    /// The law and the tangential law as polynomials in the state, for [`crate::integrate::Scheme::Taylor`] (`None`:
+    /// not covered, [`series::SeriesLaw::new`]).
+    series_law: Option<series::SeriesLaw>,
+    /// The Taylor scheme's scratch arrays (a few kilobytes), kept between its steps.
+    arrays: std::cell::RefCell<series::Arrays>,
 }
 
 /// The local frame's normal (z) and line (x): the tangential law sees only norms and dot products.
@@ -225,7 +232,15 @@ impl<'a> SlideContact<'a> {
             ),
             bodies,
             setup,
+            series_law: series::SeriesLaw::new(&law, &s, &tangential),
+            arrays: std::cell::RefCell::new(series::Arrays::default()),
         })
+    }
+
+    /// Whether the Taylor scheme covers this contact's laws ([`series::SeriesLaw::new`]; a run may still meet a
+    /// mode it does not cover, and end there).
+    pub fn has_series(&self) -> bool {
+        self.series_law.is_some()
     }
 
     /// How many of the run's switches were into or out of [`UNLOADED`].
@@ -413,6 +428,10 @@ impl Model<SIZE> for SlideContact<'_> {
         let (per_normal, per_tangential) = self.immovable_rates;
         dy[index::IMMOVABLE_WORK] = (per_normal * normal_force + per_tangential * e.force) * stretch;
         dy[MODE] = 0.0;
+    }
+
+    fn expansion(&self, y: &State<SIZE>, series: &mut [State<SIZE>]) -> bool {
+        self.series(y, series)
     }
 }
 

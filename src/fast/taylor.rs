@@ -5,7 +5,7 @@
 //! start. Everything here works on such coefficient slices; nothing allocates.
 
 /// Highest Taylor order the stepper uses (the coefficient arrays hold `MAX_ORDER + 1` numbers).
-pub const MAX_ORDER: usize = 30;
+pub const MAX_ORDER: usize = crate::integrate::MAX_TAYLOR_ORDER;
 
 /// The coefficients of one component over one step, `c[k]` multiplying `σ^k`.
 pub type Coefficients = [f64; MAX_ORDER + 1];
@@ -98,21 +98,8 @@ pub fn shift(c: &mut [f64], sigma: f64) {
     }
 }
 
-/// The Taylor order used for a local tolerance `eps` (relative, per step).
-///
-/// A step of size `h ≈ ρ eps^(1/(K+1))` (ρ the radius of convergence) costs `O(K²)` for the products of the
-/// recursion; the number of steps falls like `eps^(-1/(K+1))`. The cost `K² eps^(-1/(K+1))` is least near
-/// `K ≈ ln(1/eps)/2`; a few more orders pay for the fixed work of a step (events, quadrature).
-pub fn order_for(eps: f64) -> usize {
-    let wanted = (0.5 * (1.0 / eps).ln()).ceil() as usize + ORDER_MARGIN;
-    wanted.clamp(MIN_ORDER, MAX_ORDER)
-}
-
-/// Orders added to `ln(1/eps)/2` (see [`order_for`]): measured best from 1e-7 to 1e-17 (instruction counts
-/// over the reference impacts; a step's fixed work — events, time quadrature — favours longer steps).
-const ORDER_MARGIN: usize = 6;
-/// Lowest order used, whatever the tolerance.
-const MIN_ORDER: usize = 8;
+/// The Taylor order used for a local tolerance `eps` (the rule is the stepper's: [`crate::integrate::taylor_order`]).
+pub use crate::integrate::taylor_order as order_for;
 
 /// Step size from the last two coefficients of the step's series.
 ///

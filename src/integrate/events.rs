@@ -88,13 +88,15 @@ where
 }
 
 /// Locates the crossing of `event` between accepted points `a` and `b`, evaluating the true solution at trial times
-/// through `solution_at` (a re-step from `a`). Safeguarded secant on a shrinking bracket, started from the root
-/// of the Hermite interpolant; stops when the bracket or the step is a few ulps of the time.
+/// through `solution_at` (a re-step from `a`, or a `cheap` one: a step's own polynomial). Safeguarded secant on a
+/// shrinking bracket, started from the root of the Hermite interpolant (from regula falsi where the solution is as
+/// cheap as the interpolant); stops when the bracket or the step is a few ulps of the time.
 pub fn locate<D: Dim>(
     event: &EventOf<'_, D>,
     index: usize,
     a: &Point<D>,
     b: &Point<D>,
+    cheap: bool,
     mut solution_at: impl FnMut(f64) -> Result<Vector<D>, IntegrationError>,
 ) -> Result<CrossingOf<D>, IntegrationError>
 where
@@ -107,6 +109,9 @@ where
         return Ok(CrossingOf { event: index, time: hi, state: y_hi });
     }
     let resolution = |t: f64| 4.0 * f64::EPSILON * t.abs().max(b.0 - a.0);
+    if cheap {
+        return bracketed(event, index, (lo, g_lo), (hi, g_hi, y_hi), resolution, solution_at);
+    }
     // Starting guess: bisection on the cheap interpolant.
     let (mut left, mut right) = (lo, hi);
     for _ in 0..60 {
@@ -139,5 +144,61 @@ where
         trial = if next > lo && next < hi { next } else { 0.5 * (lo + hi) };
     }
     // Not reached in practice: the bracket halves at worst every other trial.
+    Ok(CrossingOf { event: index, time: hi, state: y_hi })
+}
+
+/// [`locate`] where the solution is as cheap as an interpolant (a Taylor step's polynomial): the Illinois variant of
+/// regula falsi on the bracket, each trial at least the resolution inside it (so that a trial converging on one end
+/// proves the bracket with the next) and a 64th of it inside an end of the step's own, and a bisection after two
+/// trials that did not halve it, until the bracket is within the resolution; the crossing is the bracket's end past the zero (the function at or below it). No trial
+/// ends the search by a short step alone: from an end within rounding of zero (a switch function at the start of
+/// its mode), regula falsi's first trials move by ulps, and stopping there would place the crossing at the start
+/// rather than where the function falls.
+fn bracketed<D: Dim>(
+    event: &EventOf<'_, D>,
+    index: usize,
+    (mut lo, mut g_lo): (f64, f64),
+    (mut hi, mut g_hi, mut y_hi): (f64, f64, Vector<D>),
+    resolution: impl Fn(f64) -> f64,
+    mut solution_at: impl FnMut(f64) -> Result<Vector<D>, IntegrationError>,
+) -> Result<CrossingOf<D>, IntegrationError>
+where
+    DefaultAllocator: Allocator<D>,
+{
+    let mut slow = 0;
+    let mut last_side = 0i8;
+    let (mut lo_moved, mut hi_moved) = (false, false);
+    for _ in 0..200 {
+        let width = hi - lo;
+        let margin = resolution(hi);
+        if width <= margin {
+            break;
+        }
+        // (An end the search has not moved is the step's, where the function may sit within rounding of zero — a
+        // switch function at the start of its mode —: a trial within rounding of it would read the rounding's sign.)
+        let (low, high) = (if lo_moved { margin } else { width / 64.0 }, if hi_moved { margin } else { width / 64.0 });
+        let trial = if slow >= 2 || width <= 2.0 * margin {
+            0.5 * (lo + hi)
+        } else {
+            (lo - g_lo * width / (g_hi - g_lo)).clamp(lo + low, hi - high)
+        };
+        let y = solution_at(trial)?;
+        let g = event.value(&y);
+        if g > 0.0 {
+            if last_side > 0 {
+                g_hi *= 0.5;
+            }
+            (lo, g_lo, last_side, lo_moved) = (trial, g, 1, true);
+        } else {
+            if last_side < 0 {
+                g_lo *= 0.5;
+            }
+            (hi, g_hi, y_hi, last_side, hi_moved) = (trial, g, y, -1, true);
+            if g == 0.0 {
+                break;
+            }
+        }
+        slow = if hi - lo > 0.5 * width { slow + 1 } else { 0 };
+    }
     Ok(CrossingOf { event: index, time: hi, state: y_hi })
 }

@@ -44,6 +44,10 @@ pub enum Scheme {
     Dop853,
     /// Dormand–Prince 5(4), 6 stages a step (first same as last).
     Dopri5,
+    /// A Taylor series a step, of the model's own coefficients ([`super::Model::expansion`]), its order and step
+    /// from the tolerance as the normal fast path's ([`super::taylor_order`]): events located on the step's
+    /// polynomial. A model without coefficients at a state ends the run there ([`Ending::GaveUp`]).
+    Taylor,
 }
 
 impl Scheme {
@@ -52,6 +56,7 @@ impl Scheme {
         match self {
             Scheme::Dop853 => "dop853",
             Scheme::Dopri5 => "dopri5",
+            Scheme::Taylor => "taylor",
         }
     }
 
@@ -60,6 +65,8 @@ impl Scheme {
         match self {
             Scheme::Dop853 => 12,
             Scheme::Dopri5 => 6,
+            // (Never lost: the Taylor steps are counted as they are taken.)
+            Scheme::Taylor => 1,
         }
     }
 }
@@ -128,6 +135,9 @@ where
     /// Told the time and the accepted steps so far every [`TICK_STEPS`] accepted steps, if given (a world run's
     /// progress on a terminal).
     tick: Option<&'m dyn Fn(f64, u64)>,
+    /// [`Scheme::Taylor`]: the last step's coefficients, and the time they expand about (NaN: none yet).
+    series: Vec<Vector<D>>,
+    series_from: f64,
 }
 
 /// Accepted steps between two calls of a stepper's tick.
@@ -218,6 +228,8 @@ where
             values: Vec::new(),
             budget: STEP_BUDGET,
             tick: None,
+            series: Vec::new(),
+            series_from: f64::NAN,
         }
     }
 
@@ -302,7 +314,8 @@ where
             let mut located: Vec<(usize, CrossingOf<D>)> = Vec::new();
             for (index, event) in events.iter().enumerate() {
                 if event.crosses(&left.1, &right.1) {
-                    let crossing = match locate(event, index, &left, &right, |t| self.step_to(&left, t)) {
+                    let cheap = self.scheme == Scheme::Taylor;
+                    let crossing = match locate(event, index, &left, &right, cheap, |t| self.step_to(&left, t)) {
                         Ok(crossing) => crossing,
                         // A stiff stretch where even re-stepping inside one accepted step runs out of steps: the run
                         // ends there, said why, rather than failing the whole simulation.
@@ -320,7 +333,18 @@ where
                 }
             }
             located.sort_by(|a, b| a.1.time.total_cmp(&b.1.time));
-            let terminal = located.iter().find(|(i, _)| events[*i].terminal).map(|(_, c)| c.clone());
+            // Terminal crossings located within the location's resolution of the first are the same instant: the one
+            // listed first wins (a phase's own events come before a stick–slip switch: a slide's switch out of its
+            // unloaded mode where the contact ends is the separation's).
+            let first = located.iter().find(|(i, _)| events[*i].terminal).map(|(_, c)| c.time);
+            let terminal = first.and_then(|first| {
+                let same = first + 8.0 * f64::EPSILON * first.abs().max(right.0 - left.0);
+                located
+                    .iter()
+                    .filter(|(i, c)| events[*i].terminal && c.time <= same)
+                    .min_by_key(|(i, _)| *i)
+                    .map(|(_, c)| c.clone())
+            });
             // A crossing located within the location's resolution after the terminal one is the same instant: two
             // functions whose zeros coincide (a slide that ends where its slip comes to rest) are each located to a
             // few units in the last place, in either order.
@@ -360,6 +384,9 @@ where
         first_step: f64,
         events: &[EventOf<'_, D>],
     ) -> Result<(f64, Vector<D>, Option<(Point<D>, Point<D>)>, f64, Option<String>), IntegrationError> {
+        if self.scheme == Scheme::Taylor {
+            return Ok(self.advance_taylor(start, t_end, events));
+        }
         let mut record = self.record.take();
         let (mut previous_values, mut values) =
             (std::mem::take(&mut self.previous_values), std::mem::take(&mut self.values));
@@ -421,6 +448,12 @@ where
         if h.abs() <= 16.0 * f64::EPSILON * from.0.abs().max(1.0) {
             return Ok(&from.1 + &from.2 * h);
         }
+        if self.scheme == Scheme::Taylor {
+            if self.series_from.to_bits() != from.0.to_bits() && !self.expand(&from.1, from.0) {
+                return Err(IntegrationError::Solver { time: t, reason: "the model has no Taylor series here".into() });
+            }
+            return Ok(horner(&self.series, h));
+        }
         let adapter = Adapter { model: self.model, watch: None };
         // A re-step inside one accepted step of a stiff contact may itself need many steps: it may use what is left of
         // the run's budget (at least a thousand).
@@ -431,11 +464,140 @@ where
         Ok(solved.last.map_or_else(|| from.1.clone(), |(_, state)| state))
     }
 
+    /// [`Scheme::Taylor`]'s coefficients at `(t, y)` into `series` (counted as a step's worth of evaluations, one
+    /// per order); `false` where the model has none.
+    fn expand(&mut self, y: &Vector<D>, t: f64) -> bool {
+        let order = super::taylor_order(self.tolerances.rtol);
+        let (rows, columns) = y.shape_generic();
+        self.series.resize_with(order + 1, || Vector::<D>::zeros_generic(rows, columns));
+        self.series_from = f64::NAN;
+        if !self.model.expansion_of(y, &mut self.series) {
+            return false;
+        }
+        self.series_from = t;
+        self.counters.evaluations += order as u64;
+        true
+    }
+
+    /// [`Scheme::Taylor`]'s run from `start` until a bracket of a sign change or `t_end` (as [`StepperOf::advance`]):
+    /// each step's size from its last two coefficients, `h = ρ rtol^(1/(K+1))` with `ρ` the smallest over the
+    /// components of `(w/|c_k|)^(1/k)` for `k = K-1, K`, `w = |y| + atol/rtol`, so that the first term left out is
+    /// about `rtol |y| + atol`; no step is rejected.
+    #[allow(clippy::type_complexity)]
+    fn advance_taylor(
+        &mut self,
+        start: Point<D>,
+        t_end: f64,
+        events: &[EventOf<'_, D>],
+    ) -> (f64, Vector<D>, Option<(Point<D>, Point<D>)>, f64, Option<String>) {
+        let Tolerances { rtol, atol } = self.tolerances;
+        let mut previous_values: Vec<f64> = events.iter().map(|event| event.value(&start.1)).collect();
+        let mut values = vec![0.0; events.len()];
+        let mut previous = start;
+        let mut step = 0.0;
+        let mut first = true;
+        loop {
+            let (t, y) = (previous.0, &previous.1);
+            if t >= t_end {
+                return (t, y.clone(), None, step, None);
+            }
+            if self.counters.steps + self.counters.rejected_steps >= self.budget {
+                return (t, y.clone(), None, step, Some(format!("the budget of {} steps was spent", self.budget)));
+            }
+            if !self.expand(y, t) {
+                return (t, y.clone(), None, step, Some("the model has no Taylor series here".into()));
+            }
+            let order = self.series.len() - 1;
+            let floor = atol / rtol;
+            // The radius from the upper half of the orders (a series may be sparse: at first contact Hertz's
+            // `q'' = -q⁹/4` has only every tenth coefficient, and the last two alone can both be zero), from all of
+            // them where those are all zero. (The power is monotonic: the smallest ratio over the components, then
+            // one power per order.)
+            let ratio = |k: usize| {
+                let mut least = f64::INFINITY;
+                for i in 0..y.len() {
+                    least = least.min((y[i].abs() + floor) / self.series[k][i].abs());
+                }
+                least.powf(1.0 / k as f64)
+            };
+            let mut radius = (order.div_ceil(2)..=order).map(ratio).fold(f64::INFINITY, f64::min);
+            if radius == f64::INFINITY {
+                radius = (1..order.div_ceil(2)).map(ratio).fold(f64::INFINITY, f64::min);
+            }
+            let mut h = radius * rtol.powf(1.0 / (order + 1) as f64);
+            // A function that starts at zero (a stick's room under a limit that is zero at first contact) is seen to
+            // leave it before it can turn back through it: a first step short beside the series' reach.
+            if first && previous_values.contains(&0.0) {
+                h *= LEAVING_ZERO;
+            }
+            first = false;
+            let h = h.min(t_end - t);
+            if h.is_nan() || h <= 0.0 || t + h == t {
+                return (t, y.clone(), None, step, Some("the step size underflowed".into()));
+            }
+            step = h;
+            let next_time = if t_end - t <= h { t_end } else { t + h };
+            let next = horner(&self.series, h);
+            let slope = horner_slope(&self.series, h);
+            self.counters.steps += 1;
+            if let Some(record) = self.record.as_mut() {
+                record.push((next_time, next.clone()));
+            }
+            let taken = self.counters.steps + self.counters.rejected_steps;
+            if let Some(tick) = self.tick
+                && taken.is_multiple_of(TICK_STEPS)
+            {
+                tick(next_time, taken);
+            }
+            for (value, event) in values.iter_mut().zip(events) {
+                *value = event.value(&next);
+            }
+            let point = (next_time, next, slope);
+            if values.iter().zip(&previous_values).any(|(&v, &p)| falls(p, v)) {
+                return (point.0, point.1.clone(), Some((previous, point)), step, None);
+            }
+            previous = point;
+            std::mem::swap(&mut previous_values, &mut values);
+        }
+    }
+
     fn add(&mut self, stats: &Stats) {
         self.counters.steps += u64::from(stats.accepted_steps);
         self.counters.rejected_steps += u64::from(stats.rejected_steps);
         self.counters.evaluations += u64::from(stats.num_eval);
     }
+}
+
+/// The share of its reach a Taylor step takes where an event function is zero at its start (see
+/// [`StepperOf::advance_taylor`]).
+const LEAVING_ZERO: f64 = 1.0 / 64.0;
+
+/// The polynomial `Σ series[k] h^k` (Horner).
+fn horner<D: Dim>(series: &[Vector<D>], h: f64) -> Vector<D>
+where
+    DefaultAllocator: Allocator<D>,
+{
+    let (last, rest) = series.split_last().expect("a series has a constant term");
+    let mut value = last.clone();
+    for c in rest.iter().rev() {
+        value *= h;
+        value += c;
+    }
+    value
+}
+
+/// The derivative of [`horner`]'s polynomial at `h`.
+fn horner_slope<D: Dim>(series: &[Vector<D>], h: f64) -> Vector<D>
+where
+    DefaultAllocator: Allocator<D>,
+{
+    let order = series.len() - 1;
+    let mut slope = &series[order] * order as f64;
+    for k in (1..order).rev() {
+        slope *= h;
+        slope += &series[k] * k as f64;
+    }
+    slope
 }
 
 /// What one solver run left: its statistics (or why it failed), its last two points, and the steps it took.
@@ -522,6 +684,8 @@ where
             let result = solver.integrate();
             Solved::new(result, solver.x_out(), solver.y_out())
         }
+        // (The Taylor scheme takes its own steps: `advance` and `step_to` never hand it to a solver.)
+        Scheme::Taylor => unreachable!("the Taylor scheme is not an ode_solvers pair"),
     }
 }
 
