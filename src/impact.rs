@@ -185,12 +185,19 @@ fn through_phases(
         return fixed_step_outcome(scheme, scene, setup, recording);
     }
     let covered = setup.motion == Motion::Normal && crate::fast::covers(&setup.law);
-    if method == Method::Taylor && !covered {
+    // A frictional sphere on a wall whose laws are polynomials in the slide's variables (dynamics/slide/series.rs).
+    let slide_series = setup.motion == Motion::Full
+        && smooth_in_regularised_time(&setup.law)
+        && SlideContact::new(&scene.bodies, setup, scene.contact.separation).is_some_and(|slide| slide.has_series());
+    if method == Method::Taylor && !covered && !slide_series {
         return Err(SimulationError::Setup(SetupError {
             key: "solver.method".into(),
             message: if setup.motion != Motion::Normal {
-                "the taylor path integrates the normal contact alone: this impact needs the 3-D model (an oblique \
-                 impact of two spheres, or friction with slip); use \"auto\" or \"dop853\""
+                "the taylor path integrates the normal contact, or a frictional sphere on a flat wall whose laws are \
+                 polynomials in its regularised variables (hertz or the hunt-crossley family at exponent 1 or 1.5, \
+                 kelvin-voigt, tsuji; a constant or Mindlin tangential spring without tangential damping or \
+                 rescaled unloading, the compressive friction cap): this impact needs the 3-D model; use \"auto\" \
+                 or \"dop853\""
                     .into()
             } else {
                 format!(
@@ -205,7 +212,7 @@ fn through_phases(
     // a history comes from Dop853, so that every view of one run is one solution). Asked for by name, it gives the
     // report and Dop853 the history.
     let fast = match method {
-        Method::Taylor => true,
+        Method::Taylor => covered,
         Method::Auto => covered && recording == Recording::Off,
         Method::Dop853 | Method::Dopri5 | Method::Verlet | Method::SymplecticEuler => false,
     };
@@ -234,19 +241,34 @@ fn through_phases(
             // Its tangential motion stays on one line (dynamics/slide.rs): the normal motion and three tangential
             // states take the place of the 3-D model's, at a fraction of its cost.
             // The slide by Taylor series first, where its laws are polynomials in its state (dynamics/slide/series.rs).
-            if method == Method::Auto
-                && recording == Recording::Off
-                && smooth_in_regularised_time(&setup.law)
+            // Asked for by name, it gives the report and the 3-D model the history (as the normal fast path does), and
+            // a run that does not end in a separation is an error rather than a fallback.
+            if slide_series
+                && (method == Method::Taylor || method == Method::Auto && recording == Recording::Off)
                 && let Some(slide) = SlideContact::new(&scene.bodies, setup, scene.contact.separation)
-                && slide.has_series()
-                && let Ok((mut outcome, None)) =
-                    run_with(&slide, scene, setup.contact_time, Recording::Off, Scheme::Taylor)
-                && outcome.separated
-                && outcome.ending == Ending::Event(0)
             {
-                outcome.method = TAYLOR_SLIDE;
-                outcome.switches -= slide.unloadings();
-                return Ok((outcome, None));
+                match run_with(&slide, scene, setup.contact_time, Recording::Off, Scheme::Taylor) {
+                    Ok((mut outcome, _)) if outcome.separated && outcome.ending == Ending::Event(0) => {
+                        outcome.method = TAYLOR_SLIDE;
+                        outcome.switches -= slide.unloadings();
+                        let history = match recording {
+                            Recording::Off => None,
+                            _ => run(&PairContact::new(&scene.bodies, setup), scene, setup.contact_time, recording)?.1,
+                        };
+                        return Ok((outcome, history));
+                    }
+                    Ok((outcome, _)) if method == Method::Taylor => {
+                        return Err(SimulationError::Integration(IntegrationError::Solver {
+                            time: outcome.end.time / setup.scales.time,
+                            reason: "the taylor path's slide did not end in a separation (use \"auto\", which \
+                                     then runs it on Dop853)"
+                                .into(),
+                        }));
+                    }
+                    Err(error) if method == Method::Taylor => return Err(error),
+                    // (`auto` falls back on the Dop853 slide.)
+                    _ => {}
+                }
             }
             if method == Method::Auto
                 && recording == Recording::Off

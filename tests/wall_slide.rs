@@ -1,5 +1,6 @@
-//! A frictional sphere on a flat wall on its own path (`solver.method` "dop853-slide": src/dynamics/slide.rs), the
-//! normal motion and the tangential motion on the initial slip's line in regularised time. Held to the 3-D model
+//! A frictional sphere on a flat wall on its own path (`solver.method` "taylor-slide" or "dop853-slide":
+//! src/dynamics/slide.rs), the normal motion and the tangential motion on the initial slip's line in regularised
+//! time, by Taylor series or by Dop853. Held to the 3-D model
 //! in physical time (`method = "dop853"`, written by each test with the scene's solver keys at rtol 1e-13: an
 //! independent integration of the same equations, in other variables and steps) and, for a sphere that slides
 //! throughout, to Coulomb's law in closed form. No expected number here comes from the path under test.
@@ -271,4 +272,32 @@ fn the_taylor_slide_holds_its_tolerance_at_every_order() {
             }
         }
     }
+}
+
+/// `method = "taylor"` names the slide by Taylor series: its report (the same numbers as `auto`'s, which takes the same
+/// path), with the 3-D model's history when one is asked for; a contact its series do not cover (tangential damping)
+/// is refused, naming the key.
+#[test]
+fn method_taylor_names_the_slide_by_taylor_series() {
+    let text = scene(30.0, TEST4, [0.0; 3], 0.0);
+    let named = format!("{text}\n[solver]\nmethod = \"taylor\"\n");
+    let (report, auto) = (run(&named), run(&text));
+    assert_eq!(report.solver.method, "taylor-slide");
+    assert_eq!(report.bodies[0].velocity_after, auto.bodies[0].velocity_after);
+    assert_eq!(report.bodies[0].angular_velocity_after, auto.bodies[0].angular_velocity_after);
+    let scene = Scene::parse(&named, Path::new("wall_slide.toml")).unwrap();
+    let recorded = simulate(&scene, Recording::Steps).unwrap();
+    assert_eq!(recorded.report.solver.method, "taylor-slide");
+    assert!(recorded.history.is_some_and(|history| history.samples.len() > 10));
+    let damped = format!("{}\n[solver]\nmethod = \"taylor\"\n", scene_with(&text, "tangential_damping = 0.3"));
+    let refused = Scene::parse(&damped, Path::new("damped.toml"))
+        .map_err(|error| error.to_string())
+        .and_then(|scene| simulate(&scene, Recording::Off).map(|_| ()).map_err(|error| error.to_string()));
+    let message = refused.expect_err("tangential damping is not covered");
+    assert!(message.contains("solver.method") && message.contains("tangential damping"), "{message}");
+}
+
+/// The scene `text` with one more line in its `[contact]` table.
+fn scene_with(text: &str, line: &str) -> String {
+    text.replace("[contact]\n", &format!("[contact]\n{line}\n"))
 }
