@@ -68,9 +68,18 @@ fn differences(slide: &Report, exact: &Report) -> Vec<(&'static str, f64)> {
 /// Holds the scene's default run to the 3-D model at 1e-13 within 1e-9 (and the same regime); returns the worst
 /// difference.
 fn agrees(text: &str) -> f64 {
-    let slide = run(text);
+    agrees_on(text, None)
+}
+
+/// [`agrees`] on the path `method` names (`None`: the scene's default, `auto`, the Dop853 slide; `Some("taylor")`:
+/// the slide by Taylor series).
+fn agrees_on(text: &str, method: Option<&str>) -> f64 {
+    let (slide, expected) = match method {
+        None => (run(text), "dop853-slide"),
+        Some(method) => (run(&format!("{text}\n[solver]\nmethod = \"{method}\"\n")), "taylor-slide"),
+    };
     let exact = reference(text);
-    assert_eq!(slide.solver.method, common::oblique::slide_method(text), "{text}");
+    assert_eq!(slide.solver.method, expected, "{text}");
     assert_eq!(exact.solver.method, "dop853");
     let (oa, ob) = (slide.oblique.as_ref().expect("oblique"), exact.oblique.as_ref().expect("oblique"));
     assert_eq!(oa.regime, ob.regime, "{text}");
@@ -94,11 +103,13 @@ fn test_4_over_its_angles_agrees_with_the_3d_model() {
     let mut angles: Vec<f64> = (0..30).map(|i| 0.5 + 89.0 * f64::from(i) / 29.0).collect();
     angles.extend([17.464232116058, 28.2818909454727, 28.863431715858, 32.5, 45.0]);
     let mut worst: f64 = 0.0;
-    for degrees in angles {
-        worst = worst.max(agrees(&scene(degrees, TEST4, [0.0; 3], 0.0)));
-    }
-    for degrees in [10.0, 28.863431715858, 44.6660830415208, 45.156] {
-        worst = worst.max(agrees(&scene(degrees, TEST4, [0.0, 500.0, 200.0], 0.0)));
+    for method in [None, Some("taylor")] {
+        for &degrees in &angles {
+            worst = worst.max(agrees_on(&scene(degrees, TEST4, [0.0; 3], 0.0), method));
+        }
+        for degrees in [10.0, 28.863431715858, 44.6660830415208, 45.156] {
+            worst = worst.max(agrees_on(&scene(degrees, TEST4, [0.0, 500.0, 200.0], 0.0), method));
+        }
     }
     assert!(worst > 0.0, "nothing was compared");
 }
@@ -151,7 +162,7 @@ fn a_sphere_sliding_throughout_takes_mu_times_the_normal_impulse() {
     ] {
         let text = scene(degrees, contact, [0.0; 3], 0.0);
         let report = run(&text);
-        assert_eq!(report.solver.method, common::oblique::slide_method(&text), "{text}");
+        assert_eq!(report.solver.method, "dop853-slide", "{text}");
         let oblique = report.oblique.as_ref().expect("oblique");
         assert_eq!(oblique.regime, "sliding", "{text}");
         assert_eq!(oblique.below_friction_limit_duration, Some(0.0), "{text}");
@@ -237,7 +248,7 @@ fn a_creeping_restitution_keeps_the_friction_impulse_at_mu_times_the_normal_one(
 #[test]
 fn dop853_or_a_history_keeps_the_3d_model() {
     let text = scene(30.0, TEST4, [0.0; 3], 0.0);
-    assert_eq!(run(&text).solver.method, "taylor-slide");
+    assert_eq!(run(&text).solver.method, "dop853-slide");
     assert_eq!(run(&format!("{text}\n[solver]\nmethod = \"dop853\"\n")).solver.method, "dop853");
     let scene = Scene::parse(&text, Path::new("wall_slide.toml")).unwrap();
     let recorded = simulate(&scene, Recording::Steps).unwrap();
@@ -246,24 +257,34 @@ fn dop853_or_a_history_keeps_the_3d_model() {
 }
 
 /// The slide by Taylor series at every tolerance from 1e-4 to 1e-13 — Taylor orders 8 to 22, whose step sizes come
-/// from series that are sparse at first contact (Hertz's `q'' = -q⁹/4` has every tenth coefficient) — on Tsuji's law
-/// (test 4, both regimes) and Hertz's elastic one: the path stays `taylor-slide` (a step that jumped past maximum
-/// compression would end in the fallback), and the velocities and spins come within 100 times the tolerance of the
+/// from series that are sparse at first contact (Tsuji's and Kelvin–Voigt's have only a few nonzero coefficients
+/// there) — on test 4 (both regimes), Kelvin–Voigt and Tsuji under the magnitude cap: the path is `taylor-slide` (a
+/// step that jumped past maximum compression would end in an error), and the velocities and spins come within 100 times the tolerance of the
 /// 3-D model in physical time at 1e-13.
 #[test]
 fn the_taylor_slide_holds_its_tolerance_at_every_order() {
     let cases = [
         scene(10.0, TEST4, [0.0; 3], 0.0),
         scene(45.0, TEST4, [0.0, 500.0, 200.0], 0.0),
-        scene(20.0, "law = \"hertz\"\nfriction = 0.3", [0.0; 3], 0.0),
-        scene(60.0, "law = \"hunt-crossley\"\nrestitution = 0.8\nfriction = 0.1", [0.0; 3], 0.0),
+        scene(
+            40.0,
+            "law = \"kelvin-voigt\"\nstiffness = 1e7\nexponent = 1.0\nrestitution = 0.5\nfriction = 0.25",
+            [0.0; 3],
+            0.0,
+        ),
+        scene(
+            8.0,
+            "law = \"tsuji\"\nrestitution = 0.3\nfriction = 0.4\nfriction_cap = \"magnitude\"\nseparation = \"penetration\"",
+            [0.0; 3],
+            0.0,
+        ),
     ];
     for text in cases {
         let exact = reference(&text);
         for exponent in 4..=13 {
             let rtol = 10f64.powi(-exponent);
             let atol = (rtol / 100.0).max(1e-14);
-            let report = run(&format!("{text}\n[solver]\nrtol = {rtol:e}\natol = {atol:e}\n"));
+            let report = run(&format!("{text}\n[solver]\nrtol = {rtol:e}\natol = {atol:e}\nmethod = \"taylor\"\n"));
             assert_eq!(report.solver.method, "taylor-slide", "rtol {rtol:e}\n{text}");
             for (what, error) in common::oblique::differences(&report, &exact) {
                 if what.contains("velocity") || what.contains("spin") {
@@ -274,19 +295,25 @@ fn the_taylor_slide_holds_its_tolerance_at_every_order() {
     }
 }
 
-/// `method = "taylor"` names the slide by Taylor series: its report (the same numbers as `auto`'s, which takes the same
-/// path), with the 3-D model's history when one is asked for; a contact its series do not cover (tangential damping)
-/// is refused, naming the key.
+/// `method = "taylor"` names the slide by Taylor series: its report (held to the 3-D model at 1e-13 within 1e-9, with a
+/// note on what its long steps can miss), with the 3-D model's history when one is asked for; a contact its series do
+/// not cover (tangential damping) is refused, naming the key.
 #[test]
 fn method_taylor_names_the_slide_by_taylor_series() {
     let text = scene(30.0, TEST4, [0.0; 3], 0.0);
     let named = format!("{text}\n[solver]\nmethod = \"taylor\"\n");
-    let (report, auto) = (run(&named), run(&text));
+    let report = run(&named);
     assert_eq!(report.solver.method, "taylor-slide");
-    assert_eq!(report.bodies[0].velocity_after, auto.bodies[0].velocity_after);
-    assert_eq!(report.bodies[0].angular_velocity_after, auto.bodies[0].angular_velocity_after);
-    let scene = Scene::parse(&named, Path::new("wall_slide.toml")).unwrap();
-    let recorded = simulate(&scene, Recording::Steps).unwrap();
+    assert!(
+        report.notes.iter().any(|note| note.contains("stick-slip interval shorter than a step")),
+        "{:?}",
+        report.notes
+    );
+    for (what, error) in common::oblique::differences(&report, &reference(&text)) {
+        assert!(error <= 1e-9, "{what}: {error:e}");
+    }
+    let parsed = Scene::parse(&named, Path::new("wall_slide.toml")).unwrap();
+    let recorded = simulate(&parsed, Recording::Steps).unwrap();
     assert_eq!(recorded.report.solver.method, "taylor-slide");
     assert!(recorded.history.is_some_and(|history| history.samples.len() > 10));
     let damped = format!("{}\n[solver]\nmethod = \"taylor\"\n", scene_with(&text, "tangential_damping = 0.3"));
@@ -295,6 +322,12 @@ fn method_taylor_names_the_slide_by_taylor_series() {
         .and_then(|scene| simulate(&scene, Recording::Off).map(|_| ()).map_err(|error| error.to_string()));
     let message = refused.expect_err("tangential damping is not covered");
     assert!(message.contains("solver.method") && message.contains("tangential damping"), "{message}");
+    // Hertz's contact slides from first contact with no spring force: said, not integrated wrongly.
+    let sliding =
+        format!("{}\n[solver]\nmethod = \"taylor\"\n", scene(45.0, "law = \"hertz\"\nfriction = 0.3", [0.0; 3], 0.0));
+    let parsed = Scene::parse(&sliding, Path::new("hertz.toml")).unwrap();
+    let message = simulate(&parsed, Recording::Off).map(|_| ()).expect_err("not covered").to_string();
+    assert!(message.contains("no spring force") && message.contains("use \"auto\""), "{message}");
 }
 
 /// The scene `text` with one more line in its `[contact]` table.

@@ -288,7 +288,7 @@ fn creeping_ball(budget: u64) -> String {
 #[test]
 fn a_long_world_run_prints_no_progress_where_stderr_is_not_a_terminal() {
     let scratch = Scratch::new("no_progress");
-    let scene = scratch.write("creep.toml", &creeping_ball(100_000));
+    let scene = scratch.write("creep.toml", &creeping_ball(300_000));
     let clock = Instant::now();
     let output = impact(scratch.path(), &["run", &scene]);
     // (Long enough for a progress line to have been drawn a few times, had it been drawn.)
@@ -308,7 +308,7 @@ fn on_a_terminal_a_long_world_run_shows_its_progress() {
     };
     assert!(probe.status.success());
     let scratch = Scratch::new("progress");
-    let scene = scratch.write("creep.toml", &creeping_ball(100_000));
+    let scene = scratch.write("creep.toml", &creeping_ball(300_000));
     let command = format!("{} run {scene}", env!("CARGO_BIN_EXE_impact"));
     let output = std::process::Command::new("script")
         .args(["-qec", &command, "/dev/null"])

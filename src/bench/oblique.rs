@@ -104,6 +104,7 @@ pub struct ObliqueRow {
     pub case: &'static str,
     /// `auto` (the path `[solver] method = "auto"` takes with friction: a sphere on a wall in regularised time,
     /// two spheres on the 3-D model), `dop853` (the 3-D model in physical time, as `method = "dop853"` forces it),
+    /// for a sphere on a wall `taylor` (the slide by Taylor series, as `method = "taylor"` asks for it),
     /// `frictionless` (the same contact without friction, on the path `auto` takes: the normal fast path for the
     /// wall, the 3-D model for the turning spheres) or, for two spheres, `central` (their head-on twin on the
     /// normal fast path, [`ObliqueCase::central`]).
@@ -150,6 +151,10 @@ pub fn study(
     let mut rows = Vec::new();
     for (case, frictionless) in cases {
         let mut paths = vec![("auto", &case.text, "auto"), ("dop853", &case.text, "dop853")];
+        if case.central.is_none() {
+            // (A sphere on a wall: the slide by Taylor series, asked for by name.)
+            paths.push(("taylor", &case.text, "taylor"));
+        }
         paths.push(("frictionless", frictionless, "auto"));
         if let Some(central) = &case.central {
             paths.push(("central", central, "auto"));

@@ -10,7 +10,7 @@ mod events;
 mod stepper;
 
 pub use events::{Crossing, CrossingOf, Direction, Event, EventOf};
-pub use stepper::{Counters, Ending, RunEndOf, STEP_BUDGET, Scheme, Stepper, StepperOf, Tolerances};
+pub use stepper::{Counters, Ending, NO_SERIES, RunEndOf, STEP_BUDGET, Scheme, Stepper, StepperOf, Tolerances};
 
 use nalgebra::allocator::Allocator;
 use nalgebra::{Const, DefaultAllocator, Dim, OVector, SVector};

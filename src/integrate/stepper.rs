@@ -302,6 +302,8 @@ where
         events: &[EventOf<'_, D>],
     ) -> Result<RunEndOf<D>, IntegrationError> {
         let dy = self.derivative(t, &y);
+        // (A Taylor series kept from an earlier run is not this run's: a switch changes the state at the same time.)
+        self.series_from = f64::NAN;
         let mut start: Point<D> = (t, y, dy);
         let mut first_step = 0.0;
         let mut crossings = Vec::new();
@@ -450,7 +452,7 @@ where
         }
         if self.scheme == Scheme::Taylor {
             if self.series_from.to_bits() != from.0.to_bits() && !self.expand(&from.1, from.0) {
-                return Err(IntegrationError::Solver { time: t, reason: "the model has no Taylor series here".into() });
+                return Err(IntegrationError::Solver { time: t, reason: NO_SERIES.into() });
             }
             return Ok(horner(&self.series, h));
         }
@@ -480,9 +482,9 @@ where
     }
 
     /// [`Scheme::Taylor`]'s run from `start` until a bracket of a sign change or `t_end` (as [`StepperOf::advance`]):
-    /// each step's size from its last two coefficients, `h = ρ rtol^(1/(K+1))` with `ρ` the smallest over the
-    /// components of `(w/|c_k|)^(1/k)` for `k = K-1, K`, `w = |y| + atol/rtol`, so that the first term left out is
-    /// about `rtol |y| + atol`; no step is rejected.
+    /// each step's size `h = ρ rtol^(1/(K+1))` with `ρ` the smallest over the components and over the upper half of
+    /// the orders `k` of `(w/|c_k|)^(1/k)`, `w = |y| + atol/rtol`, so that the first term left out is about
+    /// `rtol |y| + atol`; no step is rejected. Events are tested at the steps' ends only.
     #[allow(clippy::type_complexity)]
     fn advance_taylor(
         &mut self,
@@ -505,7 +507,7 @@ where
                 return (t, y.clone(), None, step, Some(format!("the budget of {} steps was spent", self.budget)));
             }
             if !self.expand(y, t) {
-                return (t, y.clone(), None, step, Some("the model has no Taylor series here".into()));
+                return (t, y.clone(), None, step, Some(NO_SERIES.into()));
             }
             let order = self.series.len() - 1;
             let floor = atol / rtol;
@@ -567,6 +569,9 @@ where
         self.counters.evaluations += u64::from(stats.num_eval);
     }
 }
+
+/// Why a [`Scheme::Taylor`] run stopped where its model has no series (a caller may recognise it).
+pub const NO_SERIES: &str = "the model has no Taylor series here";
 
 /// The share of its reach a Taylor step takes where an event function is zero at its start (see
 /// [`StepperOf::advance_taylor`]).

@@ -139,6 +139,9 @@ pub fn build_into(
     notes.clear();
     if !done {
         notes.push(outcome.note.clone().unwrap_or_else(|| stuck_note(outcome, scene.contact.friction > 0.0)));
+    } else if let Some(note) = &outcome.note {
+        // (A path that separated with something to say of itself: the slide by Taylor series.)
+        notes.push(note.clone());
     }
     if setup.law.kind.family() == Family::Dashpot
         && setup.law.exponent != 1.0

@@ -37,12 +37,3 @@ pub fn differences(a: &Report, b: &Report) -> Vec<(&'static str, f64)> {
     errors.push(("dissipated and left", (lost(a) - lost(b)).abs() / energy));
     errors
 }
-
-/// The `solver.method` a frictional sphere on a wall's scene takes under `auto` without a history: the slide by
-/// Taylor series, but for the tangential options its series leave out (tangential damping, the rescaled unloading,
-/// the magnitude cap) and the laws they do not write as polynomials (the exponent's 1 and 3/2 only), which the slide
-/// integrates with Dop853.
-pub fn slide_method(text: &str) -> &'static str {
-    let dop853 = ["tangential_damping", "tangential_unloading = \"rescale\"", "friction_cap = \"magnitude\""];
-    if dop853.iter().any(|option| text.contains(option)) { "dop853-slide" } else { "taylor-slide" }
-}

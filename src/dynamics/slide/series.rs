@@ -51,7 +51,7 @@ enum Damping {
 
 impl SeriesLaw {
     /// The law and tangential law as series, where both are covered: no tangential damping, no rescaled unloading,
-    /// the compressive cap, a constant or Mindlin stiffness; `None` otherwise (the slide then runs on Dop853).
+    /// a constant or Mindlin stiffness (either Coulomb cap); `None` otherwise (the slide then runs on Dop853).
     pub(super) fn new(
         law: &ContactLaw,
         scales: &Scales,
@@ -59,7 +59,6 @@ impl SeriesLaw {
     ) -> Option<Self> {
         if tangential.damping != 0.0
             || tangential.unloading != TangentialUnloading::None
-            || tangential.cap != FrictionCap::Compressive
             || !(tangential.exponent == 0.0 || tangential.exponent == 0.5)
             || !(tangential.stiffness.is_finite() && tangential.friction.is_finite())
         {
@@ -170,8 +169,8 @@ impl Default for Arrays {
 
 impl SlideContact<'_> {
     /// [`crate::integrate::Model::expansion`] for the slide: `false` where the law is not a series
-    /// ([`SeriesLaw::new`]), for a slide under tension, and for a slide on the capped limit `mu max(Fn, 0)` of a law
-    /// that can pull once its corner is no longer watched (a corner inside a step).
+    /// ([`SeriesLaw::new`]), and for a slide on the compressive limit `mu max(Fn, 0)` of a law that can pull once its
+    /// corner is no longer watched (a corner inside a step).
     pub(super) fn series(&self, y: &State<SIZE>, series: &mut [State<SIZE>]) -> bool {
         let Some(law) = self.series_law else { return false };
         let order = series.len() - 1;
@@ -180,17 +179,27 @@ impl SlideContact<'_> {
         }
         let (mode, unloaded) = super::mode_of(y);
         let friction = self.tangential.friction;
-        // The slide's force along the line per unit normal force (0: none).
+        // A slide's direction: the spring's, held for the slide. Where the spring is zero (a slide from first contact,
+        // or from the magnitude cap's corner) the force is against the slip, whose sign the model reads at each
+        // instant — a direction that turns where the slip passes through zero, inside a step: no series.
+        if mode.is_sliding() && !unloaded && y[index::SPRING].abs() <= 1e-300 {
+            return false;
+        }
+        let along = || {
+            super::sign_or_zero(y[index::SPRING], -(self.initial_slip + self.slip_gain * y[index::TANGENTIAL_IMPULSE]))
+        };
+        // The slide's force along the line per unit normal force (0: none). With the magnitude cap the limit
+        // `mu |Fn|` is `mu Fn` or `-mu Fn` over a step: its corner at `Fn = 0` is a located switch (into or out of
+        // the slide under tension).
         let sliding = match mode {
             Mode::Stick => None,
             Mode::Slip if unloaded => Some(0.0),
-            Mode::Slip if self.watches_unloading() || !self.law.kind.can_pull() => Some(
-                super::sign_or_zero(
-                    y[index::SPRING],
-                    -(self.initial_slip + self.slip_gain * y[index::TANGENTIAL_IMPULSE]),
-                ) * friction,
-            ),
-            Mode::Slip | Mode::SlipInTension => return false,
+            // (The mode says which: its switches are located where the force passes through zero, and a state
+            // there holds a force within rounding of zero, of either sign.)
+            Mode::SlipInTension => Some(-along() * friction),
+            Mode::Slip if self.tangential.cap == FrictionCap::Magnitude => Some(along() * friction),
+            Mode::Slip if self.watches_unloading() || !self.law.kind.can_pull() => Some(along() * friction),
+            Mode::Slip => return false,
         };
         let Ok(mut arrays) = self.arrays.try_borrow_mut() else { return false };
         let a = &mut *arrays;
@@ -271,6 +280,7 @@ impl SlideContact<'_> {
 mod tests {
     use super::super::UNLOADED;
     use super::*;
+    use crate::dynamics::ContactModel;
     use crate::integrate::Model;
     use crate::setup::Setup;
 
@@ -297,17 +307,27 @@ mod tests {
             "law = \"hunt-crossley\"\nrestitution = 0.8\nfriction = 0.3",
             "law = \"hertz\"\nfriction = 0.3",
             "law = \"hertz\"\nfriction = 0.3\ntangential_stiffness = 1e6",
+            "law = \"tsuji\"\nrestitution = 0.3\nfriction = 0.4\nfriction_cap = \"magnitude\"\nseparation = \"penetration\"",
         ];
         for contact in laws {
             let scene = scene(30.0, contact);
             let setup = Setup::new(&scene).unwrap();
             let slide = SlideContact::new(&scene.bodies, &setup, scene.contact.separation).unwrap();
             assert!(slide.has_series(), "{contact}");
-            for (mode, spring) in [(Mode::Stick.slot(), -0.01), (Mode::Slip.slot(), -0.02), (UNLOADED, -0.02)] {
+            // (Under the magnitude cap, also a slide while the force pulls: Tsuji's damping beyond its spring, late in
+            // the restitution.)
+            let pulling = contact.contains("magnitude");
+            let mut modes = vec![(Mode::Stick.slot(), -0.01, 0.7, 0.6), (Mode::Slip.slot(), -0.02, 0.7, 0.6)];
+            modes.push(if pulling {
+                (Mode::SlipInTension.slot(), -0.02, 0.3, 1.9)
+            } else {
+                (UNLOADED, -0.02, 0.7, 0.6)
+            });
+            for (mode, spring, root, normal_impulse) in modes {
                 let mut y = State::<SIZE>::zeros();
-                y[index::ROOT] = 0.7;
+                y[index::ROOT] = root;
                 y[index::TIME] = 1.1;
-                y[index::NORMAL_IMPULSE] = 0.6;
+                y[index::NORMAL_IMPULSE] = normal_impulse;
                 y[index::NORMAL_WORK] = 0.3;
                 y[index::DISSIPATED] = 0.05;
                 y[index::SPRING] = spring;
@@ -315,6 +335,9 @@ mod tests {
                 y[index::TANGENTIAL_SHIFT] = -0.02;
                 y[index::TANGENTIAL_WORK] = -0.01;
                 y[index::MODE] = mode;
+                if root < 0.5 {
+                    assert!(slide.force(&y) < 0.0, "{contact}: the state pulls");
+                }
                 let mut series = vec![State::<SIZE>::zeros(); 9];
                 assert!(slide.series(&y, &mut series), "{contact}, mode {mode}");
                 let mut dy = State::<SIZE>::zeros();
