@@ -146,6 +146,10 @@ const UNLOADED: f64 = 3.0;
 /// [`SlideContact::switch_function`]).
 const STICK_MARGIN: f64 = 2.0 * f64::EPSILON;
 
+/// The size of the spring's state of a slide that starts with no spring: a direction only (see
+/// [`SlideContact::hold_direction`]), a force below any the contact exerts.
+const DIRECTION_ONLY: f64 = 1e-200;
+
 /// The tangential mode of a state, and whether it is [`UNLOADED`] (then sliding).
 fn mode_of(y: &State<SIZE>) -> (Mode, bool) {
     if y[MODE] > 2.5 { (Mode::Slip, true) } else { (Mode::of_slot(y[MODE]), false) }
@@ -382,6 +386,21 @@ impl<'a> SlideContact<'a> {
         (lifting, kink)
     }
 
+    /// A slide that starts with no spring (from first contact, or from the magnitude cap's corner) is driven
+    /// against the slip where it starts, and holds that direction, as every slide holds its spring's: the spring's
+    /// state, which carries only the direction while sliding, is set to [`DIRECTION_ONLY`] that way. (As the 3-D
+    /// model's spring, made to follow the limit along the direction it starts in; a slide's direction read from the
+    /// slip at each instant would turn where the slip passes through zero, inside a step. The slip cannot pass
+    /// through zero while the limit grows: the spring a stick would hold, `kt |slip|`, then falls below the limit's
+    /// rate first, a located switch into the stick.)
+    fn hold_direction(&self, y: &mut State<SIZE>) {
+        let (mode, unloaded) = mode_of(y);
+        if mode.is_sliding() && !unloaded && y[index::SPRING].abs() <= 1e-300 {
+            let slip = self.initial_slip + self.slip_gain * y[index::TANGENTIAL_IMPULSE];
+            y[index::SPRING] = sign_or_zero(0.0, -slip) * DIRECTION_ONLY;
+        }
+    }
+
     /// Whether the corner of the compressive limit at `Fn = 0` is watched ([`UNLOADED`]).
     fn watches_unloading(&self) -> bool {
         self.watches_unloading.get()
@@ -455,6 +474,7 @@ impl ContactModel<SIZE> for SlideContact<'_> {
         let probe_force = self.law.force(PROBE * s.length, s.speed) / s.force;
         let mode = self.tangential.initial_mode(self.initial_slip, 1.0, PROBE, contact_force, probe_force);
         y[MODE] = mode.slot();
+        self.hold_direction(&mut y);
         y
     }
 
@@ -567,6 +587,7 @@ impl ContactModel<SIZE> for SlideContact<'_> {
         };
         // (Sliding on from a switch where the force already pulls: unloaded from the start.)
         y[MODE] = if next == Mode::Slip && watched && ratio <= 0.0 { UNLOADED } else { next.slot() };
+        self.hold_direction(y);
     }
 
     fn sliding(&self, y: &State<SIZE>) -> bool {

@@ -154,7 +154,7 @@ where
 /// ends the search by a short step alone: from an end within rounding of zero (a switch function at the start of
 /// its mode), regula falsi's first trials move by ulps, and stopping there would place the crossing at the start
 /// rather than where the function falls.
-fn bracketed<D: Dim>(
+pub(crate) fn bracketed<D: Dim>(
     event: &EventOf<'_, D>,
     index: usize,
     (mut lo, mut g_lo): (f64, f64),

@@ -1,6 +1,6 @@
 //! The `ode_solvers` adapter (Dop853, or Dopri5): runs between events, re-steps for event location, counts work.
 
-use super::events::{CrossingOf, EventOf, Point, falls, locate};
+use super::events::{CrossingOf, EventOf, Point, bracketed, falls, locate};
 use super::{IntegrationError, ModelOf, Vector};
 use nalgebra::allocator::Allocator;
 use nalgebra::{Const, DefaultAllocator, Dim};
@@ -484,7 +484,8 @@ where
     /// [`Scheme::Taylor`]'s run from `start` until a bracket of a sign change or `t_end` (as [`StepperOf::advance`]):
     /// each step's size `h = ρ rtol^(1/(K+1))` with `ρ` the smallest over the components and over the upper half of
     /// the orders `k` of `(w/|c_k|)^(1/k)`, `w = |y| + atol/rtol`, so that the first term left out is about
-    /// `rtol |y| + atol`; no step is rejected. Events are tested at the steps' ends only.
+    /// `rtol |y| + atol`; no step is rejected. Events are tested at the steps' ends, within a step
+    /// where one falls (the step ends at the first) and at a function's minimum inside it ([`StepperOf::dip`]).
     #[allow(clippy::type_complexity)]
     fn advance_taylor(
         &mut self,
@@ -495,6 +496,8 @@ where
         let Tolerances { rtol, atol } = self.tolerances;
         let mut previous_values: Vec<f64> = events.iter().map(|event| event.value(&start.1)).collect();
         let mut values = vec![0.0; events.len()];
+        // Each function's slope at the step's start (NaN: not known).
+        let mut start_slopes = vec![f64::NAN; events.len()];
         let mut previous = start;
         let mut step = 0.0;
         let mut first = true;
@@ -537,9 +540,64 @@ where
             if h.is_nan() || h <= 0.0 || t + h == t {
                 return (t, y.clone(), None, step, Some("the step size underflowed".into()));
             }
+            let mut h = h;
+            let mut next = horner(&self.series, h);
+            for (value, event) in values.iter_mut().zip(events) {
+                *value = event.value(&next);
+            }
+            // A step that carries a function through zero ends where the first of them falls (located on the step's
+            // polynomial): the others are read within the stretch the first event leaves meaningful (beyond a
+            // separation a sliding contact's switch function reads zero, which is no fall inside the contact).
+            if values.iter().zip(&previous_values).any(|(&v, &p)| falls(p, v)) {
+                let mut earliest = h;
+                for (i, event) in events.iter().enumerate() {
+                    if falls(previous_values[i], values[i]) {
+                        let resolution = |t: f64| 4.0 * f64::EPSILON * t.abs().max(h);
+                        let at = |t: f64| Ok(horner(&self.series, t));
+                        if let Ok(crossing) =
+                            bracketed(event, i, (0.0, previous_values[i]), (h, values[i], next.clone()), resolution, at)
+                        {
+                            earliest = earliest.min(crossing.time);
+                        }
+                    }
+                }
+                if earliest < h {
+                    h = earliest;
+                    next = horner(&self.series, h);
+                    for (value, event) in values.iter_mut().zip(events) {
+                        *value = event.value(&next);
+                    }
+                }
+            }
+            // A function that falls through zero and rises back inside the step (a stick of a fraction of a step
+            // between two slides) is positive at both ends: its slope, falling at the start and rising at the end,
+            // shows the minimum between them, where the function is read.
+            let delta = h * SLOPE_SHARE;
+            for (i, event) in events.iter().enumerate() {
+                if !(previous_values[i] > 0.0 && values[i] > 0.0) {
+                    start_slopes[i] = f64::NAN;
+                    continue;
+                }
+                if start_slopes[i].is_nan() {
+                    start_slopes[i] = (event.value(&horner(&self.series, delta)) - previous_values[i]) / delta;
+                }
+                let end_slope = (values[i] - event.value(&horner(&self.series, h - delta))) / delta;
+                let falling = start_slopes[i] < 0.0;
+                start_slopes[i] = end_slope;
+                if falling
+                    && end_slope > 0.0
+                    && let Some(below) = self.dip(event, h, delta)
+                {
+                    h = below;
+                    next = horner(&self.series, h);
+                    for (value, event) in values.iter_mut().zip(events) {
+                        *value = event.value(&next);
+                    }
+                    break;
+                }
+            }
             step = h;
             let next_time = if t_end - t <= h { t_end } else { t + h };
-            let next = horner(&self.series, h);
             let slope = horner_slope(&self.series, h);
             self.counters.steps += 1;
             if let Some(record) = self.record.as_mut() {
@@ -551,9 +609,6 @@ where
             {
                 tick(next_time, taken);
             }
-            for (value, event) in values.iter_mut().zip(events) {
-                *value = event.value(&next);
-            }
             let point = (next_time, next, slope);
             if values.iter().zip(&previous_values).any(|(&v, &p)| falls(p, v)) {
                 return (point.0, point.1.clone(), Some((previous, point)), step, None);
@@ -561,6 +616,48 @@ where
             previous = point;
             std::mem::swap(&mut previous_values, &mut values);
         }
+    }
+
+    /// Where on the current step's polynomial, inside `(0, h)` (offsets from the step's start), where `event`'s
+    /// function is positive at both ends and its slope falls at the start and rises at the end, the function is
+    /// below zero by more than the step's accuracy (rtol times the larger of the function's values at its ends:
+    /// less is the rounding of a function that starts at zero, at a switch, or a dip the step does not resolve): the
+    /// minimum sought by the Illinois variant of regula falsi on the slope (a difference over `delta`), stopping at
+    /// the first trial that deep; `None` where the minimum is not.
+    fn dip(&self, event: &EventOf<'_, D>, h: f64, delta: f64) -> Option<f64> {
+        let g = |t: f64| event.value(&horner(&self.series, t));
+        let slope = |t: f64, at: f64| (g(t + delta) - at) / delta;
+        let (mut lo, mut hi) = (0.0, h - delta);
+        let (g_lo, g_hi) = (g(lo), g(hi));
+        let depth = -self.tolerances.rtol * g_lo.abs().max(g_hi.abs());
+        let (mut s_lo, mut s_hi) = (slope(lo, g_lo), slope(hi, g_hi));
+        if !(s_lo < 0.0 && s_hi > 0.0) {
+            return None;
+        }
+        let mut side = 0i8;
+        for _ in 0..60 {
+            let trial = (lo - s_lo * (hi - lo) / (s_hi - s_lo)).clamp(lo + 0.01 * (hi - lo), hi - 0.01 * (hi - lo));
+            let at = g(trial);
+            if at < depth {
+                return Some(trial);
+            }
+            let s = slope(trial, at);
+            if s < 0.0 {
+                if side < 0 {
+                    s_hi *= 0.5;
+                }
+                (lo, s_lo, side) = (trial, s, -1);
+            } else {
+                if side > 0 {
+                    s_lo *= 0.5;
+                }
+                (hi, s_hi, side) = (trial, s, 1);
+            }
+            if hi - lo <= MINIMUM_RESOLUTION * h {
+                break;
+            }
+        }
+        None
     }
 
     fn add(&mut self, stats: &Stats) {
@@ -576,6 +673,13 @@ pub const NO_SERIES: &str = "the model has no Taylor series here";
 /// The share of its reach a Taylor step takes where an event function is zero at its start (see
 /// [`StepperOf::advance_taylor`]).
 const LEAVING_ZERO: f64 = 1.0 / 64.0;
+
+/// The share of a Taylor step an event function's slope is differenced over (see [`StepperOf::dip`]).
+const SLOPE_SHARE: f64 = 1.0 / 16_777_216.0;
+
+/// The share of a Taylor step within which [`StepperOf::dip`] locates a function's minimum: a minimum `ε h` off
+/// reads the function `g'' (ε h)² / 2` above it.
+const MINIMUM_RESOLUTION: f64 = 1e-7;
 
 /// The polynomial `Σ series[k] h^k` (Horner).
 fn horner<D: Dim>(series: &[Vector<D>], h: f64) -> Vector<D>
