@@ -297,15 +297,19 @@ fn the_taylor_slide_holds_its_tolerance_at_every_order() {
 
 /// `method = "taylor"` names the slide by Taylor series: its report (held to the 3-D model at 1e-13 within 1e-9, with a
 /// note on what its long steps can miss), with the 3-D model's history when one is asked for; a contact its series do
-/// not cover (tangential damping) is refused, naming the key; slides from first contact and a short stick inside one
-/// step agree with the 3-D model within 1e-9.
+/// not cover (tangential damping) is refused, naming the key; slides from first contact, a short stick inside one
+/// step and one inside the step that separates agree with the 3-D model within 1e-9.
 #[test]
 fn method_taylor_names_the_slide_by_taylor_series() {
     let text = scene(30.0, TEST4, [0.0; 3], 0.0);
     let named = format!("{text}\n[solver]\nmethod = \"taylor\"\n");
     let report = run(&named);
     assert_eq!(report.solver.method, "taylor-slide");
-    assert!(report.notes.iter().any(|note| note.contains("stick shorter than a step")), "{:?}", report.notes);
+    assert!(
+        report.notes.iter().any(|note| note.contains("reads its switch functions inside them")),
+        "{:?}",
+        report.notes
+    );
     for (what, error) in common::oblique::differences(&report, &reference(&text)) {
         assert!(error <= 1e-9, "{what}: {error:e}");
     }
@@ -336,6 +340,9 @@ fn method_taylor_names_the_slide_by_taylor_series() {
             ),
             [0.04570852228419131, -0.4810048318009639, -0.45829352055079486],
         ),
+        // A stick of 2e-6 of the duration just before the separation, inside the step that separates, where every
+        // switch function vanishes with the penetration (Hertz, a constant tangential spring, a moving wall).
+        random_walls(1, 111).pop().expect("a wall"),
     ] {
         agrees_on(&text, Some("taylor"));
     }
@@ -392,9 +399,9 @@ fn random_walls(seed: u64, count: usize) -> Vec<String> {
 
 /// Random walls ([`random_walls`]) on both slide paths, `auto`'s (Dop853) and `method = "taylor"`'s, against the 3-D
 /// model at 1e-13: the velocities, spins, friction work, dissipation and energy balance within 1e-8; the time below
-/// the friction limit within 1e-3 of the duration (a stick shorter than a step between two slides can still pass
-/// unseen, on either path: docs/numerics.md#the-slide-path-by-taylor-series). (A wall the reference does not leave —
-/// it presses on — is passed over.)
+/// the friction limit within 1e-6 of the duration (over 4200 such walls one was 2.2e-6 off, on both paths:
+/// docs/numerics.md#the-slide-path-by-taylor-series). (A wall the reference does not leave — it presses on — is
+/// passed over.)
 #[test]
 fn random_walls_agree_with_the_3d_model_on_both_slide_paths() {
     let mut compared = 0;
@@ -406,7 +413,7 @@ fn random_walls_agree_with_the_3d_model_on_both_slide_paths() {
         for method in ["auto", "taylor"] {
             let report = run(&format!("{text}\n[solver]\nmethod = \"{method}\"\n"));
             for (what, error) in differences(&report, &exact) {
-                let tolerance = if what == "time below the limit" { 1e-3 } else { 1e-8 };
+                let tolerance = if what == "time below the limit" { 1e-6 } else { 1e-8 };
                 assert!(error <= tolerance, "{method}: {what} {error:e}\n{text}");
             }
         }

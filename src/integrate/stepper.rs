@@ -545,24 +545,75 @@ where
             for (value, event) in values.iter_mut().zip(events) {
                 *value = event.value(&next);
             }
+            // (A dip counts where it is deeper than the step's error in the functions' sizes at its ends, rtol
+            // times them, and their rounding: a stick's room, a rounding's share of the limit at its start and
+            // touching zero where the stick barely holds, is a difference of two sizes, each known to rtol.)
+            let floor = ROUNDING_SHARE.max(rtol)
+                * previous_values.iter().chain(&values).fold(0.0_f64, |most, v| most.max(v.abs()));
             // A step that carries a function through zero ends where the first of them falls (located on the step's
             // polynomial): the others are read within the stretch the first event leaves meaningful (beyond a
             // separation a sliding contact's switch function reads zero, which is no fall inside the contact).
             if values.iter().zip(&previous_values).any(|(&v, &p)| falls(p, v)) {
-                let mut earliest = h;
+                let (mut earliest, mut first) = (h, usize::MAX);
                 for (i, event) in events.iter().enumerate() {
                     if falls(previous_values[i], values[i]) {
                         let resolution = |t: f64| 4.0 * f64::EPSILON * t.abs().max(h);
                         let at = |t: f64| Ok(horner(&self.series, t));
                         if let Ok(crossing) =
                             bracketed(event, i, (0.0, previous_values[i]), (h, values[i], next.clone()), resolution, at)
+                            && crossing.time <= earliest
                         {
-                            earliest = earliest.min(crossing.time);
+                            (earliest, first) = (crossing.time, i);
                         }
                     }
                 }
                 if earliest < h {
                     h = earliest;
+                    next = horner(&self.series, h);
+                    for (value, event) in values.iter_mut().zip(events) {
+                        *value = event.value(&next);
+                    }
+                }
+                // Another function that is not clearly positive where the step now ends (one that vanishes with the
+                // first: a sliding contact's switch functions, in regularised time, with the penetration at its
+                // separation) may have dipped below zero before, and risen back, inside the step, its slope at the
+                // ends no guide: its slope is read at SCAN points, and each stretch where it turns from falling to
+                // rising is read at its minimum.
+                let delta = h * SLOPE_SHARE;
+                let mut first_dip = h;
+                for (i, event) in events.iter().enumerate() {
+                    let start = previous_values[i];
+                    if i == first || !(start > 0.0 && values[i] <= self.tolerances.rtol * start) {
+                        continue;
+                    }
+                    // (The function's size over the step, the measure of a dip's depth: at a mode's start a switch
+                    // function is within rounding of zero.)
+                    let g = |t: f64| event.value(&horner(&self.series, t));
+                    let times: Vec<f64> = (0..=SCAN).map(|j| j as f64 * (h - delta) / SCAN as f64).collect();
+                    let read: Vec<(f64, f64)> = times
+                        .iter()
+                        .map(|&t| {
+                            let at = g(t);
+                            (at, (g(t + delta) - at) / delta)
+                        })
+                        .collect();
+                    let scale = read.iter().fold(start, |most, (at, _)| most.max(at.abs()));
+                    for j in 1..=SCAN {
+                        if times[j - 1] >= first_dip {
+                            break;
+                        }
+                        if read[j - 1].1 < 0.0
+                            && read[j].1 > 0.0
+                            && let Some(below) =
+                                self.dip(event, (times[j - 1], times[j] + delta), (scale, floor), delta)
+                        {
+                            first_dip = first_dip.min(below);
+                            break;
+                        }
+                    }
+                }
+                if first_dip < h {
+                    h = first_dip;
                     next = horner(&self.series, h);
                     for (value, event) in values.iter_mut().zip(events) {
                         *value = event.value(&next);
@@ -586,7 +637,7 @@ where
                 start_slopes[i] = end_slope;
                 if falling
                     && end_slope > 0.0
-                    && let Some(below) = self.dip(event, h, delta)
+                    && let Some(below) = self.dip(event, (0.0, h), (previous_values[i].max(values[i]), floor), delta)
                 {
                     h = below;
                     next = horner(&self.series, h);
@@ -620,17 +671,18 @@ where
 
     /// Where on the current step's polynomial, inside `(0, h)` (offsets from the step's start), where `event`'s
     /// function is positive at both ends and its slope falls at the start and rises at the end, the function is
-    /// below zero by more than the step's accuracy (rtol times the larger of the function's values at its ends:
-    /// less is the rounding of a function that starts at zero, at a switch, or a dip the step does not resolve): the
+    /// below zero by more than the step's accuracy (rtol times `scale`, the function's size over the step, and at
+    /// least `floor`, the rounding of the functions' sizes: less is the rounding of a function that starts at zero,
+    /// at a switch, or a dip the step does not resolve): the
     /// minimum sought by the Illinois variant of regula falsi on the slope (a difference over `delta`), stopping at
     /// the first trial that deep; `None` where the minimum is not.
-    fn dip(&self, event: &EventOf<'_, D>, h: f64, delta: f64) -> Option<f64> {
+    fn dip(&self, event: &EventOf<'_, D>, (a, b): (f64, f64), (scale, floor): (f64, f64), delta: f64) -> Option<f64> {
         let g = |t: f64| event.value(&horner(&self.series, t));
         let slope = |t: f64, at: f64| (g(t + delta) - at) / delta;
-        let (mut lo, mut hi) = (0.0, h - delta);
-        let (g_lo, g_hi) = (g(lo), g(hi));
-        let depth = -self.tolerances.rtol * g_lo.abs().max(g_hi.abs());
-        let (mut s_lo, mut s_hi) = (slope(lo, g_lo), slope(hi, g_hi));
+        let (mut lo, mut hi) = (a, b - delta);
+        let depth = -(self.tolerances.rtol * scale).max(floor);
+        let (mut s_lo, mut s_hi) = (slope(lo, g(lo)), slope(hi, g(hi)));
+        let h = b - a;
         if !(s_lo < 0.0 && s_hi > 0.0) {
             return None;
         }
@@ -673,6 +725,13 @@ pub const NO_SERIES: &str = "the model has no Taylor series here";
 /// The share of its reach a Taylor step takes where an event function is zero at its start (see
 /// [`StepperOf::advance_taylor`]).
 const LEAVING_ZERO: f64 = 1.0 / 64.0;
+
+/// The share of the event functions' sizes a dip must reach below zero to count, at least (see
+/// [`StepperOf::dip`]).
+const ROUNDING_SHARE: f64 = 64.0 * f64::EPSILON;
+
+/// The points of a Taylor step where a function is read for a dip inside it, in a step that ends at a fall.
+const SCAN: usize = 16;
 
 /// The share of a Taylor step an event function's slope is differenced over (see [`StepperOf::dip`]).
 const SLOPE_SHARE: f64 = 1.0 / 16_777_216.0;
