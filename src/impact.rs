@@ -185,11 +185,14 @@ fn through_phases(
         return fixed_step_outcome(scheme, scene, setup, recording);
     }
     let covered = setup.motion == Motion::Normal && crate::fast::covers(&setup.law);
-    // A frictional sphere on a wall whose laws are polynomials in the slide's variables (dynamics/slide/series.rs).
-    let slide_series = setup.motion == Motion::Full
-        && smooth_in_regularised_time(&setup.law)
-        && SlideContact::new(&scene.bodies, setup, scene.contact.separation).is_some_and(|slide| slide.has_series());
-    if method == Method::Taylor && !covered && !slide_series {
+    // Asked for by name: a frictional sphere on a wall whose laws are polynomials in the slide's variables
+    // (dynamics/slide/series.rs), the slide by Taylor series.
+    let taylor_slide =
+        (method == Method::Taylor && setup.motion == Motion::Full && smooth_in_regularised_time(&setup.law))
+            .then(|| SlideContact::new(&scene.bodies, setup, scene.contact.separation))
+            .flatten()
+            .filter(SlideContact::has_series);
+    if method == Method::Taylor && !covered && taylor_slide.is_none() {
         return Err(SimulationError::Setup(SetupError {
             key: "solver.method".into(),
             message: if setup.motion != Motion::Normal {
@@ -240,21 +243,17 @@ fn through_phases(
             // is run again as the general path runs it, so that how a contact ends is that path's to say.
             // Its tangential motion stays on one line (dynamics/slide.rs): the normal motion and three tangential
             // states take the place of the 3-D model's, at a fraction of its cost.
-            // The slide by Taylor series first, where its laws are polynomials in its state (dynamics/slide/series.rs).
             // The slide by Taylor series, asked for by name only (`auto` keeps the Dop853 slide: a Taylor step can
             // straddle a stick–slip interval shorter than itself, docs/numerics.md#the-slide-path-by-taylor-series,
             // which the report's note says). It gives the report and the 3-D model the history (as the normal fast
             // path does), and a run that does not end in a separation is an error rather than a fallback.
-            if slide_series
-                && method == Method::Taylor
-                && let Some(slide) = SlideContact::new(&scene.bodies, setup, scene.contact.separation)
-            {
+            if let Some(slide) = taylor_slide {
                 let uncovered = || {
                     SimulationError::Integration(IntegrationError::Solver {
                         time: 0.0,
-                        reason: "the slide by Taylor series cannot take this contact: it slides with no spring force \
-                                 (from first contact, or from the magnitude cap's corner), the friction's direction then \
-                                 following the slip's sign, which turns inside a step; use \"auto\""
+                        reason: "the slide by Taylor series cannot take this contact: it met a state it has no series \
+                                 for (a slide with no direction, its slip exactly zero, or a slide on the compressive \
+                                 limit of a law that pulls once the limit's corner is no longer watched); use \"auto\""
                             .into(),
                     })
                 };

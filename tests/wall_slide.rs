@@ -259,8 +259,8 @@ fn dop853_or_a_history_keeps_the_3d_model() {
 /// The slide by Taylor series at every tolerance from 1e-4 to 1e-13 — Taylor orders 8 to 22, whose step sizes come
 /// from series that are sparse at first contact (Tsuji's and Kelvin–Voigt's have only a few nonzero coefficients
 /// there) — on test 4 (both regimes), Kelvin–Voigt and Tsuji under the magnitude cap: the path is `taylor-slide` (a
-/// step that jumped past maximum compression would end in an error), and the velocities and spins come within 100 times the tolerance of the
-/// 3-D model in physical time at 1e-13.
+/// step that jumped past maximum compression would end in an error), and the velocities and spins come within 100
+/// times the tolerance of the 3-D model in physical time at 1e-13.
 #[test]
 fn the_taylor_slide_holds_its_tolerance_at_every_order() {
     let cases = [

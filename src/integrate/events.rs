@@ -150,10 +150,10 @@ where
 /// [`locate`] where the solution is as cheap as an interpolant (a Taylor step's polynomial): the Illinois variant of
 /// regula falsi on the bracket, each trial at least the resolution inside it (so that a trial converging on one end
 /// proves the bracket with the next) and a 64th of it inside an end of the step's own, and a bisection after two
-/// trials that did not halve it, until the bracket is within the resolution; the crossing is the bracket's end past the zero (the function at or below it). No trial
-/// ends the search by a short step alone: from an end within rounding of zero (a switch function at the start of
-/// its mode), regula falsi's first trials move by ulps, and stopping there would place the crossing at the start
-/// rather than where the function falls.
+/// trials that did not halve it, until the bracket is within the resolution; the crossing is the bracket's end past
+/// the zero (the function at or below it). No trial ends the search by a short step alone: from an end within
+/// rounding of zero (a switch function at the start of its mode), regula falsi's first trials move by ulps, and
+/// stopping there would place the crossing at the start rather than where the function falls.
 pub(crate) fn bracketed<D: Dim>(
     event: &EventOf<'_, D>,
     index: usize,

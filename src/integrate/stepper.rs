@@ -513,7 +513,7 @@ where
                 return (t, y.clone(), None, step, Some(NO_SERIES.into()));
             }
             let order = self.series.len() - 1;
-            let floor = atol / rtol;
+            let absolute = atol / rtol;
             // The radius from the upper half of the orders (a series may be sparse: at first contact Hertz's
             // `q'' = -q⁹/4` has only every tenth coefficient, and the last two alone can both be zero), from all of
             // them where those are all zero. (The power is monotonic: the smallest ratio over the components, then
@@ -521,7 +521,7 @@ where
             let ratio = |k: usize| {
                 let mut least = f64::INFINITY;
                 for i in 0..y.len() {
-                    least = least.min((y[i].abs() + floor) / self.series[k][i].abs());
+                    least = least.min((y[i].abs() + absolute) / self.series[k][i].abs());
                 }
                 least.powf(1.0 / k as f64)
             };
@@ -536,19 +536,15 @@ where
                 h *= LEAVING_ZERO;
             }
             first = false;
-            let h = h.min(t_end - t);
+            let mut h = h.min(t_end - t);
             if h.is_nan() || h <= 0.0 || t + h == t {
                 return (t, y.clone(), None, step, Some("the step size underflowed".into()));
             }
-            let mut h = h;
-            let mut next = horner(&self.series, h);
-            for (value, event) in values.iter_mut().zip(events) {
-                *value = event.value(&next);
-            }
+            let mut next = self.read_at(h, events, &mut values);
             // (A dip counts where it is deeper than the step's error in the functions' sizes at its ends, rtol
             // times them, and their rounding: a stick's room, a rounding's share of the limit at its start and
             // touching zero where the stick barely holds, is a difference of two sizes, each known to rtol.)
-            let floor = ROUNDING_SHARE.max(rtol)
+            let shallowest = ROUNDING_SHARE.max(rtol)
                 * previous_values.iter().chain(&values).fold(0.0_f64, |most, v| most.max(v.abs()));
             // A step that carries a function through zero ends where the first of them falls (located on the step's
             // polynomial): the others are read within the stretch the first event leaves meaningful (beyond a
@@ -569,10 +565,7 @@ where
                 }
                 if earliest < h {
                     h = earliest;
-                    next = horner(&self.series, h);
-                    for (value, event) in values.iter_mut().zip(events) {
-                        *value = event.value(&next);
-                    }
+                    next = self.read_at(h, events, &mut values);
                 }
                 // Another function that is not clearly positive where the step now ends (one that vanishes with the
                 // first: a sliding contact's switch functions, in regularised time, with the penetration at its
@@ -583,7 +576,7 @@ where
                 let mut first_dip = h;
                 for (i, event) in events.iter().enumerate() {
                     let start = previous_values[i];
-                    if i == first || !(start > 0.0 && values[i] <= self.tolerances.rtol * start) {
+                    if i == first || !(start > 0.0 && values[i] <= rtol * start) {
                         continue;
                     }
                     // (The function's size over the step, the measure of a dip's depth: at a mode's start a switch
@@ -605,7 +598,7 @@ where
                         if read[j - 1].1 < 0.0
                             && read[j].1 > 0.0
                             && let Some(below) =
-                                self.dip(event, (times[j - 1], times[j] + delta), (scale, floor), delta)
+                                self.dip(event, (times[j - 1], times[j] + delta), (scale, shallowest), delta)
                         {
                             first_dip = first_dip.min(below);
                             break;
@@ -614,36 +607,35 @@ where
                 }
                 if first_dip < h {
                     h = first_dip;
-                    next = horner(&self.series, h);
-                    for (value, event) in values.iter_mut().zip(events) {
-                        *value = event.value(&next);
-                    }
+                    next = self.read_at(h, events, &mut values);
                 }
             }
             // A function that falls through zero and rises back inside the step (a stick of a fraction of a step
             // between two slides) is positive at both ends: its slope, falling at the start and rising at the end,
             // shows the minimum between them, where the function is read.
+            // (The states a slope is differenced from, each found once for all the functions.)
             let delta = h * SLOPE_SHARE;
+            let (mut ahead, mut behind) = (None, None);
             for (i, event) in events.iter().enumerate() {
                 if !(previous_values[i] > 0.0 && values[i] > 0.0) {
                     start_slopes[i] = f64::NAN;
                     continue;
                 }
                 if start_slopes[i].is_nan() {
-                    start_slopes[i] = (event.value(&horner(&self.series, delta)) - previous_values[i]) / delta;
+                    let ahead = ahead.get_or_insert_with(|| horner(&self.series, delta));
+                    start_slopes[i] = (event.value(ahead) - previous_values[i]) / delta;
                 }
-                let end_slope = (values[i] - event.value(&horner(&self.series, h - delta))) / delta;
+                let behind = behind.get_or_insert_with(|| horner(&self.series, h - delta));
+                let end_slope = (values[i] - event.value(behind)) / delta;
                 let falling = start_slopes[i] < 0.0;
                 start_slopes[i] = end_slope;
                 if falling
                     && end_slope > 0.0
-                    && let Some(below) = self.dip(event, (0.0, h), (previous_values[i].max(values[i]), floor), delta)
+                    && let Some(below) =
+                        self.dip(event, (0.0, h), (previous_values[i].max(values[i]), shallowest), delta)
                 {
                     h = below;
-                    next = horner(&self.series, h);
-                    for (value, event) in values.iter_mut().zip(events) {
-                        *value = event.value(&next);
-                    }
+                    next = self.read_at(h, events, &mut values);
                     break;
                 }
             }
@@ -669,18 +661,34 @@ where
         }
     }
 
+    /// The state on the current step's polynomial `h` past its start, with each event function's value there written
+    /// into `values`.
+    fn read_at(&self, h: f64, events: &[EventOf<'_, D>], values: &mut [f64]) -> Vector<D> {
+        let next = horner(&self.series, h);
+        for (value, event) in values.iter_mut().zip(events) {
+            *value = event.value(&next);
+        }
+        next
+    }
+
     /// Where on the current step's polynomial, inside `(0, h)` (offsets from the step's start), where `event`'s
     /// function is positive at both ends and its slope falls at the start and rises at the end, the function is
     /// below zero by more than the step's accuracy (rtol times `scale`, the function's size over the step, and at
-    /// least `floor`, the rounding of the functions' sizes: less is the rounding of a function that starts at zero,
-    /// at a switch, or a dip the step does not resolve): the
-    /// minimum sought by the Illinois variant of regula falsi on the slope (a difference over `delta`), stopping at
-    /// the first trial that deep; `None` where the minimum is not.
-    fn dip(&self, event: &EventOf<'_, D>, (a, b): (f64, f64), (scale, floor): (f64, f64), delta: f64) -> Option<f64> {
+    /// least `shallowest`, the step's error in the functions' sizes: less is the rounding of a function that starts
+    /// at zero, at a switch, or a dip the step does not resolve): the minimum sought by the Illinois variant of
+    /// regula falsi on the slope (a difference over `delta`), stopping at the first trial that deep; `None` where the
+    /// minimum is not.
+    fn dip(
+        &self,
+        event: &EventOf<'_, D>,
+        (a, b): (f64, f64),
+        (scale, shallowest): (f64, f64),
+        delta: f64,
+    ) -> Option<f64> {
         let g = |t: f64| event.value(&horner(&self.series, t));
         let slope = |t: f64, at: f64| (g(t + delta) - at) / delta;
         let (mut lo, mut hi) = (a, b - delta);
-        let depth = -(self.tolerances.rtol * scale).max(floor);
+        let depth = -(self.tolerances.rtol * scale).max(shallowest);
         let (mut s_lo, mut s_hi) = (slope(lo, g(lo)), slope(hi, g(hi)));
         let h = b - a;
         if !(s_lo < 0.0 && s_hi > 0.0) {

@@ -179,15 +179,13 @@ impl SlideContact<'_> {
         }
         let (mode, unloaded) = super::mode_of(y);
         let friction = self.tangential.friction;
-        // A slide's direction: the spring's, held for the slide. Where the spring is zero (a slide from first contact,
-        // or from the magnitude cap's corner) the force is against the slip, whose sign the model reads at each
-        // instant — a direction that turns where the slip passes through zero, inside a step: no series.
+        // A slide's direction: the spring's, held for the slide (a slide that starts with no spring holds the
+        // direction against the slip where it starts, `SlideContact::hold_direction`). One that has none — it
+        // started where the slip was exactly zero — would take the slip's sign at each instant: no series.
         if mode.is_sliding() && !unloaded && y[index::SPRING].abs() <= 1e-300 {
             return false;
         }
-        let along = || {
-            super::sign_or_zero(y[index::SPRING], -(self.initial_slip + self.slip_gain * y[index::TANGENTIAL_IMPULSE]))
-        };
+        let along = || y[index::SPRING].signum();
         // The slide's force along the line per unit normal force (0: none). With the magnitude cap the limit
         // `mu |Fn|` is `mu Fn` or `-mu Fn` over a step: its corner at `Fn = 0` is a located switch (into or out of
         // the slide under tension).
