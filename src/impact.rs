@@ -363,9 +363,11 @@ fn run_with<const N: usize, M: ContactModel<N>>(
     let requested = scene.solver.tolerances;
     let factor = model.tolerance_factor();
     let tolerances = Tolerances { rtol: requested.rtol * factor, atol: requested.atol * factor };
-    let mut stepper = Stepper::new(model, tolerances, recording != Recording::Off).scheme(scheme);
     let start = model.start();
     let frictional = model.switch_function(&start).is_some();
+    // A frictional contact's switch functions can dip below zero and back inside one step (docs/numerics.md): its
+    // steps read their slopes.
+    let mut stepper = Stepper::new(model, tolerances, recording != Recording::Off).scheme(scheme).with_dips(frictional);
     let mut phases = Phases {
         below_limit_since: (frictional && !model.sliding(&start)).then_some(0.0),
         below_limit: 0.0,

@@ -138,6 +138,11 @@ where
     /// [`Scheme::Taylor`]: the last step's coefficients, and the time they expand about (NaN: none yet).
     series: Vec<Vector<D>>,
     series_from: f64,
+    /// Whether a Dop853 or Dopri5 run reads its event functions' slopes at each accepted point, to find a function
+    /// that dips below zero and back inside one step ([`StepperOf::with_dips`]; a Taylor run always does).
+    dips: bool,
+    /// The events a run's last bracket is a suspected dip of (no sign change at its ends).
+    suspected: Vec<usize>,
 }
 
 /// Accepted steps between two calls of a stepper's tick.
@@ -157,6 +162,11 @@ where
     previous_values: &'w mut Vec<f64>,
     values: &'w mut Vec<f64>,
     bracket: Option<(Point<D>, Point<D>)>,
+    /// Whether to read the functions' slopes for dips, each function's slope at `previous` (NaN: not read yet), and
+    /// the functions a dip of which is suspected in the bracket (which may show no sign change at its ends).
+    dips: bool,
+    previous_slopes: &'w mut Vec<f64>,
+    suspected: Vec<usize>,
     record: Option<&'w mut Vec<(f64, Vector<D>)>>,
     /// The stepper's tick, the steps it had taken (accepted and rejected) when this run began, and the steps accepted
     /// in it.
@@ -199,7 +209,36 @@ where
             *value = event.value(y);
         }
         let crossed = watch.values.iter().zip(watch.previous_values.iter()).any(|(&v, &p)| falls(p, v));
-        if crossed {
+        // (A step that carries one function through zero may carry another below zero and back: a normal force
+        // through zero takes the magnitude cap's room to -|T| at that instant.)
+        if watch.dips {
+            // Each function's slope along the flow, a difference over a share of the step on the tangent.
+            let h = t - watch.previous.0;
+            let delta = h * SLOPE_SHARE;
+            let (ahead_of_previous, ahead) = (&watch.previous.1 + &watch.previous.2 * delta, y + dy * delta);
+            for (i, event) in watch.events.iter().enumerate() {
+                let (p, v) = (watch.previous_values[i], watch.values[i]);
+                if !(p > 0.0 && v > 0.0) {
+                    watch.previous_slopes[i] = f64::NAN;
+                    continue;
+                }
+                let before = match watch.previous_slopes[i] {
+                    s if s.is_nan() => (event.value(&ahead_of_previous) - p) / delta,
+                    s => s,
+                };
+                let after = (event.value(&ahead) - v) / delta;
+                watch.previous_slopes[i] = after;
+                // A dip is suspected where either end's tangent reaches zero inside the step, or the two meet below
+                // half the smaller end value (they meet `(v - p - after h) / (before - after)` from the start).
+                if before < 0.0 && after > 0.0 {
+                    let meet = (v - p - after * h) / (before - after);
+                    if p + before * h < 0.0 || v - after * h < 0.0 || p + before * meet < 0.5 * p.min(v) {
+                        watch.suspected.push(i);
+                    }
+                }
+            }
+        }
+        if crossed || !watch.suspected.is_empty() {
             watch.bracket = Some((watch.previous.clone(), (t, y.clone(), dy.clone())));
             return true;
         }
@@ -230,7 +269,20 @@ where
             tick: None,
             series: Vec::new(),
             series_from: f64::NAN,
+            dips: false,
+            suspected: Vec::new(),
         }
+    }
+
+    /// The same stepper reading, on Dop853 or Dopri5, each event function's slope at every accepted point (one
+    /// more evaluation of each function a step): where a function positive at both ends of a step falls at its
+    /// start and rises at its end, and either end's tangent reaches zero inside the step or the two meet below half
+    /// its smaller end value, the step is searched for the function's minimum by re-stepping ([`lowest`]), and a
+    /// minimum below zero ends a bracket of the crossing like any other. (A frictional contact's switch functions dip so: under the magnitude cap, the room
+    /// under the limit `mu |Fn|` falls to `-|T|` where the normal force passes through zero, for a few nanoseconds
+    /// where the spring is soft.)
+    pub fn with_dips(self, dips: bool) -> Self {
+        StepperOf { dips, ..self }
     }
 
     /// The same stepper telling `tick` the time and the steps taken every [`TICK_STEPS`] accepted steps.
@@ -309,10 +361,46 @@ where
         let mut crossings = Vec::new();
         loop {
             let (time, state, bracket, last_step, gave_up) = self.advance(start, t_end, first_step, events)?;
-            let Some((left, right)) = bracket else {
+            let Some((left, mut right)) = bracket else {
                 let ending = gave_up.map_or(Ending::TimeLimit, Ending::GaveUp);
                 return Ok(RunEndOf { time, state, ending, crossings });
             };
+            let suspected = std::mem::take(&mut self.suspected);
+            if !suspected.is_empty() {
+                // Suspected dips: the earliest minimum below zero, each read by re-stepping from the step's start, is
+                // the bracket's end; a step with none (and no sign change) goes on as accepted.
+                let largest = events
+                    .iter()
+                    .flat_map(|event| [event.value(&left.1), event.value(&right.1)])
+                    .fold(0.0_f64, |most, v| most.max(v.abs()));
+                let mut earliest: Option<Point<D>> = None;
+                for index in suspected {
+                    // (Searched over the step up to the earliest dip found so far.)
+                    let end = earliest.as_ref().unwrap_or(&right).clone();
+                    match self.dip_by_restepping(&events[index], &left, &end, largest) {
+                        Ok(Some(below)) => earliest = Some(below),
+                        Ok(None) => {}
+                        Err(IntegrationError::Solver { reason, .. }) => {
+                            let why = format!("the problem became stiff for an explicit method ({reason})");
+                            return Ok(RunEndOf {
+                                time: left.0,
+                                state: left.1,
+                                ending: Ending::GaveUp(why),
+                                crossings,
+                            });
+                        }
+                    }
+                }
+                match earliest {
+                    Some(below) => right = below,
+                    None if !events.iter().any(|event| event.crosses(&left.1, &right.1)) => {
+                        start = right;
+                        first_step = last_step;
+                        continue;
+                    }
+                    None => {}
+                }
+            }
             let mut located: Vec<(usize, CrossingOf<D>)> = Vec::new();
             for (index, event) in events.iter().enumerate() {
                 if event.crosses(&left.1, &right.1) {
@@ -397,12 +485,16 @@ where
         values.clear();
         values.resize(events.len(), 0.0);
         let (t, y) = (start.0, start.1.clone());
+        let mut previous_slopes = vec![f64::NAN; if self.dips { events.len() } else { 0 }];
         let mut watch = Watch {
             events,
             previous: start,
             previous_values: &mut previous_values,
             values: &mut values,
             bracket: None,
+            dips: self.dips,
+            previous_slopes: &mut previous_slopes,
+            suspected: Vec::new(),
             record: record.as_mut(),
             tick: self.tick,
             taken_before: self.counters.steps + self.counters.rejected_steps,
@@ -416,6 +508,7 @@ where
         let taken = solved.taken;
         let result = solved.result;
         let bracket = watch.bracket;
+        self.suspected = std::mem::take(&mut watch.suspected);
         self.record = record;
         (self.previous_values, self.values) = (previous_values, values);
         let gave_up = match result {
@@ -671,13 +764,12 @@ where
         next
     }
 
-    /// Where on the current step's polynomial, inside `(0, h)` (offsets from the step's start), where `event`'s
+    /// Where on the current step's polynomial, inside `(a, b)` (offsets from the step's start), where `event`'s
     /// function is positive at both ends and its slope falls at the start and rises at the end, the function is
     /// below zero by more than the step's accuracy (rtol times `scale`, the function's size over the step, and at
     /// least `shallowest`, the step's error in the functions' sizes: less is the rounding of a function that starts
-    /// at zero, at a switch, or a dip the step does not resolve): the minimum sought by the Illinois variant of
-    /// regula falsi on the slope (a difference over `delta`), stopping at the first trial that deep; `None` where the
-    /// minimum is not.
+    /// at zero, at a switch, or a dip the step does not resolve), its slope a difference over `delta` ([`lowest`]);
+    /// `None` where the minimum is not.
     fn dip(
         &self,
         event: &EventOf<'_, D>,
@@ -686,38 +778,48 @@ where
         delta: f64,
     ) -> Option<f64> {
         let g = |t: f64| event.value(&horner(&self.series, t));
-        let slope = |t: f64, at: f64| (g(t + delta) - at) / delta;
-        let (mut lo, mut hi) = (a, b - delta);
+        let read = |t: f64| {
+            let at = g(t);
+            Ok::<_, ()>((at, (g(t + delta) - at) / delta))
+        };
         let depth = -(self.tolerances.rtol * scale).max(shallowest);
-        let (mut s_lo, mut s_hi) = (slope(lo, g(lo)), slope(hi, g(hi)));
-        let h = b - a;
-        if !(s_lo < 0.0 && s_hi > 0.0) {
-            return None;
-        }
-        let mut side = 0i8;
-        for _ in 0..60 {
-            let trial = (lo - s_lo * (hi - lo) / (s_hi - s_lo)).clamp(lo + 0.01 * (hi - lo), hi - 0.01 * (hi - lo));
-            let at = g(trial);
-            if at < depth {
-                return Some(trial);
-            }
-            let s = slope(trial, at);
-            if s < 0.0 {
-                if side < 0 {
-                    s_hi *= 0.5;
-                }
-                (lo, s_lo, side) = (trial, s, -1);
+        lowest(read, (a, b - delta), depth, MINIMUM_RESOLUTION * (b - a)).ok().flatten()
+    }
+
+    /// A Dop853 (or Dopri5) step from `left` to `right` over which `event`'s function is positive at both ends, its
+    /// slope falling at the start and rising at the end: the point of its minimum if that is below zero by more than
+    /// the step's accuracy (rtol times its larger end value, and at least rtol, or 64 rounding units, times
+    /// `largest`, the largest event value at the step's ends: as [`StepperOf::dip`]), each trial a re-step from
+    /// `left` and the slope a difference on the tangent there ([`lowest`]); `None` where the minimum is not.
+    fn dip_by_restepping(
+        &mut self,
+        event: &EventOf<'_, D>,
+        left: &Point<D>,
+        right: &Point<D>,
+        largest: f64,
+    ) -> Result<Option<Point<D>>, IntegrationError> {
+        let h = right.0 - left.0;
+        let delta = h * SLOPE_SHARE;
+        let (p, v) = (event.value(&left.1), event.value(&right.1));
+        let depth = -(self.tolerances.rtol * p.max(v)).max(ROUNDING_SHARE.max(self.tolerances.rtol) * largest);
+        let mut read = |t: f64| {
+            let point = if t == left.0 {
+                left.clone()
+            } else if t == right.0 {
+                right.clone()
             } else {
-                if side > 0 {
-                    s_lo *= 0.5;
-                }
-                (hi, s_hi, side) = (trial, s, 1);
-            }
-            if hi - lo <= MINIMUM_RESOLUTION * h {
-                break;
-            }
-        }
-        None
+                let y = self.step_to(left, t)?;
+                let dy = self.derivative(t, &y);
+                (t, y, dy)
+            };
+            let at = event.value(&point.1);
+            let slope = (event.value(&(&point.1 + &point.2 * delta)) - at) / delta;
+            Ok::<_, IntegrationError>((at, slope))
+        };
+        let Some(t) = lowest(&mut read, (left.0, right.0), depth, MINIMUM_RESOLUTION * h)? else { return Ok(None) };
+        let y = self.step_to(left, t)?;
+        let dy = self.derivative(t, &y);
+        Ok(Some((t, y, dy)))
     }
 
     fn add(&mut self, stats: &Stats) {
@@ -747,6 +849,46 @@ const SLOPE_SHARE: f64 = 1.0 / 16_777_216.0;
 /// The share of a Taylor step within which [`StepperOf::dip`] locates a function's minimum: a minimum `ε h` off
 /// reads the function `g'' (ε h)² / 2` above it.
 const MINIMUM_RESOLUTION: f64 = 1e-7;
+
+/// Where inside `(a, b)` a function read with its slope by `read` (positive at both ends, its slope falling at `a`
+/// and rising at `b`) is below `depth` (negative): its minimum sought by the Illinois variant of regula falsi on the
+/// slope, stopping at the first trial that deep; `None` where the minimum, located to `resolution`, is not (or the
+/// slopes at the ends do not bracket one).
+fn lowest<E>(
+    mut read: impl FnMut(f64) -> Result<(f64, f64), E>,
+    (a, b): (f64, f64),
+    depth: f64,
+    resolution: f64,
+) -> Result<Option<f64>, E> {
+    let (mut lo, mut hi) = (a, b);
+    let (mut s_lo, mut s_hi) = (read(lo)?.1, read(hi)?.1);
+    if !(s_lo < 0.0 && s_hi > 0.0) {
+        return Ok(None);
+    }
+    let mut side = 0i8;
+    for _ in 0..60 {
+        let trial = (lo - s_lo * (hi - lo) / (s_hi - s_lo)).clamp(lo + 0.01 * (hi - lo), hi - 0.01 * (hi - lo));
+        let (at, s) = read(trial)?;
+        if at < depth {
+            return Ok(Some(trial));
+        }
+        if s < 0.0 {
+            if side < 0 {
+                s_hi *= 0.5;
+            }
+            (lo, s_lo, side) = (trial, s, -1);
+        } else {
+            if side > 0 {
+                s_lo *= 0.5;
+            }
+            (hi, s_hi, side) = (trial, s, 1);
+        }
+        if hi - lo <= resolution {
+            break;
+        }
+    }
+    Ok(None)
+}
 
 /// The polynomial `Σ series[k] h^k` (Horner).
 fn horner<D: Dim>(series: &[Vector<D>], h: f64) -> Vector<D>
