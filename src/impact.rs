@@ -185,13 +185,18 @@ fn through_phases(
         return fixed_step_outcome(scheme, scene, setup, recording);
     }
     let covered = setup.motion == Motion::Normal && crate::fast::covers(&setup.law);
-    // Asked for by name: a frictional sphere on a wall whose laws are polynomials in the slide's variables
-    // (dynamics/slide/series.rs), the slide by Taylor series.
-    let taylor_slide =
-        (method == Method::Taylor && setup.motion == Motion::Full && smooth_in_regularised_time(&setup.law))
+    // A frictional sphere on a wall whose laws are smooth in regularised time: its tangential motion stays on one
+    // line (dynamics/slide.rs), and `auto` takes the slide by Taylor series where its laws are polynomials in the
+    // slide's variables (dynamics/slide/series.rs), the slide by Dop853 otherwise.
+    let wall_slide = || {
+        (setup.motion == Motion::Full && smooth_in_regularised_time(&setup.law))
             .then(|| SlideContact::new(&scene.bodies, setup, scene.contact.separation))
             .flatten()
-            .filter(SlideContact::has_series);
+    };
+    let taylor_slide = (method == Method::Taylor || (method == Method::Auto && recording == Recording::Off))
+        .then(wall_slide)
+        .flatten()
+        .filter(SlideContact::has_series);
     if method == Method::Taylor && !covered && taylor_slide.is_none() {
         return Err(SimulationError::Setup(SetupError {
             key: "solver.method".into(),
@@ -211,13 +216,26 @@ fn through_phases(
             },
         }));
     }
+    let dop853_slide = if method == Method::Dop853Slide {
+        let Some(slide) = wall_slide() else {
+            return Err(SimulationError::Setup(SetupError {
+                key: "solver.method".into(),
+                message: "the dop853-slide path integrates a frictional sphere on a flat wall whose law has neither \
+                          memory nor kinks: this impact needs another path; use \"auto\" or \"dop853\""
+                    .into(),
+            }));
+        };
+        Some(slide)
+    } else {
+        None
+    };
     // `auto` takes the fast path whenever it covers the scene and no history is asked for (it has no dense output:
     // a history comes from Dop853, so that every view of one run is one solution). Asked for by name, it gives the
     // report and Dop853 the history.
     let fast = match method {
         Method::Taylor => covered,
         Method::Auto => covered && recording == Recording::Off,
-        Method::Dop853 | Method::Dopri5 | Method::Verlet | Method::SymplecticEuler => false,
+        Method::Dop853 | Method::Dopri5 | Method::Verlet | Method::SymplecticEuler | Method::Dop853Slide => false,
     };
     let normal = NormalContact::new(&scene.bodies, setup);
     if fast {
@@ -238,15 +256,26 @@ fn through_phases(
     match setup.motion {
         Motion::Normal => run(&normal, scene, setup.contact_time, recording),
         Motion::Full => {
-            // `auto` integrates a frictional sphere on a wall in regularised time, where its forces are smooth
-            // (dynamics/wall.rs), when its law has neither memory nor kinks; a run that does not end in a separation
-            // is run again as the general path runs it, so that how a contact ends is that path's to say.
-            // Its tangential motion stays on one line (dynamics/slide.rs): the normal motion and three tangential
-            // states take the place of the 3-D model's, at a fraction of its cost.
-            // The slide by Taylor series, asked for by name only (`auto` keeps the Dop853 slide: a Taylor step can
-            // straddle a stick–slip interval shorter than itself, docs/numerics.md#the-slide-path-by-taylor-series,
-            // which the report's note says). It gives the report and the 3-D model the history (as the normal fast
-            // path does), and a run that does not end in a separation is an error rather than a fallback.
+            // A frictional sphere on a wall: its tangential motion stays on one line (dynamics/slide.rs), the normal
+            // motion and three tangential states in regularised time taking the place of the 3-D model's, at a
+            // fraction of its cost. `auto` runs it by Taylor series where the series cover it, by Dop853 otherwise
+            // (or where the series meet a state they do not cover), and otherwise in regularised time on the 3-D
+            // model (dynamics/wall.rs) when the law has neither memory nor kinks; a run that does not end in a
+            // separation is run again as the general path runs it, so that how a contact ends is that path's to say.
+            // Either slide asked for by name gives the report, the 3-D model the history (as the normal fast path
+            // does), and a run that does not end in a separation is an error rather than a fallback.
+            let history = |recording: Recording| match recording {
+                Recording::Off => Ok(None),
+                _ => run(&PairContact::new(&scene.bodies, setup), scene, setup.contact_time, recording).map(|r| r.1),
+            };
+            let not_separated = |outcome: &Outcome, name: &str| {
+                SimulationError::Integration(IntegrationError::Solver {
+                    time: outcome.end.time / setup.scales.time,
+                    reason: format!(
+                        "the {name} path did not end in a separation (use \"auto\", which then takes another path)"
+                    ),
+                })
+            };
             if let Some(slide) = taylor_slide {
                 let uncovered = || {
                     SimulationError::Integration(IntegrationError::Solver {
@@ -257,36 +286,37 @@ fn through_phases(
                             .into(),
                     })
                 };
+                let by_name = method == Method::Taylor;
                 match run_with(&slide, scene, setup.contact_time, Recording::Off, Scheme::Taylor) {
                     Ok((mut outcome, _)) if outcome.separated && outcome.ending == Ending::Event(0) => {
                         outcome.method = TAYLOR_SLIDE;
                         outcome.switches -= slide.unloadings();
-                        outcome.note = Some(TAYLOR_SLIDE_NOTE.into());
-                        let history = match recording {
-                            Recording::Off => None,
-                            _ => run(&PairContact::new(&scene.bodies, setup), scene, setup.contact_time, recording)?.1,
-                        };
-                        return Ok((outcome, history));
+                        return Ok((outcome, history(recording)?));
                     }
+                    // (`auto` goes on to the Dop853 slide.)
+                    _ if !by_name => {}
                     Ok((outcome, _)) => {
                         if matches!(&outcome.ending, Ending::GaveUp(reason) if reason.contains(NO_SERIES)) {
                             return Err(uncovered());
                         }
-                        return Err(SimulationError::Integration(IntegrationError::Solver {
-                            time: outcome.end.time / setup.scales.time,
-                            reason: "the taylor path's slide did not end in a separation (use \"auto\", which \
-                                     then runs it on Dop853)"
-                                .into(),
-                        }));
+                        return Err(not_separated(&outcome, "taylor"));
                     }
                     Err(SimulationError::Compression(reason)) if reason.contains(NO_SERIES) => return Err(uncovered()),
                     Err(error) => return Err(error),
                 }
             }
+            if let Some(slide) = dop853_slide {
+                let (mut outcome, _) = run(&slide, scene, setup.contact_time, Recording::Off)?;
+                if !(outcome.separated && outcome.ending == Ending::Event(0)) {
+                    return Err(not_separated(&outcome, "dop853-slide"));
+                }
+                outcome.method = SLIDE;
+                outcome.switches -= slide.unloadings();
+                return Ok((outcome, history(recording)?));
+            }
             if method == Method::Auto
                 && recording == Recording::Off
-                && smooth_in_regularised_time(&setup.law)
-                && let Some(slide) = SlideContact::new(&scene.bodies, setup, scene.contact.separation)
+                && let Some(slide) = wall_slide()
                 && let Ok((mut outcome, None)) = run(&slide, scene, setup.contact_time, Recording::Off)
                 && outcome.separated
                 && outcome.ending == Ending::Event(0)
@@ -319,14 +349,6 @@ pub const REGULARISED: &str = "dop853-regularised";
 /// The report's `solver.method` for a frictional sphere on a wall whose tangential motion stays on one line, by
 /// Taylor series in regularised time ([`SlideContact`], [`Scheme::Taylor`]).
 pub const TAYLOR_SLIDE: &str = "taylor-slide";
-
-/// What the report says of a run of the slide by Taylor series (its `note`).
-pub const TAYLOR_SLIDE_NOTE: &str = "the slide by Taylor series (method = \"taylor\") takes steps of about a twentieth of \
-     the contact and reads its switch functions inside them: over 4200 random frictional walls at the default \
-     tolerance, one came out more than 1e-6 off the 3-D model (2.2e-6 of the duration in the time below the friction \
-     limit, as the Dop853 slide's); at loose tolerances it is the less accurate of the two (at rtol 6e-5 the \
-     velocities up to 8e-6 of the approach speed off, against 4e-8; at 6e-7 a stick that barely holds was judged to \
-     slip) (docs/numerics.md#the-slide-path-by-taylor-series)";
 
 /// The report's `solver.method` for a frictional sphere on a wall whose tangential motion stays on one line,
 /// integrated in regularised time ([`SlideContact`]).
@@ -605,7 +627,7 @@ fn fixed_scheme(method: Method) -> Option<fixed_step::Scheme> {
     match method {
         Method::Verlet => Some(fixed_step::Scheme::Verlet),
         Method::SymplecticEuler => Some(fixed_step::Scheme::SymplecticEuler),
-        Method::Auto | Method::Dop853 | Method::Dopri5 | Method::Taylor => None,
+        Method::Auto | Method::Dop853 | Method::Dopri5 | Method::Taylor | Method::Dop853Slide => None,
     }
 }
 

@@ -226,14 +226,14 @@ fn the_oblique_study_measures_frictional_impacts_beside_their_twins() {
     let header: Vec<&str> = lines.next().expect("a header").split(',').collect();
     let column = |name: &str| header.iter().position(|c| *c == name).expect("a column");
     let rows: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();
-    // Five cases, four paths (the wall's Taylor slide; for two spheres their central twin), two tolerances.
+    // Five cases, four paths (the wall's Dop853 slide; for two spheres their central twin), two tolerances.
     assert_eq!(rows.len(), 40, "{csv}");
     for row in &rows {
         let (path, method) = (row[column("path")], row[column("method")]);
         let wall = row[column("case")].starts_with("chung-ooi");
         match path {
-            "auto" => assert_eq!(method, if wall { "dop853-slide" } else { "dop853" }, "{row:?}"),
-            "taylor" => assert!(wall && method == "taylor-slide", "{row:?}"),
+            "auto" => assert_eq!(method, if wall { "taylor-slide" } else { "dop853" }, "{row:?}"),
+            "dop853-slide" => assert!(wall && method == "dop853-slide", "{row:?}"),
             "dop853" => assert_eq!(method, "dop853", "{row:?}"),
             "frictionless" => assert_eq!(method, if wall { "taylor" } else { "dop853" }, "{row:?}"),
             "central" => assert!(!wall && method == "taylor", "{row:?}"),

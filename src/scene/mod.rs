@@ -156,6 +156,9 @@ pub enum Method {
     /// The Taylor-series integrator of the regularised normal contact (`crate::fast`): the 1-D normal impact of
     /// every law but Brilliantov's.
     Taylor,
+    /// A frictional sphere on a flat wall by Dop853 in regularised time, its tangential motion on one line
+    /// (`crate::dynamics::slide`): the path `auto` took for it before the slide by Taylor series; for comparison.
+    Dop853Slide,
     /// The DEM velocity Verlet of LAMMPS and LIGGGHTS at the fixed step `dt` (`crate::fixed_step`): the e a peer
     /// code gives, beside the accurate one. The 1-D normal contact only.
     Verlet,
@@ -165,11 +168,12 @@ pub enum Method {
 
 impl Method {
     /// Every method, by its scene spelling.
-    pub const ALL: [(&'static str, Method); 6] = [
+    pub const ALL: [(&'static str, Method); 7] = [
         ("auto", Method::Auto),
         ("dop853", Method::Dop853),
         ("dopri5", Method::Dopri5),
         ("taylor", Method::Taylor),
+        ("dop853-slide", Method::Dop853Slide),
         ("verlet", Method::Verlet),
         ("symplectic-euler", Method::SymplecticEuler),
     ];
