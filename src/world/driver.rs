@@ -941,7 +941,9 @@ impl<'a> World<'a> {
                 progress.record(time + t * units.time, ended, taken + steps);
             }
         };
-        let mut stepper = StepperOf::new(&island, tolerances, self.observer.is_some()).with_budget(left);
+        let mut stepper = StepperOf::new(&island, tolerances, self.observer.is_some())
+            .with_budget(left)
+            .with_dips(island.caps_friction_by_magnitude());
         if progress.is_some() {
             stepper = stepper.with_tick(&tick);
         }

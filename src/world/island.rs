@@ -425,6 +425,13 @@ impl<'a> Island<'a> {
         self.turning_slot[m].map(|r| self.turn(r, y))
     }
 
+    /// Whether a contact of the island caps its friction at `mu |Fn|` (the magnitude cap): its room under the limit
+    /// dips to `-|T|` where a damped law's normal force passes through zero, for a few nanoseconds with a soft
+    /// spring, and the island's steps then read their event functions' slopes (`StepperOf::with_dips`).
+    pub fn caps_friction_by_magnitude(&self) -> bool {
+        self.tangentials.iter().flatten().any(|law| law.cap == FrictionCap::Magnitude)
+    }
+
     /// Whether body `k` is a member whose orientation the island integrates.
     pub fn turns(&self, k: usize) -> bool {
         self.turning_of(k).is_some()

@@ -7,6 +7,7 @@ pub mod edge_ode;
 pub mod oblique;
 pub mod random;
 pub mod rocking;
+pub mod slider;
 pub mod vectors;
 
 use impact::impact::simulate;
