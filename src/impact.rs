@@ -387,9 +387,7 @@ fn run_with<const N: usize, M: ContactModel<N>>(
     let tolerances = Tolerances { rtol: requested.rtol * factor, atol: requested.atol * factor };
     let start = model.start();
     let frictional = model.switch_function(&start).is_some();
-    // A frictional contact's switch functions can dip below zero and back inside one step (docs/numerics.md): its
-    // steps read their slopes.
-    let mut stepper = Stepper::new(model, tolerances, recording != Recording::Off).scheme(scheme).with_dips(frictional);
+    let mut stepper = Stepper::new(model, tolerances, recording != Recording::Off).scheme(scheme);
     let mut phases = Phases {
         below_limit_since: (frictional && !model.sliding(&start)).then_some(0.0),
         below_limit: 0.0,
@@ -428,7 +426,7 @@ fn run_with<const N: usize, M: ContactModel<N>>(
         compression.push(event(&next_above, true));
     }
     if frictional {
-        compression.push(event(&switch, true));
+        compression.push(Event { dips: true, ..event(&switch, true) });
     }
     let compressed = phases.run(&mut stepper, model, 0.0, start, &compression, frictional)?;
     phases.resumable.clear();
@@ -468,7 +466,7 @@ fn run_with<const N: usize, M: ContactModel<N>>(
     let tension_events = restitution.len();
     if tension {
         restitution.push(event(&force, false));
-        restitution.push(Event { function: &force, direction: Direction::Rising, terminal: false });
+        restitution.push(Event { function: &force, direction: Direction::Rising, terminal: false, dips: false });
     }
     if !below.is_empty() {
         phases.resumable.push((restitution.len(), &passed));
@@ -495,7 +493,7 @@ fn run_with<const N: usize, M: ContactModel<N>>(
         restitution.push(event(&uncut, true));
     }
     if frictional {
-        restitution.push(event(&switch, true));
+        restitution.push(Event { dips: true, ..event(&switch, true) });
     }
     let released = phases.run(&mut stepper, model, compressed.time, compressed.state, &restitution, frictional)?;
     // Events 0 and 3 (with a force criterion) are separations; 1 is the motion dying out.
@@ -778,7 +776,7 @@ const MAX_CUTS: usize = 8;
 
 /// An event where `function` falls through zero.
 fn event<'a, const N: usize>(function: &'a dyn Fn(&State<N>) -> f64, terminal: bool) -> Event<'a, N> {
-    Event { function, direction: Direction::Falling, terminal }
+    Event { function, direction: Direction::Falling, terminal, dips: false }
 }
 
 /// `count` evenly spaced times over [0, end], both ends included.

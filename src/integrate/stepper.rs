@@ -138,9 +138,6 @@ where
     /// [`Scheme::Taylor`]: the last step's coefficients, and the time they expand about (NaN: none yet).
     series: Vec<Vector<D>>,
     series_from: f64,
-    /// Whether a Dop853 or Dopri5 run reads its event functions' slopes at each accepted point, to find a function
-    /// that dips below zero and back inside one step ([`StepperOf::with_dips`]; a Taylor run always does).
-    dips: bool,
     /// The events a run's last bracket is a suspected dip of (no sign change at its ends).
     suspected: Vec<usize>,
 }
@@ -162,11 +159,13 @@ where
     previous_values: &'w mut Vec<f64>,
     values: &'w mut Vec<f64>,
     bracket: Option<(Point<D>, Point<D>)>,
-    /// Whether to read the functions' slopes for dips, each function's slope at `previous` (NaN: not read yet), and
-    /// the functions a dip of which is suspected in the bracket (which may show no sign change at its ends).
-    dips: bool,
+    /// Each watched function's slope at `previous` (NaN: not read yet, or not watched for dips: [`EventOf::dips`]),
+    /// and the functions a dip of which is suspected in the bracket (which may show no sign change at its ends).
     previous_slopes: &'w mut Vec<f64>,
     suspected: Vec<usize>,
+    /// How a suspected dip is searched between accepted steps, and the work those searches did.
+    restepper: Restepper,
+    work: Counters,
     record: Option<&'w mut Vec<(f64, Vector<D>)>>,
     /// The stepper's tick, the steps it had taken (accepted and rejected) when this run began, and the steps accepted
     /// in it.
@@ -211,14 +210,14 @@ where
         let crossed = watch.values.iter().zip(watch.previous_values.iter()).any(|(&v, &p)| falls(p, v));
         // (A step that carries one function through zero may carry another below zero and back: a normal force
         // through zero takes the magnitude cap's room to -|T| at that instant.)
-        if watch.dips {
-            // Each function's slope along the flow, a difference over a share of the step on the tangent.
+        if watch.events.iter().any(|event| event.dips) {
+            // Each watched function's slope along the flow, a difference over a share of the step on the tangent.
             let h = t - watch.previous.0;
             let delta = h * SLOPE_SHARE;
             let (ahead_of_previous, ahead) = (&watch.previous.1 + &watch.previous.2 * delta, y + dy * delta);
             for (i, event) in watch.events.iter().enumerate() {
                 let (p, v) = (watch.previous_values[i], watch.values[i]);
-                if !(p > 0.0 && v > 0.0) {
+                if !(event.dips && p > 0.0 && v > 0.0) {
                     watch.previous_slopes[i] = f64::NAN;
                     continue;
                 }
@@ -238,8 +237,43 @@ where
                 }
             }
         }
+        let current = (t, y.clone(), dy.clone());
+        if !crossed && !watch.suspected.is_empty() {
+            // A step with no sign change: its suspected dips are searched here, and the run goes on unless one is
+            // found (a stop would restart the solver, its step-size history lost, for nothing). The earliest minimum
+            // below zero ends the bracket.
+            let largest =
+                watch.previous_values.iter().chain(watch.values.iter()).fold(0.0_f64, |most, v| most.max(v.abs()));
+            let mut earliest: Option<Point<D>> = None;
+            let mut searched = true;
+            for &index in &watch.suspected {
+                let end = earliest.as_ref().unwrap_or(&current);
+                let event = &watch.events[index];
+                match dip_by_restepping(
+                    self.model,
+                    watch.restepper,
+                    event,
+                    &watch.previous,
+                    end,
+                    largest,
+                    &mut watch.work,
+                ) {
+                    Ok(Some(below)) => earliest = Some(below),
+                    Ok(None) => {}
+                    // (A re-step that failed: the run stops there, and its driver says why.)
+                    Err(_) => searched = false,
+                }
+            }
+            if searched {
+                watch.suspected.clear();
+            }
+            if let Some(below) = earliest {
+                watch.bracket = Some((watch.previous.clone(), below));
+                return true;
+            }
+        }
         if crossed || !watch.suspected.is_empty() {
-            watch.bracket = Some((watch.previous.clone(), (t, y.clone(), dy.clone())));
+            watch.bracket = Some((watch.previous.clone(), current));
             return true;
         }
         // (In place: a state of run-time size is not reallocated every step.)
@@ -269,20 +303,8 @@ where
             tick: None,
             series: Vec::new(),
             series_from: f64::NAN,
-            dips: false,
             suspected: Vec::new(),
         }
-    }
-
-    /// The same stepper reading, on Dop853 or Dopri5, each event function's slope at every accepted point (one
-    /// more evaluation of each function a step): where a function positive at both ends of a step falls at its
-    /// start and rises at its end, and either end's tangent reaches zero inside the step or the two meet below half
-    /// its smaller end value, the step is searched for the function's minimum by re-stepping ([`lowest`]), and a
-    /// minimum below zero ends a bracket of the crossing like any other. (A frictional contact's switch functions dip so: under the magnitude cap, the room
-    /// under the limit `mu |Fn|` falls to `-|T|` where the normal force passes through zero, for a few nanoseconds
-    /// where the spring is soft.)
-    pub fn with_dips(self, dips: bool) -> Self {
-        StepperOf { dips, ..self }
     }
 
     /// The same stepper telling `tick` the time and the steps taken every [`TICK_STEPS`] accepted steps.
@@ -485,16 +507,21 @@ where
         values.clear();
         values.resize(events.len(), 0.0);
         let (t, y) = (start.0, start.1.clone());
-        let mut previous_slopes = vec![f64::NAN; if self.dips { events.len() } else { 0 }];
+        let mut previous_slopes = vec![f64::NAN; events.len()];
         let mut watch = Watch {
             events,
             previous: start,
             previous_values: &mut previous_values,
             values: &mut values,
             bracket: None,
-            dips: self.dips,
             previous_slopes: &mut previous_slopes,
             suspected: Vec::new(),
+            restepper: Restepper {
+                scheme: self.scheme,
+                tolerances: self.tolerances,
+                budget: self.budget.saturating_sub(self.counters.steps + self.counters.rejected_steps).max(1000),
+            },
+            work: Counters::default(),
             record: record.as_mut(),
             tick: self.tick,
             taken_before: self.counters.steps + self.counters.rejected_steps,
@@ -509,6 +536,10 @@ where
         let result = solved.result;
         let bracket = watch.bracket;
         self.suspected = std::mem::take(&mut watch.suspected);
+        let work = watch.work;
+        self.counters.steps += work.steps;
+        self.counters.rejected_steps += work.rejected_steps;
+        self.counters.evaluations += work.evaluations;
         self.record = record;
         (self.previous_values, self.values) = (previous_values, values);
         let gave_up = match result {
@@ -786,11 +817,7 @@ where
         lowest(read, (a, b - delta), depth, MINIMUM_RESOLUTION * (b - a)).ok().flatten()
     }
 
-    /// A Dop853 (or Dopri5) step from `left` to `right` over which `event`'s function is positive at both ends, its
-    /// slope falling at the start and rising at the end: the point of its minimum if that is below zero by more than
-    /// the step's accuracy (rtol times its larger end value, and at least rtol, or 64 rounding units, times
-    /// `largest`, the largest event value at the step's ends: as [`StepperOf::dip`]), each trial a re-step from
-    /// `left` and the slope a difference on the tangent there ([`lowest`]); `None` where the minimum is not.
+    /// [`dip_by_restepping`] with this stepper's scheme, tolerances and what is left of its budget, its work counted.
     fn dip_by_restepping(
         &mut self,
         event: &EventOf<'_, D>,
@@ -798,28 +825,17 @@ where
         right: &Point<D>,
         largest: f64,
     ) -> Result<Option<Point<D>>, IntegrationError> {
-        let h = right.0 - left.0;
-        let delta = h * SLOPE_SHARE;
-        let (p, v) = (event.value(&left.1), event.value(&right.1));
-        let depth = -(self.tolerances.rtol * p.max(v)).max(ROUNDING_SHARE.max(self.tolerances.rtol) * largest);
-        let mut read = |t: f64| {
-            let point = if t == left.0 {
-                left.clone()
-            } else if t == right.0 {
-                right.clone()
-            } else {
-                let y = self.step_to(left, t)?;
-                let dy = self.derivative(t, &y);
-                (t, y, dy)
-            };
-            let at = event.value(&point.1);
-            let slope = (event.value(&(&point.1 + &point.2 * delta)) - at) / delta;
-            Ok::<_, IntegrationError>((at, slope))
+        let restepper = Restepper {
+            scheme: self.scheme,
+            tolerances: self.tolerances,
+            budget: self.budget.saturating_sub(self.counters.steps + self.counters.rejected_steps).max(1000),
         };
-        let Some(t) = lowest(&mut read, (left.0, right.0), depth, MINIMUM_RESOLUTION * h)? else { return Ok(None) };
-        let y = self.step_to(left, t)?;
-        let dy = self.derivative(t, &y);
-        Ok(Some((t, y, dy)))
+        let mut work = Counters::default();
+        let found = dip_by_restepping(self.model, restepper, event, left, right, largest, &mut work);
+        self.counters.steps += work.steps;
+        self.counters.rejected_steps += work.rejected_steps;
+        self.counters.evaluations += work.evaluations;
+        found
     }
 
     fn add(&mut self, stats: &Stats) {
@@ -888,6 +904,65 @@ fn lowest<E>(
         }
     }
     Ok(None)
+}
+
+/// How to re-step a model inside an accepted step: the scheme, the tolerances, and the steps a re-step may take.
+#[derive(Debug, Clone, Copy)]
+struct Restepper {
+    scheme: Scheme,
+    tolerances: Tolerances,
+    budget: u64,
+}
+
+/// A Dop853 (or Dopri5) step from `left` to `right` over which `event`'s function is positive at both ends, its slope
+/// falling at the start and rising at the end: the point of its minimum if that is below zero by more than the step's
+/// accuracy (rtol times its larger end value, and at least rtol, or 64 rounding units, times `largest`, the largest
+/// event value at the step's ends: as [`StepperOf::dip`]), each trial a re-step from `left` and the slope a difference
+/// on the tangent there ([`lowest`]); `None` where the minimum is not. The work is added to `work`.
+fn dip_by_restepping<M: ModelOf<D>, D: Dim>(
+    model: &M,
+    restepper: Restepper,
+    event: &EventOf<'_, D>,
+    left: &Point<D>,
+    right: &Point<D>,
+    largest: f64,
+    work: &mut Counters,
+) -> Result<Option<Point<D>>, IntegrationError>
+where
+    DefaultAllocator: Allocator<D>,
+{
+    let Restepper { scheme, tolerances, budget } = restepper;
+    let h = right.0 - left.0;
+    let delta = h * SLOPE_SHARE;
+    let (p, v) = (event.value(&left.1), event.value(&right.1));
+    let depth = -(tolerances.rtol * p.max(v)).max(ROUNDING_SHARE.max(tolerances.rtol) * largest);
+    let mut point_at = |t: f64| -> Result<Point<D>, IntegrationError> {
+        if t == left.0 {
+            return Ok(left.clone());
+        }
+        if t == right.0 {
+            return Ok(right.clone());
+        }
+        let adapter = Adapter { model, watch: None };
+        let solved = solve(scheme, adapter, tolerances, left.0, left.1.clone(), t, t - left.0, budget);
+        let stats = solved.result.map_err(|error| IntegrationError::Solver { time: t, reason: in_words(&error) })?;
+        work.steps += u64::from(stats.accepted_steps);
+        work.rejected_steps += u64::from(stats.rejected_steps);
+        work.evaluations += u64::from(stats.num_eval) + 1;
+        let y = solved.last.map_or_else(|| left.1.clone(), |(_, state)| state);
+        let (rows, columns) = y.shape_generic();
+        let mut dy = Vector::<D>::zeros_generic(rows, columns);
+        model.derivative_of(t, &y, &mut dy);
+        Ok((t, y, dy))
+    };
+    let mut read = |t: f64| {
+        let point = point_at(t)?;
+        let at = event.value(&point.1);
+        let slope = (event.value(&(&point.1 + &point.2 * delta)) - at) / delta;
+        Ok::<_, IntegrationError>((at, slope))
+    };
+    let Some(t) = lowest(&mut read, (left.0, right.0), depth, MINIMUM_RESOLUTION * h)? else { return Ok(None) };
+    point_at(t).map(Some)
 }
 
 /// The polynomial `Σ series[k] h^k` (Horner).
@@ -1032,13 +1107,13 @@ mod tests {
         for scheme in [Scheme::Dop853, Scheme::Dopri5] {
             let tolerances = Tolerances { rtol: 1e-11, atol: 1e-13 };
             let mut stepper = Stepper::new(&Oscillator, tolerances, false).scheme(scheme);
-            let peak = Event { function: &rate, direction: Direction::Falling, terminal: true };
+            let peak = Event { function: &rate, direction: Direction::Falling, terminal: true, dips: false };
             let start = State::<2>::new(0.0, 1.0);
             let top = stepper.run(0.0, start, 10.0, &[peak]).unwrap();
             assert_eq!(top.ending, Ending::Event(0), "{scheme:?}");
             assert!((top.time - std::f64::consts::FRAC_PI_2).abs() < 1e-9, "{scheme:?}: {}", top.time);
             assert!((top.state[0] - 1.0).abs() < 1e-9 && top.state[1].abs() < 1e-12, "{scheme:?}");
-            let zero = Event { function: &position, direction: Direction::Falling, terminal: true };
+            let zero = Event { function: &position, direction: Direction::Falling, terminal: true, dips: false };
             let end = stepper.run(top.time, top.state, 10.0, &[zero]).unwrap();
             assert!((end.time - std::f64::consts::PI).abs() < 1e-9, "{scheme:?}: {}", end.time);
             assert!((end.state[1] + 1.0).abs() < 1e-9, "{scheme:?}");

@@ -43,7 +43,7 @@ pub fn scaled_restitution(zeta: f64, exponent: f64, separation: Separation) -> O
     let model = Scaled { exponent, zeta };
     let mut stepper = Stepper::new(&model, TOLERANCES, false);
     let turned = |y: &State<2>| y[1];
-    let compression = [Event { function: &turned, direction: Direction::Falling, terminal: true }];
+    let compression = [Event { function: &turned, direction: Direction::Falling, terminal: true, dips: false }];
     let start = State::<2>::new(0.0, 1.0);
     let deepest = stepper.run(0.0, start, TIME_LIMIT, &compression).ok()?;
     if deepest.ending != Ending::Event(0) {
@@ -56,8 +56,8 @@ pub fn scaled_restitution(zeta: f64, exponent: f64, separation: Separation) -> O
         Separation::Force => &force,
     };
     let ending = [
-        Event { function: end, direction: Direction::Falling, terminal: true },
-        Event { function: &penetration, direction: Direction::Falling, terminal: true },
+        Event { function: end, direction: Direction::Falling, terminal: true, dips: false },
+        Event { function: &penetration, direction: Direction::Falling, terminal: true, dips: false },
     ];
     let parted = stepper.run(deepest.time, deepest.state, TIME_LIMIT, &ending).ok()?;
     matches!(parted.ending, Ending::Event(_)).then(|| -parted.state[1])

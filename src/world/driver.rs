@@ -915,12 +915,15 @@ impl<'a> World<'a> {
             }));
             kinds.push((Watched::Rest, true));
         }
+        // (A stick–slip switch under the magnitude cap can dip below zero and back inside one step: watched so.)
+        let magnitude_cap = island.caps_friction_by_magnitude();
         let events: Vec<EventOf<'_, Dyn>> = functions
             .iter()
             .zip(&kinds)
             .map(|(f, &(kind, terminal))| {
                 let direction = if matches!(kind, Watched::Dip(_)) { Direction::Rising } else { Direction::Falling };
-                EventOf { function: f.as_ref(), direction, terminal }
+                let dips = magnitude_cap && matches!(kind, Watched::Switch(_));
+                EventOf { function: f.as_ref(), direction, terminal, dips }
             })
             .collect();
 
@@ -941,9 +944,7 @@ impl<'a> World<'a> {
                 progress.record(time + t * units.time, ended, taken + steps);
             }
         };
-        let mut stepper = StepperOf::new(&island, tolerances, self.observer.is_some())
-            .with_budget(left)
-            .with_dips(island.caps_friction_by_magnitude());
+        let mut stepper = StepperOf::new(&island, tolerances, self.observer.is_some()).with_budget(left);
         if progress.is_some() {
             stepper = stepper.with_tick(&tick);
         }

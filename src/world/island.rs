@@ -427,7 +427,7 @@ impl<'a> Island<'a> {
 
     /// Whether a contact of the island caps its friction at `mu |Fn|` (the magnitude cap): its room under the limit
     /// dips to `-|T|` where a damped law's normal force passes through zero, for a few nanoseconds with a soft
-    /// spring, and the island's steps then read their event functions' slopes (`StepperOf::with_dips`).
+    /// spring, and the island's stick–slip switches are then watched for dips (`EventOf::dips`).
     pub fn caps_friction_by_magnitude(&self) -> bool {
         self.tangentials.iter().flatten().any(|law| law.cap == FrictionCap::Magnitude)
     }
