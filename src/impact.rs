@@ -220,9 +220,11 @@ fn through_phases(
         let Some(slide) = wall_slide() else {
             return Err(SimulationError::Setup(SetupError {
                 key: "solver.method".into(),
-                message: "the dop853-slide path integrates a frictional sphere on a flat wall whose law has neither \
-                          memory nor kinks: this impact needs another path; use \"auto\" or \"dop853\""
-                    .into(),
+                message:
+                    "the dop853-slide path integrates a frictional sphere meeting a flat wall head-on or obliquely \
+                          (not a graze) under a law with neither memory nor kinks: this impact needs another path; use \
+                          \"auto\" or \"dop853\""
+                        .into(),
             }));
         };
         Some(slide)
@@ -276,6 +278,10 @@ fn through_phases(
                     ),
                 })
             };
+            // Whether `auto` goes on to the Dop853 slide: where the series do not cover the laws, or met a state
+            // they have no series for (a Taylor slide that ends otherwise goes to the 3-D model, whose run says how
+            // the contact ends).
+            let mut by_dop853 = true;
             if let Some(slide) = taylor_slide {
                 let uncovered = || {
                     SimulationError::Integration(IntegrationError::Solver {
@@ -287,21 +293,21 @@ fn through_phases(
                     })
                 };
                 let by_name = method == Method::Taylor;
-                match run_with(&slide, scene, setup.contact_time, Recording::Off, Scheme::Taylor) {
+                let result = run_with(&slide, scene, setup.contact_time, Recording::Off, Scheme::Taylor);
+                let no_series = match &result {
+                    Ok((outcome, _)) => matches!(&outcome.ending, Ending::GaveUp(reason) if reason.contains(NO_SERIES)),
+                    Err(SimulationError::Compression(reason)) => reason.contains(NO_SERIES),
+                    Err(_) => false,
+                };
+                match result {
                     Ok((mut outcome, _)) if outcome.separated && outcome.ending == Ending::Event(0) => {
                         outcome.method = TAYLOR_SLIDE;
                         outcome.switches -= slide.unloadings();
                         return Ok((outcome, history(recording)?));
                     }
-                    // (`auto` goes on to the Dop853 slide.)
-                    _ if !by_name => {}
-                    Ok((outcome, _)) => {
-                        if matches!(&outcome.ending, Ending::GaveUp(reason) if reason.contains(NO_SERIES)) {
-                            return Err(uncovered());
-                        }
-                        return Err(not_separated(&outcome, "taylor"));
-                    }
-                    Err(SimulationError::Compression(reason)) if reason.contains(NO_SERIES) => return Err(uncovered()),
+                    _ if !by_name => by_dop853 = no_series,
+                    _ if no_series => return Err(uncovered()),
+                    Ok((outcome, _)) => return Err(not_separated(&outcome, "taylor")),
                     Err(error) => return Err(error),
                 }
             }
@@ -316,6 +322,7 @@ fn through_phases(
             }
             if method == Method::Auto
                 && recording == Recording::Off
+                && by_dop853
                 && let Some(slide) = wall_slide()
                 && let Ok((mut outcome, None)) = run(&slide, scene, setup.contact_time, Recording::Off)
                 && outcome.separated

@@ -260,6 +260,15 @@ fn dop853_or_a_history_keeps_the_3d_model() {
     let text = scene(30.0, TEST4, [0.0; 3], 0.0);
     assert_eq!(run(&text).solver.method, "taylor-slide");
     assert_eq!(run(&format!("{text}\n[solver]\nmethod = \"dop853-slide\"\n")).solver.method, "dop853-slide");
+    // Asked for where it does not apply (two spheres), the Dop853 slide is refused, naming the key.
+    let spheres = text
+        .replace("radius = inf\nmass = inf", "radius = 0.0025\ndensity = 4000")
+        .replace("young = inf", "young = 3.8e11\npoisson = 0.23");
+    let refused = Scene::parse(&format!("{spheres}\n[solver]\nmethod = \"dop853-slide\"\n"), Path::new("spheres.toml"))
+        .map_err(|error| error.to_string())
+        .and_then(|scene| simulate(&scene, Recording::Off).map(|_| ()).map_err(|error| error.to_string()));
+    let message = refused.expect_err("two spheres are not a wall");
+    assert!(message.contains("solver.method") && message.contains("dop853-slide"), "{message}");
     assert_eq!(run(&format!("{text}\n[solver]\nmethod = \"dop853\"\n")).solver.method, "dop853");
     let scene = Scene::parse(&text, Path::new("wall_slide.toml")).unwrap();
     let recorded = simulate(&scene, Recording::Steps).unwrap();
@@ -482,7 +491,7 @@ fn tsujis_pull_releases_a_soft_spring_on_every_path() {
                 friction = 0.7955960708571866\ntangential_stiffness = 28536.36196136253\nfriction_cap = \"magnitude\"\n\
                 separation = \"penetration\"\n";
     let exact = reference(text);
-    for method in ["auto", "taylor"] {
+    for method in ["auto", "taylor", "dop853-slide", "dop853"] {
         let report = run(&format!("{text}\n[solver]\nmethod = \"{method}\"\n"));
         for (what, error) in differences(&report, &exact) {
             // (The friction work and the dissipation differ by the spring's energy the 3-D model leaves at the

@@ -237,8 +237,8 @@ where
                 }
             }
         }
-        let current = (t, y.clone(), dy.clone());
         if !crossed && !watch.suspected.is_empty() {
+            let current = (t, y.clone(), dy.clone());
             // A step with no sign change: its suspected dips are searched here, and the run goes on unless one is
             // found (a stop would restart the solver, its step-size history lost, for nothing). The earliest minimum
             // below zero ends the bracket.
@@ -273,7 +273,7 @@ where
             }
         }
         if crossed || !watch.suspected.is_empty() {
-            watch.bracket = Some((watch.previous.clone(), current));
+            watch.bracket = Some((watch.previous.clone(), (t, y.clone(), dy.clone())));
             return true;
         }
         // (In place: a state of run-time size is not reallocated every step.)
@@ -859,11 +859,12 @@ const ROUNDING_SHARE: f64 = 64.0 * f64::EPSILON;
 /// The points of a Taylor step where a function is read for a dip inside it, in a step that ends at a fall.
 const SCAN: usize = 16;
 
-/// The share of a Taylor step an event function's slope is differenced over (see [`StepperOf::dip`]).
+/// The share of a step (Taylor's, or an accepted Dop853 step's) an event function's slope is differenced over (see
+/// [`StepperOf::dip`], [`dip_by_restepping`]).
 const SLOPE_SHARE: f64 = 1.0 / 16_777_216.0;
 
-/// The share of a Taylor step within which [`StepperOf::dip`] locates a function's minimum: a minimum `ε h` off
-/// reads the function `g'' (ε h)² / 2` above it.
+/// The share of a step within which [`StepperOf::dip`] and [`dip_by_restepping`] locate a function's minimum: a
+/// minimum `ε h` off reads the function `g'' (ε h)² / 2` above it.
 const MINIMUM_RESOLUTION: f64 = 1e-7;
 
 /// Where inside `(a, b)` a function read with its slope by `read` (positive at both ends, its slope falling at `a`
@@ -943,8 +944,12 @@ where
         if t == right.0 {
             return Ok(right.clone());
         }
+        let h = t - left.0;
+        if h.abs() <= 16.0 * f64::EPSILON * left.0.abs().max(1.0) {
+            return Ok((t, &left.1 + &left.2 * h, left.2.clone()));
+        }
         let adapter = Adapter { model, watch: None };
-        let solved = solve(scheme, adapter, tolerances, left.0, left.1.clone(), t, t - left.0, budget);
+        let solved = solve(scheme, adapter, tolerances, left.0, left.1.clone(), t, h, budget);
         let stats = solved.result.map_err(|error| IntegrationError::Solver { time: t, reason: in_words(&error) })?;
         work.steps += u64::from(stats.accepted_steps);
         work.rejected_steps += u64::from(stats.rejected_steps);
