@@ -216,20 +216,17 @@ fn through_phases(
             },
         }));
     }
-    let dop853_slide = if method == Method::Dop853Slide {
-        let Some(slide) = wall_slide() else {
-            return Err(SimulationError::Setup(SetupError {
+    let dop853_slide = match method {
+        Method::Dop853Slide => Some(wall_slide().ok_or_else(|| {
+            SimulationError::Setup(SetupError {
                 key: "solver.method".into(),
-                message:
-                    "the dop853-slide path integrates a frictional sphere meeting a flat wall head-on or obliquely \
-                          (not a graze) under a law with neither memory nor kinks: this impact needs another path; use \
-                          \"auto\" or \"dop853\""
-                        .into(),
-            }));
-        };
-        Some(slide)
-    } else {
-        None
+                message: "the dop853-slide path integrates a frictional sphere meeting a flat wall head-on or \
+                          obliquely (not a graze) under a law with neither memory nor kinks: this impact needs \
+                          another path; use \"auto\" or \"dop853\""
+                    .into(),
+            })
+        })?),
+        _ => None,
     };
     // `auto` takes the fast path whenever it covers the scene and no history is asked for (it has no dense output:
     // a history comes from Dop853, so that every view of one run is one solution). Asked for by name, it gives the
@@ -392,9 +389,9 @@ fn run_with<const N: usize, M: ContactModel<N>>(
     let requested = scene.solver.tolerances;
     let factor = model.tolerance_factor();
     let tolerances = Tolerances { rtol: requested.rtol * factor, atol: requested.atol * factor };
+    let mut stepper = Stepper::new(model, tolerances, recording != Recording::Off).scheme(scheme);
     let start = model.start();
     let frictional = model.switch_function(&start).is_some();
-    let mut stepper = Stepper::new(model, tolerances, recording != Recording::Off).scheme(scheme);
     let mut phases = Phases {
         below_limit_since: (frictional && !model.sliding(&start)).then_some(0.0),
         below_limit: 0.0,

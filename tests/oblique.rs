@@ -748,9 +748,7 @@ fn a_sphere_on_a_wall_in_regularised_time_agrees_with_the_general_path() {
     for text in cases {
         let reference = run(&format!("{text}\n[solver]\nmethod = \"dop853\"\nrtol = 1e-13\natol = 1e-14\n"));
         assert_eq!(reference.solver.method, "dop853");
-        // (The series cover neither tangential damping nor the rescaled unloading.)
-        let series = !text.contains("tangential_damping") && !text.contains("rescale");
-        let auto = if series { "taylor-slide" } else { "dop853-slide" };
+        let auto = common::oblique::auto_wall_path(&text);
         for (regularised, expected) in
             [(run(&text), auto), (run(&format!("{text}\n[solver]\nmethod = \"dop853-slide\"\n")), "dop853-slide")]
         {

@@ -72,17 +72,11 @@ fn agrees(text: &str) -> f64 {
     agrees_on(text, None).max(agrees_on(text, Some("dop853-slide")))
 }
 
-/// The path `auto` takes for a frictional wall: the slide by Taylor series, but for the tangential options its
-/// series do not cover.
-fn auto_slide(text: &str) -> &'static str {
-    if text.contains("tangential_damping") || text.contains("rescale") { "dop853-slide" } else { "taylor-slide" }
-}
-
 /// [`agrees`] on the path `method` names (`None`: the scene's default, `auto`; `Some("taylor")`: the slide by
 /// Taylor series; `Some("dop853-slide")`: the slide by Dop853).
 fn agrees_on(text: &str, method: Option<&str>) -> f64 {
     let (slide, expected) = match method {
-        None => (run(text), auto_slide(text)),
+        None => (run(text), common::oblique::auto_wall_path(text)),
         Some(method) => (
             run(&format!("{text}\n[solver]\nmethod = \"{method}\"\n")),
             if method == "taylor" { "taylor-slide" } else { "dop853-slide" },
@@ -446,18 +440,7 @@ fn random_walls_agree_with_the_3d_model_on_both_slide_paths() {
 /// the stretch computes) is 6e-4 of the approach speed away.
 #[test]
 fn a_soft_spring_is_released_where_the_magnitude_caps_normal_force_passes_through_zero() {
-    let contact = common::slider::Slider {
-        radius: 0.01,
-        density: 4000.0,
-        stiffness: 1e7,
-        restitution: 0.5,
-        friction: 0.5,
-        tangential_stiffness: 1e4,
-        normal_speed: 1.0,
-        slip: 0.5,
-    };
-    let (released, kept) = (contact.velocity_after(1_000_000, true), contact.velocity_after(1_000_000, false));
-    assert!((released - kept).abs() > 5e-4, "{released} {kept}");
+    let (released, kept) = common::slider::Slider::SOFT_SPRING.released_and_kept();
     let text = "[[bodies]]\nradius = 0.01\ndensity = 4000.0\nvelocity = [0.5, 0.0, -1.0]\nyoung = 2e11\npoisson = 0.3\n\n\
                 [[bodies]]\nradius = inf\nmass = inf\nvelocity = [0.0, 0.0, 0.0]\nyoung = inf\n\n[contact]\n\
                 normal = [0.0, 0.0, -1.0]\nlaw = \"kelvin-voigt\"\nstiffness = 1e7\nexponent = 1.0\nrestitution = 0.5\n\

@@ -27,7 +27,7 @@ where
     /// its slope is read at every accepted point (a difference along the solver's derivative there, one more
     /// evaluation a step), and where it falls at a step's start and rises at its end, and either end's tangent
     /// reaches zero inside the step or the two meet below half its smaller end value, the step is searched for its
-    /// minimum by re-stepping (`StepperOf::dip_by_restepping`); a minimum below zero ends a bracket of the crossing
+    /// minimum by re-stepping (`dip_by_restepping`, stepper.rs); a minimum below zero ends a bracket of the crossing
     /// like any other. A frictional contact's stick–slip switch is so watched: under the magnitude cap the room
     /// under `mu |Fn|` falls to `-|T|` where the normal force passes through zero, for a few nanoseconds where the
     /// spring is soft. (A Taylor run reads every function's minima on its step polynomials.)

@@ -82,6 +82,22 @@ pub struct Counters {
     pub evaluations: u64,
 }
 
+impl Counters {
+    /// Adds a solver run's statistics.
+    fn add(&mut self, stats: &Stats) {
+        self.steps += u64::from(stats.accepted_steps);
+        self.rejected_steps += u64::from(stats.rejected_steps);
+        self.evaluations += u64::from(stats.num_eval);
+    }
+
+    /// Adds another count's work.
+    fn absorb(&mut self, other: Counters) {
+        self.steps += other.steps;
+        self.rejected_steps += other.rejected_steps;
+        self.evaluations += other.evaluations;
+    }
+}
+
 /// Why a run stopped.
 #[derive(Debug, Clone, PartialEq)]
 pub enum Ending {
@@ -159,8 +175,10 @@ where
     previous_values: &'w mut Vec<f64>,
     values: &'w mut Vec<f64>,
     bracket: Option<(Point<D>, Point<D>)>,
-    /// Each watched function's slope at `previous` (NaN: not read yet, or not watched for dips: [`EventOf::dips`]),
-    /// and the functions a dip of which is suspected in the bracket (which may show no sign change at its ends).
+    /// Whether any function is watched for dips ([`EventOf::dips`]); each watched function's slope at `previous`
+    /// (NaN: not read yet; empty when none is watched), and the functions a dip of which is suspected in the
+    /// bracket (which may show no sign change at its ends).
+    watches_dips: bool,
     previous_slopes: &'w mut Vec<f64>,
     suspected: Vec<usize>,
     /// How a suspected dip is searched between accepted steps, and the work those searches did.
@@ -210,11 +228,12 @@ where
         let crossed = watch.values.iter().zip(watch.previous_values.iter()).any(|(&v, &p)| falls(p, v));
         // (A step that carries one function through zero may carry another below zero and back: a normal force
         // through zero takes the magnitude cap's room to -|T| at that instant.)
-        if watch.events.iter().any(|event| event.dips) {
-            // Each watched function's slope along the flow, a difference over a share of the step on the tangent.
+        if watch.watches_dips {
+            // Each watched function's slope along the flow, a difference over a share of the step on the tangent (the
+            // states ahead of the step's ends, each found once for all the functions).
             let h = t - watch.previous.0;
             let delta = h * SLOPE_SHARE;
-            let (ahead_of_previous, ahead) = (&watch.previous.1 + &watch.previous.2 * delta, y + dy * delta);
+            let (mut ahead_of_previous, mut ahead) = (None, None);
             for (i, event) in watch.events.iter().enumerate() {
                 let (p, v) = (watch.previous_values[i], watch.values[i]);
                 if !(event.dips && p > 0.0 && v > 0.0) {
@@ -222,10 +241,14 @@ where
                     continue;
                 }
                 let before = match watch.previous_slopes[i] {
-                    s if s.is_nan() => (event.value(&ahead_of_previous) - p) / delta,
+                    s if s.is_nan() => {
+                        let previous = &watch.previous;
+                        let state = ahead_of_previous.get_or_insert_with(|| &previous.1 + &previous.2 * delta);
+                        (event.value(state) - p) / delta
+                    }
                     s => s,
                 };
-                let after = (event.value(&ahead) - v) / delta;
+                let after = (event.value(ahead.get_or_insert_with(|| y + dy * delta)) - v) / delta;
                 watch.previous_slopes[i] = after;
                 // A dip is suspected where either end's tangent reaches zero inside the step, or the two meet below
                 // half the smaller end value (they meet `(v - p - after h) / (before - after)` from the start).
@@ -238,38 +261,19 @@ where
             }
         }
         if !crossed && !watch.suspected.is_empty() {
-            let current = (t, y.clone(), dy.clone());
             // A step with no sign change: its suspected dips are searched here, and the run goes on unless one is
             // found (a stop would restart the solver, its step-size history lost, for nothing). The earliest minimum
-            // below zero ends the bracket.
-            let largest =
-                watch.previous_values.iter().chain(watch.values.iter()).fold(0.0_f64, |most, v| most.max(v.abs()));
-            let mut earliest: Option<Point<D>> = None;
-            let mut searched = true;
-            for &index in &watch.suspected {
-                let end = earliest.as_ref().unwrap_or(&current);
-                let event = &watch.events[index];
-                match dip_by_restepping(
-                    self.model,
-                    watch.restepper,
-                    event,
-                    &watch.previous,
-                    end,
-                    largest,
-                    &mut watch.work,
-                ) {
-                    Ok(Some(below)) => earliest = Some(below),
-                    Ok(None) => {}
-                    // (A re-step that failed: the run stops there, and its driver says why.)
-                    Err(_) => searched = false,
+            // below zero ends the bracket; a search that failed leaves the suspects to the driver, which says why.
+            let current = (t, y.clone(), dy.clone());
+            let suspects = (watch.events, watch.suspected.as_slice());
+            match earliest_dip(self.model, watch.restepper, suspects, &watch.previous, &current, &mut watch.work) {
+                Ok(Some(below)) => {
+                    watch.suspected.clear();
+                    watch.bracket = Some((watch.previous.clone(), below));
+                    return true;
                 }
-            }
-            if searched {
-                watch.suspected.clear();
-            }
-            if let Some(below) = earliest {
-                watch.bracket = Some((watch.previous.clone(), below));
-                return true;
+                Ok(None) => watch.suspected.clear(),
+                Err(_) => {}
             }
         }
         if crossed || !watch.suspected.is_empty() {
@@ -389,38 +393,19 @@ where
             };
             let suspected = std::mem::take(&mut self.suspected);
             if !suspected.is_empty() {
-                // Suspected dips: the earliest minimum below zero, each read by re-stepping from the step's start, is
-                // the bracket's end; a step with none (and no sign change) goes on as accepted.
-                let largest = events
-                    .iter()
-                    .flat_map(|event| [event.value(&left.1), event.value(&right.1)])
-                    .fold(0.0_f64, |most, v| most.max(v.abs()));
-                let mut earliest: Option<Point<D>> = None;
-                for index in suspected {
-                    // (Searched over the step up to the earliest dip found so far.)
-                    let end = earliest.as_ref().unwrap_or(&right).clone();
-                    match self.dip_by_restepping(&events[index], &left, &end, largest) {
-                        Ok(Some(below)) => earliest = Some(below),
-                        Ok(None) => {}
-                        Err(IntegrationError::Solver { reason, .. }) => {
-                            let why = format!("the problem became stiff for an explicit method ({reason})");
-                            return Ok(RunEndOf {
-                                time: left.0,
-                                state: left.1,
-                                ending: Ending::GaveUp(why),
-                                crossings,
-                            });
-                        }
-                    }
-                }
-                match earliest {
-                    Some(below) => right = below,
-                    None if !events.iter().any(|event| event.crosses(&left.1, &right.1)) => {
+                // Suspected dips in a step with a sign change (or whose search failed in the solver's output call):
+                // the earliest minimum below zero is the bracket's end; a step with none (and no sign change) goes on
+                // as accepted.
+                let restepper = self.restepper();
+                match earliest_dip(self.model, restepper, (events, &suspected), &left, &right, &mut self.counters) {
+                    Ok(Some(below)) => right = below,
+                    Ok(None) if !events.iter().any(|event| event.crosses(&left.1, &right.1)) => {
                         start = right;
                         first_step = last_step;
                         continue;
                     }
-                    None => {}
+                    Ok(None) => {}
+                    Err(IntegrationError::Solver { reason, .. }) => return Ok(stiff(left, &reason, crossings)),
                 }
             }
             let mut located: Vec<(usize, CrossingOf<D>)> = Vec::new();
@@ -431,15 +416,7 @@ where
                         Ok(crossing) => crossing,
                         // A stiff stretch where even re-stepping inside one accepted step runs out of steps: the run
                         // ends there, said why, rather than failing the whole simulation.
-                        Err(IntegrationError::Solver { reason, .. }) => {
-                            let why = format!("the problem became stiff for an explicit method ({reason})");
-                            return Ok(RunEndOf {
-                                time: left.0,
-                                state: left.1,
-                                ending: Ending::GaveUp(why),
-                                crossings,
-                            });
-                        }
+                        Err(IntegrationError::Solver { reason, .. }) => return Ok(stiff(left, &reason, crossings)),
                     };
                     located.push((index, crossing));
                 }
@@ -507,20 +484,18 @@ where
         values.clear();
         values.resize(events.len(), 0.0);
         let (t, y) = (start.0, start.1.clone());
-        let mut previous_slopes = vec![f64::NAN; events.len()];
+        let watches_dips = events.iter().any(|event| event.dips);
+        let mut previous_slopes = vec![f64::NAN; if watches_dips { events.len() } else { 0 }];
         let mut watch = Watch {
             events,
             previous: start,
             previous_values: &mut previous_values,
             values: &mut values,
             bracket: None,
+            watches_dips,
             previous_slopes: &mut previous_slopes,
             suspected: Vec::new(),
-            restepper: Restepper {
-                scheme: self.scheme,
-                tolerances: self.tolerances,
-                budget: self.budget.saturating_sub(self.counters.steps + self.counters.rejected_steps).max(1000),
-            },
+            restepper: self.restepper(),
             work: Counters::default(),
             record: record.as_mut(),
             tick: self.tick,
@@ -536,15 +511,12 @@ where
         let result = solved.result;
         let bracket = watch.bracket;
         self.suspected = std::mem::take(&mut watch.suspected);
-        let work = watch.work;
-        self.counters.steps += work.steps;
-        self.counters.rejected_steps += work.rejected_steps;
-        self.counters.evaluations += work.evaluations;
+        self.counters.absorb(watch.work);
         self.record = record;
         (self.previous_values, self.values) = (previous_values, values);
         let gave_up = match result {
             Ok(stats) => {
-                self.add(&stats);
+                self.counters.add(&stats);
                 None
             }
             Err(error) => {
@@ -580,14 +552,7 @@ where
             }
             return Ok(horner(&self.series, h));
         }
-        let adapter = Adapter { model: self.model, watch: None };
-        // A re-step inside one accepted step of a stiff contact may itself need many steps: it may use what is left of
-        // the run's budget (at least a thousand).
-        let left = self.budget.saturating_sub(self.counters.steps + self.counters.rejected_steps).max(1000);
-        let solved = solve(self.scheme, adapter, self.tolerances, from.0, from.1.clone(), t, h, left);
-        let stats = solved.result.map_err(|error| IntegrationError::Solver { time: t, reason: in_words(&error) })?;
-        self.add(&stats);
-        Ok(solved.last.map_or_else(|| from.1.clone(), |(_, state)| state))
+        self.restepper().step_to(self.model, from, t, &mut self.counters)
     }
 
     /// [`Scheme::Taylor`]'s coefficients at `(t, y)` into `series` (counted as a step's worth of evaluations, one
@@ -817,31 +782,11 @@ where
         lowest(read, (a, b - delta), depth, MINIMUM_RESOLUTION * (b - a)).ok().flatten()
     }
 
-    /// [`dip_by_restepping`] with this stepper's scheme, tolerances and what is left of its budget, its work counted.
-    fn dip_by_restepping(
-        &mut self,
-        event: &EventOf<'_, D>,
-        left: &Point<D>,
-        right: &Point<D>,
-        largest: f64,
-    ) -> Result<Option<Point<D>>, IntegrationError> {
-        let restepper = Restepper {
-            scheme: self.scheme,
-            tolerances: self.tolerances,
-            budget: self.budget.saturating_sub(self.counters.steps + self.counters.rejected_steps).max(1000),
-        };
-        let mut work = Counters::default();
-        let found = dip_by_restepping(self.model, restepper, event, left, right, largest, &mut work);
-        self.counters.steps += work.steps;
-        self.counters.rejected_steps += work.rejected_steps;
-        self.counters.evaluations += work.evaluations;
-        found
-    }
-
-    fn add(&mut self, stats: &Stats) {
-        self.counters.steps += u64::from(stats.accepted_steps);
-        self.counters.rejected_steps += u64::from(stats.rejected_steps);
-        self.counters.evaluations += u64::from(stats.num_eval);
+    /// How this stepper re-steps inside an accepted step: its scheme and tolerances, and what is left of its budget
+    /// (at least a thousand steps: a re-step inside one accepted step of a stiff contact may itself need many).
+    fn restepper(&self) -> Restepper {
+        let left = self.budget.saturating_sub(self.counters.steps + self.counters.rejected_steps);
+        Restepper { scheme: self.scheme, tolerances: self.tolerances, budget: left.max(1000) }
     }
 }
 
@@ -907,12 +852,75 @@ fn lowest<E>(
     Ok(None)
 }
 
+/// A run that ends at `left` because a re-step inside one accepted step ran out of steps (`reason`): a stiff stretch,
+/// said why, rather than a failure of the whole simulation.
+fn stiff<D: Dim>(left: Point<D>, reason: &str, crossings: Vec<CrossingOf<D>>) -> RunEndOf<D>
+where
+    DefaultAllocator: Allocator<D>,
+{
+    let why = format!("the problem became stiff for an explicit method ({reason})");
+    RunEndOf { time: left.0, state: left.1, ending: Ending::GaveUp(why), crossings }
+}
+
 /// How to re-step a model inside an accepted step: the scheme, the tolerances, and the steps a re-step may take.
 #[derive(Debug, Clone, Copy)]
 struct Restepper {
     scheme: Scheme,
     tolerances: Tolerances,
     budget: u64,
+}
+
+impl Restepper {
+    /// The solution at `t` reached by one (or, if rejected, a few) steps of the scheme from `from` (on its tangent
+    /// within rounding of it), the work added to `work`.
+    fn step_to<M: ModelOf<D>, D: Dim>(
+        self,
+        model: &M,
+        from: &Point<D>,
+        t: f64,
+        work: &mut Counters,
+    ) -> Result<Vector<D>, IntegrationError>
+    where
+        DefaultAllocator: Allocator<D>,
+    {
+        let h = t - from.0;
+        if h.abs() <= 16.0 * f64::EPSILON * from.0.abs().max(1.0) {
+            return Ok(&from.1 + &from.2 * h);
+        }
+        let adapter = Adapter { model, watch: None };
+        let solved = solve(self.scheme, adapter, self.tolerances, from.0, from.1.clone(), t, h, self.budget);
+        let stats = solved.result.map_err(|error| IntegrationError::Solver { time: t, reason: in_words(&error) })?;
+        work.add(&stats);
+        Ok(solved.last.map_or_else(|| from.1.clone(), |(_, state)| state))
+    }
+}
+
+/// The earliest dip below zero of the functions `suspected` (indices into `events`) over a Dop853 (or Dopri5) step
+/// from `left` to `right`, each searched by [`dip_by_restepping`] up to the earliest found so far; `None` where none
+/// dips.
+fn earliest_dip<M: ModelOf<D>, D: Dim>(
+    model: &M,
+    restepper: Restepper,
+    (events, suspected): (&[EventOf<'_, D>], &[usize]),
+    left: &Point<D>,
+    right: &Point<D>,
+    work: &mut Counters,
+) -> Result<Option<Point<D>>, IntegrationError>
+where
+    DefaultAllocator: Allocator<D>,
+{
+    let largest = events
+        .iter()
+        .flat_map(|event| [event.value(&left.1), event.value(&right.1)])
+        .fold(0.0_f64, |most, v| most.max(v.abs()));
+    let mut earliest: Option<Point<D>> = None;
+    for &index in suspected {
+        let end = earliest.as_ref().unwrap_or(right);
+        if let Some(below) = dip_by_restepping(model, restepper, &events[index], left, end, largest, work)? {
+            earliest = Some(below);
+        }
+    }
+    Ok(earliest)
 }
 
 /// A Dop853 (or Dopri5) step from `left` to `right` over which `event`'s function is positive at both ends, its slope
@@ -932,7 +940,7 @@ fn dip_by_restepping<M: ModelOf<D>, D: Dim>(
 where
     DefaultAllocator: Allocator<D>,
 {
-    let Restepper { scheme, tolerances, budget } = restepper;
+    let tolerances = restepper.tolerances;
     let h = right.0 - left.0;
     let delta = h * SLOPE_SHARE;
     let (p, v) = (event.value(&left.1), event.value(&right.1));
@@ -944,17 +952,8 @@ where
         if t == right.0 {
             return Ok(right.clone());
         }
-        let h = t - left.0;
-        if h.abs() <= 16.0 * f64::EPSILON * left.0.abs().max(1.0) {
-            return Ok((t, &left.1 + &left.2 * h, left.2.clone()));
-        }
-        let adapter = Adapter { model, watch: None };
-        let solved = solve(scheme, adapter, tolerances, left.0, left.1.clone(), t, h, budget);
-        let stats = solved.result.map_err(|error| IntegrationError::Solver { time: t, reason: in_words(&error) })?;
-        work.steps += u64::from(stats.accepted_steps);
-        work.rejected_steps += u64::from(stats.rejected_steps);
-        work.evaluations += u64::from(stats.num_eval) + 1;
-        let y = solved.last.map_or_else(|| left.1.clone(), |(_, state)| state);
+        let y = restepper.step_to(model, left, t, work)?;
+        work.evaluations += 1;
         let (rows, columns) = y.shape_generic();
         let mut dy = Vector::<D>::zeros_generic(rows, columns);
         model.derivative_of(t, &y, &mut dy);

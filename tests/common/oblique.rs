@@ -2,6 +2,13 @@
 
 use impact::report::Report;
 
+/// The path `auto` takes for a frictional sphere on a wall given by the scene `text`: the slide by Taylor series,
+/// but for the tangential options its series do not cover (tangential damping, the rescaled unloading), which take
+/// the slide by Dop853. (For the scenes of the tests, whose laws the series cover otherwise.)
+pub fn auto_wall_path(text: &str) -> &'static str {
+    if text.contains("tangential_damping") || text.contains("rescale") { "dop853-slide" } else { "taylor-slide" }
+}
+
 /// The differences of run `a` from run `b` of the same scene, each with its name: every body's velocity and spin
 /// times its radius after the impact (over the approach speed), the times below the Coulomb limit and of the slip's
 /// rest (over the duration), and the friction work and the dissipation (over the kinetic energy), each with the

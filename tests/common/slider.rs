@@ -20,6 +20,28 @@ pub struct Slider {
 }
 
 impl Slider {
+    /// The contact of the release tests (tests/wall_slide.rs, tests/world_friction.rs): a 1 cm alumina-density ball
+    /// at 1 m/s onto the wall and 0.5 m/s along it, k = 1e7 N/m, e = 0.5, mu = 0.5, a soft spring of 1e4 N/m: the
+    /// room under `mu |Fn|` dips below zero for about 2e-7 s of a 1.3e-4 s contact.
+    pub const SOFT_SPRING: Slider = Slider {
+        radius: 0.01,
+        density: 4000.0,
+        stiffness: 1e7,
+        restitution: 0.5,
+        friction: 0.5,
+        tangential_stiffness: 1e4,
+        normal_speed: 1.0,
+        slip: 0.5,
+    };
+
+    /// The tangential velocity after (m/s) with the spring released and with it kept, at a million steps each; the
+    /// two must lie more than 5e-4 m/s apart for a test against them to tell one from the other.
+    pub fn released_and_kept(&self) -> (f64, f64) {
+        let (released, kept) = (self.velocity_after(1_000_000, true), self.velocity_after(1_000_000, false));
+        assert!((released - kept).abs() > 5e-4, "released {released}, kept {kept}: too close to tell apart");
+        (released, kept)
+    }
+
     /// The sphere's tangential velocity after the contact (m/s), integrated over `steps` fixed steps, the spring cut
     /// to the limit (`release`) or only its force capped, the spring kept (what a path that steps over a stretch
     /// where the limit is below the spring computes).
