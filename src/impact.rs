@@ -279,6 +279,15 @@ fn through_phases(
             // they have no series for (a Taylor slide that ends otherwise goes to the 3-D model, whose run says how
             // the contact ends).
             let mut by_dop853 = true;
+            // A slide from first contact (or from the end of a first stick) to separation: the normal fast path's
+            // motion and the tangential one in closed form (slide_through.rs), where a sufficient condition on the
+            // normal motion says that the contact cannot stick again.
+            if method == Method::Auto
+                && let Some(slide) = &taylor_slide
+                && let Some(outcome) = crate::slide_through::outcome(slide, scene, setup, quantities)
+            {
+                return Ok((outcome, history(recording)?));
+            }
             if let Some(slide) = taylor_slide {
                 let uncovered = || {
                     SimulationError::Integration(IntegrationError::Solver {

@@ -29,6 +29,7 @@ pub mod rod_sweep;
 pub mod scales;
 pub mod scene;
 pub mod setup;
+pub mod slide_through;
 pub mod stress;
 pub mod sweep;
 pub mod text;

@@ -102,9 +102,11 @@ pub fn cases() -> Vec<(ObliqueCase, String)> {
 #[derive(Debug, Clone)]
 pub struct ObliqueRow {
     pub case: &'static str,
-    /// `auto` (the path `[solver] method = "auto"` takes with friction: a sphere on a wall by the slide by Taylor
-    /// series, two spheres on the 3-D model), `dop853` (the 3-D model in physical time, as `method = "dop853"` forces
-    /// it), for a sphere on a wall `dop853-slide` (the slide by Dop853, as `method = "dop853-slide"` asks for it),
+    /// `auto` (the path `[solver] method = "auto"` takes with friction: a sphere on a wall that slides to its end in
+    /// closed form over the normal fast path, otherwise by the slide by Taylor series; two spheres on the 3-D model),
+    /// `dop853` (the 3-D model in physical time, as `method = "dop853"` forces it), for a sphere on a wall
+    /// `taylor-slide` (the slide by Taylor series, as `method = "taylor"` asks for it) and `dop853-slide` (the slide
+    /// by Dop853, as `method = "dop853-slide"` asks for it),
     /// `frictionless` (the same contact without friction, on the path `auto` takes: the normal fast path for the
     /// wall, the 3-D model for the turning spheres) or, for two spheres, `central` (their head-on twin on the
     /// normal fast path, [`ObliqueCase::central`]).
@@ -152,7 +154,8 @@ pub fn study(
     for (case, frictionless) in cases {
         let mut paths = vec![("auto", &case.text, "auto"), ("dop853", &case.text, "dop853")];
         if case.central.is_none() {
-            // (A sphere on a wall: the slide by Dop853, asked for by name.)
+            // (A sphere on a wall: the slides by Taylor series and by Dop853, asked for by name.)
+            paths.push(("taylor-slide", &case.text, "taylor"));
             paths.push(("dop853-slide", &case.text, "dop853-slide"));
         }
         paths.push(("frictionless", frictionless, "auto"));
@@ -212,7 +215,7 @@ pub fn table(rows: &[ObliqueRow]) -> String {
         rows.iter().find(|t| t.case == r.case && t.path == path && t.tolerance == r.tolerance).map(|t| t.seconds)
     };
     for r in rows {
-        let frictional = matches!(r.path, "auto" | "dop853" | "dop853-slide");
+        let frictional = matches!(r.path, "auto" | "dop853" | "taylor-slide" | "dop853-slide");
         let ratio = |twin: Option<f64>| match twin {
             Some(seconds) if frictional => format!("{:.0}x", r.seconds / seconds),
             _ => String::new(),

@@ -21,6 +21,8 @@
 //! along its own direction; the compressive limit's corner where the normal force turns tensile is a located
 //! switch; a stick's room under the limit is counted from a rounding's share of the limit.
 
+mod closed_form;
+pub use closed_form::NormalPoint;
 mod series;
 
 use super::contact::{Kinematics, Mode, Tangential};

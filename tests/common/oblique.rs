@@ -2,11 +2,28 @@
 
 use impact::report::Report;
 
-/// The path `auto` takes for a frictional sphere on a wall given by the scene `text`: the slide by Taylor series,
-/// but for the tangential options its series do not cover (tangential damping, the rescaled unloading), which take
-/// the slide by Dop853. (For the scenes of the tests, whose laws the series cover otherwise.)
-pub fn auto_wall_path(text: &str) -> &'static str {
-    if text.contains("tangential_damping") || text.contains("rescale") { "dop853-slide" } else { "taylor-slide" }
+/// The paths `auto` may take for a frictional sphere on a wall given by the scene `text`: a slide to the end in
+/// closed form over the normal fast path's motion (where a sufficient condition says it cannot stick again), the slide
+/// by Taylor series otherwise; the slide by Dop853 for the tangential options the series do not cover (tangential
+/// damping, the rescaled unloading). (For the scenes of the tests, whose laws the series cover otherwise.)
+pub fn auto_wall_paths(text: &str) -> &'static [&'static str] {
+    if text.contains("tangential_damping") || text.contains("rescale") {
+        &["dop853-slide"]
+    } else {
+        &["closed-form-slide", "taylor-slide"]
+    }
+}
+
+/// Asserts that `auto`'s run `a` of the scene `text` took one of [`auto_wall_paths`], and the slide in closed form
+/// only where the reference `exact` (the 3-D model) slid throughout (its slip never came to rest; the time below the
+/// limit, a first stick, is among the differences compared).
+pub fn assert_auto_wall_path(a: &Report, exact: &Report, text: &str) {
+    let method: &str = a.solver.method;
+    assert!(auto_wall_paths(text).contains(&method), "{method}\n{text}");
+    if method == "closed-form-slide" {
+        let o = exact.oblique.as_ref().expect("oblique");
+        assert!(o.slip_rest_time.is_none() && o.regime == "sliding", "{}\n{text}", o.regime);
+    }
 }
 
 /// The differences of run `a` from run `b` of the same scene, each with its name: every body's velocity and spin
