@@ -283,10 +283,16 @@ fn through_phases(
             // motion and the tangential one in closed form (slide_through.rs), where a sufficient condition on the
             // normal motion says that the contact cannot stick again.
             if method == Method::Auto
-                && let Some(slide) = &taylor_slide
-                && let Some(outcome) = crate::slide_through::outcome(slide, scene, setup, quantities)
+                && recording == Recording::Off
+                && let Some(outcome) = match &taylor_slide {
+                    Some(slide) => crate::slide_through::outcome(slide, scene, setup, quantities),
+                    // (Laws the series do not cover: the first stick on Dop853.)
+                    None => {
+                        wall_slide().and_then(|slide| crate::slide_through::outcome(&slide, scene, setup, quantities))
+                    }
+                }
             {
-                return Ok((outcome, history(recording)?));
+                return Ok((outcome, None));
             }
             if let Some(slide) = taylor_slide {
                 let uncovered = || {

@@ -160,7 +160,8 @@ fn laws_options_spin_and_a_moving_wall_agree_with_the_3d_model() {
 /// A contact that slides on the Coulomb limit from its first stick to the end is carried in closed form over the
 /// normal fast path's motion (`closed-form-slide`, src/slide_through.rs): test 4 above 32.5° (Tsuji's damped force
 /// holds the spring below the limit for nanoseconds at first, a stick integrated before the closed form), Tsuji's
-/// force separation, Hunt–Crossley with spin, Kelvin–Voigt (whose force jumps at first contact), a moving wall. Each
+/// force separation, Hunt–Crossley with spin, Kelvin–Voigt (whose force jumps at first contact), a moving wall, a
+/// Hunt–Crossley exponent of 1.25 (no series: its first stick on Dop853). Each
 /// is held to the 3-D model at 1e-13 within 1e-9 ([`agrees_on`]) at the default tolerance, and within the tolerance
 /// at rtol 1e-6; the closed form must be the path `auto` takes (a sufficient condition that rejected them would
 /// send them to the integrated slide and fail here).
@@ -179,6 +180,13 @@ fn a_contact_that_slides_throughout_is_carried_in_closed_form() {
             0.0,
         ),
         moving_wall(scene(60.0, TEST4, [100.0, -200.0, 50.0], 0.0), [-0.5, 0.1, -0.4]),
+        // An exponent the series do not cover (its first stick on Dop853: n < 3/2 holds a Mindlin spring at first).
+        scene(
+            60.0,
+            "law = \"hunt-crossley\"\nexponent = 1.25\nstiffness = 1e9\nrestitution = 0.8\nfriction = 0.1",
+            [0.0, 200.0, 0.0],
+            0.0,
+        ),
     ];
     for text in cases {
         assert_eq!(run(&text).solver.method, "closed-form-slide", "{text}");
