@@ -1,58 +1,36 @@
-//! A frictional sphere on a flat wall that slides on the Coulomb limit to its end (after, at most, a first stick
-//! while the spring loads): the normal fast path's motion, and the tangential motion in closed form over it
-//! (docs/numerics.md#a-slide-in-closed-form; [`crate::dynamics::slide`]'s closed form).
+//! A frictional sphere on a flat wall whose last slide on the Coulomb limit, to its end, runs in closed form over
+//! the normal fast path's motion (docs/numerics.md#a-slide-in-closed-form; [`crate::dynamics::slide`]'s closed form),
+//! what comes before it integrated by the slide's own model.
 //!
 //! On a flat wall the normal motion does not depend on the tangential one, and a slide's tangential force is
 //! `mu Fn`: the normal fast path ([`crate::fast`]) gives the normal motion at maximum compression and at the end
 //! (and, for a law that pulls before the penetration returns to zero, where its force does), and a slide from a known
-//! state is a function of the normal impulse and the penetration there. A contact that starts below the limit
-//! (Tsuji's and Kelvin–Voigt's damped force is far above a spring that loads from nothing) is integrated, by the
-//! slide's own model, up to where its spring reaches the limit. Whether the slide then holds to the end is decided by a
-//! sufficient condition on the normal motion ([`SlideContact::slide_holds`]); a contact that may stick again, or
-//! whose slip may come to rest, is `None`: the integrated slide takes it.
+//! state is a function of the normal impulse and the penetration there. The contact is integrated (by Taylor series,
+//! or Dop853 where the series do not cover the laws) from first contact — a first stick while the spring loads, a
+//! slide whose slip comes to rest, a stick — and at each switch into a slide a sufficient condition on the normal
+//! motion ([`SlideContact::slide_holds`]) says whether that slide lasts to the end; the first that does runs in closed
+//! form. A contact that reaches its end, or the slide under tension, first is `None`: the integrated slide takes it.
 
 use crate::dynamics::ContactModel;
+use crate::dynamics::contact::MAX_SWITCHES;
 use crate::dynamics::slide::{NormalPoint, SIZE, SlideContact, index};
 use crate::fast::{Ending as FastEnding, PhasePoint, Quantities, Request};
-use crate::integrate::{Direction, Ending, Event, Scheme, Stepper, Tolerances};
+use crate::integrate::{Counters, Direction, Ending, Event, Scheme, State, Stepper, Tolerances};
 use crate::law::{Family, Separation};
 use crate::outcome::{Outcome, TIME_LIMIT};
 use crate::scene::Scene;
 use crate::setup::Setup;
 
-/// The report's `solver.method` for a contact that slid in closed form over the normal fast path's motion.
+/// The report's `solver.method` for a contact whose last slide ran in closed form over the normal fast path's motion.
 pub const CLOSED_FORM_SLIDE: &str = "closed-form-slide";
 
-/// The outcome of `slide`'s contact if it slides on the limit to its end (after a first stick at most), on the
-/// normal fast path's motion at the scene's tolerance; `None` where it may not, or the fast path does not finish.
+/// The outcome of `slide`'s contact where, from some switch on, it slides on the limit to its end: the stretches
+/// before (a first stick while the spring loads; a slide whose slip comes to rest, the stick that follows) integrated
+/// by the slide's own model, the normal fast path's motion at the scene's tolerance for the rest; `None` where no
+/// slide holds before the end, or the fast path does not finish.
 pub fn outcome(slide: &SlideContact, scene: &Scene, setup: &Setup, quantities: Quantities) -> Option<Outcome> {
     if !slide.slides_in_closed_form() || !crate::fast::covers(&setup.law) {
         return None;
-    }
-    // The first stick, integrated to where the spring reaches the limit (before maximum compression, and with no
-    // rest of the slip on the way); before the normal runs, which a stick that does not end in a slide spares.
-    let mut start = slide.start();
-    let mut steps = (0, 0, 0);
-    let stuck = !slide.sliding(&start);
-    if stuck {
-        let factor = slide.tolerance_factor();
-        let requested = scene.solver.tolerances;
-        let tolerances = Tolerances { rtol: requested.rtol * factor, atol: requested.atol * factor };
-        let scheme = if slide.has_series() { Scheme::Taylor } else { Scheme::Dop853 };
-        let mut stepper = Stepper::new(slide, tolerances, false).scheme(scheme);
-        let rate = |y: &crate::integrate::State<SIZE>| slide.rate(y);
-        let slip = |y: &crate::integrate::State<SIZE>| slide.slip_at(y);
-        let switch = |y: &crate::integrate::State<SIZE>| slide.switch_function(y).unwrap_or(1.0);
-        let falling = |function, terminal, dips| Event { function, direction: Direction::Falling, terminal, dips };
-        let events = [falling(&rate, true, false), falling(&slip, false, false), falling(&switch, true, true)];
-        let end = stepper.run(0.0, start, TIME_LIMIT, &events).ok()?;
-        if end.ending != Ending::Event(2) || !end.crossings.is_empty() {
-            return None;
-        }
-        start = end.state;
-        slide.switch(&mut start);
-        let c = stepper.counters;
-        steps = (c.steps, c.rejected_steps, c.evaluations);
     }
     let separation = scene.contact.separation;
     let rtol = scene.solver.tolerances.rtol;
@@ -60,25 +38,94 @@ pub fn outcome(slide: &SlideContact, scene: &Scene, setup: &Setup, quantities: Q
         let request = Request { law: setup.law, scales: setup.scales, separation, tolerance: rtol, quantities };
         crate::fast::simulate_normal(&request).ok().filter(|fast| fast.ending == FastEnding::Separated)
     };
-    let fast = normal(separation, quantities)?;
     // A law that pulls before its penetration returns to zero: the compressive limit ends where its force does.
     let pulls = matches!(setup.law.kind.family(), Family::Linear | Family::Tsuji);
-    let force_zero = match (pulls, separation) {
-        // (Its impulse, penetration and time alone.)
-        (true, Separation::Penetration) => {
-            let motion = Quantities { time: quantities.time, ..Quantities::MOTION };
-            Some(normal(Separation::Force, motion)?.end)
-        }
-        _ => None,
+    // The normal motion (and where the force turns tensile), first: a contact that does not separate is left to the
+    // integrated slide before any step.
+    let motion = || {
+        let fast = normal(separation, quantities)?;
+        let (mut steps, mut evaluations) = (fast.steps, fast.force_evaluations);
+        let force_zero = match (pulls, separation) {
+            // (Its impulse, penetration and time alone.)
+            (true, Separation::Penetration) => {
+                let motion = Quantities { time: quantities.time, ..Quantities::MOTION };
+                let zero = normal(Separation::Force, motion)?;
+                (steps, evaluations) = (steps + zero.steps, evaluations + zero.force_evaluations);
+                Some(zero.end)
+            }
+            _ => None,
+        };
+        Some((fast, force_zero, Counters { steps, rejected_steps: 0, evaluations }))
     };
-    let limit_end = force_zero.unwrap_or(fast.end);
-    steps = (steps.0 + fast.steps, steps.1, steps.2 + fast.force_evaluations);
+    let (fast, force_zero, normal_work) = motion()?;
+    let limit_end = force_zero.unwrap_or(fast.end).impulse;
 
-    let margin = 16.0 * rtol.max(f64::EPSILON) * slide.slip_scale(&start, limit_end.impulse);
-    if !slide.slide_holds(&start, fast.max_compression.penetration, limit_end.impulse, margin) {
-        return None;
-    }
-
+    // The stretches before the last slide, integrated: compression to its maximum, then restitution, each stopping at
+    // every stick–slip switch; the contact's end, or a switch into the slide under tension, before a slide that holds
+    // sends the contact back to the integrated slide.
+    let factor = slide.tolerance_factor();
+    let requested = scene.solver.tolerances;
+    let tolerances = Tolerances { rtol: requested.rtol * factor, atol: requested.atol * factor };
+    let scheme = if slide.has_series() { Scheme::Taylor } else { Scheme::Dop853 };
+    let mut stepper = Stepper::new(slide, tolerances, false).scheme(scheme);
+    let rate = |y: &State<SIZE>| slide.rate(y);
+    let slip = |y: &State<SIZE>| slide.slip_at(y);
+    let switch = |y: &State<SIZE>| slide.switch_function(y).unwrap_or(1.0);
+    let falling = |function, terminal, dips| Event { function, direction: Direction::Falling, terminal, dips };
+    // (In the phase driver's order, the stick–slip switch last: the phase's end first, then the slip's rest.)
+    let compression = [falling(&rate, true, false), falling(&slip, false, false), falling(&switch, true, true)];
+    let ending = |y: &State<SIZE>| slide.penetration(y);
+    // (And where a law that never pulls would, the zero of its uncut force: a creeping restitution, left to the
+    // integrated slide, which watches it.)
+    let uncut = |y: &State<SIZE>| slide.uncut_force(y).unwrap_or(1.0);
+    let restitution = [
+        falling(&ending, true, false),
+        falling(&uncut, true, false),
+        falling(&slip, false, false),
+        falling(&switch, true, true),
+    ];
+    let (mut sigma, mut y) = (0.0, slide.start());
+    let mut compressed: Option<(f64, State<SIZE>)> = None;
+    let mut below_limit_since = (!slide.sliding(&y)).then_some(0.0);
+    let (mut below_limit, mut switches, mut slip_rest) = (0.0, 0u32, None);
+    let closed = loop {
+        if slide.sliding(&y) {
+            let margin = 16.0 * rtol.max(f64::EPSILON) * slide.slip_scale(&y, limit_end);
+            if slide.slide_holds(&y, fast.max_compression.penetration, limit_end, margin) {
+                break true;
+            }
+        }
+        let (events, slip_event): (&[Event<'_, SIZE>], usize) =
+            if compressed.is_none() { (&compression, 1) } else { (&restitution, 2) };
+        let end = stepper.run(sigma, y, TIME_LIMIT, events).ok()?;
+        if slip_rest.is_none() {
+            slip_rest = end.crossings.iter().find(|c| c.event == slip_event).map(|c| c.state[index::TIME]);
+        }
+        (sigma, y) = (end.time, end.state);
+        match end.ending {
+            Ending::Event(event) if event == events.len() - 1 && switches < MAX_SWITCHES => {
+                slide.switch(&mut y);
+                switches += 1;
+                if slide.unloaded(&y) {
+                    return None;
+                }
+                let now = y[index::TIME];
+                if slide.sliding(&y) {
+                    below_limit += below_limit_since.take().map_or(0.0, |since| now - since);
+                } else {
+                    below_limit_since = Some(now);
+                }
+            }
+            Ending::Event(0) if compressed.is_none() => compressed = Some((sigma, y)),
+            // The end of the contact, reached integrating (a last slide the condition could not show to hold), for a
+            // law that never pulls (its contact ends at zero penetration whatever the criterion): the integrated end.
+            Ending::Event(0) if !pulls => {
+                below_limit += below_limit_since.take().map_or(0.0, |since| y[index::TIME] - since);
+                break false;
+            }
+            _ => return None,
+        }
+    };
     let point = |p: &PhasePoint| NormalPoint {
         time: p.time,
         penetration: p.penetration,
@@ -86,10 +133,17 @@ pub fn outcome(slide: &SlideContact, scene: &Scene, setup: &Setup, quantities: Q
         work: p.work,
         dissipated: p.dissipated,
     };
-    let deepest = slide.slid(&start, &point(&fast.max_compression), false);
-    let end = match &force_zero {
-        Some(zero) => slide.slid(&slide.slid(&start, &point(zero), false), &point(&fast.end), true),
-        None => slide.slid(&start, &point(&fast.end), false),
+    let deepest = match compressed {
+        Some((sigma, state)) => slide.snapshot(sigma, &state),
+        None => slide.snapshot(fast.max_compression.time, &slide.slid(&y, &point(&fast.max_compression), false)),
+    };
+    let end = match (closed, &force_zero) {
+        (false, _) => slide.snapshot(sigma, &y),
+        (true, Some(zero)) => {
+            let y = slide.slid(&slide.slid(&y, &point(zero), false), &point(&fast.end), true);
+            slide.snapshot(fast.end.time, &y)
+        }
+        (true, None) => slide.snapshot(fast.end.time, &slide.slid(&y, &point(&fast.end), false)),
     };
     let s = &setup.scales;
     let tensile_impulse = match (pulls, separation, &force_zero) {
@@ -97,19 +151,28 @@ pub fn outcome(slide: &SlideContact, scene: &Scene, setup: &Setup, quantities: Q
         (true, Separation::Force, None) => f64::NAN,
         _ => 0.0,
     };
-    let stick_time = if stuck { start[index::TIME] * s.time } else { 0.0 };
+    let c = stepper.counters;
     Some(Outcome {
-        max_compression: slide.snapshot(fast.max_compression.time, &deepest),
-        end: slide.snapshot(fast.end.time, &end),
+        max_compression: deepest,
+        end,
         peak_force: (fast.peak_force_time * s.time, fast.peak_force * s.force),
-        separated: fast.separated,
+        separated: if closed { fast.separated } else { slide.rate(&y) < 0.0 },
         ending: Ending::Event(0),
-        below_limit_duration: stick_time,
-        slip_rest_time: None,
-        switches: u32::from(stuck),
+        below_limit_duration: below_limit * s.time,
+        slip_rest_time: slip_rest.map(|t| t * s.time),
+        switches,
         tensile_impulse,
-        counters: crate::integrate::Counters { steps: steps.0, rejected_steps: steps.1, evaluations: steps.2 },
-        method: CLOSED_FORM_SLIDE,
+        counters: Counters {
+            steps: c.steps + normal_work.steps,
+            rejected_steps: c.rejected_steps,
+            evaluations: c.evaluations + normal_work.evaluations,
+        },
+        // (Integrated to the end: the slide by the scheme that ran, as the integrated slide's run names it.)
+        method: match (closed, scheme) {
+            (true, _) => CLOSED_FORM_SLIDE,
+            (false, Scheme::Taylor) => "taylor-slide",
+            (false, _) => "dop853-slide",
+        },
         restitution: Some((fast.restitution_impulse * s.impulse, fast.restitution_work * s.energy)),
         note: None,
         fixed_step: None,

@@ -45,13 +45,10 @@ impl SlideContact<'_> {
     /// Whether a slide of this contact can be carried in closed form: a slip at first contact along a line, the
     /// compressive limit `mu max(Fn, 0)`, no tangential damping and no rescaled unloading (both change when a slide
     /// holds), a wall approached at the scaled rate 1, and a law whose force rate is bounded as above: Hertz's, the
-    /// Hunt–Crossley family's, Kelvin–Voigt's or Tsuji's; and a slip that outlasts the compression's impulse (`m* v0`,
-    /// 1 in the scaled units: a slide to the end takes `mu` times it off the slip, times the slip gain, before the
-    /// restitution's), so that a contact whose slip must come to rest costs no normal run.
+    /// Hunt–Crossley family's, Kelvin–Voigt's or Tsuji's.
     pub fn slides_in_closed_form(&self) -> bool {
         let t = &self.tangential;
         self.slipping
-            && self.initial_slip > self.slip_gain * t.friction * self.initial_rate
             && t.damping == 0.0
             && t.unloading != TangentialUnloading::Rescale
             && t.cap == FrictionCap::Compressive
@@ -69,6 +66,11 @@ impl SlideContact<'_> {
     /// largest change, `k mu Jn`.
     pub fn slip_scale(&self, y: &State<SIZE>, impulse: f64) -> f64 {
         self.slip_at(y).abs() + self.slip_gain * self.tangential.friction * impulse.abs()
+    }
+
+    /// Whether `y` slides on the compressive limit's corner while the normal force pulls ([`UNLOADED`]).
+    pub fn unloaded(&self, y: &State<SIZE>) -> bool {
+        mode_of(y).1
     }
 
     /// The sign of a sliding state's force on the sphere's side: the spring's, which a slide holds.
