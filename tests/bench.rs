@@ -221,19 +221,22 @@ fn the_oblique_study_measures_frictional_impacts_beside_their_twins() {
     let output = impact(scratch.path(), &["bench", "--oblique", "--quick", "--out", "study"]);
     assert_success(&output);
     let text = stdout(&output);
-    assert!(text.contains("chung-ooi test 4 at 45 deg") && text.contains("vs twin"), "{text}");
+    assert!(
+        text.contains("chung-ooi test 4 at 45 deg") && text.contains("hunt-crossley wall") && text.contains("vs twin"),
+        "{text}"
+    );
     let csv = scratch.read("study/bench-oblique.csv");
     let mut lines = csv.lines();
     let header: Vec<&str> = lines.next().expect("a header").split(',').collect();
     let column = |name: &str| header.iter().position(|c| *c == name).expect("a column");
     let rows: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();
-    // Five cases, four paths for two spheres (their central twin the fourth) and five for a wall (its two slides),
+    // Six cases, four paths for two spheres (their central twin the fourth) and five for a wall (its two slides),
     // two tolerances.
-    assert_eq!(rows.len(), 2 * (2 * 4 + 3 * 5), "{csv}");
+    assert_eq!(rows.len(), 2 * (2 * 4 + 4 * 5), "{csv}");
     for row in &rows {
         let (path, method) = (row[column("path")], row[column("method")]);
         let case = row[column("case")];
-        let wall = case.starts_with("chung-ooi");
+        let wall = !case.starts_with("two free spheres");
         // (A wall: integrated up to its last slide, which runs in closed form.)
         match path {
             "auto" => assert_eq!(method, if wall { "closed-form-slide" } else { "dop853" }, "{row:?}"),

@@ -40,9 +40,9 @@ pub struct BenchArgs {
     /// .svg).
     #[arg(long)]
     pub worlds: bool,
-    /// Frictional oblique impacts instead: Chung & Ooi's test 4 at 45 and 10 degrees and two free spheres with spin,
-    /// at a sweep of tolerances against a run at 1e-13, beside the same contacts without friction
-    /// (bench-oblique.csv).
+    /// Frictional oblique impacts instead: Chung & Ooi's test 4 at 45, 10 and 30 degrees (with spin), a Hunt–Crossley
+    /// wall at 60 degrees and two free spheres with and without spin, at a sweep of tolerances against a run at 1e-13,
+    /// beside the same contacts without friction (bench-oblique.csv).
     #[arg(long, conflicts_with = "worlds")]
     pub oblique: bool,
 }
