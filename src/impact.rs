@@ -279,18 +279,14 @@ fn through_phases(
             // they have no series for (a Taylor slide that ends otherwise goes to the 3-D model, whose run says how
             // the contact ends).
             let mut by_dop853 = true;
-            // A slide from first contact (or from the end of a first stick) to separation: the normal fast path's
-            // motion and the tangential one in closed form (slide_through.rs), where a sufficient condition on the
-            // normal motion says that the contact cannot stick again.
+            // Integrated up to the last slide, that slide in closed form over the normal fast path's motion
+            // (slide_through.rs), where a sufficient condition on the normal motion shows it to last to the end. (On
+            // a contact of its own: the model's switches keep counts, which the integrated slide's run, if it
+            // follows, must start without.)
             if method == Method::Auto
                 && recording == Recording::Off
-                && let Some(outcome) = match &taylor_slide {
-                    Some(slide) => crate::slide_through::outcome(slide, scene, setup, quantities),
-                    // (Laws the series do not cover: the first stick on Dop853.)
-                    None => {
-                        wall_slide().and_then(|slide| crate::slide_through::outcome(&slide, scene, setup, quantities))
-                    }
-                }
+                && let Some(slide) = wall_slide()
+                && let Some(outcome) = crate::slide_through::outcome(&slide, scene, setup, quantities)
             {
                 return Ok((outcome, None));
             }

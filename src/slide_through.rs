@@ -9,7 +9,8 @@
 //! or Dop853 where the series do not cover the laws) from first contact — a first stick while the spring loads, a
 //! slide whose slip comes to rest, a stick — and at each switch into a slide a sufficient condition on the normal
 //! motion ([`SlideContact::slide_holds`]) says whether that slide lasts to the end; the first that does runs in closed
-//! form. A contact that reaches its end, or the slide under tension, first is `None`: the integrated slide takes it.
+//! form. A contact that reaches its end first is finished there, as the integrated slide would; one whose run gives up
+//! is `None`: the integrated slide takes it.
 
 use crate::dynamics::ContactModel;
 use crate::dynamics::contact::MAX_SWITCHES;
@@ -26,8 +27,9 @@ pub const CLOSED_FORM_SLIDE: &str = "closed-form-slide";
 
 /// The outcome of `slide`'s contact where, from some switch on, it slides on the limit to its end: the stretches
 /// before (a first stick while the spring loads; a slide whose slip comes to rest, the stick that follows) integrated
-/// by the slide's own model, the normal fast path's motion at the scene's tolerance for the rest; `None` where no
-/// slide holds before the end, or the fast path does not finish.
+/// by the slide's own model, the normal fast path's motion at the scene's tolerance for the rest; integrated to the
+/// end where no slide holds before it; `None` where the normal motion does not separate, or the integration gives
+/// up or ends without a separation speed.
 pub fn outcome(slide: &SlideContact, scene: &Scene, setup: &Setup, quantities: Quantities) -> Option<Outcome> {
     if !slide.slides_in_closed_form() || !crate::fast::covers(&setup.law) {
         return None;
@@ -61,8 +63,8 @@ pub fn outcome(slide: &SlideContact, scene: &Scene, setup: &Setup, quantities: Q
     let limit_end = force_zero.unwrap_or(fast.end).impulse;
 
     // The stretches before the last slide, integrated: compression to its maximum, then restitution, each stopping at
-    // every stick–slip switch; the contact's end, or a switch into the slide under tension, before a slide that holds
-    // sends the contact back to the integrated slide.
+    // every stick–slip switch; a contact whose end comes before a slide that holds is finished there (with a
+    // separation speed), and one whose run gives up goes back to the integrated slide.
     let factor = slide.tolerance_factor();
     let requested = scene.solver.tolerances;
     let tolerances = Tolerances { rtol: requested.rtol * factor, atol: requested.atol * factor };
@@ -74,13 +76,15 @@ pub fn outcome(slide: &SlideContact, scene: &Scene, setup: &Setup, quantities: Q
     let falling = |function, terminal, dips| Event { function, direction: Direction::Falling, terminal, dips };
     // (In the phase driver's order, the stick–slip switch last: the phase's end first, then the slip's rest.)
     let compression = [falling(&rate, true, false), falling(&slip, false, false), falling(&switch, true, true)];
-    let ending = |y: &State<SIZE>| slide.penetration(y);
-    // (And where a law that never pulls would, the zero of its uncut force: a creeping restitution, left to the
-    // integrated slide, which watches it.)
-    let uncut = |y: &State<SIZE>| slide.uncut_force(y).unwrap_or(1.0);
+    // The contact's end: the zero of the force under the force's criterion for a law that turns tensile (the
+    // penetration's zero a second one, as in the phase driver), the penetration's otherwise.
+    let on_force = pulls && separation == Separation::Force;
+    let penetration = |y: &State<SIZE>| slide.penetration(y);
+    let separation_force = |y: &State<SIZE>| slide.separation_force(y);
+    let ending: &dyn Fn(&State<SIZE>) -> f64 = if on_force { &separation_force } else { &penetration };
     let restitution = [
-        falling(&ending, true, false),
-        falling(&uncut, true, false),
+        falling(ending, true, false),
+        falling(&penetration, true, false),
         falling(&slip, false, false),
         falling(&switch, true, true),
     ];
@@ -104,11 +108,14 @@ pub fn outcome(slide: &SlideContact, scene: &Scene, setup: &Setup, quantities: Q
         (sigma, y) = (end.time, end.state);
         match end.ending {
             Ending::Event(event) if event == events.len() - 1 && switches < MAX_SWITCHES => {
+                // (The compressive limit's corner, into and out of the slide while the force pulls, is a switch of
+                // the slide model's own, not counted: as the integrated slide reports them.)
+                let corner = slide.unloaded(&y);
                 slide.switch(&mut y);
-                switches += 1;
-                if slide.unloaded(&y) {
-                    return None;
+                if corner || slide.unloaded(&y) {
+                    continue;
                 }
+                switches += 1;
                 let now = y[index::TIME];
                 if slide.sliding(&y) {
                     below_limit += below_limit_since.take().map_or(0.0, |since| now - since);
@@ -117,9 +124,9 @@ pub fn outcome(slide: &SlideContact, scene: &Scene, setup: &Setup, quantities: Q
                 }
             }
             Ending::Event(0) if compressed.is_none() => compressed = Some((sigma, y)),
-            // The end of the contact, reached integrating (a last slide the condition could not show to hold), for a
-            // law that never pulls (its contact ends at zero penetration whatever the criterion): the integrated end.
-            Ending::Event(0) if !pulls => {
+            // The end of the contact, reached integrating (a last slide the condition could not show to hold), the
+            // bodies parting: the integrated end. (Without a separation speed, the integrated slide's run decides.)
+            Ending::Event(0 | 1) if slide.rate(&y) < 0.0 => {
                 below_limit += below_limit_since.take().map_or(0.0, |since| y[index::TIME] - since);
                 break false;
             }
@@ -156,7 +163,8 @@ pub fn outcome(slide: &SlideContact, scene: &Scene, setup: &Setup, quantities: Q
         max_compression: deepest,
         end,
         peak_force: (fast.peak_force_time * s.time, fast.peak_force * s.force),
-        separated: if closed { fast.separated } else { slide.rate(&y) < 0.0 },
+        // (The normal motion separated, and an integrated end is taken only with a separation speed.)
+        separated: true,
         ending: Ending::Event(0),
         below_limit_duration: below_limit * s.time,
         slip_rest_time: slip_rest.map(|t| t * s.time),
@@ -173,7 +181,9 @@ pub fn outcome(slide: &SlideContact, scene: &Scene, setup: &Setup, quantities: Q
             (false, Scheme::Taylor) => "taylor-slide",
             (false, _) => "dop853-slide",
         },
-        restitution: Some((fast.restitution_impulse * s.impulse, fast.restitution_work * s.energy)),
+        // (Integrated to the end, the restitution's integrals are the snapshots' differences, as on the integrated
+        // slide.)
+        restitution: closed.then_some((fast.restitution_impulse * s.impulse, fast.restitution_work * s.energy)),
         note: None,
         fixed_step: None,
     })

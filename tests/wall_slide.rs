@@ -204,20 +204,28 @@ fn a_contact_that_slides_throughout_is_carried_in_closed_form() {
     }
 }
 
-/// A contact whose last slide the sufficient condition cannot show to hold (Hertz with mu = 2: it sticks through
-/// most of the contact, and the spring drives the slide that follows, its slip along the force) is integrated to its
-/// end by the slide's model, once: `auto` names the slide by Taylor series, agrees with the 3-D model within 1e-9 and
+/// A contact whose last slide the sufficient condition cannot show to hold (mu = 2: it sticks through most of the
+/// contact, and the spring drives the slide that follows, its slip along the force) is integrated to its end by the
+/// slide's model, once: `auto` names the slide by Taylor series, agrees with the 3-D model within 1e-9, reports the
+/// Taylor slide's switches (Tsuji's force turns tensile on the way: the compressive limit's corner is not one) and
 /// costs the Taylor slide's own run and the normal fast path's, not the two runs of a path that gave up.
 #[test]
 fn a_last_slide_the_condition_cannot_show_is_integrated_to_its_end() {
-    for degrees in [30.0, 60.0] {
-        let text = scene(degrees, "law = \"hertz\"\nfriction = 2.0", [0.0; 3], 0.0);
+    for (degrees, contact) in [
+        (30.0, "law = \"hertz\"\nfriction = 2.0"),
+        (60.0, "law = \"hertz\"\nfriction = 2.0"),
+        (30.0, "law = \"tsuji\"\nrestitution = 0.5\nfriction = 2.0"),
+    ] {
+        let text = scene(degrees, contact, [0.0; 3], 0.0);
         let auto = run(&text);
         assert_eq!(auto.solver.method, "taylor-slide", "{text}");
         agrees_on(&text, None);
         let taylor = run(&format!("{text}\n[solver]\nmethod = \"taylor\"\n"));
         let (a, t) = (auto.solver.force_evaluations, taylor.solver.force_evaluations);
         assert!(a < t + t / 4, "{a} evaluations against the Taylor slide's {t}\n{text}");
+        let switched = |r: &Report| r.notes.iter().find(|n| n.contains("switched")).cloned();
+        assert!(switched(&auto).is_some(), "{text}");
+        assert_eq!(switched(&auto), switched(&taylor), "{text}");
     }
 }
 
