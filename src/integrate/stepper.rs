@@ -661,37 +661,14 @@ where
                 // separation) may have dipped below zero before, and risen back, inside the step, its slope at the
                 // ends no guide: its slope is read at SCAN points, and each stretch where it turns from falling to
                 // rising is read at its minimum.
-                let delta = h * SLOPE_SHARE;
                 let mut first_dip = h;
                 for (i, event) in events.iter().enumerate() {
                     let start = previous_values[i];
                     if i == first || !(start > 0.0 && values[i] <= rtol * start) {
                         continue;
                     }
-                    // (The function's size over the step, the measure of a dip's depth: at a mode's start a switch
-                    // function is within rounding of zero.)
-                    let g = |t: f64| event.value(&horner(&self.series, t));
-                    let times: Vec<f64> = (0..=SCAN).map(|j| j as f64 * (h - delta) / SCAN as f64).collect();
-                    let read: Vec<(f64, f64)> = times
-                        .iter()
-                        .map(|&t| {
-                            let at = g(t);
-                            (at, (g(t + delta) - at) / delta)
-                        })
-                        .collect();
-                    let scale = read.iter().fold(start, |most, (at, _)| most.max(at.abs()));
-                    for j in 1..=SCAN {
-                        if times[j - 1] >= first_dip {
-                            break;
-                        }
-                        if read[j - 1].1 < 0.0
-                            && read[j].1 > 0.0
-                            && let Some(below) =
-                                self.dip(event, (times[j - 1], times[j] + delta), (scale, shallowest), delta)
-                        {
-                            first_dip = first_dip.min(below);
-                            break;
-                        }
+                    if let Some(below) = self.scanned_dip(event, h, first_dip, start, shallowest) {
+                        first_dip = first_dip.min(below);
                     }
                 }
                 if first_dip < h {
@@ -718,11 +695,17 @@ where
                 let end_slope = (values[i] - event.value(behind)) / delta;
                 let falling = start_slopes[i] < 0.0;
                 start_slopes[i] = end_slope;
-                if falling
-                    && end_slope > 0.0
-                    && let Some(below) =
-                        self.dip(event, (0.0, h), (previous_values[i].max(values[i]), shallowest), delta)
-                {
+                let below = if falling && end_slope > 0.0 {
+                    self.dip(event, (0.0, h), (previous_values[i].max(values[i]), shallowest), delta)
+                } else if event.dips && previous_values[i] < NEAR_ZERO * values[i] {
+                    // A watched function that starts near zero (a step past a switch, whose first step is short)
+                    // and ends well above it may have risen, turned back and dipped below zero inside the step, its
+                    // slopes at the ends no guide: read at SCAN points, as in a step that ends at a fall.
+                    self.scanned_dip(event, h, h, previous_values[i], shallowest)
+                } else {
+                    None
+                };
+                if let Some(below) = below {
                     h = below;
                     next = self.read_at(h, events, &mut values);
                     break;
@@ -782,6 +765,33 @@ where
         lowest(read, (a, b - delta), depth, MINIMUM_RESOLUTION * (b - a)).ok().flatten()
     }
 
+    /// The first dip below zero of `event`'s function on the current step's polynomial, from its start up to `before`
+    /// (`h` the step): its slope read at SCAN points, and each stretch where it turns from falling to rising read at
+    /// its minimum ([`StepperOf::dip`]); `start` is the function's value at the step's start, a floor of its size over
+    /// the step (the measure of a dip's depth: at a mode's start a switch function is within rounding of zero).
+    fn scanned_dip(&self, event: &EventOf<'_, D>, h: f64, before: f64, start: f64, shallowest: f64) -> Option<f64> {
+        let delta = h * SLOPE_SHARE;
+        let g = |t: f64| event.value(&horner(&self.series, t));
+        let times: Vec<f64> = (0..=SCAN).map(|j| j as f64 * (h - delta) / SCAN as f64).collect();
+        let read: Vec<(f64, f64)> = times
+            .iter()
+            .map(|&t| {
+                let at = g(t);
+                (at, (g(t + delta) - at) / delta)
+            })
+            .collect();
+        let scale = read.iter().fold(start, |most, (at, _)| most.max(at.abs()));
+        for j in 1..=SCAN {
+            if times[j - 1] >= before {
+                break;
+            }
+            if read[j - 1].1 < 0.0 && read[j].1 > 0.0 {
+                return self.dip(event, (times[j - 1], times[j] + delta), (scale, shallowest), delta);
+            }
+        }
+        None
+    }
+
     /// How this stepper re-steps inside an accepted step: its scheme and tolerances, and what is left of its budget
     /// (at least a thousand steps: a re-step inside one accepted step of a stiff contact may itself need many).
     fn restepper(&self) -> Restepper {
@@ -801,7 +811,12 @@ const LEAVING_ZERO: f64 = 1.0 / 64.0;
 /// [`StepperOf::dip`]).
 const ROUNDING_SHARE: f64 = 64.0 * f64::EPSILON;
 
-/// The points of a Taylor step where a function is read for a dip inside it, in a step that ends at a fall.
+/// The share of its value at a step's end below which a watched function's value at the step's start counts as near
+/// zero: the step is then read for a dip inside it (see [`StepperOf::advance_taylor`]).
+const NEAR_ZERO: f64 = 1.0 / 16.0;
+
+/// The points of a Taylor step where a function is read for a dip inside it, in a step that ends at a fall (or whose
+/// watched function starts near zero).
 const SCAN: usize = 16;
 
 /// The share of a step (Taylor's, or an accepted Dop853 step's) an event function's slope is differenced over (see
