@@ -16,7 +16,7 @@ use crate::dynamics::ContactModel;
 use crate::dynamics::contact::MAX_SWITCHES;
 use crate::dynamics::slide::{NormalPoint, SIZE, SlideContact, index};
 use crate::fast::{Ending as FastEnding, PhasePoint, Quantities, Request};
-use crate::integrate::{Counters, Direction, Ending, Event, Scheme, State, Stepper, Tolerances};
+use crate::integrate::{Counters, Direction, Ending, Event, Scheme, State, Stepper};
 use crate::law::{Family, Separation};
 use crate::outcome::{Outcome, TIME_LIMIT};
 use crate::scene::Scene;
@@ -31,7 +31,8 @@ pub const CLOSED_FORM_SLIDE: &str = "closed-form-slide";
 /// end where no slide holds before it; `None` where the normal motion does not separate, or the integration gives
 /// up or ends without a separation speed.
 pub fn outcome(slide: &SlideContact, scene: &Scene, setup: &Setup, quantities: Quantities) -> Option<Outcome> {
-    if !slide.slides_in_closed_form() || !crate::fast::covers(&setup.law) {
+    // (Every law it takes is the normal fast path's.)
+    if !slide.slides_in_closed_form() {
         return None;
     }
     let separation = scene.contact.separation;
@@ -44,30 +45,24 @@ pub fn outcome(slide: &SlideContact, scene: &Scene, setup: &Setup, quantities: Q
     let pulls = matches!(setup.law.kind.family(), Family::Linear | Family::Tsuji);
     // The normal motion (and where the force turns tensile), first: a contact that does not separate is left to the
     // integrated slide before any step.
-    let motion = || {
-        let fast = normal(separation, quantities)?;
-        let (mut steps, mut evaluations) = (fast.steps, fast.force_evaluations);
-        let force_zero = match (pulls, separation) {
-            // (Its impulse, penetration and time alone.)
-            (true, Separation::Penetration) => {
-                let motion = Quantities { time: quantities.time, ..Quantities::MOTION };
-                let zero = normal(Separation::Force, motion)?;
-                (steps, evaluations) = (steps + zero.steps, evaluations + zero.force_evaluations);
-                Some(zero.end)
-            }
-            _ => None,
-        };
-        Some((fast, force_zero, Counters { steps, rejected_steps: 0, evaluations }))
+    let fast = normal(separation, quantities)?;
+    let mut normal_work = Counters { steps: fast.steps, rejected_steps: 0, evaluations: fast.force_evaluations };
+    let force_zero = match (pulls, separation) {
+        // (Its impulse, penetration and time alone.)
+        (true, Separation::Penetration) => {
+            let zero = normal(Separation::Force, Quantities { time: quantities.time, ..Quantities::MOTION })?;
+            normal_work.steps += zero.steps;
+            normal_work.evaluations += zero.force_evaluations;
+            Some(zero.end)
+        }
+        _ => None,
     };
-    let (fast, force_zero, normal_work) = motion()?;
     let limit_end = force_zero.unwrap_or(fast.end).impulse;
 
     // The stretches before the last slide, integrated: compression to its maximum, then restitution, each stopping at
     // every stick–slip switch; a contact whose end comes before a slide that holds is finished there (with a
     // separation speed), and one whose run gives up goes back to the integrated slide.
-    let factor = slide.tolerance_factor();
-    let requested = scene.solver.tolerances;
-    let tolerances = Tolerances { rtol: requested.rtol * factor, atol: requested.atol * factor };
+    let tolerances = slide.tolerances(scene.solver.tolerances);
     let scheme = if slide.has_series() { Scheme::Taylor } else { Scheme::Dop853 };
     let mut stepper = Stepper::new(slide, tolerances, false).scheme(scheme);
     let rate = |y: &State<SIZE>| slide.rate(y);

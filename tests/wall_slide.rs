@@ -167,7 +167,7 @@ fn laws_options_spin_and_a_moving_wall_agree_with_the_3d_model() {
 /// at rtol 1e-6; the closed form must be the path `auto` takes (a sufficient condition that rejected them would
 /// send them to the integrated slide and fail here).
 #[test]
-fn a_contact_that_slides_throughout_is_carried_in_closed_form() {
+fn a_contacts_last_slide_is_carried_in_closed_form() {
     let cases = [
         // (Test 4 at 10° and 28.86°: a slide whose slip comes to rest, a stick, and the last slide in closed form.)
         scene(10.0, TEST4, [0.0; 3], 0.0),

@@ -17,7 +17,7 @@ pub mod rigid;
 pub mod slide;
 pub mod wall;
 
-use crate::integrate::{Model, State};
+use crate::integrate::{Model, State, Tolerances};
 use nalgebra::{UnitQuaternion, Vector3};
 
 use crate::scales::Scales;
@@ -73,6 +73,12 @@ pub trait ContactModel<const N: usize>: Model<N> {
     /// The fraction of the scene's tolerances this model integrates at (1: as asked).
     fn tolerance_factor(&self) -> f64 {
         1.0
+    }
+    /// The tolerances this model integrates at, for the scene's `requested` ones ([`ContactModel::tolerance_factor`]
+    /// of each).
+    fn tolerances(&self, requested: Tolerances) -> Tolerances {
+        let factor = self.tolerance_factor();
+        Tolerances { rtol: requested.rtol * factor, atol: requested.atol * factor }
     }
     /// The state at first contact (scaled time 0), with the stick-or-slip mode it starts in.
     fn start(&self) -> State<N>;

@@ -785,8 +785,12 @@ where
             if times[j - 1] >= before {
                 break;
             }
-            if read[j - 1].1 < 0.0 && read[j].1 > 0.0 {
-                return self.dip(event, (times[j - 1], times[j] + delta), (scale, shallowest), delta);
+            // (A turn that is no dip below zero leaves the later ones to be read.)
+            if read[j - 1].1 < 0.0
+                && read[j].1 > 0.0
+                && let Some(below) = self.dip(event, (times[j - 1], times[j] + delta), (scale, shallowest), delta)
+            {
+                return Some(below);
             }
         }
         None
