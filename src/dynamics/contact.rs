@@ -84,6 +84,10 @@ impl Shape {
 /// lasts about 3 T): faster turning is a quasi-static alignment, approximated at this rate.
 pub const MAX_TURN_RATE: f64 = 1e4;
 
+/// The time (in T) within which a slip must carry a reversed sliding spring through zero for the spring to count as
+/// a rounding remainder and be turned against the slip while the cap grows ([`Tangential::sliding_direction`]).
+pub const QUICK_REVERSAL: f64 = 1e-3;
+
 /// Most stick–slip switches one contact may take before the run is abandoned as chattering.
 pub const MAX_SWITCHES: u32 = 10_000;
 
@@ -235,16 +239,30 @@ impl Tangential {
     /// |T| = mu Fn, against the slip; a spring that has drifted below half of it (the integration's error, which
     /// near the contact's edges, where the cap vanishes, can carry the spring through zero and reverse it) no longer
     /// gives a direction: the spring's rate and the stick–slip switch then take the direction against the slip, as
-    /// Coulomb's law has it. (The force stays the spring itself, below the integration's error there.) Nor does a
-    /// reversed spring — one along the slip — while the cap grows (`growing`): driven along its own direction, it
-    /// would grow with the cap and push the slip on. Where a damper cut to zero force inside the contact lets the
-    /// force push again, the spring left reversed by rounding as the cap fell to zero did so: stress case 11645 of
-    /// seed 424242 (`adams-impact`, its force cut for 2.3 s of a 3.1 s contact) rubbed its last 11 % of friction
-    /// impulse the wrong way. (While the cap falls, a reversed spring only shrinks on its own: a creeping contact's
-    /// rounding-sized spring is left to it rather than turned back and forth.)
-    fn sliding_direction(spring: &Vector3<f64>, slip: &Vector3<f64>, cap: f64, growing: bool) -> Vector3<f64> {
+    /// Coulomb's law has it. (The force stays the spring itself, below the integration's error there.)
+    ///
+    /// Nor does a reversed spring — one along the slip — while the cap grows (`growing`), if the slip would carry it
+    /// through zero within [`QUICK_REVERSAL`] (`|T| < QUICK_REVERSAL kt |slip|`, `kt` the spring's stiffness):
+    /// driven along its own direction, it would grow with the cap and push the slip on. Where a damper cut to zero
+    /// force inside the contact lets the force push again, the spring left reversed by rounding as the cap fell to
+    /// zero did so: stress case 11645 of seed 424242 (`adams-impact`, its force cut for 2.3 s of a 3.1 s contact)
+    /// rubbed its last 11 % of friction impulse the wrong way (its reversed springs would have unloaded within
+    /// 4e-5 T). A spring at the cap that a slowing slip reverses by passing through zero is no such remainder: its
+    /// direction is kept, so that the switch function stays continuous and the stick, where the spring a stick would
+    /// hold, `kt |slip|`, falls below the cap's rate (before the slip rests), is located. Turned against the slip
+    /// there, the function had jumped back above zero and the stick could be stepped over: a wall whose slip rested
+    /// 0.02 us before maximum compression slid on with its friction pushing the slip (tests/wall_slide.rs). (While
+    /// the cap falls, a reversed spring only shrinks on its own: a creeping contact's rounding-sized spring is left to
+    /// it rather than turned back and forth.)
+    fn sliding_direction(
+        spring: &Vector3<f64>,
+        slip: &Vector3<f64>,
+        cap: f64,
+        growing: bool,
+        stiffness: f64,
+    ) -> Vector3<f64> {
         let length = spring.norm();
-        let reversed = growing && spring.dot(slip) > 0.0;
+        let reversed = growing && spring.dot(slip) > 0.0 && length < QUICK_REVERSAL * stiffness * slip.norm();
         if length >= 0.5 * cap && length > 1e-300 && !reversed { spring / length } else { Tangential::against(slip) }
     }
 
@@ -296,7 +314,7 @@ impl Tangential {
                 TangentialForce { force: along * cap, spring_rate: turn + turning }
             }
             Mode::Slip => {
-                let along = Tangential::sliding_direction(spring, &k.slip, cap, normal_force_rate > 0.0);
+                let along = Tangential::sliding_direction(spring, &k.slip, cap, normal_force_rate > 0.0, kt);
                 let cap_rate = self.friction * normal_force_rate;
                 // The spring turns towards the loading at the rate |loading across it| / |T|, which grows without
                 // bound where the Coulomb limit vanishes (the edges of the contact): faster than MAX_TURN_RATE it
@@ -372,7 +390,7 @@ impl Tangential {
         elastic: f64,
     ) -> (f64, f64) {
         let kt = self.stiffness_at(kinematics.penetration);
-        let along = self.sliding_along(mode, spring, &kinematics.slip, normal_force, normal_force_rate);
+        let along = self.sliding_along(mode, spring, kinematics, normal_force, normal_force_rate);
         let held = self.held(mode, spring, normal_force);
         let holding = -kinematics.slip.dot(&along) * kt + held * self.rescale_rate(kinematics);
         let lifting = holding - self.friction * mode.side() * normal_force_rate;
@@ -391,13 +409,17 @@ impl Tangential {
         &self,
         mode: Mode,
         spring: &Vector3<f64>,
-        slip: &Vector3<f64>,
+        kinematics: &Kinematics,
         normal_force: f64,
         normal_force_rate: f64,
     ) -> Vector3<f64> {
+        let slip = &kinematics.slip;
         match mode {
             Mode::SlipInTension => Tangential::direction(spring, slip),
-            _ => Tangential::sliding_direction(spring, slip, self.cap(normal_force), normal_force_rate > 0.0),
+            _ => {
+                let (cap, kt) = (self.cap(normal_force), self.stiffness_at(kinematics.penetration));
+                Tangential::sliding_direction(spring, slip, cap, normal_force_rate > 0.0, kt)
+            }
         }
     }
 
@@ -440,7 +462,7 @@ impl Tangential {
                     self.sliding_parts(mode, spring, kinematics, normal_force, normal_force_rate, elastic);
                 if self.cap == FrictionCap::Compressive || lifting < kink {
                     let placed = (mode == Mode::SlipInTension).then(|| {
-                        self.sliding_along(mode, spring, &kinematics.slip, normal_force, normal_force_rate)
+                        self.sliding_along(mode, spring, kinematics, normal_force, normal_force_rate)
                             * self.cap(normal_force)
                     });
                     return (Mode::Stick, placed);
