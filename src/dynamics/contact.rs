@@ -251,7 +251,7 @@ impl Tangential {
     /// direction is kept, so that the switch function stays continuous and the stick, where the spring a stick would
     /// hold, `kt |slip|`, falls below the cap's rate (before the slip rests), is located. Turned against the slip
     /// there, the function had jumped back above zero and the stick could be stepped over: a wall whose slip rested
-    /// 0.02 us before maximum compression slid on with its friction pushing the slip (tests/wall_slide.rs). (While
+    /// 0.02 µs before maximum compression slid on with its friction pushing the slip (tests/wall_slide.rs). (While
     /// the cap falls, a reversed spring only shrinks on its own: a creeping contact's rounding-sized spring is left to
     /// it rather than turned back and forth.)
     fn sliding_direction(
