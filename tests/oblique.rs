@@ -624,7 +624,7 @@ fn two_free_spheres_conserve_linear_and_angular_momentum() {
 /// speed): every velocity and spin after (spins times the radius) within 2e-5 of the approach speed, on `auto` and on
 /// the 3-D model at rtol 1e-12. (At 1e-12 the 3-D model turned its sliding spring against the reversed slip and
 /// stepped over the stick, the spins 0.45 of the approach speed off, until a reversed spring was turned only where
-/// the slip would unload it within 1e-3 T.)
+/// a stick's loading would unload it within 1e-3 T.)
 #[test]
 fn two_spheres_whose_slip_rests_before_maximum_compression_stick_as_an_independent_slider_does() {
     let radii: [f64; 2] = [0.0016520203725262346, 0.0019497942125151508];

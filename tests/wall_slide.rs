@@ -261,9 +261,9 @@ fn a_stick_that_starts_inside_a_long_step_of_the_slide_under_tension_is_found() 
 /// step, kept in the tangent plane, cut to `mu Fn`), explicit steps of the sphere's velocity and spin, at 400,000 and
 /// 800,000 steps (which agree within 2e-6 of the approach speed): the spins after, times the radius, within 2e-5 of
 /// the approach speed on `auto` (the last slide in closed form), on the slide by Taylor series and on the 3-D model
-/// (Dop853). (The 3-D model turned its sliding spring against the reversed slip there and stepped over the stick, up to
-/// 0.33 of the approach speed off, until a reversed spring was turned only where the slip would unload it within
-/// 1e-3 T.)
+/// (Dop853). (The 3-D model turned its sliding spring against the reversed slip there and stepped over the stick, up
+/// to 0.33 of the approach speed off, until a reversed spring was turned only where a stick's loading would unload it
+/// within 1e-3 T.)
 #[test]
 fn a_slip_that_rests_just_before_maximum_compression_sticks_as_an_independent_slider_does() {
     let (radius, density): (f64, f64) = (0.002268341884529728, 4000.0);

@@ -84,8 +84,9 @@ impl Shape {
 /// lasts about 3 T): faster turning is a quasi-static alignment, approximated at this rate.
 pub const MAX_TURN_RATE: f64 = 1e4;
 
-/// The time (in T) within which a slip must carry a reversed sliding spring through zero for the spring to count as
-/// a rounding remainder and be turned against the slip while the cap grows ([`Tangential::sliding_direction`]).
+/// The time (in the model's time unit T; in a world, the unit of the contact that started the island) within which a
+/// stick's loading `kt |slip|` would unload a reversed sliding spring, for the spring to count as a rounding remainder
+/// and be turned against the slip while the cap grows ([`Tangential::sliding_direction`]).
 pub const QUICK_REVERSAL: f64 = 1e-3;
 
 /// Most stick–slip switches one contact may take before the run is abandoned as chattering.
@@ -241,8 +242,9 @@ impl Tangential {
     /// gives a direction: the spring's rate and the stick–slip switch then take the direction against the slip, as
     /// Coulomb's law has it. (The force stays the spring itself, below the integration's error there.)
     ///
-    /// Nor does a reversed spring — one along the slip — while the cap grows (`growing`), if the slip would carry it
-    /// through zero within [`QUICK_REVERSAL`] (`|T| < QUICK_REVERSAL kt |slip|`, `kt` the spring's stiffness):
+    /// Nor does a reversed spring — one along the slip — while the cap grows (`growing`), if a stick's loading would
+    /// unload it within [`QUICK_REVERSAL`] (`|T| < QUICK_REVERSAL kt |slip|`, `kt` the spring's stiffness; once turned,
+    /// the spring is driven at the cap's rate along the direction against the slip):
     /// driven along its own direction, it would grow with the cap and push the slip on. Where a damper cut to zero
     /// force inside the contact lets the force push again, the spring left reversed by rounding as the cap fell to
     /// zero did so: stress case 11645 of seed 424242 (`adams-impact`, its force cut for 2.3 s of a 3.1 s contact)
