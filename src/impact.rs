@@ -512,7 +512,7 @@ fn run_with<const N: usize, M: ContactModel<N>>(
         restitution.push(Event { dips: true, ..event(&switch, true) });
     }
     let released = phases.run(&mut stepper, model, compressed.time, compressed.state, &restitution, frictional)?;
-    let released = parted_within_tolerance(model, released, tolerances.rtol, on_force);
+    let released = parted_within_tolerance(model, released, scene.solver.tolerances.rtol, on_force);
     // Events 0 and 3 (with a force criterion) are separations; 1 is the motion dying out.
     let parted = matches!(released.ending, Ending::Event(0)) || (on_force && released.ending == Ending::Event(3));
     // A penetration that returns to zero without a separation speed (e = 0 to the integration's accuracy, e.g. a
@@ -575,12 +575,13 @@ fn run_with<const N: usize, M: ContactModel<N>>(
     Ok((outcome, history))
 }
 
-/// A restitution whose run gave up within its tolerance of the end is over: where the bodies part and the free
-/// flight left to the penetration's zero, `d/|d'|`, is within `rtol` of the contact's time, and the impulse the
-/// contact's forces could pass over it within `rtol` of the normal impulse, the run ends there as separated (a located
-/// end of the penetration's criterion; not under a force's, whose zero lies elsewhere). A spring rescaled with the
-/// contact's stiffness and held by a tangential dashpot up to the end shrinks as `sqrt(d)`, an infinite rate in
-/// physical time: two spheres' steps underflowed 1.7e-18 s before they parted (docs/numerics.md#phases-and-events).
+/// A restitution whose run gave up within the scene's tolerance of the end is over: where the bodies part and the
+/// free flight left to the penetration's zero, `d/|d'|`, is within `rtol` (the scene's, not the model's tighter one)
+/// of the contact's time, and the impulse the contact's forces could pass over it within `rtol` of the normal
+/// impulse, the run ends there as separated (a located end of the penetration's criterion; not under a force's,
+/// whose zero lies elsewhere). A spring rescaled with the contact's stiffness and held by a tangential dashpot up to
+/// the end shrinks as `sqrt(d)`, an infinite rate in physical time: two spheres' steps underflowed 1.7e-18 s before
+/// they parted (docs/numerics.md#phases-and-events).
 fn parted_within_tolerance<const N: usize, M: ContactModel<N>>(
     model: &M,
     released: PhaseEnd<N>,
