@@ -10,7 +10,7 @@ use crate::dynamics::ContactModel;
 use crate::dynamics::normal::NormalContact;
 use crate::dynamics::pair::PairContact;
 use crate::dynamics::rigid::RigidContact;
-use crate::dynamics::slide::SlideContact;
+use crate::dynamics::slide::{SLIDE, SlideContact, TAYLOR_SLIDE};
 use crate::dynamics::wall::WallContact;
 use crate::fast::Quantities;
 use crate::fixed_step;
@@ -193,14 +193,15 @@ fn through_phases(
             .then(|| SlideContact::new(&scene.bodies, setup, scene.contact.separation))
             .flatten()
     };
-    // (Made where it is needed: a wall that ends in the closed form never makes it.)
+    // (Made where it is needed: a wall that ends in the closed form never makes it; asked for by name, once, here.)
     let taylor_slide = || {
         (method == Method::Taylor || (method == Method::Auto && recording == Recording::Off))
             .then(wall_slide)
             .flatten()
             .filter(SlideContact::has_series)
     };
-    if method == Method::Taylor && !covered && taylor_slide().is_none() {
+    let named_taylor_slide = (method == Method::Taylor && !covered).then(taylor_slide).flatten();
+    if method == Method::Taylor && !covered && named_taylor_slide.is_none() {
         return Err(SimulationError::Setup(SetupError {
             key: "solver.method".into(),
             message: if setup.motion != Motion::Normal {
@@ -293,7 +294,7 @@ fn through_phases(
             {
                 return Ok((outcome, None));
             }
-            if let Some(slide) = taylor_slide() {
+            if let Some(slide) = if method == Method::Taylor { named_taylor_slide } else { taylor_slide() } {
                 let uncovered = || {
                     SimulationError::Integration(IntegrationError::Solver {
                         time: 0.0,
@@ -363,14 +364,6 @@ fn through_phases(
 /// The report's `solver.method` for a frictional sphere on a wall integrated in regularised time
 /// ([`WallContact`]).
 pub const REGULARISED: &str = "dop853-regularised";
-
-/// The report's `solver.method` for a frictional sphere on a wall whose tangential motion stays on one line, by
-/// Taylor series in regularised time ([`SlideContact`], [`Scheme::Taylor`]).
-pub const TAYLOR_SLIDE: &str = "taylor-slide";
-
-/// The report's `solver.method` for a frictional sphere on a wall whose tangential motion stays on one line,
-/// integrated in regularised time ([`SlideContact`]).
-pub const SLIDE: &str = "dop853-slide";
 
 /// Whether a law's force, times `dt/dσ = d^(3/4)`, is smooth through the edges of a contact in the wall model's
 /// regularised time: every law without memory or kinks (a yielding law, MuJoCo's impedance and ADAMS' step have

@@ -14,7 +14,7 @@
 
 use crate::dynamics::ContactModel;
 use crate::dynamics::contact::MAX_SWITCHES;
-use crate::dynamics::slide::{NormalPoint, SIZE, SlideContact, index};
+use crate::dynamics::slide::{NormalPoint, SIZE, SLIDE, SlideContact, TAYLOR_SLIDE, index};
 use crate::fast::{Ending as FastEnding, PhasePoint, Quantities, Request};
 use crate::integrate::{Counters, Direction, Ending, Event, Scheme, State, Stepper};
 use crate::law::{Family, Separation};
@@ -173,8 +173,8 @@ pub fn outcome(slide: &SlideContact, scene: &Scene, setup: &Setup, quantities: Q
         // (Integrated to the end: the slide by the scheme that ran, as the integrated slide's run names it.)
         method: match (closed, scheme) {
             (true, _) => CLOSED_FORM_SLIDE,
-            (false, Scheme::Taylor) => "taylor-slide",
-            (false, _) => "dop853-slide",
+            (false, Scheme::Taylor) => TAYLOR_SLIDE,
+            (false, _) => SLIDE,
         },
         // (Integrated to the end, the restitution's integrals are the snapshots' differences, as on the integrated
         // slide.)

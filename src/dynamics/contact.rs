@@ -392,7 +392,7 @@ impl Tangential {
         elastic: f64,
     ) -> (f64, f64) {
         let kt = self.stiffness_at(kinematics.penetration);
-        let along = self.sliding_along(mode, spring, kinematics, normal_force, normal_force_rate);
+        let along = self.sliding_along(mode, spring, &kinematics.slip, normal_force, normal_force_rate, kt);
         let held = self.held(mode, spring, normal_force);
         let holding = -kinematics.slip.dot(&along) * kt + held * self.rescale_rate(kinematics);
         let lifting = holding - self.friction * mode.side() * normal_force_rate;
@@ -406,22 +406,20 @@ impl Tangential {
         (lifting, kink)
     }
 
-    /// The direction a sliding mode's force takes: the spring's (see [`Tangential::evaluate`]).
+    /// The direction a sliding mode's force takes: the spring's (see [`Tangential::evaluate`]), for the spring's
+    /// stiffness `kt` at the present penetration.
     fn sliding_along(
         &self,
         mode: Mode,
         spring: &Vector3<f64>,
-        kinematics: &Kinematics,
+        slip: &Vector3<f64>,
         normal_force: f64,
         normal_force_rate: f64,
+        kt: f64,
     ) -> Vector3<f64> {
-        let slip = &kinematics.slip;
         match mode {
             Mode::SlipInTension => Tangential::direction(spring, slip),
-            _ => {
-                let (cap, kt) = (self.cap(normal_force), self.stiffness_at(kinematics.penetration));
-                Tangential::sliding_direction(spring, slip, cap, normal_force_rate > 0.0, kt)
-            }
+            _ => Tangential::sliding_direction(spring, slip, self.cap(normal_force), normal_force_rate > 0.0, kt),
         }
     }
 
@@ -463,10 +461,9 @@ impl Tangential {
                 let (lifting, kink) =
                     self.sliding_parts(mode, spring, kinematics, normal_force, normal_force_rate, elastic);
                 if self.cap == FrictionCap::Compressive || lifting < kink {
-                    let placed = (mode == Mode::SlipInTension).then(|| {
-                        self.sliding_along(mode, spring, kinematics, normal_force, normal_force_rate)
-                            * self.cap(normal_force)
-                    });
+                    // (Under tension the direction is the spring's, whatever the stiffness.)
+                    let placed = (mode == Mode::SlipInTension)
+                        .then(|| Tangential::direction(spring, &kinematics.slip) * self.cap(normal_force));
                     return (Mode::Stick, placed);
                 }
                 let loading = self.stiffness_at(kinematics.penetration) * kinematics.slip.norm();

@@ -37,6 +37,14 @@ use nalgebra::Vector3;
 /// Size of the state.
 pub const SIZE: usize = 11;
 
+/// The report's `solver.method` for a frictional sphere on a wall whose tangential motion stays on one line, by
+/// Taylor series in regularised time ([`SlideContact`], [`crate::integrate::Scheme::Taylor`]).
+pub const TAYLOR_SLIDE: &str = "taylor-slide";
+
+/// The report's `solver.method` for a frictional sphere on a wall whose tangential motion stays on one line,
+/// integrated by Dop853 in regularised time ([`SlideContact`]).
+pub const SLIDE: &str = "dop853-slide";
+
 /// Where each scaled quantity sits in the state.
 pub mod index {
     /// `q = d^(1/4)`, d in L (`d = q |q|³`, negative past the contact's end).

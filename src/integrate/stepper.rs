@@ -772,14 +772,11 @@ where
     fn scanned_dip(&self, event: &EventOf<'_, D>, h: f64, before: f64, start: f64, shallowest: f64) -> Option<f64> {
         let delta = h * SLOPE_SHARE;
         let g = |t: f64| event.value(&horner(&self.series, t));
-        let times: Vec<f64> = (0..=SCAN).map(|j| j as f64 * (h - delta) / SCAN as f64).collect();
-        let read: Vec<(f64, f64)> = times
-            .iter()
-            .map(|&t| {
-                let at = g(t);
-                (at, (g(t + delta) - at) / delta)
-            })
-            .collect();
+        let times: [f64; SCAN + 1] = std::array::from_fn(|j| j as f64 * (h - delta) / SCAN as f64);
+        let read = times.map(|t| {
+            let at = g(t);
+            (at, (g(t + delta) - at) / delta)
+        });
         let scale = read.iter().fold(start, |most, (at, _)| most.max(at.abs()));
         for j in 1..=SCAN {
             if times[j - 1] >= before {
