@@ -260,7 +260,7 @@ fn a_stick_that_starts_inside_a_long_step_of_the_slide_under_tension_is_found() 
 /// `kt = 8 G* sqrt(R d)` as a DEM code's elastic–perfectly-plastic slider in 3-D (the spring loaded by the slip over a
 /// step, kept in the tangent plane, cut to `mu Fn`), explicit steps of the sphere's velocity and spin, at 400,000 and
 /// 800,000 steps (which agree within 2e-6 of the approach speed): the spins after, times the radius, within 2e-5 of
-/// the approach speed on `auto` (the last slide in closed form), on the slide by Taylor series and on the 3-D model
+/// the approach speed, and the time below the limit (the slider's uncut steps) within 2e-5 of it, on `auto` (the last slide in closed form), on the slide by Taylor series and on the 3-D model
 /// (Dop853). (The 3-D model turned its sliding spring against the reversed slip there and stepped over the stick, up
 /// to 0.33 of the approach speed off, until a reversed spring was turned only where a stick's loading would unload it
 /// within 1e-3 T.)
@@ -292,6 +292,8 @@ fn a_slip_that_rests_just_before_maximum_compression_sticks_as_an_independent_sl
         // A little longer than Hertz's elastic contact, 3.2181 (m/k)^(2/5) v^(-1/5).
         let dt = 1.05 * 3.2181 * (m / k).powf(0.4) * approach.powf(-0.2) / steps as f64;
         let (mut v, mut w, mut spring, mut d) = (velocity, spin, [0.0; 3], 0.0);
+        // The time the spring spent below the limit (the steps it was not cut).
+        let mut below = 0.0;
         for step in 0..steps {
             let point = cross(w, arm);
             let relative: [f64; 3] = std::array::from_fn(|i| v[i] + point[i] - wall[i]);
@@ -307,6 +309,8 @@ fn a_slip_that_rests_just_before_maximum_compression_sticks_as_an_independent_sl
             let size = spring[0].hypot(spring[1]);
             if size > friction * force {
                 spring = spring.map(|x| x * friction * force / size);
+            } else {
+                below += dt;
             }
             let torque = cross(arm, spring);
             for i in 0..3 {
@@ -314,16 +318,22 @@ fn a_slip_that_rests_just_before_maximum_compression_sticks_as_an_independent_sl
                 w[i] += torque[i] / inertia * dt;
             }
         }
-        (w, approach)
+        (w, approach, below)
     };
-    let ((coarse, approach), (fine, _)) = (independent(400_000), independent(800_000));
+    let ((coarse, approach, coarse_below), (fine, _, fine_below)) = (independent(400_000), independent(800_000));
     for i in 0..3 {
         assert!((coarse[i] - fine[i]).abs() * radius <= 2e-6 * approach, "{coarse:?} against {fine:?}");
     }
+    // (The stick's length to a few steps, each about 4e-6 of it at 800,000 steps: the two runs' within 2e-5 of it.)
+    assert!((coarse_below - fine_below).abs() <= 2e-5 * fine_below, "{coarse_below} against {fine_below}");
     for (method, path) in [("auto", "closed-form-slide"), ("taylor", "taylor-slide"), ("dop853", "dop853")] {
         let report = run(&format!("{text}\n[solver]\nmethod = \"{method}\"\n"));
         assert_eq!(report.solver.method, path);
-        assert!(report.oblique.as_ref().expect("oblique").below_friction_limit_duration > Some(5e-6), "{path}");
+        let below = report.oblique.as_ref().expect("oblique").below_friction_limit_duration.expect("below");
+        assert!(
+            (below - fine_below).abs() <= 2e-5 * fine_below,
+            "{path}: {below} s below the limit against {fine_below}"
+        );
         let after = report.bodies[0].angular_velocity_after.expect("spin");
         for i in 0..3 {
             assert!((after[i] - fine[i]).abs() * radius <= 2e-5 * approach, "{path}: {after:?} against {fine:?}");
