@@ -95,6 +95,17 @@ pub const MAX_SWITCHES: u32 = 10_000;
 /// Angle (radians) between a sliding spring and its loading below which they count as aligned.
 pub const MISALIGNMENT: f64 = 1e-9;
 
+/// Angle (radians) between a 3-D model's sliding direction ([`SLIDE_CARRIER`]) and its loading below which they count
+/// as aligned: rounding's.
+pub const ROUNDING_MISALIGNMENT: f64 = 64.0 * f64::EPSILON;
+
+/// The length (in the model's force unit) of the spring state the 3-D models carry while sliding
+/// ([`Mode::Slip`]): there the spring is on the Coulomb cap, `T = mu Fn t̂`, and the state holds only its direction
+/// `t̂` ([`Tangential::evaluate`], [`Tangential::carried`]). Its length is a constant of the slide, set where the
+/// slide begins ([`Tangential::carrier`]): of the force unit's order, so that the integrator holds the direction to
+/// its relative tolerance.
+pub const SLIDE_CARRIER: f64 = 1.0;
+
 /// Whether the tangential spring holds (stick) or the contact slides at the Coulomb limit (slip).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Mode {
@@ -268,6 +279,54 @@ impl Tangential {
         if length >= 0.5 * cap && length > 1e-300 && !reversed { spring / length } else { Tangential::against(slip) }
     }
 
+    /// The direction of a sliding 3-D model's force, from the direction its spring state carries
+    /// ([`SLIDE_CARRIER`]), and whether that is the state's own: [`Tangential::sliding_direction`]'s rule for a spring
+    /// on the cap, `cap` (a state reversed against the slip while the cap grows, within [`QUICK_REVERSAL`], takes
+    /// the direction against the slip), and a state shorter than half its length — one that carries no direction,
+    /// or is being brought onto one — takes the direction against the slip too.
+    fn carried_direction(
+        spring: &Vector3<f64>,
+        slip: &Vector3<f64>,
+        cap: f64,
+        growing: bool,
+        stiffness: f64,
+    ) -> (Vector3<f64>, bool) {
+        let length = spring.norm();
+        let reversed = growing && spring.dot(slip) > 0.0 && cap < QUICK_REVERSAL * stiffness * slip.norm();
+        if length >= 0.5 * SLIDE_CARRIER && !reversed {
+            (spring / length, true)
+        } else {
+            (Tangential::against(slip), false)
+        }
+    }
+
+    /// The spring's force in `mode` for a 3-D model's spring state `state`: the state itself, or while sliding
+    /// ([`Mode::Slip`]: the state carries the direction) the cap along the direction the force takes — what the
+    /// switch functions, the next mode and the stored energy are judged by.
+    pub fn carried(
+        &self,
+        mode: Mode,
+        state: &Vector3<f64>,
+        slip: &Vector3<f64>,
+        normal_force: f64,
+        normal_force_rate: f64,
+        stiffness: f64,
+    ) -> Vector3<f64> {
+        if mode != Mode::Slip {
+            return *state;
+        }
+        let cap = self.cap(normal_force);
+        let growing = normal_force_rate > 0.0;
+        Tangential::carried_direction(state, slip, cap, growing, stiffness).0 * cap
+    }
+
+    /// The spring state a 3-D model sets where it enters `mode` with the spring's force `spring`: while sliding
+    /// ([`Mode::Slip`]), its direction — or, without one, the direction against the slip — at [`SLIDE_CARRIER`];
+    /// the force itself otherwise.
+    pub fn carrier(mode: Mode, spring: &Vector3<f64>, slip: &Vector3<f64>) -> Vector3<f64> {
+        if mode == Mode::Slip { Tangential::direction(spring, slip) * SLIDE_CARRIER } else { *spring }
+    }
+
     /// The force and spring rate in `mode`, for the spring `spring` (in the tangent plane), the kinematics, the
     /// normal force `normal_force` and its rate `normal_force_rate`.
     pub fn evaluate(
@@ -316,21 +375,34 @@ impl Tangential {
                 TangentialForce { force: along * cap, spring_rate: turn + turning }
             }
             Mode::Slip => {
-                let along = Tangential::sliding_direction(spring, &k.slip, cap, normal_force_rate > 0.0, kt);
-                let cap_rate = self.friction * normal_force_rate;
-                // The spring turns towards the loading at the rate |loading across it| / |T|, which grows without
-                // bound where the Coulomb limit vanishes (the edges of the contact): faster than MAX_TURN_RATE it
-                // is taken as that rate, so that an explicit integrator is not held to ever shorter steps.
-                // A misalignment at the level of rounding is no misalignment: amplified by 1/|T| it would only feed
-                // noise to the step-size control (planar sliding keeps slip and spring exactly parallel).
+                // The spring is on the cap, `T = cap t̂`, and the state (`spring`) carries only its direction t̂, at
+                // the length it was given where the slide began (SLIDE_CARRIER): its rate has no part along it. (A
+                // state that followed the cap's size, at the cap's rate `mu dFn/dt` ∝ d^(1/2) for Hertz's law, had a
+                // rate as rough as that at the contact's edges: a frictional contact's last slide took about twice
+                // the steps of the whole contact without friction, half of them rejected.)
+                let growing = normal_force_rate > 0.0;
+                let (along, own) = Tangential::carried_direction(spring, &k.slip, cap, growing, kt);
+                let length = spring.norm();
+                // The direction turns towards the loading at the angular rate |loading across it| / |T|, which grows
+                // without bound where the Coulomb limit vanishes (the edges of the contact): faster than
+                // MAX_TURN_RATE it is taken as that rate, so that an explicit integrator is not held to ever shorter
+                // steps. A misalignment at the level of rounding (ROUNDING_MISALIGNMENT) is no misalignment: planar
+                // sliding keeps slip and spring parallel. (MISALIGNMENT, a spring's threshold, chattered here: where
+                // the lag behind a turning slip settles below it, the turning went on and off at that rate, and a
+                // pair of spheres took 7 times the steps.)
                 let mut turn = loading - along * loading.dot(&along);
-                let (size, limit) = (turn.norm(), MAX_TURN_RATE * spring.norm());
-                if size <= MISALIGNMENT * loading.norm() {
+                let size = loading.norm();
+                if turn.norm() <= ROUNDING_MISALIGNMENT * size {
                     turn = Vector3::zeros();
-                } else if loading.norm() > limit {
-                    turn *= limit / loading.norm();
+                } else if size > MAX_TURN_RATE * cap {
+                    turn *= MAX_TURN_RATE * length / size;
+                } else {
+                    turn *= length / cap;
                 }
-                TangentialForce { force: *spring, spring_rate: turn + along * cap_rate + turning }
+                // A state whose direction the force does not take (a remainder reversed against a growing cap, or
+                // none: see `carried_direction`) is brought onto the direction the force takes, at MAX_TURN_RATE.
+                let onto = if own { Vector3::zeros() } else { (along * SLIDE_CARRIER - spring) * MAX_TURN_RATE };
+                TangentialForce { force: along * cap, spring_rate: turn + onto + turning }
             }
         }
     }

@@ -28,7 +28,8 @@ pub mod index {
     pub const SPIN_1: usize = 6;
     /// Spin of body 2 as omega r2 / v0.
     pub const SPIN_2: usize = 9;
-    /// Tangential spring force, in F0.
+    /// Tangential spring force, in F0; while sliding its direction alone, at the length
+    /// [`crate::dynamics::contact::SLIDE_CARRIER`] (the force is the Coulomb cap along it).
     pub const SPRING: usize = 12;
     /// ∫ Fn dt, in the impulse unit.
     pub const NORMAL_IMPULSE: usize = 15;
@@ -96,6 +97,7 @@ struct Evaluation {
     elastic: f64,
     dissipative: f64,
     normal_force_rate: f64,
+    /// The spring's force (while sliding, the cap along the direction the state carries: `Tangential::carried`).
     spring: Vector3<f64>,
     tangential: Vector3<f64>,
     spring_rate: Vector3<f64>,
@@ -192,12 +194,14 @@ impl<'a> PairContact<'a> {
         let normal_force_rate = (by_penetration * s.length * k.rate + by_rate * s.speed * acceleration) / s.force;
         let raw_spring = vector(y, index::SPRING);
         let spring = raw_spring - k.normal * raw_spring.dot(&k.normal);
-        let (tangential, spring_rate) = match &self.tangential {
+        let (tangential, spring_rate, spring) = match &self.tangential {
             Some(t) => {
                 let f = t.evaluate(mode(y), &spring, k, normal_force, normal_force_rate);
-                (f.force, f.spring_rate)
+                let kt = t.stiffness_at(k.penetration);
+                let held = t.carried(mode(y), &spring, &k.slip, normal_force, normal_force_rate, kt);
+                (f.force, f.spring_rate, held)
             }
-            None => (Vector3::zeros(), Vector3::zeros()),
+            None => (Vector3::zeros(), Vector3::zeros(), spring),
         };
         Evaluation {
             kinematics,
@@ -263,7 +267,11 @@ impl ContactModel<SIZE> for PairContact<'_> {
             let s = &self.scales;
             let contact_force = self.law.force(0.0, s.speed) / s.force;
             let probe_force = self.law.force(PROBE * s.length, s.speed) / s.force;
-            set_mode(&mut y, t.initial_mode(slip, 1.0, PROBE, contact_force, probe_force));
+            let mode = t.initial_mode(slip, 1.0, PROBE, contact_force, probe_force);
+            set_mode(&mut y, mode);
+            // A slide from first contact carries the direction against the slip.
+            let slip = self.evaluate(&y).kinematics.slip;
+            set_vector(&mut y, index::SPRING, &Tangential::carrier(mode, &Vector3::zeros(), &slip));
         }
         y
     }
@@ -305,9 +313,8 @@ impl ContactModel<SIZE> for PairContact<'_> {
         let e = self.evaluate(y);
         let force = e.elastic + e.dissipative;
         let (next, spring) = t.next_mode(mode(y), &e.spring, &e.kinematics, force, e.normal_force_rate, e.elastic);
-        if let Some(spring) = spring {
-            set_vector(y, index::SPRING, &spring);
-        }
+        let spring = Tangential::carrier(next, &spring.unwrap_or(e.spring), &e.kinematics.slip);
+        set_vector(y, index::SPRING, &spring);
         set_mode(y, next);
     }
 

@@ -64,7 +64,8 @@ pub mod index {
     pub const DEEPEST: usize = 25;
     /// Work of an immovable body on the movable one, in the energy unit.
     pub const IMMOVABLE_WORK: usize = 26;
-    /// Tangential spring force (on body 1), in F0.
+    /// Tangential spring force (on body 1), in F0; while sliding its direction alone, at the length
+    /// [`crate::dynamics::contact::SLIDE_CARRIER`] (the force is the Coulomb cap along it).
     pub const SPRING: usize = 27;
     /// ∫ Ft·slip dt, in the energy unit times mu.
     pub const TANGENTIAL_WORK: usize = 30;
@@ -169,7 +170,8 @@ struct Evaluation {
     /// The contact points' kinematics as the tangential law reads them (the slip of body 1's point relative to
     /// body 2's, in v0).
     kinematics: Kinematics,
-    /// The tangential spring, kept in the tangent plane.
+    /// The tangential spring's force, kept in the tangent plane (while sliding, the cap along the direction the state
+    /// carries: `Tangential::carried`).
     spring: Vector3<f64>,
     /// The tangential force on body 1 (scaled).
     tangential: Vector3<f64>,
@@ -354,6 +356,8 @@ impl<'a> RigidContact<'a> {
         if let Some(t) = &self.tangential {
             e.normal_force_rate = self.normal_force_rate(&e);
             e.spring_rate = t.evaluate(mode(y), &spring, &e.kinematics, normal_force, e.normal_force_rate).spring_rate;
+            let kt = t.stiffness_at(e.kinematics.penetration);
+            e.spring = t.carried(mode(y), &spring, &e.kinematics.slip, normal_force, e.normal_force_rate, kt);
         }
         e
     }
@@ -466,7 +470,11 @@ impl ContactModel<SIZE> for RigidContact<'_> {
             let slip = self.setup.initial_slip.norm() / s.speed;
             let contact_force = self.law.force(0.0, s.speed) / s.force;
             let probe_force = self.law.force(PROBE * s.length, s.speed) / s.force;
-            set_mode(&mut y, t.initial_mode(slip, 1.0, PROBE, contact_force, probe_force));
+            let mode = t.initial_mode(slip, 1.0, PROBE, contact_force, probe_force);
+            set_mode(&mut y, mode);
+            // A slide from first contact carries the direction against the slip.
+            let slip = self.evaluate(&y).kinematics.slip;
+            set_vector(&mut y, index::SPRING, &Tangential::carrier(mode, &Vector3::zeros(), &slip));
         }
         y
     }
@@ -509,9 +517,8 @@ impl ContactModel<SIZE> for RigidContact<'_> {
         let e = self.evaluate(y);
         let force = e.elastic + e.dissipative;
         let (next, spring) = t.next_mode(mode(y), &e.spring, &e.kinematics, force, e.normal_force_rate, e.elastic);
-        if let Some(spring) = spring {
-            set_vector(y, index::SPRING, &spring);
-        }
+        let spring = Tangential::carrier(next, &spring.unwrap_or(e.spring), &e.kinematics.slip);
+        set_vector(y, index::SPRING, &spring);
         set_mode(y, next);
     }
 

@@ -434,6 +434,16 @@ where
                     .min_by_key(|(i, _)| *i)
                     .map(|(_, c)| c.clone())
             });
+            // A stick–slip switch that fell from the step's start but is back above zero at its end, where a terminal
+            // event between them ends what it judges, is read just inside that event: below zero there, its own
+            // crossing comes first.
+            let terminal = match terminal {
+                Some(stop) => match self.hidden_crossing(events, &left, &right, &stop) {
+                    Ok(earlier) => Some(earlier.unwrap_or(stop)),
+                    Err(IntegrationError::Solver { reason, .. }) => return Ok(stiff(left, &reason, crossings)),
+                },
+                None => None,
+            };
             // A crossing located within the location's resolution after the terminal one is the same instant: two
             // functions whose zeros coincide (a slide that ends where its slip comes to rest) are each located to a
             // few units in the last place, in either order.
@@ -461,6 +471,52 @@ where
             start = right;
             first_step = last_step;
         }
+    }
+
+    /// The crossing of a terminal function watched for dips (a stick–slip switch) hidden by the terminal event `stop`
+    /// located in the step from `left` to `right`: one falling at the step's start, not below zero at its end but
+    /// back at or above where it started — what a function that judges a contact does where the contact ends
+    /// (a sliding contact has no force to stick with there) — is read a share [`INSIDE`] of the way before `stop`,
+    /// and a fall through zero by then is located. (A constant tangential stiffness makes a slide reversed against
+    /// the slip stick in the last millionths of the contact, where the cap's rate, ∝ d^(1/2), falls below the spring's
+    /// unloading: inside the last step.)
+    fn hidden_crossing(
+        &mut self,
+        events: &[EventOf<'_, D>],
+        left: &Point<D>,
+        right: &Point<D>,
+        stop: &CrossingOf<D>,
+    ) -> Result<Option<CrossingOf<D>>, IntegrationError> {
+        let span = stop.time - left.0;
+        if span <= 0.0 {
+            return Ok(None);
+        }
+        let ahead = &left.1 + &left.2 * (span * SLOPE_SHARE);
+        let hidden: Vec<usize> = (0..events.len())
+            .filter(|&i| {
+                let event = &events[i];
+                let (p, v) = (event.value(&left.1), event.value(&right.1));
+                event.dips && event.terminal && i != stop.event && p > 0.0 && v >= p && event.value(&ahead) < p
+            })
+            .collect();
+        if hidden.is_empty() {
+            return Ok(None);
+        }
+        let t = stop.time - INSIDE * span;
+        let y = self.step_to(left, t)?;
+        let dy = self.derivative(t, &y);
+        let inside: Point<D> = (t, y, dy);
+        let mut earliest: Option<CrossingOf<D>> = None;
+        for i in hidden {
+            if events[i].crosses(&left.1, &inside.1) {
+                let cheap = self.scheme == Scheme::Taylor;
+                let crossing = locate(&events[i], i, left, &inside, cheap, |t| self.step_to(left, t))?;
+                if earliest.as_ref().is_none_or(|e| crossing.time < e.time) {
+                    earliest = Some(crossing);
+                }
+            }
+        }
+        Ok(earliest)
     }
 
     /// One solver run from `start` until a bracket of a sign change or `t_end`: (end time, end state, bracket,
@@ -823,6 +879,9 @@ const SCAN: usize = 16;
 /// The share of a step (Taylor's, or an accepted Dop853 step's) an event function's slope is differenced over (see
 /// [`StepperOf::dip`], [`dip_by_restepping`]).
 const SLOPE_SHARE: f64 = 1.0 / 16_777_216.0;
+
+/// The share of a step before a terminal event at which [`StepperOf::hidden_crossing`] reads a switch from inside.
+const INSIDE: f64 = 1e-6;
 
 /// The share of a step within which [`StepperOf::dip`] and [`dip_by_restepping`] locate a function's minimum: a
 /// minimum `ε h` off reads the function `g'' (ε h)² / 2` above it.

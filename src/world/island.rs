@@ -387,6 +387,17 @@ impl<'a> Island<'a> {
             // No turn yet: the quaternion's scalar part is 1.
             y[self.rigid_base + 7 * r + 3] = 1.0;
         }
+        if self.frictional {
+            // A contact that begins sliding carries the direction against its slip (`SLIDE_CARRIER`).
+            for (c, contact) in self.contacts.iter().enumerate() {
+                if contact.mode == Mode::Slip && contact.spring == Vector3::zeros() {
+                    let state = self.contact_state(c, &y);
+                    let slip = self.kinematics(c, &state, &y).slip;
+                    let at = self.tangential_base + 4 * c;
+                    y.fixed_rows_mut::<3>(at).copy_from(&Tangential::carrier(Mode::Slip, &Vector3::zeros(), &slip));
+                }
+            }
+        }
         y
     }
 
@@ -691,9 +702,10 @@ impl<'a> Island<'a> {
     /// force or force-rate units); `None` for a smooth contact.
     pub fn switch_value(&self, c: usize, y: &DVector<f64>) -> Option<f64> {
         let u = &self.units;
-        let (law, kinematics, spring, normal_force, elastic) = self.switching_state(c, y)?;
+        let (law, kinematics, state, normal_force, elastic) = self.switching_state(c, y)?;
         let mode = self.contacts[c].mode;
         let rate = if mode.is_sliding() { self.force_rate(c, y) * u.time / u.force } else { 0.0 };
+        let spring = self.carried(c, law, &state, &kinematics, normal_force, rate);
         let value = law.switch_function(mode, &spring, &kinematics, normal_force, rate, elastic);
         // A sticking contact may begin with cap and spring both zero (no slip at first touch, no force yet): its
         // `mu Fn - |T|` starts at zero, and a spring that then outgrows the cap (a ball set down on a slope) would
@@ -706,11 +718,29 @@ impl<'a> Island<'a> {
     /// ([`Tangential::next_mode`]); `None` for a smooth contact.
     pub fn next_mode(&self, c: usize, y: &DVector<f64>) -> Option<(Mode, Option<Vector3<f64>>)> {
         let u = &self.units;
-        let (law, kinematics, spring, normal_force, elastic) = self.switching_state(c, y)?;
+        let (law, kinematics, state, normal_force, elastic) = self.switching_state(c, y)?;
         let mode = self.contacts[c].mode;
         let rate = self.force_rate(c, y) * u.time / u.force;
-        let (next, spring) = law.next_mode(mode, &spring, &kinematics, normal_force, rate, elastic);
-        Some((next, spring.map(|spring| spring * u.force)))
+        let spring = self.carried(c, law, &state, &kinematics, normal_force, rate);
+        let (next, placed) = law.next_mode(mode, &spring, &kinematics, normal_force, rate, elastic);
+        let spring = Tangential::carrier(next, &placed.unwrap_or(spring), &kinematics.slip);
+        Some((next, Some(spring * u.force)))
+    }
+
+    /// Contact `c`'s spring force ([`Tangential::carried`]: while sliding, the cap along the direction its spring
+    /// state carries) for the spring state `state`, its normal force `normal_force` and that force's rate `rate`
+    /// (island units).
+    fn carried(
+        &self,
+        c: usize,
+        law: &Tangential,
+        state: &Vector3<f64>,
+        kinematics: &Kinematics,
+        normal_force: f64,
+        rate: f64,
+    ) -> Vector3<f64> {
+        let kt = law.stiffness_at(kinematics.penetration);
+        law.carried(self.contacts[c].mode, state, &kinematics.slip, normal_force, rate, kt)
     }
 
     /// The part of body `k`'s angular velocity (rad/s) that no friction of its contacts can change: the spin about
@@ -738,7 +768,15 @@ impl<'a> Island<'a> {
         let (elastic, dissipative) = self.force(c, &state, y);
         let spring = self.spring(c, &state.normal, y);
         let kt = law.stiffness_at(state.penetration / u.length);
-        let stored = law.held(self.contacts[c].mode, &spring, (elastic + dissipative) / u.force);
+        let normal_force = (elastic + dissipative) / u.force;
+        // (Sliding, the spring holds the cap: `held` is judged on the force the state carries.)
+        let force = if self.contacts[c].mode == Mode::Slip {
+            let kinematics = self.kinematics(c, &state, y);
+            self.carried(c, law, &spring, &kinematics, normal_force, self.force_rate(c, y) * u.time / u.force)
+        } else {
+            spring
+        };
+        let stored = law.held(self.contacts[c].mode, &force, normal_force);
         let energy = if kt > 0.0 { stored * stored / (2.0 * kt) } else { 0.0 };
         (spring * u.force, y[at + 3] * u.energy * self.friction_units[c], energy * u.energy)
     }
