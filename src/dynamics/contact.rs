@@ -92,7 +92,8 @@ pub const QUICK_REVERSAL: f64 = 1e-3;
 /// Most stick–slip switches one contact may take before the run is abandoned as chattering.
 pub const MAX_SWITCHES: u32 = 10_000;
 
-/// Angle (radians) between a sliding spring and its loading below which they count as aligned.
+/// Angle (radians) between a spring sliding under tension ([`Mode::SlipInTension`]) and its loading below which they
+/// count as aligned.
 pub const MISALIGNMENT: f64 = 1e-9;
 
 /// Angle (radians) between a 3-D model's sliding direction ([`SLIDE_CARRIER`]) and its loading below which they count
@@ -280,44 +281,25 @@ impl Tangential {
     }
 
     /// The direction of a sliding 3-D model's force, from the direction its spring state carries
-    /// ([`SLIDE_CARRIER`]), and whether that is the state's own: [`Tangential::sliding_direction`]'s rule for a spring
-    /// on the cap, `cap` (a state reversed against the slip while the cap grows, within [`QUICK_REVERSAL`], takes
-    /// the direction against the slip), and a state shorter than half its length — one that carries no direction,
-    /// or is being brought onto one — takes the direction against the slip too.
-    fn carried_direction(
-        spring: &Vector3<f64>,
-        slip: &Vector3<f64>,
-        cap: f64,
-        growing: bool,
-        stiffness: f64,
-    ) -> (Vector3<f64>, bool) {
+    /// ([`SLIDE_CARRIER`]), and whether that is the state's own: a state shorter than half its length carries none
+    /// (none is: each slide begins with one), and the force takes the direction against the slip. (No rule for a
+    /// reversed spring, as [`Tangential::sliding_direction`]'s: the direction a slide carries is never a rounding
+    /// remainder. Where the cap returns from zero with the slip turned along it — a damper cut to zero force inside
+    /// the contact — the switch function, `-kt slip·t - mu dFn/dt`, returns below zero, and the contact sticks there,
+    /// its spring placed on the cap, until the slip has loaded it the other way.)
+    fn carried_direction(spring: &Vector3<f64>, slip: &Vector3<f64>) -> (Vector3<f64>, bool) {
         let length = spring.norm();
-        let reversed = growing && spring.dot(slip) > 0.0 && cap < QUICK_REVERSAL * stiffness * slip.norm();
-        if length >= 0.5 * SLIDE_CARRIER && !reversed {
-            (spring / length, true)
-        } else {
-            (Tangential::against(slip), false)
-        }
+        if length >= 0.5 * SLIDE_CARRIER { (spring / length, true) } else { (Tangential::against(slip), false) }
     }
 
     /// The spring's force in `mode` for a 3-D model's spring state `state`: the state itself, or while sliding
     /// ([`Mode::Slip`]: the state carries the direction) the cap along the direction the force takes — what the
     /// switch functions, the next mode and the stored energy are judged by.
-    pub fn carried(
-        &self,
-        mode: Mode,
-        state: &Vector3<f64>,
-        slip: &Vector3<f64>,
-        normal_force: f64,
-        normal_force_rate: f64,
-        stiffness: f64,
-    ) -> Vector3<f64> {
+    pub fn carried(&self, mode: Mode, state: &Vector3<f64>, slip: &Vector3<f64>, normal_force: f64) -> Vector3<f64> {
         if mode != Mode::Slip {
             return *state;
         }
-        let cap = self.cap(normal_force);
-        let growing = normal_force_rate > 0.0;
-        Tangential::carried_direction(state, slip, cap, growing, stiffness).0 * cap
+        Tangential::carried_direction(state, slip).0 * self.cap(normal_force)
     }
 
     /// The spring state a 3-D model sets where it enters `mode` with the spring's force `spring`: while sliding
@@ -327,15 +309,15 @@ impl Tangential {
         if mode == Mode::Slip { Tangential::direction(spring, slip) * SLIDE_CARRIER } else { *spring }
     }
 
-    /// The force and spring rate in `mode`, for the spring `spring` (in the tangent plane), the kinematics, the
-    /// normal force `normal_force` and its rate `normal_force_rate`.
+    /// The force and spring rate in `mode`, for the spring state `spring` (in the tangent plane; while sliding, the
+    /// direction it carries), the kinematics and the normal force `normal_force`. (Neither depends on the normal
+    /// force's rate: a sliding state carries no size.)
     pub fn evaluate(
         &self,
         mode: Mode,
         spring: &Vector3<f64>,
         kinematics: &Kinematics,
         normal_force: f64,
-        normal_force_rate: f64,
     ) -> TangentialForce {
         let k = &kinematics;
         let kt = self.stiffness_at(k.penetration);
@@ -380,9 +362,8 @@ impl Tangential {
                 // state that followed the cap's size, at the cap's rate `mu dFn/dt` ∝ d^(1/2) for Hertz's law, had a
                 // rate as rough as that at the contact's edges: a frictional contact's last slide took about twice
                 // the steps of the whole contact without friction, half of them rejected.)
-                let growing = normal_force_rate > 0.0;
-                let (along, own) = Tangential::carried_direction(spring, &k.slip, cap, growing, kt);
-                let length = spring.norm();
+                let (along, own) = Tangential::carried_direction(spring, &k.slip);
+                let length = if own { spring.norm() } else { 0.0 };
                 // The direction turns towards the loading at the angular rate |loading across it| / |T|, which grows
                 // without bound where the Coulomb limit vanishes (the edges of the contact): faster than
                 // MAX_TURN_RATE it is taken as that rate, so that an explicit integrator is not held to ever shorter
@@ -399,10 +380,8 @@ impl Tangential {
                 } else {
                     turn *= length / cap;
                 }
-                // A state whose direction the force does not take (a remainder reversed against a growing cap, or
-                // none: see `carried_direction`) is brought onto the direction the force takes, at MAX_TURN_RATE.
-                let onto = if own { Vector3::zeros() } else { (along * SLIDE_CARRIER - spring) * MAX_TURN_RATE };
-                TangentialForce { force: along * cap, spring_rate: turn + onto + turning }
+                // (A state without a direction, `length` 0, is not turned: the force takes the slip's.)
+                TangentialForce { force: along * cap, spring_rate: turn + turning }
             }
         }
     }
@@ -417,6 +396,52 @@ impl Tangential {
         &self,
         mode: Mode,
         spring: &Vector3<f64>,
+        kinematics: &Kinematics,
+        normal_force: f64,
+        normal_force_rate: f64,
+        elastic: f64,
+    ) -> f64 {
+        self.switch_function_along(mode, spring, None, kinematics, normal_force, normal_force_rate, elastic)
+    }
+
+    /// [`Tangential::switch_function`] for a 3-D model's spring state `state` (while sliding, the direction it
+    /// carries, [`SLIDE_CARRIER`], which the switch judges the slide by: no rule for a reversed remainder).
+    pub fn carried_switch_function(
+        &self,
+        mode: Mode,
+        state: &Vector3<f64>,
+        kinematics: &Kinematics,
+        normal_force: f64,
+        normal_force_rate: f64,
+        elastic: f64,
+    ) -> f64 {
+        let (spring, along) = self.carried_parts(mode, state, &kinematics.slip, normal_force);
+        self.switch_function_along(mode, &spring, along, kinematics, normal_force, normal_force_rate, elastic)
+    }
+
+    /// A 3-D model's spring force for the state `state` ([`Tangential::carried`]) and, while sliding, the direction
+    /// the state carries.
+    fn carried_parts(
+        &self,
+        mode: Mode,
+        state: &Vector3<f64>,
+        slip: &Vector3<f64>,
+        normal_force: f64,
+    ) -> (Vector3<f64>, Option<Vector3<f64>>) {
+        if mode != Mode::Slip {
+            return (*state, None);
+        }
+        let along = Tangential::carried_direction(state, slip).0;
+        (along * self.cap(normal_force), Some(along))
+    }
+
+    /// [`Tangential::switch_function`] with a slide judged along `along` where given.
+    #[allow(clippy::too_many_arguments)]
+    fn switch_function_along(
+        &self,
+        mode: Mode,
+        spring: &Vector3<f64>,
+        along: Option<Vector3<f64>>,
         kinematics: &Kinematics,
         normal_force: f64,
         normal_force_rate: f64,
@@ -442,7 +467,7 @@ impl Tangential {
             Mode::Slip if normal_force <= 0.0 && self.cap == FrictionCap::Compressive => 1.0,
             Mode::Slip | Mode::SlipInTension => {
                 let (lifting, kink) =
-                    self.sliding_parts(mode, spring, kinematics, normal_force, normal_force_rate, elastic);
+                    self.sliding_parts(mode, spring, along, kinematics, normal_force, normal_force_rate, elastic);
                 lifting.min(kink)
             }
         }
@@ -454,17 +479,21 @@ impl Tangential {
     /// unlike Fn itself it stays away from zero where a force that never pulls vanishes with the penetration (a
     /// Hertzian law's at separation), and out of contact, without a force, it is 1 on either side: the passage into
     /// or out of tension is never confused with the contact's end.
+    /// (`along`, where given, is the direction the slide is judged by: a 3-D model's carried one.)
+    #[allow(clippy::too_many_arguments)]
     fn sliding_parts(
         &self,
         mode: Mode,
         spring: &Vector3<f64>,
+        along: Option<Vector3<f64>>,
         kinematics: &Kinematics,
         normal_force: f64,
         normal_force_rate: f64,
         elastic: f64,
     ) -> (f64, f64) {
         let kt = self.stiffness_at(kinematics.penetration);
-        let along = self.sliding_along(mode, spring, &kinematics.slip, normal_force, normal_force_rate, kt);
+        let along = along
+            .unwrap_or_else(|| self.sliding_along(mode, spring, &kinematics.slip, normal_force, normal_force_rate, kt));
         let held = self.held(mode, spring, normal_force);
         let holding = -kinematics.slip.dot(&along) * kt + held * self.rescale_rate(kinematics);
         let lifting = holding - self.friction * mode.side() * normal_force_rate;
@@ -517,6 +546,38 @@ impl Tangential {
         normal_force_rate: f64,
         elastic: f64,
     ) -> (Mode, Option<Vector3<f64>>) {
+        self.next_mode_along(mode, spring, None, kinematics, normal_force, normal_force_rate, elastic)
+    }
+
+    /// [`Tangential::next_mode`] for a 3-D model's spring state `state` (while sliding, the direction it carries, which
+    /// the switch judges the slide by), and the spring state to set there ([`Tangential::carrier`]).
+    pub fn carried_next_mode(
+        &self,
+        mode: Mode,
+        state: &Vector3<f64>,
+        kinematics: &Kinematics,
+        normal_force: f64,
+        normal_force_rate: f64,
+        elastic: f64,
+    ) -> (Mode, Vector3<f64>) {
+        let (spring, along) = self.carried_parts(mode, state, &kinematics.slip, normal_force);
+        let (next, placed) =
+            self.next_mode_along(mode, &spring, along, kinematics, normal_force, normal_force_rate, elastic);
+        (next, Tangential::carrier(next, &placed.unwrap_or(spring), &kinematics.slip))
+    }
+
+    /// [`Tangential::next_mode`] with a slide judged along `along` where given.
+    #[allow(clippy::too_many_arguments)]
+    fn next_mode_along(
+        &self,
+        mode: Mode,
+        spring: &Vector3<f64>,
+        along: Option<Vector3<f64>>,
+        kinematics: &Kinematics,
+        normal_force: f64,
+        normal_force_rate: f64,
+        elastic: f64,
+    ) -> (Mode, Option<Vector3<f64>>) {
         match mode {
             // A damped spring may stand beyond the cap (it unloaded more slowly than the cap fell, the force capped
             // meanwhile): it slides from the cap.
@@ -531,7 +592,7 @@ impl Tangential {
             }
             Mode::Slip | Mode::SlipInTension => {
                 let (lifting, kink) =
-                    self.sliding_parts(mode, spring, kinematics, normal_force, normal_force_rate, elastic);
+                    self.sliding_parts(mode, spring, along, kinematics, normal_force, normal_force_rate, elastic);
                 if self.cap == FrictionCap::Compressive || lifting < kink {
                     // (Under tension the direction is the spring's, whatever the stiffness.)
                     let placed = (mode == Mode::SlipInTension)

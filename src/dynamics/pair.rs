@@ -97,7 +97,7 @@ struct Evaluation {
     elastic: f64,
     dissipative: f64,
     normal_force_rate: f64,
-    /// The spring's force (while sliding, the cap along the direction the state carries: `Tangential::carried`).
+    /// The spring state, in the tangent plane (while sliding, the direction it carries: `Tangential::carried`).
     spring: Vector3<f64>,
     tangential: Vector3<f64>,
     spring_rate: Vector3<f64>,
@@ -194,14 +194,12 @@ impl<'a> PairContact<'a> {
         let normal_force_rate = (by_penetration * s.length * k.rate + by_rate * s.speed * acceleration) / s.force;
         let raw_spring = vector(y, index::SPRING);
         let spring = raw_spring - k.normal * raw_spring.dot(&k.normal);
-        let (tangential, spring_rate, spring) = match &self.tangential {
+        let (tangential, spring_rate) = match &self.tangential {
             Some(t) => {
-                let f = t.evaluate(mode(y), &spring, k, normal_force, normal_force_rate);
-                let kt = t.stiffness_at(k.penetration);
-                let held = t.carried(mode(y), &spring, &k.slip, normal_force, normal_force_rate, kt);
-                (f.force, f.spring_rate, held)
+                let f = t.evaluate(mode(y), &spring, k, normal_force);
+                (f.force, f.spring_rate)
             }
-            None => (Vector3::zeros(), Vector3::zeros(), spring),
+            None => (Vector3::zeros(), Vector3::zeros()),
         };
         Evaluation {
             kinematics,
@@ -305,15 +303,15 @@ impl ContactModel<SIZE> for PairContact<'_> {
         let t = self.tangential.as_ref()?;
         let e = self.evaluate(y);
         let force = e.elastic + e.dissipative;
-        Some(t.switch_function(mode(y), &e.spring, &e.kinematics, force, e.normal_force_rate, e.elastic))
+        Some(t.carried_switch_function(mode(y), &e.spring, &e.kinematics, force, e.normal_force_rate, e.elastic))
     }
 
     fn switch(&self, y: &mut State<SIZE>) {
         let Some(t) = &self.tangential else { return };
         let e = self.evaluate(y);
         let force = e.elastic + e.dissipative;
-        let (next, spring) = t.next_mode(mode(y), &e.spring, &e.kinematics, force, e.normal_force_rate, e.elastic);
-        let spring = Tangential::carrier(next, &spring.unwrap_or(e.spring), &e.kinematics.slip);
+        let (next, spring) =
+            t.carried_next_mode(mode(y), &e.spring, &e.kinematics, force, e.normal_force_rate, e.elastic);
         set_vector(y, index::SPRING, &spring);
         set_mode(y, next);
     }
@@ -349,9 +347,10 @@ impl ContactModel<SIZE> for PairContact<'_> {
             setup.positions[0] + a.velocity * time - pushed * self.shares[0],
             setup.positions[1] + b.velocity * time + pushed * self.shares[1],
         ];
-        let tangential_elastic = self
-            .tangential
-            .map_or(0.0, |t| t.stored_energy(mode(y), &e.spring, k.penetration, e.elastic + e.dissipative));
+        let tangential_elastic = self.tangential.map_or(0.0, |t| {
+            let force = e.elastic + e.dissipative;
+            t.stored_energy(mode(y), &t.carried(mode(y), &e.spring, &k.slip, force), k.penetration, force)
+        });
         let normal_work = y[index::NORMAL_WORK] * s.energy;
         let (elastic_energy, dissipated_normal) =
             self.normal(y, k).energies(y[index::NORMAL_WORK], y[index::DISSIPATED], self.dissipation_scale);

@@ -151,8 +151,8 @@ pub struct RigidContact<'a> {
     setup: &'a Setup,
 }
 
-/// Everything the derivative computes at one state (the force's rate, which only the force-peak event needs, is
-/// [`RigidContact::normal_force_rate`]'s).
+/// Everything the derivative computes at one state (the force's rate, which only the force-peak event and the
+/// stick–slip switches need, is [`RigidContact::normal_force_rate`]'s).
 struct Evaluation {
     motions: [Motion; 2],
     normal: Vector3<f64>,
@@ -170,16 +170,13 @@ struct Evaluation {
     /// The contact points' kinematics as the tangential law reads them (the slip of body 1's point relative to
     /// body 2's, in v0).
     kinematics: Kinematics,
-    /// The tangential spring's force, kept in the tangent plane (while sliding, the cap along the direction the state
-    /// carries: `Tangential::carried`).
+    /// The tangential spring state, kept in the tangent plane (while sliding, the direction it carries:
+    /// `Tangential::carried`).
     spring: Vector3<f64>,
     /// The tangential force on body 1 (scaled).
     tangential: Vector3<f64>,
     /// dT/dt of the spring.
     spring_rate: Vector3<f64>,
-    /// The normal force's rate (scaled), the tangential force's moments included; zero for a smooth contact, which
-    /// computes it only where it is asked for.
-    normal_force_rate: f64,
 }
 
 impl<'a> RigidContact<'a> {
@@ -329,13 +326,16 @@ impl<'a> RigidContact<'a> {
         let normal_force = elastic + dissipative;
         let raw_spring = vector(y, index::SPRING);
         let spring = raw_spring - k.normal * raw_spring.dot(&k.normal);
-        // The tangential force does not depend on the normal force's rate (only the sliding spring's rate does), and
-        // that rate depends on the tangential force through its moments: the force first, then the rate.
-        let tangential = match &self.tangential {
-            Some(t) => t.evaluate(mode(y), &spring, &k, normal_force, 0.0).force,
-            None => Vector3::zeros(),
+        // (Neither the tangential force nor the spring's rate depends on the normal force's rate, which depends on the
+        // tangential force through its moments.)
+        let (tangential, spring_rate) = match &self.tangential {
+            Some(t) => {
+                let f = t.evaluate(mode(y), &spring, &k, normal_force);
+                (f.force, f.spring_rate)
+            }
+            None => (Vector3::zeros(), Vector3::zeros()),
         };
-        let mut e = Evaluation {
+        Evaluation {
             motions,
             normal: k.normal,
             normal_rate: k.normal_rate,
@@ -349,17 +349,8 @@ impl<'a> RigidContact<'a> {
             kinematics: k,
             spring,
             tangential,
-            spring_rate: Vector3::zeros(),
-            normal_force_rate: 0.0,
-        };
-        // (A smooth contact needs the rate only at the force-peak event: [`ContactModel::force_rate`].)
-        if let Some(t) = &self.tangential {
-            e.normal_force_rate = self.normal_force_rate(&e);
-            e.spring_rate = t.evaluate(mode(y), &spring, &e.kinematics, normal_force, e.normal_force_rate).spring_rate;
-            let kt = t.stiffness_at(e.kinematics.penetration);
-            e.spring = t.carried(mode(y), &spring, &e.kinematics.slip, normal_force, e.normal_force_rate, kt);
+            spring_rate,
         }
-        e
     }
 
     /// Body `i`'s contact point's arm from its origin (mass centre or pivot), in L: its sphere's centre's, and from
@@ -494,7 +485,7 @@ impl ContactModel<SIZE> for RigidContact<'_> {
 
     fn force_rate(&self, y: &State<SIZE>) -> f64 {
         let e = self.evaluate(y);
-        if self.tangential.is_some() { e.normal_force_rate } else { self.normal_force_rate(&e) }
+        self.normal_force_rate(&e)
     }
 
     fn separation_force(&self, y: &State<SIZE>) -> f64 {
@@ -509,15 +500,17 @@ impl ContactModel<SIZE> for RigidContact<'_> {
         let t = self.tangential.as_ref()?;
         let e = self.evaluate(y);
         let force = e.elastic + e.dissipative;
-        Some(t.switch_function(mode(y), &e.spring, &e.kinematics, force, e.normal_force_rate, e.elastic))
+        // (The normal force's rate only where a switch is judged: the derivative needs none.)
+        let rate = self.normal_force_rate(&e);
+        Some(t.carried_switch_function(mode(y), &e.spring, &e.kinematics, force, rate, e.elastic))
     }
 
     fn switch(&self, y: &mut State<SIZE>) {
         let Some(t) = &self.tangential else { return };
         let e = self.evaluate(y);
         let force = e.elastic + e.dissipative;
-        let (next, spring) = t.next_mode(mode(y), &e.spring, &e.kinematics, force, e.normal_force_rate, e.elastic);
-        let spring = Tangential::carrier(next, &spring.unwrap_or(e.spring), &e.kinematics.slip);
+        let (next, spring) =
+            t.carried_next_mode(mode(y), &e.spring, &e.kinematics, force, self.normal_force_rate(&e), e.elastic);
         set_vector(y, index::SPRING, &spring);
         set_mode(y, next);
     }
@@ -569,8 +562,9 @@ impl ContactModel<SIZE> for RigidContact<'_> {
         let (elastic_energy, dissipated_normal) =
             self.normal(y, &e).energies(y[index::NORMAL_WORK], y[index::DISSIPATED], self.dissipation_scale);
         // The spring stores at most what the Coulomb cap lets it hold (as in the spheres' model).
-        let tangential_elastic =
-            self.tangential.map_or(0.0, |t| t.stored_energy(mode(y), &e.spring, e.penetration, force));
+        let tangential_elastic = self.tangential.map_or(0.0, |t| {
+            t.stored_energy(mode(y), &t.carried(mode(y), &e.spring, &e.kinematics.slip, force), e.penetration, force)
+        });
         Snapshot {
             time,
             penetration: e.penetration * s.length,

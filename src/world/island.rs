@@ -105,13 +105,12 @@ pub struct ActiveContact {
     pub tangential_work: f64,
 }
 
-/// What the derivative reads of one contact at an instant: its kinematics, its normal force's parts (N) and their
-/// sum in the island's force unit, and, with friction, its kinematics as the tangential law reads them and that law's
-/// force and spring rate.
+/// What the derivative reads of one contact at an instant: its kinematics, its normal force's dissipative part (N),
+/// the whole normal force in the island's force unit, and, with friction, its kinematics as the tangential law reads
+/// them and that law's force and spring rate.
 #[derive(Debug, Clone, Copy)]
 struct ContactParts {
     state: ContactState,
-    elastic: f64,
     dissipative: f64,
     force: f64,
     tangential: Option<(Kinematics, crate::dynamics::contact::TangentialForce)>,
@@ -655,18 +654,16 @@ impl<'a> Island<'a> {
     }
 
     /// Contact `c`'s tangential force on body `pair[0]` (in M V²/L) and its law's parts, for its normal force
-    /// `normal_force` (M V²/L) and that force's rate `normal_force_rate` (in M V²/L per T; only a sliding spring's rate
-    /// needs it): `None` for a smooth contact.
+    /// `normal_force` (M V²/L): `None` for a smooth contact.
     fn tangential(
         &self,
         c: usize,
         state: &ContactState,
         normal_force: f64,
-        normal_force_rate: f64,
         y: &DVector<f64>,
     ) -> Option<(Kinematics, crate::dynamics::contact::TangentialForce)> {
         let (law, kinematics, spring) = self.tangential_state(c, state, y)?;
-        let force = law.evaluate(self.contacts[c].mode, &spring, &kinematics, normal_force, normal_force_rate);
+        let force = law.evaluate(self.contacts[c].mode, &spring, &kinematics, normal_force);
         Some((kinematics, force))
     }
 
@@ -705,8 +702,7 @@ impl<'a> Island<'a> {
         let (law, kinematics, state, normal_force, elastic) = self.switching_state(c, y)?;
         let mode = self.contacts[c].mode;
         let rate = if mode.is_sliding() { self.force_rate(c, y) * u.time / u.force } else { 0.0 };
-        let spring = self.carried(c, law, &state, &kinematics, normal_force, rate);
-        let value = law.switch_function(mode, &spring, &kinematics, normal_force, rate, elastic);
+        let value = law.carried_switch_function(mode, &state, &kinematics, normal_force, rate, elastic);
         // A sticking contact may begin with cap and spring both zero (no slip at first touch, no force yet): its
         // `mu Fn - |T|` starts at zero, and a spring that then outgrows the cap (a ball set down on a slope) would
         // never be seen to fall through it. Sticking holds to STICK_MARGIN of the force unit beyond the cap — far
@@ -721,26 +717,8 @@ impl<'a> Island<'a> {
         let (law, kinematics, state, normal_force, elastic) = self.switching_state(c, y)?;
         let mode = self.contacts[c].mode;
         let rate = self.force_rate(c, y) * u.time / u.force;
-        let spring = self.carried(c, law, &state, &kinematics, normal_force, rate);
-        let (next, placed) = law.next_mode(mode, &spring, &kinematics, normal_force, rate, elastic);
-        let spring = Tangential::carrier(next, &placed.unwrap_or(spring), &kinematics.slip);
+        let (next, spring) = law.carried_next_mode(mode, &state, &kinematics, normal_force, rate, elastic);
         Some((next, Some(spring * u.force)))
-    }
-
-    /// Contact `c`'s spring force ([`Tangential::carried`]: while sliding, the cap along the direction its spring
-    /// state carries) for the spring state `state`, its normal force `normal_force` and that force's rate `rate`
-    /// (island units).
-    fn carried(
-        &self,
-        c: usize,
-        law: &Tangential,
-        state: &Vector3<f64>,
-        kinematics: &Kinematics,
-        normal_force: f64,
-        rate: f64,
-    ) -> Vector3<f64> {
-        let kt = law.stiffness_at(kinematics.penetration);
-        law.carried(self.contacts[c].mode, state, &kinematics.slip, normal_force, rate, kt)
     }
 
     /// The part of body `k`'s angular velocity (rad/s) that no friction of its contacts can change: the spin about
@@ -771,8 +749,7 @@ impl<'a> Island<'a> {
         let normal_force = (elastic + dissipative) / u.force;
         // (Sliding, the spring holds the cap: `held` is judged on the force the state carries.)
         let force = if self.contacts[c].mode == Mode::Slip {
-            let kinematics = self.kinematics(c, &state, y);
-            self.carried(c, law, &spring, &kinematics, normal_force, self.force_rate(c, y) * u.time / u.force)
+            law.carried(Mode::Slip, &spring, &self.kinematics(c, &state, y).slip, normal_force)
         } else {
             spring
         };
@@ -848,9 +825,7 @@ impl<'a> Island<'a> {
             let state = self.contact_state(c, y);
             let (elastic, dissipative) = self.force(c, &state, y);
             let mut on_j = state.normal * ((elastic + dissipative) / body.mass);
-            if let Some((_, tangential)) =
-                self.tangential(c, &state, (elastic + dissipative) / self.units.force, 0.0, y)
-            {
+            if let Some((_, tangential)) = self.tangential(c, &state, (elastic + dissipative) / self.units.force, y) {
                 on_j -= tangential.force * (self.units.force / body.mass);
             }
             if self.contacts[c].pair[1] == k { a += on_j } else { a -= on_j }
@@ -893,10 +868,8 @@ impl<'a> Island<'a> {
         by_penetration * state.rate + by_rate * second
     }
 
-    /// Every contact's [`ContactParts`] at `y`, as the derivative reads them. A sliding spring's rate needs the normal
-    /// force's rate, and that the accelerations of both bodies, which sum the forces of all their contacts: they are
-    /// summed here from the forces already found (in the order and the arithmetic of [`Island::acceleration_of`], so
-    /// that the rate is the same number), rather than each contact's forces found again for each sliding neighbour.
+    /// Every contact's [`ContactParts`] at `y`, as the derivative reads them, each contact's forces found once. (No
+    /// rate of a normal force: a sliding spring's state carries its direction alone, and its rate needs none.)
     /// (Written into `parts`, the buffer of an earlier call: the derivative allocates nothing per evaluation.)
     fn contact_parts(&self, y: &DVector<f64>, parts: &mut Vec<ContactParts>) {
         let u = &self.units;
@@ -905,42 +878,10 @@ impl<'a> Island<'a> {
             let state = self.contact_state(c, y);
             let (elastic, dissipative) = self.force(c, &state, y);
             let force = (elastic + dissipative) / u.force;
-            // (The tangential force does not depend on the normal force's rate; only a sliding spring's rate does.)
-            let tangential = self.tangential(c, &state, force, 0.0, y);
-            ContactParts { state, elastic, dissipative, force, tangential }
+            // (Neither the tangential force nor the spring's rate depends on the normal force's rate.)
+            let tangential = self.tangential(c, &state, force, y);
+            ContactParts { state, dissipative, force, tangential }
         }));
-        for c in 0..parts.len() {
-            let Some(law) = self.tangentials[c].as_ref() else { continue };
-            let force = parts[c].force;
-            if !(self.contacts[c].mode.is_sliding() && (force > 0.0 || law.cap == FrictionCap::Magnitude)) {
-                continue;
-            }
-            let [p, q] = self.contacts[c].sites;
-            let relative_acceleration =
-                self.site_acceleration_from(q, parts, y) - self.site_acceleration_from(p, parts, y);
-            let force_rate = self.force_rate_at(c, &parts[c].state, &relative_acceleration, y) * u.time / u.force;
-            parts[c].tangential = self.tangential(c, &parts[c].state, force, force_rate, y);
-        }
-    }
-
-    /// [`Island::site_acceleration`] from the contacts' forces `parts` (the turning bodies' as that finds them).
-    fn site_acceleration_from(&self, s: usize, parts: &[ContactParts], y: &DVector<f64>) -> Vector3<f64> {
-        let k = self.sites.body(s);
-        if self.turning_of(k).is_some() {
-            return self.site_acceleration(s, y);
-        }
-        let body = &self.scene.bodies[k];
-        let Some(m) = self.slots[k] else { return self.flight[k] };
-        let mut a = self.scene.world.gravity;
-        for &c in &self.touching[m] {
-            let part = &parts[c];
-            let mut on_j = part.state.normal * ((part.elastic + part.dissipative) / body.mass);
-            if let Some((_, tangential)) = &part.tangential {
-                on_j -= tangential.force * (self.units.force / body.mass);
-            }
-            if self.contacts[c].pair[1] == k { a += on_j } else { a -= on_j }
-        }
-        a
     }
 
     /// The torque (N m) on turning member `r` about its origin at `y`: its contacts' normal forces at its spheres'
@@ -963,7 +904,7 @@ impl<'a> Island<'a> {
             let (lever, _) = self.site_arm(contact.sites[side], y);
             torque += lever.cross(&(state.normal * ((elastic + dissipative) * sign)));
             if let Some((kinematics, tangential)) =
-                self.tangential(c, &state, (elastic + dissipative) / self.units.force, 0.0, y)
+                self.tangential(c, &state, (elastic + dissipative) / self.units.force, y)
             {
                 let levers = self.levers(c, &kinematics.arms, y);
                 torque += levers[side].cross(&(tangential.force * (-sign * self.units.force)));
@@ -1174,7 +1115,7 @@ impl ModelOf<Dyn> for Island<'_> {
         let mut parts = self.parts.take();
         self.contact_parts(y, &mut parts);
         for (c, part) in parts.iter().enumerate() {
-            let ContactParts { state, elastic: _, dissipative, force, .. } = *part;
+            let ContactParts { state, dissipative, force, .. } = *part;
             let rate = state.rate / u.speed;
             let on_j = state.normal * force;
             let [i, j] = self.contacts[c].pair;
