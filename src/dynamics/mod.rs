@@ -115,6 +115,13 @@ pub trait ContactModel<const N: usize>: Model<N> {
     fn slip_along_start(&self, _y: &State<N>) -> Option<f64> {
         None
     }
+    /// Whether the tangential force has a kink where the normal force passes through zero that no switch of the
+    /// model locates (the 3-D models' compressive Coulomb cap `mu max(Fn, 0)`, slid through without a switch): the
+    /// driver then makes each passage a step boundary. The slide model's corner, and the magnitude cap's, are
+    /// switches.
+    fn tension_kink(&self) -> bool {
+        false
+    }
     /// The scaled penetrations (d/L, ascending) where the law's force is not smooth in this phase
     /// ([`crate::law::ContactLaw::kinks`]): the driver makes each crossing a step boundary.
     fn kinks(&self, compressing: bool) -> crate::law::Kinks;

@@ -523,6 +523,10 @@ impl ContactModel<SIZE> for RigidContact<'_> {
         (self.slip_direction != Vector3::zeros()).then(|| self.evaluate(y).kinematics.slip.dot(&self.slip_direction))
     }
 
+    fn tension_kink(&self) -> bool {
+        self.tangential.is_some_and(|t| t.cap == crate::scene::FrictionCap::Compressive)
+    }
+
     fn kinks(&self, compressing: bool) -> crate::law::Kinks {
         self.law.kinks(compressing).scaled(self.scales.length)
     }

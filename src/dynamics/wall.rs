@@ -147,6 +147,10 @@ impl ContactModel<SIZE> for WallContact<'_> {
         self.pair.slip_along_start(&self.pair_state(y))
     }
 
+    fn tension_kink(&self) -> bool {
+        self.pair.tension_kink()
+    }
+
     fn kinks(&self, compressing: bool) -> crate::law::Kinks {
         self.pair.kinks(compressing)
     }
