@@ -84,9 +84,10 @@ impl Shape {
 /// lasts about 3 T): faster turning is a quasi-static alignment, approximated at this rate.
 pub const MAX_TURN_RATE: f64 = 1e4;
 
-/// The time (in the model's time unit T; in a world, the unit of the contact that started the island) within which a
-/// stick's loading `kt |slip|` would unload a reversed sliding spring, for the spring to count as a rounding remainder
-/// and be turned against the slip while the cap grows ([`Tangential::sliding_direction`]).
+/// The time (in the model's time unit T) within which a stick's loading `kt |slip|` would unload a reversed sliding
+/// spring, for the spring to count as a rounding remainder and be turned against the slip while the cap grows
+/// ([`Tangential::sliding_direction`]: the slide paths' rule; the 3-D models' sliding state carries a direction that
+/// is never such a remainder).
 pub const QUICK_REVERSAL: f64 = 1e-3;
 
 /// Most stick–slip switches one contact may take before the run is abandoned as chattering.
