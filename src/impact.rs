@@ -472,9 +472,8 @@ fn run_with<const N: usize, M: ContactModel<N>>(
     // Where a frictional contact's force turns tensile and back (located, not terminal): the tensile impulse. Where
     // the model slides through it without a switch (`ContactModel::tension_kink`), each passage is a step boundary
     // too (the first MAX_CUTS, watched falling, then rising, in turn), where the Coulomb cap `mu max(Fn, 0)` has its
-    // kink: Dop853's error estimate, stepping across it, let a Tsuji wall's tangential
-    // velocity take 3.3e-10 of the approach speed in the step after it (test 4 at 45° at rtol 1e-10), where the force
-    // was zero. (Its passages are recorded as the two watches' crossings.)
+    // kink: Dop853's error estimate, stepping across it, let a Tsuji wall's tangential velocity take 1.2e-10 of the
+    // approach speed in the step after it (test 4 at 45° at rtol 1e-10), where the force was zero. (Its passages are recorded as the two watches' crossings.)
     let force = |y: &State<N>| model.force(y);
     let tension = frictional && !on_force && law.law.can_pull();
     let tension_events = restitution.len();

@@ -96,7 +96,6 @@ struct Evaluation {
     spins: [Vector3<f64>; 2],
     elastic: f64,
     dissipative: f64,
-    normal_force_rate: f64,
     /// The spring state, in the tangent plane (while sliding, the direction it carries: `Tangential::carried`).
     spring: Vector3<f64>,
     tangential: Vector3<f64>,
@@ -188,10 +187,6 @@ impl<'a> PairContact<'a> {
         let parts = self.law.split_force_after(d * s.length, k.rate * s.speed, deepest);
         let (elastic, dissipative) = (parts.elastic / s.force, parts.dissipative / s.force);
         let normal_force = elastic + dissipative;
-        // d'' = -(dw/dt·n + w·dn/dt), and dw/dt·n = Fn (the tangential force lies across the normal).
-        let acceleration = -(normal_force * self.impulse_gain + relative_velocity.dot(&k.normal_rate));
-        let (by_penetration, by_rate) = self.law.force_gradient_after(d * s.length, k.rate * s.speed, deepest);
-        let normal_force_rate = (by_penetration * s.length * k.rate + by_rate * s.speed * acceleration) / s.force;
         let raw_spring = vector(y, index::SPRING);
         let spring = raw_spring - k.normal * raw_spring.dot(&k.normal);
         let (tangential, spring_rate) = match &self.tangential {
@@ -201,17 +196,19 @@ impl<'a> PairContact<'a> {
             }
             None => (Vector3::zeros(), Vector3::zeros()),
         };
-        Evaluation {
-            kinematics,
-            relative_velocity,
-            spins,
-            elastic,
-            dissipative,
-            normal_force_rate,
-            spring,
-            tangential,
-            spring_rate,
-        }
+        Evaluation { kinematics, relative_velocity, spins, elastic, dissipative, spring, tangential, spring_rate }
+    }
+
+    /// The normal force's rate at `y` (scaled), from its evaluation `e`: only the force peak and the stick–slip
+    /// switches need it, the derivative none.
+    fn normal_force_rate(&self, y: &State<SIZE>, e: &Evaluation) -> f64 {
+        let (s, k) = (&self.scales, &e.kinematics);
+        let d = if k.penetration > -EDGE { k.penetration.max(0.0) } else { k.penetration };
+        let deepest = self.deepest(y, d);
+        // d'' = -(dw/dt·n + w·dn/dt), and dw/dt·n = Fn (the tangential force lies across the normal).
+        let acceleration = -((e.elastic + e.dissipative) * self.impulse_gain + e.relative_velocity.dot(&k.normal_rate));
+        let (by_penetration, by_rate) = self.law.force_gradient_after(d * s.length, k.rate * s.speed, deepest);
+        (by_penetration * s.length * k.rate + by_rate * s.speed * acceleration) / s.force
     }
 }
 
@@ -288,7 +285,7 @@ impl ContactModel<SIZE> for PairContact<'_> {
     }
 
     fn force_rate(&self, y: &State<SIZE>) -> f64 {
-        self.evaluate(y).normal_force_rate
+        self.normal_force_rate(y, &self.evaluate(y))
     }
 
     fn separation_force(&self, y: &State<SIZE>) -> f64 {
@@ -303,7 +300,8 @@ impl ContactModel<SIZE> for PairContact<'_> {
         let t = self.tangential.as_ref()?;
         let e = self.evaluate(y);
         let force = e.elastic + e.dissipative;
-        Some(t.carried_switch_function(mode(y), &e.spring, &e.kinematics, force, e.normal_force_rate, e.elastic))
+        let rate = self.normal_force_rate(y, &e);
+        Some(t.carried_switch_function(mode(y), &e.spring, &e.kinematics, force, rate, e.elastic))
     }
 
     fn switch(&self, y: &mut State<SIZE>) {
@@ -311,7 +309,7 @@ impl ContactModel<SIZE> for PairContact<'_> {
         let e = self.evaluate(y);
         let force = e.elastic + e.dissipative;
         let (next, spring) =
-            t.carried_next_mode(mode(y), &e.spring, &e.kinematics, force, e.normal_force_rate, e.elastic);
+            t.carried_next_mode(mode(y), &e.spring, &e.kinematics, force, self.normal_force_rate(y, &e), e.elastic);
         set_vector(y, index::SPRING, &spring);
         set_mode(y, next);
     }

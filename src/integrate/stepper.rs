@@ -491,12 +491,18 @@ where
         if span <= 0.0 {
             return Ok(None);
         }
-        let ahead = &left.1 + &left.2 * (span * SLOPE_SHARE);
+        // (The state a share of the step ahead of its start, formed only for a watched switch that might be hidden.)
+        let mut ahead = None;
         let hidden: Vec<usize> = (0..events.len())
             .filter(|&i| {
                 let event = &events[i];
+                if !(event.dips && event.terminal && i != stop.event) {
+                    return false;
+                }
                 let (p, v) = (event.value(&left.1), event.value(&right.1));
-                event.dips && event.terminal && i != stop.event && p > 0.0 && v >= p && event.value(&ahead) < p
+                p > 0.0
+                    && v >= p
+                    && event.value(ahead.get_or_insert_with(|| &left.1 + &left.2 * (span * SLOPE_SHARE))) < p
             })
             .collect();
         if hidden.is_empty() {
