@@ -28,6 +28,7 @@ pub struct RawWorld {
     pub max_steps: Option<At<toml::Value>>,
     pub damping_map: Option<At<String>>,
     pub skin: Option<At<f64>>,
+    pub coast: Option<At<bool>>,
 }
 
 /// A `[[pair]]` table: two bodies and any key of `[contact]`, which it overrides for them.

@@ -550,7 +550,11 @@ fn world(src: &Source, raw: &At<RawWorld>) -> Checked<WorldSpec> {
         }
     };
     let skin = raw.skin.as_ref().map(|s| number(src, "world.skin", s));
-    Ok(WorldSpec { gravity, end_time, max_contacts, max_steps, damping_map, skin })
+    let coast = raw.coast.as_ref().map_or(defaults.coast, |c| {
+        src.note("world.coast", &c.span());
+        *c.get_ref()
+    });
+    Ok(WorldSpec { gravity, end_time, max_contacts, max_steps, damping_map, skin, coast })
 }
 
 fn parse_error(src: &Source, error: &toml::de::Error) -> SceneError {

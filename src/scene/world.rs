@@ -52,6 +52,9 @@ pub struct WorldSpec {
     pub damping_map: DampingMap,
     /// The neighbour list's skin, m (`None`: the default, docs/world.md#neighbours; infinite: every pair).
     pub skin: Option<f64>,
+    /// Whether a ball that rests on a still face, its normal ringing died away, moves on in closed form
+    /// (docs/world.md#coasting); `false` integrates it throughout.
+    pub coast: bool,
 }
 
 /// How a law's damping follows from a nominal e when its map depends on the approach speed (the hysteresis family:
@@ -99,6 +102,7 @@ impl Default for WorldSpec {
             max_steps: DEFAULT_MAX_STEPS,
             damping_map: DampingMap::EachContact,
             skin: None,
+            coast: true,
         }
     }
 }

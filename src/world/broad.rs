@@ -139,12 +139,13 @@ impl Neighbours {
 
     /// A flight time (s) within which site `k`, now at `state` (its centre, and its body's motion) and flying under the acceleration `a`, surely stays
     /// within its margin m: the positive root of |v| t + |a| t²/2 = m, written without cancellation as
-    /// 2m / (|v| + sqrt(|v|² + 2 |a| m)) (infinite for a body at rest, zero for one already at its margin).
-    pub fn flight_bound(&self, k: usize, state: &Kinematic, a: &Vector3<f64>) -> f64 {
+    /// 2m / (|v| + sqrt(|v|² + 2 |a| m)) (infinite for a body at rest, zero for one already at its margin). `slack`
+    /// (m) is taken from the margin: how far the site may stray from `state`'s motion (a coasting ball's padding).
+    pub fn flight_bound(&self, k: usize, state: &Kinematic, a: &Vector3<f64>, slack: f64) -> f64 {
         if state.velocity == Vector3::zeros() && *a == Vector3::zeros() {
             return f64::INFINITY;
         }
-        let margin = self.margin(k, &state.position);
+        let margin = self.margin(k, &state.position) - slack;
         if margin.is_infinite() {
             return f64::INFINITY;
         }

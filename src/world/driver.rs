@@ -8,6 +8,7 @@
 //! that begins or ends; contacts that begin or end at that same instant (a symmetric arrangement) are taken then too.
 
 use super::broad::{Neighbours, skin};
+use super::coast::{CAP_GRAZE, Coast};
 use super::flight::{Kinematic, acceleration, first_touch};
 use super::island::{ActiveContact, Island, Units, rigid_body_at};
 use super::record::{
@@ -50,6 +51,10 @@ pub const AT_REST: f64 = 1e-14;
 /// the whole sum ([`Island::motion_energy_beyond`]): its function is then positive, as the whole one, and the two agree
 /// wherever it is near zero.
 const WATCHED_REST: f64 = 4.0 * AT_REST;
+
+/// How far beyond the Coulomb cap (relative) a coast's ringing may reach where its watch, located, says it may
+/// coast: the watch's own graze ([`CAP_GRAZE`]) and the location's error in it.
+const COAST_LENIENCE: f64 = 1e-6;
 
 /// A contact of two free bodies is quiet — ended, the bodies given one velocity — when its penetration and its rate
 /// are both within this many times the integration's absolute tolerance (in the island's units L and V), or within the
@@ -126,6 +131,12 @@ enum Watched {
     Relist,
     /// A group an immovable body holds came to rest (its index among the island's components): it is frozen.
     Frozen(usize),
+    /// A ball resting alone on a still face (its index among the island's components) stopped ringing normal to it:
+    /// it coasts on in closed form, or is frozen if nothing else moves in it (docs/world.md#coasting).
+    Coast(usize),
+    /// A watched pair with a coasting ball came within the ball's padding: the ball is woken (integrated again)
+    /// before the pair can touch.
+    Nearing(usize),
     /// A frictional contact (index among the active) switches between sticking and sliding.
     Switch(usize),
     /// A frictional contact's slip comes to rest (its component along its first direction falls through zero).
@@ -162,11 +173,17 @@ struct World<'a> {
     gravity_work: f64,
     /// The bodies at rest on others, held still (frozen) until something touches them (docs/world.md#at-rest).
     frozen: Vec<bool>,
+    /// The frozen bodies that coast: balls resting on a still face, moving on in closed form (their `states` are
+    /// their mean motion: docs/world.md#coasting).
+    coasts: Vec<Option<Coast>>,
     /// The kinetic energy left in groups when they were frozen (below 1e-14 of their energy unit), and the relative
     /// motion taken from bodies whose quiet contact ended, J.
     settled: f64,
     /// How many contacts ended quiet.
     quieted: u64,
+    /// How many coasts began, and the scene time they lasted (s, up to the run's end for those still on).
+    coasted: u64,
+    coast_time: f64,
     counters: Counters,
     /// The pairs that may touch before some body moves half the skin (docs/world.md#neighbours).
     neighbours: Neighbours,
@@ -212,8 +229,11 @@ impl<'a> World<'a> {
             immovable_work: 0.0,
             gravity_work: 0.0,
             frozen: vec![false; scene.bodies.len()],
+            coasts: vec![None; scene.bodies.len()],
             settled: 0.0,
             quieted: 0,
+            coasted: 0,
+            coast_time: 0.0,
             counters: Counters::default(),
             neighbours,
             reason: None,
@@ -435,7 +455,8 @@ impl<'a> World<'a> {
             .filter(|&s| island.is_none_or(|island| island.slot(self.sites.body(s)).is_none()))
             .map(|s| {
                 let k = self.sites.body(s);
-                self.neighbours.flight_bound(s, &self.sites.kinematic(s, &self.states[k]), &flight[k])
+                let slack = self.padding(k);
+                self.neighbours.flight_bound(s, &self.sites.kinematic(s, &self.states[k]), &flight[k], slack)
             })
             .fold(f64::INFINITY, f64::min)
     }
@@ -458,7 +479,7 @@ impl<'a> World<'a> {
         let flight = self.flight_accelerations();
         let mut touches: Vec<(usize, usize, f64)> = Vec::new();
         for &(p, q) in pairs {
-            let meeting = self.sites.meeting(self.scene, p, q);
+            let (meeting, _) = self.padded_meeting(p, q);
             let [i, j] = self.sites.bodies_of([p, q]);
             let (ga, gb) = (flight[i], flight[j]);
             let tolerance = self.touching(p, q);
@@ -510,8 +531,15 @@ impl<'a> World<'a> {
             }
             let left = self.left();
             let holds = self.list_holds(None);
-            let pairs: Vec<(usize, usize)> =
-                self.neighbours.pairs.iter().copied().filter(|pair| !grazed.contains(pair)).collect();
+            // (Active contacts are frozen or coasting ones: their pairs do not touch, they stand.)
+            let active: BTreeSet<[usize; 2]> = self.active.iter().map(|c| c.sites).collect();
+            let pairs: Vec<(usize, usize)> = self
+                .neighbours
+                .pairs
+                .iter()
+                .copied()
+                .filter(|&(p, q)| !grazed.contains(&(p, q)) && !active.contains(&[p, q]))
+                .collect();
             let mut next = self.next_touch(&pairs, left.min(holds));
             if next.is_none() && holds < left {
                 // Nothing in the list touches before it must be rebuilt. Without an end, a run whose bodies never
@@ -545,16 +573,35 @@ impl<'a> World<'a> {
             }
             // Every pair touching at that instant begins (a cradle's struck ball and its neighbour at once).
             self.units = None;
-            let mut begun = false;
-            for &(i, j) in &starting {
-                begun |= self.begin(i, j, None, None)?;
-            }
-            if begun {
+            let (begun, woke) = self.take_touches(&starting, None)?;
+            if begun || woke {
                 return Ok(());
             }
             // A touch that begins no contact (a graze at the rounding of the velocities): that pair flies on.
             grazed.extend(starting);
         }
+    }
+
+    /// Takes the touches of `pairs` (sites) now: a coasting ball's padding reached wakes it; every other pair begins
+    /// its contact (`island`: the speed unit of the island it begins in, if any). Whether a contact began, and whether a
+    /// ball woke.
+    fn take_touches(&mut self, pairs: &[(usize, usize)], island: Option<f64>) -> Result<(bool, bool), WorldError> {
+        let nearing: Vec<bool> = pairs.iter().map(|&(p, q)| self.padded_meeting(p, q).1).collect();
+        let (mut begun, mut woke) = (false, false);
+        for (&(p, q), &near) in pairs.iter().zip(&nearing) {
+            if near {
+                for k in self.sites.bodies_of([p, q]) {
+                    woke |= self.coasts[k].is_some();
+                    self.wake(k);
+                }
+            }
+        }
+        for (&(p, q), &near) in pairs.iter().zip(&nearing) {
+            if !near {
+                begun |= self.begin(p, q, island, None)?;
+            }
+        }
+        Ok((begun, woke))
     }
 
     /// Moves every body through `delay` s of free flight (and adds gravity's work on the way).
@@ -570,12 +617,19 @@ impl<'a> World<'a> {
         self.time += delay;
     }
 
-    /// Frees the frozen bodies that active contacts join to body `k` (a touch wakes the group it rests in).
+    /// Frees the frozen bodies that active contacts join to body `k` (a touch wakes the group it rests in); a coasting
+    /// ball takes its exact state.
     fn wake(&mut self, k: usize) {
         let mut queue = vec![k];
         while let Some(body) = queue.pop() {
             if !self.frozen[body] {
                 continue;
+            }
+            self.materialise(body);
+            if let Some(coast) = self.coasts[body].take() {
+                self.coast_time += self.time - coast.since;
+                // (An island that no contact begins takes the units the coast began in.)
+                self.units = self.units.or(Some(coast.units));
             }
             self.frozen[body] = false;
             for contact in &self.active {
@@ -587,6 +641,148 @@ impl<'a> World<'a> {
                 }
             }
         }
+    }
+
+    /// Whether body `k` is frozen and still (not coasting).
+    fn still(&self, k: usize) -> bool {
+        self.frozen[k] && self.coasts[k].is_none()
+    }
+
+    /// How far (m) the mean motion of body `k`, coasting, keeps from everything else: twice its reach (none for a
+    /// body that does not coast, or coasts on a smooth contact).
+    fn padding(&self, k: usize) -> f64 {
+        self.coasts[k].map_or(0.0, |coast| 2.0 * coast.reach())
+    }
+
+    /// How sites `p` and `q` meet, with a coasting body's padding added to their reach (its mean motion stands for
+    /// it): and whether a touch of it is the padding's (which wakes the body rather than beginning a contact).
+    fn padded_meeting(&self, p: usize, q: usize) -> (Meeting, bool) {
+        let meeting = self.sites.meeting(self.scene, p, q);
+        let [i, j] = self.sites.bodies_of([p, q]);
+        let pad = self.padding(i) + self.padding(j);
+        if pad == 0.0 {
+            return (meeting, false);
+        }
+        let padded = match meeting {
+            Meeting::Spheres { reach } => Meeting::Spheres { reach: reach + pad },
+            Meeting::Face { face, radius, sign } => Meeting::Face { face, radius: radius + pad, sign },
+        };
+        (padded, true)
+    }
+
+    /// Writes coasting body `k`'s exact state now (and its contact's spring and the spring's work): its coast goes
+    /// on from there unchanged (its constants stand).
+    fn materialise(&mut self, k: usize) {
+        let Some(coast) = self.coasts[k] else { return };
+        let at = coast.at(self.time);
+        self.states[k] = at.state;
+        if let Some(contact) = self.active.iter_mut().find(|c| c.pair.contains(&k)) {
+            contact.spring = if contact.pair[0] == k { at.force } else { -at.force };
+            // (The integrals since the coast began, on those it began with.)
+            contact.tangential_work = coast.work_before + at.work;
+            contact.impulse = coast.impulse_before + at.impulse;
+        }
+    }
+
+    /// Whether the group `group` of `island` (its members' slots) may coast, and how: a single sphere with a single
+    /// active contact, on the face of an immovable body that stands still, pressed by gravity along the face's
+    /// normal, the contact smooth or sticking without tangential damping. Its contact (among the island's), the
+    /// ball, and the face's unit normal into the ball.
+    fn coastable(&self, island: &Island, group: &[usize]) -> Option<(usize, usize, Vector3<f64>)> {
+        let scene = self.scene;
+        let [m] = group else { return None };
+        if !scene.world.coast {
+            return None;
+        }
+        let k = island.members[*m];
+        let body = &scene.bodies[k];
+        if body.is_rigid() || self.sites.of_body(k).len() != 1 {
+            return None;
+        }
+        let mut touching = (0..island.contacts.len()).filter(|&c| island.contacts[c].pair.contains(&k));
+        let (Some(c), None) = (touching.next(), touching.next()) else { return None };
+        let contact = &island.contacts[c];
+        let other = if contact.pair[0] == k { contact.pair[1] } else { contact.pair[0] };
+        let face = scene.faces[other]?;
+        let g = scene.world.gravity;
+        let still = self.states[other].velocity == Vector3::zeros() && self.states[other].spin == Vector3::zeros();
+        let pressed = g.dot(&face) < 0.0 && g.cross(&face).norm() <= 1e-12 * g.norm();
+        let rough = contact.friction.as_ref().is_some_and(|f| f.coefficient > 0.0);
+        let undamped = contact.friction.as_ref().is_none_or(|f| f.damping_ratio == 0.0);
+        let turns = body.rotates() && body.inertia > 0.0;
+        (still && pressed && undamped && (turns || !rough)).then_some((c, k, face / face.norm()))
+    }
+
+    /// The coast ball `k` would begin at state `y` of `island` (its contact `c` there, the face's normal `n`),
+    /// or `None` when its contact slides or its ringing would reach beyond the Coulomb cap by more than `graze`
+    /// (relative); with the kinetic energy its normal velocity carries (J), which the coast leaves out.
+    fn coast_at(
+        &self,
+        island: &Island,
+        c: usize,
+        k: usize,
+        n: &Vector3<f64>,
+        y: &DVector<f64>,
+        graze: f64,
+    ) -> Option<(Coast, f64)> {
+        let body = &self.scene.bodies[k];
+        let contact = &island.contacts[c];
+        // The ball's weight along the normal is the mean of its contact's force, and the stiffness its ringing would
+        // settle to is the one at the static penetration: the ringing normal to the face (its energy below the
+        // threshold of rest) would move it about them, and its damping bring it there.
+        let weight = body.mass * self.scene.world.gravity.dot(n).abs();
+        let (_, _, _, mu) = island.standing(c, y);
+        let kt = island.tangential_stiffness(c, island.static_penetration(c, weight, y));
+        let normal_force = weight;
+        let velocity = island.velocity(k, y);
+        let normal_speed = velocity.dot(n);
+        let start = Kinematic {
+            position: island.position(k, y),
+            velocity: velocity - n * normal_speed,
+            spin: island.spin(k, y),
+            orientation: island.orientation(k, y),
+        };
+        let radius = body.radius;
+        let rough = mu > 0.0 && kt > 0.0;
+        let (force, tangential_work) = if rough {
+            if contact.mode != Mode::Stick {
+                return None;
+            }
+            let (spring, work, _) = island.tangential_integrals(c, y);
+            (if contact.pair[0] == k { spring } else { -spring }, work)
+        } else {
+            (Vector3::zeros(), island.tangential_integrals(c, y).1)
+        };
+        let coast = Coast {
+            since: 0.0,
+            start,
+            force: force - n * n.dot(&force),
+            slip: super::coast::slip(&start, n, radius),
+            normal: *n,
+            mass: body.mass,
+            inertia: if rough { body.inertia } else { f64::INFINITY },
+            radius,
+            stiffness: if rough { kt } else { 0.0 },
+            work_before: tangential_work,
+            normal_force,
+            impulse_before: island.integrals(c, y).0,
+            units: island.units,
+        };
+        if rough && coast.largest_force() > (1.0 + graze) * mu * normal_force.max(0.0) {
+            return None;
+        }
+        Some((coast, 0.5 * body.mass * normal_speed * normal_speed))
+    }
+
+    /// Ball `k` coasts from scene time `now` (`normal`: the kinetic energy of its normal velocity, J, which the coast
+    /// leaves out and is counted settled).
+    fn begin_coast(&mut self, k: usize, coast: Coast, normal: f64, now: f64) {
+        self.settled += normal;
+        let coast = Coast { since: now, ..coast };
+        self.states[k] = coast.mean(now);
+        self.frozen[k] = true;
+        self.coasts[k] = Some(coast);
+        self.coasted += 1;
     }
 
     /// Begins the contact of sites `p` and `q` now (their bodies' states current): resolves its law, records its first
@@ -795,17 +991,36 @@ impl<'a> World<'a> {
             self.neighbours.pairs.iter().copied().filter(|&(p, q)| !active.contains(&[p, q])).collect();
         let inside =
             |&(p, q): &(usize, usize)| island.slot(sites.body(p)).is_some() || island.slot(sites.body(q)).is_some();
+        // A pair with a coasting ball outside the island is watched on the ball's mean motion, its reach padded: the
+        // padding reached wakes the ball (docs/world.md#coasting).
+        let mut nearing: Vec<bool> = Vec::new();
         let watched: Vec<(usize, usize, Meeting, f64, f64)> = all
             .iter()
             .filter(|pair| inside(pair))
             .map(|&(p, q)| {
-                let meeting = sites.meeting(scene, p, q);
+                let (meeting, near) = self.padded_meeting(p, q);
+                nearing.push(near);
                 let gap = -island.site_state(p, q, &meeting, &y0).penetration;
                 let tolerance = self.touching(p, q);
                 let offset = if gap <= tolerance { (-gap).max(0.0) + tolerance } else { 0.0 };
                 (p, q, meeting, offset, tolerance)
             })
             .collect();
+        // A coasting ball already within its padding of a member is woken before the segment.
+        let near_now: Vec<usize> = watched
+            .iter()
+            .zip(&nearing)
+            .filter(|((_, _, _, offset, _), near)| **near && *offset > 0.0)
+            .flat_map(|((p, q, _, _, _), _)| sites.bodies_of([*p, *q]))
+            .filter(|&k| self.coasts[k].is_some())
+            .collect();
+        if !near_now.is_empty() {
+            drop(island);
+            for k in near_now {
+                self.wake(k);
+            }
+            return Ok(());
+        }
         // Pairs with no body in the island fly freely: the segment stops at their next first touch.
         let outside: Vec<(usize, usize)> =
             all.iter().copied().filter(|&(i, j)| !inside(&(i, j)) && !self.grazed(i, j)).collect();
@@ -813,13 +1028,51 @@ impl<'a> World<'a> {
         // Groups that come to rest: one an immovable body holds is frozen; free ones end the run when every movable
         // body not frozen is in them.
         let components = island.components();
-        let everyone = scene
-            .bodies
-            .iter()
-            .enumerate()
-            .all(|(k, b)| b.is_immovable() || self.frozen[k] || island.slot(k).is_some());
+        let everyone =
+            scene.bodies.iter().enumerate().all(|(k, b)| b.is_immovable() || self.still(k) || island.slot(k).is_some());
         let all_free = components.iter().all(|(_, held)| !held);
         let all_members: Vec<usize> = (0..island.members.len()).collect();
+        // A ball that may coast already (its ringing died away in a segment that a switch or a touch elsewhere ended)
+        // coasts from here: its watch, falling through zero, would not see it.
+        let watches: Vec<Option<CoastWatch>> = components
+            .iter()
+            .map(|(group, held)| {
+                let (c, k, n) = if *held { self.coastable(&island, group)? } else { None? };
+                let others = self
+                    .neighbours
+                    .pairs
+                    .iter()
+                    .filter(|&&(p, q)| sites.bodies_of([p, q]).contains(&k) && !active.contains(&[p, q]))
+                    .map(|&(p, q)| {
+                        let other = sites.bodies_of([p, q]).into_iter().find(|&b| b != k).unwrap_or(k);
+                        (p, q, sites.meeting(scene, p, q), self.padding(other))
+                    })
+                    .collect();
+                let body = &scene.bodies[k];
+                let weight = body.mass * scene.world.gravity.dot(&n).abs();
+                Some(CoastWatch { c, k, body, n, weight, others })
+            })
+            .collect();
+        let ready: Vec<(usize, Coast, f64)> = components
+            .iter()
+            .zip(&watches)
+            .filter_map(|((group, _), watch)| {
+                let watch = watch.as_ref()?;
+                let ready = coast_watch(&island, watch, &y0) <= 0.0
+                    && island.motion_energy(&y0, group, true) > 2.0 * AT_REST * units.energy;
+                if !ready {
+                    return None;
+                }
+                self.coast_at(&island, watch.c, watch.k, &watch.n, &y0, COAST_LENIENCE)
+                    .map(|(coast, normal)| (watch.k, coast, normal))
+            })
+            .collect();
+        if let Some((k, coast, normal)) = ready.into_iter().next() {
+            // (One at a time: the next one's watch reads this one's padding.)
+            drop(island);
+            self.begin_coast(k, coast, normal, self.time);
+            return Ok(());
+        }
 
         let mut functions: Vec<EventFunction<'_>> = Vec::new();
         let mut kinds: Vec<(Watched, bool)> = Vec::new();
@@ -868,7 +1121,7 @@ impl<'a> World<'a> {
         for (p, (i, j, meeting, offset, tolerance)) in watched.iter().enumerate() {
             let (i, j, offset, tolerance) = (*i, *j, *offset, *tolerance);
             functions.push(Box::new(move |y| (offset - isl.site_penetration(i, j, meeting, y)) / isl.units.length));
-            kinds.push((Watched::Touch(p), true));
+            kinds.push((if nearing[p] { Watched::Nearing(p) } else { Watched::Touch(p) }, true));
             if offset > 2.0 * tolerance {
                 // Overlapping at the start: the gap opening beyond the rounding ends the segment.
                 let open = 2.0 * tolerance;
@@ -885,7 +1138,10 @@ impl<'a> World<'a> {
             }
         }
         for (k, (group, held)) in components.iter().enumerate() {
-            if *held {
+            if let Some(watch) = &watches[k] {
+                functions.push(Box::new(move |y| coast_watch(isl, watch, y)));
+                kinds.push((Watched::Coast(k), true));
+            } else if *held {
                 functions.push(Box::new(move |y| {
                     isl.motion_energy_beyond(y, group, true, WATCHED_REST * isl.units.energy) / isl.units.energy
                         - AT_REST
@@ -1065,19 +1321,40 @@ impl<'a> World<'a> {
         let motion = island.motion_energy(y, &all_members, false);
         // The bodies a group at rest freezes, each with the spin it keeps: a smooth contact cannot change a spin, a
         // rough one all but the spin about a point contact's normal (docs/world.md#at-rest).
-        let resting: Vec<(usize, Vector3<f64>)> = match end.ending {
+        // A ball that stopped ringing normal to its face coasts, or is frozen as such a group when the motion it would
+        // keep is within twice the threshold of rest (docs/world.md#coasting).
+        let mut coasting: Option<(usize, Coast, f64)> = None;
+        let freezing = match end.ending {
             Ending::Event(index) => match kinds[index].0 {
-                Watched::Frozen(k) => components[k]
-                    .0
-                    .iter()
-                    .map(|&m| {
-                        let k = island.members[m];
-                        (k, if rough { island.torsion(k, y) } else { island.spin(k, y) })
-                    })
-                    .collect(),
-                _ => Vec::new(),
+                Watched::Frozen(k) => Some(k),
+                Watched::Coast(k) => {
+                    let group = &components[k].0;
+                    if island.motion_energy(y, group, true) <= 2.0 * AT_REST * units.energy {
+                        Some(k)
+                    } else {
+                        // (Its watch ruled on the cap and the gaps: the cap is read again only with a leniency for
+                        // the event's location.)
+                        coasting = watches[k].as_ref().and_then(|watch| {
+                            self.coast_at(&island, watch.c, watch.k, &watch.n, y, COAST_LENIENCE)
+                                .map(|(coast, normal)| (watch.k, coast, normal))
+                        });
+                        None
+                    }
+                }
+                _ => None,
             },
-            _ => Vec::new(),
+            _ => None,
+        };
+        let resting: Vec<(usize, Vector3<f64>)> = match freezing {
+            Some(k) => components[k]
+                .0
+                .iter()
+                .map(|&m| {
+                    let k = island.members[m];
+                    (k, if rough { island.torsion(k, y) } else { island.spin(k, y) })
+                })
+                .collect(),
+            None => Vec::new(),
         };
         // A stick–slip switch's next mode, decided on the state it was located at.
         let switched = match end.ending {
@@ -1096,7 +1373,12 @@ impl<'a> World<'a> {
         match end.ending {
             Ending::Event(index) => match kinds[index].0 {
                 Watched::Separation(c) => self.finish_contact(live[c], rates[c])?,
-                Watched::Frozen(_) => {
+                Watched::Coast(_) if resting.is_empty() => {
+                    if let Some((k, coast, normal)) = coasting {
+                        self.begin_coast(k, coast, normal, now);
+                    }
+                }
+                Watched::Frozen(_) | Watched::Coast(_) => {
                     for (k, kept) in resting {
                         let body = &scene.bodies[k];
                         self.settled += body.kinetic_energy(&self.states[k].velocity, &self.states[k].spin)
@@ -1105,7 +1387,7 @@ impl<'a> World<'a> {
                         self.states[k].spin = kept;
                         self.frozen[k] = true;
                     }
-                    let all_rest = scene.bodies.iter().enumerate().all(|(k, b)| b.is_immovable() || self.frozen[k]);
+                    let all_rest = scene.bodies.iter().enumerate().all(|(k, b)| b.is_immovable() || self.still(k));
                     if all_rest {
                         self.reason = Some(EndReason::AtRest);
                         self.notes.push(format!(
@@ -1116,6 +1398,12 @@ impl<'a> World<'a> {
                             crate::units::brief(units.energy, "J")
                         ));
                         return Ok(());
+                    }
+                }
+                Watched::Nearing(p) => {
+                    let (i, j, _, _, _) = watched[p];
+                    for k in self.sites.bodies_of([i, j]) {
+                        self.wake(k);
                     }
                 }
                 Watched::Touch(p) => {
@@ -1180,7 +1468,16 @@ impl<'a> World<'a> {
             Ending::TimeLimit if horizon == by_outside => {
                 // Two bodies outside the island touch: their contact begins (and joins the island); a touch that
                 // begins none (a graze) is not taken again at this instant.
-                for (i, j) in outside_touch.map(|(_, pairs)| pairs).unwrap_or_default() {
+                // (A coasting ball's padding reached wakes the ball instead.)
+                let pairs = outside_touch.map(|(_, pairs)| pairs).unwrap_or_default();
+                let (nearing, touching): (Vec<_>, Vec<_>) =
+                    pairs.into_iter().partition(|&(i, j)| self.padded_meeting(i, j).1);
+                for (i, j) in nearing {
+                    for k in self.sites.bodies_of([i, j]) {
+                        self.wake(k);
+                    }
+                }
+                for (i, j) in touching {
                     if !self.begin(i, j, Some(units.speed), None)? {
                         self.graze(i, j);
                     }
@@ -1604,6 +1901,23 @@ impl<'a> World<'a> {
 
     /// The outcome, with the contacts still active when the run stopped closed at their current values.
     fn finish(mut self) -> WorldOutcome {
+        // (A coasting ball is reported where it is, not on its mean motion.)
+        for k in 0..self.coasts.len() {
+            self.materialise(k);
+            if let Some(coast) = self.coasts[k] {
+                self.coast_time += self.time - coast.since;
+            }
+        }
+        if self.coasted > 0 {
+            self.notes.push(format!(
+                "balls resting on a still face coasted in closed form {} time{}, {} of scene time in all: their ringing \
+                 normal to the face had died away, and the motion along it is exact (docs/world.md#coasting; \
+                 `[world] coast = false` integrates them)",
+                self.coasted,
+                if self.coasted > 1 { "s" } else { "" },
+                crate::units::brief(self.coast_time, "s")
+            ));
+        }
         // (The overlaps of contacts still active close at the stop.)
         for first in 0..self.active.len() {
             let ended = self.active[first].clone();
@@ -1733,4 +2047,83 @@ fn flight_instants<Y>(points: &[(f64, Y)], span: f64, apexes: &[f64]) -> Vec<f64
 /// peaks at or above the record.
 fn above_record(rate: f64, short: f64) -> f64 {
     if short > 0.0 { short } else { rate.max(short) }
+}
+
+/// What a ball's coast watch reads: its contact `c` (among the island's), the ball `k` and its body, the face's unit
+/// normal `n` into it, its weight along `n` (N), and the pairs of its site with every body it does not touch (sites,
+/// their meeting, and the other body's padding, m).
+struct CoastWatch<'a> {
+    c: usize,
+    k: usize,
+    body: &'a crate::body::Body,
+    n: Vector3<f64>,
+    weight: f64,
+    others: Vec<(usize, usize, Meeting, f64)>,
+}
+
+/// The watch of a ball's coast (docs/world.md#coasting): it falls through zero where the ball may coast. It is the
+/// largest of: the energy of the ball's ringing normal to the face, `m v_n²/2 + m a_n²/(2 w²)` (`w²` the contact's
+/// stiffness over the mass), in the island's energy unit, less the threshold of rest; for a rough contact, how far the
+/// ringing of its tangential force would reach beyond the Coulomb cap (as a share of the cap, less the graze), one
+/// where it slides; and how far within twice its padding (and another coasting body's) a gap to a body it does not touch
+/// is (as a share of that clearance).
+fn coast_watch(island: &Island, watch: &CoastWatch, y: &DVector<f64>) -> f64 {
+    let &CoastWatch { c, k, body, n, weight, .. } = watch;
+    let mass = body.mass;
+    let energy = island.units.energy;
+    let velocity = island.velocity(k, y);
+    let kinetic = 0.5 * mass * velocity.dot(&n).powi(2);
+    if kinetic > WATCHED_REST * energy {
+        return kinetic / energy - AT_REST;
+    }
+    let (_, gradient, _, mu) = island.standing(c, y);
+    let pull = island.acceleration_of(k, y).dot(&n);
+    let ringing = if gradient > 0.0 {
+        kinetic + 0.5 * mass * mass * pull * pull / gradient
+    } else if pull != 0.0 {
+        f64::INFINITY
+    } else {
+        kinetic
+    };
+    let above = ringing / energy - AT_REST;
+    let kt = island.tangential_stiffness(c, island.static_penetration(c, weight, y));
+    if above > WATCHED_REST || !(mu > 0.0 && kt > 0.0) {
+        return above;
+    }
+    if island.contacts[c].mode != Mode::Stick || weight <= 0.0 {
+        return above.max(1.0);
+    }
+    let (spring, _, _) = island.tangential_integrals(c, y);
+    let force = if island.contacts[c].pair[0] == k { spring } else { -spring };
+    let state = Kinematic {
+        position: island.position(k, y),
+        velocity: velocity - n * velocity.dot(&n),
+        spin: island.spin(k, y),
+        orientation: island.orientation(k, y),
+    };
+    let coast = Coast {
+        since: 0.0,
+        start: state,
+        force: force - n * n.dot(&force),
+        slip: super::coast::slip(&state, &n, body.radius),
+        normal: n,
+        mass,
+        inertia: body.inertia,
+        radius: body.radius,
+        stiffness: kt,
+        work_before: 0.0,
+        normal_force: weight,
+        impulse_before: 0.0,
+        units: island.units,
+    };
+    let pad = 2.0 * coast.reach();
+    let near = watch
+        .others
+        .iter()
+        .map(|(p, q, meeting, other)| {
+            let clearance = 2.0 * (pad + other);
+            (clearance + island.site_penetration(*p, *q, meeting, y)) / clearance
+        })
+        .fold(f64::NEG_INFINITY, f64::max);
+    above.max(coast.largest_force() / (mu * weight) - (1.0 + CAP_GRAZE)).max(near)
 }

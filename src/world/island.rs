@@ -799,6 +799,48 @@ impl<'a> Island<'a> {
         (parts.elastic, parts.dissipative)
     }
 
+    /// Contact `c` standing still at its penetration at `y` (its rate taken as zero), SI: its normal force (N), the
+    /// force's gradient (N/m), the tangential stiffness kt (N/m; zero on a smooth contact) and the friction
+    /// coefficient (zero on a smooth contact). What a coast is built from (docs/world.md#coasting).
+    pub fn standing(&self, c: usize, y: &DVector<f64>) -> (f64, f64, f64, f64) {
+        let state = ContactState { rate: 0.0, ..self.contact_state(c, y) };
+        let (elastic, dissipative) = self.force(c, &state, y);
+        let d = state.penetration.max(0.0);
+        let gradient = self.contacts[c].law.force_gradient(d, 0.0).0;
+        (elastic + dissipative, gradient, self.tangential_stiffness(c, d), self.friction_coefficient(c))
+    }
+
+    /// Contact `c`'s tangential stiffness kt (N/m) at penetration `d` (m); zero on a smooth contact.
+    pub fn tangential_stiffness(&self, c: usize, d: f64) -> f64 {
+        let u = &self.units;
+        self.tangentials[c].as_ref().map_or(0.0, |law| law.stiffness_at(d / u.length) * u.force / u.length)
+    }
+
+    /// Contact `c`'s friction coefficient (zero on a smooth contact).
+    pub fn friction_coefficient(&self, c: usize) -> f64 {
+        self.tangentials[c].as_ref().map_or(0.0, |law| law.friction)
+    }
+
+    /// The penetration (m) at which contact `c`, standing still, carries `weight` (N): Newton's steps on its force from
+    /// its penetration at `y` (a resting contact's, within its ringing of it).
+    pub fn static_penetration(&self, c: usize, weight: f64, y: &DVector<f64>) -> f64 {
+        let mut state = ContactState { rate: 0.0, ..self.contact_state(c, y) };
+        for _ in 0..8 {
+            let d = state.penetration.max(0.0);
+            let (elastic, dissipative) = self.force(c, &state, y);
+            let gradient = self.contacts[c].law.force_gradient(d, 0.0).0;
+            if gradient.is_nan() || gradient <= 0.0 {
+                break;
+            }
+            let step = (weight - elastic - dissipative) / gradient;
+            state.penetration = d + step;
+            if step.abs() <= 1e-15 * d {
+                break;
+            }
+        }
+        state.penetration.max(0.0)
+    }
+
     /// Contact `c`'s deepest penetration so far, m, at penetration `d` (m) and state `y`: for a yielding law its state,
     /// or `d` where that is deeper (the state grows only at it: [`crate::dynamics::normal::deepening`]).
     pub fn deepest(&self, c: usize, d: f64, y: &DVector<f64>) -> f64 {

@@ -9,6 +9,7 @@
 //! layer above.
 
 pub mod broad;
+pub mod coast;
 pub mod driver;
 pub mod flight;
 pub mod island;
