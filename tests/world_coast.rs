@@ -218,3 +218,61 @@ poisson = 0.3
         balance(&integrated)
     );
 }
+
+/// A soft tangential spring (10 N/m) rings with millimetres of reach: with a finite neighbour list (a skin of 1 mm) its
+/// padding would leave the list no time to hold. Such a ball does not coast; its run is the integrated one.
+#[test]
+fn a_ball_whose_ringing_outreaches_the_neighbour_list_does_not_coast() {
+    let (soft, world) = ("friction = 0.3\ntangential_stiffness = 10.0", "skin = 0.001\nmax_steps = 200000");
+    let make = |coast: bool| scene(coast, world, 0.5, "[0.3, 0.0, 0.0]", "[0.0, 0.0, 0.0]", soft, "");
+    let (coasting, integrated) = (run(&make(true)), run(&make(false)));
+    assert!(!coasted(&coasting));
+    for report in [&coasting, &integrated] {
+        assert_eq!(report["world"]["end_reason"], "end_time");
+    }
+    assert_eq!(coasting["contacts"], integrated["contacts"]);
+}
+
+/// A slip that first comes to rest while the ball coasts (the soft spring's ringing: its slip along its first
+/// direction falls through zero half a period after the stick begins) is located as the integration locates it.
+#[test]
+fn a_slip_that_comes_to_rest_while_the_ball_coasts_is_located() {
+    let soft = "friction = 0.3\ntangential_stiffness = 10.0";
+    let make = |coast: bool| scene(coast, TIGHT, 0.1, "[0.3, 0.0, 0.0]", "[0.0, 0.0, 0.0]", soft, "");
+    let (coasting, integrated) = (run(&make(true)), run(&make(false)));
+    assert!(coasted(&coasting));
+    let (a, b) = (&coasting["contacts"][0], &integrated["contacts"][0]);
+    assert_eq!(a["regime"], "sticking");
+    assert_eq!(a["regime"], b["regime"]);
+    let (ta, tb) = (number(&a["slip_rest_time"]), number(&b["slip_rest_time"]));
+    assert!((ta - tb).abs() < 1e-12, "{ta} against {tb}");
+}
+
+/// A ball rolling past one at rest (4 mm apart at their closest, the soft spring's padding reached) wakes only itself: the other,
+/// frozen on its floor (its spring damped, so it does not coast but rests), stays still, as in the integrated run.
+#[test]
+fn a_frozen_ball_beside_a_coasting_balls_path_stays_frozen() {
+    let beside = r#"
+[[bodies]]
+name = "beside"
+radius = 0.01
+density = 7850
+position = [0.03, 0.024, 0.01]
+velocity = [0.0, 0.0, 0.0]
+young = 2.1e11
+poisson = 0.3
+[[pair]]
+bodies = [0, 1]
+tangential_stiffness = 10.0
+[[pair]]
+bodies = [3, 1]
+tangential_damping = 0.5
+"#;
+    let make = |coast: bool| scene(coast, "", 1.0, "[0.3, 0.0, 0.0]", "[0.0, 0.0, 0.0]", "friction = 0.3", beside);
+    let (coasting, integrated) = (run(&make(true)), run(&make(false)));
+    assert!(coasted(&coasting));
+    for report in [&coasting, &integrated] {
+        assert_eq!(vector(&report["bodies"][3]["velocity_after"]), [0.0; 3]);
+        assert!(report["contacts"].as_array().unwrap().iter().all(|c| c["bodies"] != serde_json::json!([0, 3])));
+    }
+}

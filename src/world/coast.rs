@@ -105,6 +105,23 @@ impl Coast {
         (self.force.norm() / omega + self.slip_mass() * self.slip.norm()) / (self.mass * omega)
     }
 
+    /// The first time (s after the coast began, > 0) at which the slip's component along `direction` falls through
+    /// zero: `u(τ)·d = a cos ωτ + b sin ωτ = R cos(ωτ - φ)`, `a = u0·d`, `b = T0·d/(m_t ω)`, falling through zero where
+    /// `ωτ - φ = π/2` (mod 2π). `None` on a smooth contact, or where the slip has no component along `direction`.
+    pub fn slip_falls_through_zero(&self, direction: &Vector3<f64>) -> Option<f64> {
+        if self.stiffness <= 0.0 {
+            return None;
+        }
+        let omega = self.frequency();
+        let (a, b) = (self.slip.dot(direction), self.force.dot(direction) / (self.slip_mass() * omega));
+        if a == 0.0 && b == 0.0 {
+            return None;
+        }
+        let turn = 2.0 * std::f64::consts::PI;
+        let theta = (b.atan2(a) + 0.5 * std::f64::consts::PI).rem_euclid(turn);
+        Some(if theta > 0.0 { theta } else { turn } / omega)
+    }
+
     /// The mean motion at scene time `t`: uniform, with the mean velocity and spin (the ball flies on it with no
     /// acceleration, its centre within [`Coast::reach`] of it).
     pub fn mean(&self, t: f64) -> Kinematic {
@@ -252,6 +269,16 @@ mod tests {
         // angular momentum about the contact point is kept (the force acts there).
         let am = |k: &Kinematic| (n * r).cross(&(k.velocity * m)) + k.spin * i;
         assert!((am(&at.state) - am(&coast.start)).norm() < 1e-12 * m * r * speed);
+        // The slip along x falls through zero where the reference's does (sampled at 2000 instants a period).
+        let direction = Vector3::x();
+        let zero = coast.slip_falls_through_zero(&direction).expect("a ringing slip");
+        let slip_x = |t: f64| slip(&coast.at(coast.since + t).state, &n, r).dot(&direction);
+        assert!(slip_x(zero).abs() < 1e-12 * coast.slip.norm().max(1e-12));
+        let h = period / 2000.0;
+        assert!(slip_x(zero - h) > 0.0 && slip_x(zero + h) < 0.0);
+        assert!(zero > 0.0 && zero <= period);
+        let first = (1..2000).map(|k| k as f64 * h).find(|&t| slip_x(t - h) > 0.0 && slip_x(t) <= 0.0);
+        assert!(first.is_some_and(|t| (t - zero).abs() <= h), "{first:?} against {zero}");
     }
 
     /// At the coast's start the closed form is its start, and a smooth contact slides uniformly.

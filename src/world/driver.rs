@@ -296,8 +296,15 @@ impl<'a> World<'a> {
     /// Shows the observer the world now (no contact forces: between islands, or at the run's ends).
     fn show_now(&mut self) {
         let contacts = self.contact_samples();
+        // (A coasting ball where it is, not on its mean motion.)
+        let bodies: Vec<Kinematic> = self
+            .states
+            .iter()
+            .zip(&self.coasts)
+            .map(|(state, coast)| coast.map_or(*state, |c| c.at(self.time).state))
+            .collect();
         if let Some(observer) = self.observer.as_deref_mut() {
-            observer.instant(self.time, &self.states, &contacts);
+            observer.instant(self.time, &bodies, &contacts);
         }
     }
 
@@ -332,7 +339,13 @@ impl<'a> World<'a> {
         times.sort_by(f64::total_cmp);
         let start = self.states.clone();
         for t in times {
-            let bodies: Vec<Kinematic> = start.iter().zip(&flight).map(|(state, a)| state.after(t, a)).collect();
+            // (A coasting ball where it is, not on its mean motion.)
+            let bodies: Vec<Kinematic> = start
+                .iter()
+                .zip(&flight)
+                .zip(&self.coasts)
+                .map(|((state, a), coast)| coast.map_or_else(|| state.after(t, a), |c| c.at(self.time + t).state))
+                .collect();
             if let Some(observer) = self.observer.as_deref_mut() {
                 observer.instant(self.time + t, &bodies, &[]);
             }
@@ -591,8 +604,10 @@ impl<'a> World<'a> {
         for (&(p, q), &near) in pairs.iter().zip(&nearing) {
             if near {
                 for k in self.sites.bodies_of([p, q]) {
-                    woke |= self.coasts[k].is_some();
-                    self.wake(k);
+                    if self.coasts[k].is_some() {
+                        woke = true;
+                        self.wake(k);
+                    }
                 }
             }
         }
@@ -677,6 +692,16 @@ impl<'a> World<'a> {
         let at = coast.at(self.time);
         self.states[k] = at.state;
         if let Some(contact) = self.active.iter_mut().find(|c| c.pair.contains(&k)) {
+            // A slip that first comes to rest while the ball coasts: where its component along its first direction
+            // falls through zero, as an island's watch would locate it.
+            let record = &mut self.records[contact.record];
+            let side = if contact.pair[0] == k { 1.0 } else { -1.0 };
+            if record.slip_rest.is_none()
+                && let Some(tau) = coast.slip_falls_through_zero(&(contact.slip_direction * side))
+                && coast.since + tau <= self.time
+            {
+                record.slip_rest = Some(coast.since + tau);
+            }
             contact.spring = if contact.pair[0] == k { at.force } else { -at.force };
             // (The integrals since the coast began, on those it began with.)
             contact.tangential_work = coast.work_before + at.work;
@@ -714,8 +739,9 @@ impl<'a> World<'a> {
     }
 
     /// The coast ball `k` would begin at state `y` of `island` (its contact `c` there, the face's normal `n`),
-    /// or `None` when its contact slides or its ringing would reach beyond the Coulomb cap by more than `graze`
-    /// (relative); with the kinetic energy its normal velocity carries (J), which the coast leaves out.
+    /// or `None` when its contact slides, its ringing would reach beyond the Coulomb cap by more than `graze`
+    /// (relative), or its padding beyond the neighbour list's room by as much; with the kinetic energy its normal
+    /// velocity carries (J), which the coast leaves out.
     fn coast_at(
         &self,
         island: &Island,
@@ -769,6 +795,9 @@ impl<'a> World<'a> {
             units: island.units,
         };
         if rough && coast.largest_force() > (1.0 + graze) * mu * normal_force.max(0.0) {
+            return None;
+        }
+        if !self.neighbours.is_everything() && 2.0 * coast.reach() > (1.0 + graze) * self.neighbours.reach() / 8.0 {
             return None;
         }
         Some((coast, 0.5 * body.mass * normal_speed * normal_speed))
@@ -1050,7 +1079,8 @@ impl<'a> World<'a> {
                     .collect();
                 let body = &scene.bodies[k];
                 let weight = body.mass * scene.world.gravity.dot(&n).abs();
-                Some(CoastWatch { c, k, body, n, weight, others })
+                let room = if self.neighbours.is_everything() { f64::INFINITY } else { self.neighbours.reach() / 8.0 };
+                Some(CoastWatch { c, k, body, n, weight, others, room })
             })
             .collect();
         let ready: Vec<(usize, Coast, f64)> = components
@@ -1243,11 +1273,15 @@ impl<'a> World<'a> {
             let observer = self.observer.as_deref_mut().expect("an observer is present");
             for (t, y) in &points {
                 let bodies: Vec<Kinematic> = (0..scene.bodies.len())
-                    .map(|k| Kinematic {
-                        position: island.position(k, y),
-                        velocity: island.velocity(k, y),
-                        spin: island.spin(k, y),
-                        orientation: island.orientation(k, y),
+                    .map(|k| match self.coasts[k] {
+                        // (A coasting ball where it is, not on its mean motion.)
+                        Some(coast) => coast.at(self.time + t * units.time).state,
+                        None => Kinematic {
+                            position: island.position(k, y),
+                            velocity: island.velocity(k, y),
+                            spin: island.spin(k, y),
+                            orientation: island.orientation(k, y),
+                        },
                     })
                     .collect();
                 let contacts: Vec<ContactSample> = (0..island.contacts.len()).map(|c| sample(&island, c, y)).collect();
@@ -1403,7 +1437,9 @@ impl<'a> World<'a> {
                 Watched::Nearing(p) => {
                     let (i, j, _, _, _) = watched[p];
                     for k in self.sites.bodies_of([i, j]) {
-                        self.wake(k);
+                        if self.coasts[k].is_some() {
+                            self.wake(k);
+                        }
                     }
                 }
                 Watched::Touch(p) => {
@@ -1474,7 +1510,9 @@ impl<'a> World<'a> {
                     pairs.into_iter().partition(|&(i, j)| self.padded_meeting(i, j).1);
                 for (i, j) in nearing {
                     for k in self.sites.bodies_of([i, j]) {
-                        self.wake(k);
+                        if self.coasts[k].is_some() {
+                            self.wake(k);
+                        }
                     }
                 }
                 for (i, j) in touching {
@@ -1592,13 +1630,14 @@ impl<'a> World<'a> {
                 let bound = Kinematic { position: origin, velocity: moving, ..*state };
                 (bound, self.reach(k), if body.pivot.is_some() { Vector3::zeros() } else { flight[k] })
             } else {
-                (self.sites.kinematic(s, state), self.sites.list[s].radius, flight[k])
+                // (A coasting ball: its mean motion, its radius padded.)
+                (self.sites.kinematic(s, state), self.sites.list[s].radius + self.padding(k), flight[k])
             }
         };
         self.pairs().any(|(p, q)| {
             let [i, j] = self.sites.bodies_of([p, q]);
             if !flyers.contains(&i) && !flyers.contains(&j) {
-                let meeting = self.sites.meeting(scene, p, q);
+                let (meeting, _) = self.padded_meeting(p, q);
                 let (a, b) = (self.sites.kinematic(p, &self.states[i]), self.sites.kinematic(q, &self.states[j]));
                 let tolerance = self.touching(p, q);
                 return first_touch(&meeting, &a, &b, &flight[i], &flight[j], tolerance, f64::INFINITY).is_some();
@@ -2059,6 +2098,9 @@ struct CoastWatch<'a> {
     n: Vector3<f64>,
     weight: f64,
     others: Vec<(usize, usize, Meeting, f64)>,
+    /// The largest padding the neighbour list leaves room for (an eighth of how far a body may move before it is
+    /// rebuilt; infinite for a list of every pair), m.
+    room: f64,
 }
 
 /// The watch of a ball's coast (docs/world.md#coasting): it falls through zero where the ball may coast. It is the
@@ -2117,6 +2159,8 @@ fn coast_watch(island: &Island, watch: &CoastWatch, y: &DVector<f64>) -> f64 {
         units: island.units,
     };
     let pad = 2.0 * coast.reach();
+    // (A padding beyond the neighbour list's room would leave the list no time to hold.)
+    let roomy = if watch.room.is_finite() { (pad - watch.room) / watch.room } else { f64::NEG_INFINITY };
     let near = watch
         .others
         .iter()
@@ -2125,5 +2169,5 @@ fn coast_watch(island: &Island, watch: &CoastWatch, y: &DVector<f64>) -> f64 {
             (clearance + island.site_penetration(*p, *q, meeting, y)) / clearance
         })
         .fold(f64::NEG_INFINITY, f64::max);
-    above.max(coast.largest_force() / (mu * weight) - (1.0 + CAP_GRAZE)).max(near)
+    above.max(coast.largest_force() / (mu * weight) - (1.0 + CAP_GRAZE)).max(near).max(roomy)
 }
