@@ -768,71 +768,6 @@ impl<'a> World<'a> {
         (still && pressed && undamped && (turns || !rough)).then_some((c, k, face / face.norm()))
     }
 
-    /// The coast ball `k` would begin at state `y` of `island` (its contact `c` there, the face's normal `n`),
-    /// or `None` when its contact slides, its ringing would reach beyond the Coulomb cap by more than `graze`
-    /// (relative), or its padding beyond the neighbour list's room by as much; with the kinetic energy its normal
-    /// velocity carries (J), which the coast leaves out.
-    fn coast_at(
-        &self,
-        island: &Island,
-        c: usize,
-        k: usize,
-        n: &Vector3<f64>,
-        y: &DVector<f64>,
-        graze: f64,
-    ) -> Option<(Coast, f64)> {
-        let body = &self.scene.bodies[k];
-        let contact = &island.contacts[c];
-        // The ball's weight along the normal is the mean of its contact's force, and the stiffness its ringing would
-        // settle to is the one at the static penetration: the ringing normal to the face (its energy below the
-        // threshold of rest) would move it about them, and its damping bring it there.
-        let weight = body.mass * self.scene.world.gravity.dot(n).abs();
-        let (_, _, _, mu) = island.standing(c, y);
-        let kt = island.tangential_stiffness(c, island.static_penetration(c, weight, y));
-        let normal_force = weight;
-        let velocity = island.velocity(k, y);
-        let normal_speed = velocity.dot(n);
-        let start = Kinematic {
-            position: island.position(k, y),
-            velocity: velocity - n * normal_speed,
-            spin: island.spin(k, y),
-            orientation: island.orientation(k, y),
-        };
-        let radius = body.radius;
-        let rough = mu > 0.0 && kt > 0.0;
-        let (force, tangential_work) = if rough {
-            if contact.mode != Mode::Stick {
-                return None;
-            }
-            let (spring, work, _) = island.tangential_integrals(c, y);
-            (if contact.pair[0] == k { spring } else { -spring }, work)
-        } else {
-            (Vector3::zeros(), island.tangential_integrals(c, y).1)
-        };
-        let coast = Coast {
-            since: 0.0,
-            start,
-            force: force - n * n.dot(&force),
-            slip: super::coast::slip(&start, n, radius),
-            normal: *n,
-            mass: body.mass,
-            inertia: if rough { body.inertia } else { f64::INFINITY },
-            radius,
-            stiffness: if rough { kt } else { 0.0 },
-            work_before: tangential_work,
-            normal_force,
-            impulse_before: island.integrals(c, y).0,
-            units: island.units,
-        };
-        if rough && coast.largest_force() > (1.0 + graze) * mu * normal_force.max(0.0) {
-            return None;
-        }
-        if !self.neighbours.is_everything() && 2.0 * coast.reach() > (1.0 + graze) * self.neighbours.reach() / 8.0 {
-            return None;
-        }
-        Some((coast, 0.5 * body.mass * normal_speed * normal_speed))
-    }
-
     /// Ball `k` coasts from scene time `now` (`normal`: the kinetic energy of its normal velocity, J, which the coast
     /// leaves out and is counted settled).
     fn begin_coast(&mut self, k: usize, coast: Coast, normal: f64, now: f64) {
@@ -1123,8 +1058,7 @@ impl<'a> World<'a> {
                 if !ready {
                     return None;
                 }
-                self.coast_at(&island, watch.c, watch.k, &watch.n, &y0, COAST_LENIENCE)
-                    .map(|(coast, normal)| (watch.k, coast, normal))
+                coast_begins(&island, watch, &y0, COAST_LENIENCE).map(|(coast, normal)| (watch.k, coast, normal))
             })
             .collect();
         if let Some((k, coast, normal)) = ready.into_iter().next() {
@@ -1399,7 +1333,7 @@ impl<'a> World<'a> {
                         // (Its watch ruled on the cap and the gaps: the cap is read again only with a leniency for
                         // the event's location.)
                         coasting = watches[k].as_ref().and_then(|watch| {
-                            self.coast_at(&island, watch.c, watch.k, &watch.n, y, COAST_LENIENCE)
+                            coast_begins(&island, watch, y, COAST_LENIENCE)
                                 .map(|(coast, normal)| (watch.k, coast, normal))
                         });
                         None
@@ -2143,12 +2077,12 @@ fn coast_watch(island: &Island, watch: &CoastWatch, y: &DVector<f64>) -> f64 {
     let &CoastWatch { c, k, body, n, weight, .. } = watch;
     let mass = body.mass;
     let energy = island.units.energy;
-    let velocity = island.velocity(k, y);
-    let kinetic = 0.5 * mass * velocity.dot(&n).powi(2);
+    let kinetic = 0.5 * mass * island.velocity(k, y).dot(&n).powi(2);
     if kinetic > WATCHED_REST * energy {
         return kinetic / energy - AT_REST;
     }
-    let (_, gradient, _, mu) = island.standing(c, y);
+    let d = island.contact_state(c, y).penetration.max(0.0);
+    let gradient = island.contacts[c].law.force_gradient(d, 0.0).0;
     let pull = island.acceleration_of(k, y).dot(&n);
     let ringing = if gradient > 0.0 {
         kinetic + 0.5 * mass * mass * pull * pull / gradient
@@ -2158,36 +2092,15 @@ fn coast_watch(island: &Island, watch: &CoastWatch, y: &DVector<f64>) -> f64 {
         kinetic
     };
     let above = ringing / energy - AT_REST;
-    let kt = island.tangential_stiffness(c, island.static_penetration(c, weight, y));
-    if above > WATCHED_REST || !(mu > 0.0 && kt > 0.0) {
+    let mu = island.friction_coefficient(c);
+    if above > WATCHED_REST || mu <= 0.0 {
         return above;
     }
-    if island.contacts[c].mode != Mode::Stick || weight <= 0.0 {
-        return above.max(1.0);
+    let kt = island.tangential_stiffness(c, island.static_penetration(c, weight, y));
+    if kt.is_nan() || kt <= 0.0 {
+        return above;
     }
-    let (spring, _, _) = island.tangential_integrals(c, y);
-    let force = if island.contacts[c].pair[0] == k { spring } else { -spring };
-    let state = Kinematic {
-        position: island.position(k, y),
-        velocity: velocity - n * velocity.dot(&n),
-        spin: island.spin(k, y),
-        orientation: island.orientation(k, y),
-    };
-    let coast = Coast {
-        since: 0.0,
-        start: state,
-        force: force - n * n.dot(&force),
-        slip: super::coast::slip(&state, &n, body.radius),
-        normal: n,
-        mass,
-        inertia: body.inertia,
-        radius: body.radius,
-        stiffness: kt,
-        work_before: 0.0,
-        normal_force: weight,
-        impulse_before: 0.0,
-        units: island.units,
-    };
+    let Some(coast) = coast_from(island, watch, kt, y).filter(|_| weight > 0.0) else { return above.max(1.0) };
     let pad = 2.0 * coast.reach();
     // (A padding beyond the neighbour list's room would leave the list no time to hold.)
     let roomy = if watch.room.is_finite() { (pad - watch.room) / watch.room } else { f64::NEG_INFINITY };
@@ -2200,4 +2113,64 @@ fn coast_watch(island: &Island, watch: &CoastWatch, y: &DVector<f64>) -> f64 {
         })
         .fold(f64::NEG_INFINITY, f64::max);
     above.max(coast.largest_force() / (mu * weight) - (1.0 + CAP_GRAZE)).max(near).max(roomy)
+}
+
+/// The coast ball `watch.k` would begin at state `y`: from its state there, its normal velocity removed, with its
+/// contact's tangential force and integrals; `kt` (N/m) its tangential stiffness, zero for a smooth contact. `None`
+/// where its rough contact slides.
+fn coast_from(island: &Island, watch: &CoastWatch, kt: f64, y: &DVector<f64>) -> Option<Coast> {
+    let &CoastWatch { c, k, body, n, weight, .. } = watch;
+    let contact = &island.contacts[c];
+    let rough = kt > 0.0;
+    if rough && contact.mode != Mode::Stick {
+        return None;
+    }
+    let velocity = island.velocity(k, y);
+    let start = Kinematic {
+        position: island.position(k, y),
+        velocity: velocity - n * velocity.dot(&n),
+        spin: island.spin(k, y),
+        orientation: island.orientation(k, y),
+    };
+    let (spring, work, _) = island.tangential_integrals(c, y);
+    let force = match (rough, contact.pair[0] == k) {
+        (false, _) => Vector3::zeros(),
+        (true, true) => spring,
+        (true, false) => -spring,
+    };
+    Some(Coast {
+        since: 0.0,
+        start,
+        force: force - n * n.dot(&force),
+        slip: super::coast::slip(&start, &n, body.radius),
+        normal: n,
+        mass: body.mass,
+        inertia: if rough { body.inertia } else { f64::INFINITY },
+        radius: body.radius,
+        stiffness: kt,
+        work_before: work,
+        normal_force: weight,
+        impulse_before: island.integrals(c, y).0,
+        units: island.units,
+    })
+}
+
+/// The coast ball `watch.k` begins at state `y`, or `None` when its contact slides, its ringing would reach beyond
+/// the Coulomb cap by more than `graze` (relative), or its padding beyond the neighbour list's room by as much; with the
+/// kinetic energy its normal velocity carries (J), which the coast leaves out. The normal force is the ball's weight
+/// along the normal, the mean of its contact's force, and kt is taken at the static penetration, where the ringing's
+/// damping would bring it (the ringing normal to the face, below the threshold of rest, moves it about them).
+fn coast_begins(island: &Island, watch: &CoastWatch, y: &DVector<f64>, graze: f64) -> Option<(Coast, f64)> {
+    let &CoastWatch { c, k, body, n, weight, room, .. } = watch;
+    let mu = island.friction_coefficient(c);
+    let kt = island.tangential_stiffness(c, island.static_penetration(c, weight, y));
+    let rough = mu > 0.0 && kt > 0.0;
+    let coast = coast_from(island, watch, if rough { kt } else { 0.0 }, y)?;
+    if rough && coast.largest_force() > (1.0 + graze) * mu * weight.max(0.0) {
+        return None;
+    }
+    if room.is_finite() && 2.0 * coast.reach() > (1.0 + graze) * room {
+        return None;
+    }
+    Some((coast, 0.5 * body.mass * island.velocity(k, y).dot(&n).powi(2)))
 }

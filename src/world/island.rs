@@ -799,17 +799,6 @@ impl<'a> Island<'a> {
         (parts.elastic, parts.dissipative)
     }
 
-    /// Contact `c` standing still at its penetration at `y` (its rate taken as zero), SI: its normal force (N), the
-    /// force's gradient (N/m), the tangential stiffness kt (N/m; zero on a smooth contact) and the friction
-    /// coefficient (zero on a smooth contact). What a coast is built from (docs/world.md#coasting).
-    pub fn standing(&self, c: usize, y: &DVector<f64>) -> (f64, f64, f64, f64) {
-        let state = ContactState { rate: 0.0, ..self.contact_state(c, y) };
-        let (elastic, dissipative) = self.force(c, &state, y);
-        let d = state.penetration.max(0.0);
-        let gradient = self.contacts[c].law.force_gradient(d, 0.0).0;
-        (elastic + dissipative, gradient, self.tangential_stiffness(c, d), self.friction_coefficient(c))
-    }
-
     /// Contact `c`'s tangential stiffness kt (N/m) at penetration `d` (m); zero on a smooth contact.
     pub fn tangential_stiffness(&self, c: usize, d: f64) -> f64 {
         let u = &self.units;
